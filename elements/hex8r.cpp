@@ -1,0 +1,1 @@
+// hex kernel: in progress

@@ -1,0 +1,48 @@
+#pragma once
+/// \file The result files of a job: JOB.h5 (+ JOB.xdmf), JOB.sta, JOB.msg.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "solver/output_sink.hpp"
+
+namespace xpl::io {
+
+/// Options of the result files.
+struct ResultOptions {
+  bool progress = true;  ///< a progress line on stderr for runs longer than ~2 s
+};
+
+/// An OutputSink that writes JOB.h5, JOB.xdmf, JOB.sta and JOB.msg into a directory.
+/// The HDF5 file is flushed after every frame, so it is readable even if the run dies.
+class ResultFiles final : public OutputSink {
+ public:
+  ResultFiles(const std::filesystem::path& directory, const std::string& job_name,
+              ResultOptions options = {});
+  ~ResultFiles() override;
+  ResultFiles(const ResultFiles&) = delete;
+  ResultFiles& operator=(const ResultFiles&) = delete;
+
+  void begin_run(const Model& model) override;
+  void begin_step(const Model& model, int step) override;
+  void declare_history(const std::vector<HistorySeries>& series) override;
+  void write_frame(const Model& model, const State& state, const FrameRequest& what) override;
+  void append_history(Real time, std::span<const Real> values) override;
+  void status(const StatusLine& line) override;
+  void message(Severity severity, const std::string& text) override;
+  void end_run(RunStatus status, const std::string& error, const PhaseTimers& timers,
+               double element_cycles_per_second) override;
+
+  /// Paths of the files written.
+  std::filesystem::path h5_path() const;
+  std::filesystem::path xdmf_path() const;
+  std::filesystem::path sta_path() const;
+  std::filesystem::path msg_path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace xpl::io

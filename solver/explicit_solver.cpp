@@ -1,0 +1,1 @@
+#include "solver/explicit_solver.hpp"

@@ -1,0 +1,51 @@
+#include "solver/model.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+namespace xpl {
+
+std::string to_upper(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+Real Amplitude::evaluate(Real t) const {
+  if (time.empty()) return 1.0;
+  if (t <= time.front()) return value.front();
+  if (t >= time.back()) return value.back();
+  const auto it = std::upper_bound(time.begin(), time.end(), t);
+  const auto i = static_cast<std::size_t>(it - time.begin());
+  const Real t0 = time[i - 1], t1 = time[i];
+  if (t1 <= t0) return value[i];
+  const Real s = (t - t0) / (t1 - t0);
+  return value[i - 1] + s * (value[i] - value[i - 1]);
+}
+
+namespace {
+template <class Items>
+Index find_by_name(const Items& items, const std::string& name) {
+  const std::string key = to_upper(name);
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (items[i].name == key) return static_cast<Index>(i);
+  return NO_INDEX;
+}
+}  // namespace
+
+Index Model::find_node_set(const std::string& name) const {
+  return find_by_name(node_sets, name);
+}
+Index Model::find_element_set(const std::string& name) const {
+  return find_by_name(element_sets, name);
+}
+Index Model::find_surface(const std::string& name) const {
+  return find_by_name(surfaces, name);
+}
+Index Model::find_amplitude(const std::string& name) const {
+  return find_by_name(amplitudes, name);
+}
+Index Model::find_material(const std::string& name) const {
+  return find_by_name(materials, name);
+}
+
+}  // namespace xpl

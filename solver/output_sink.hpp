@@ -1,0 +1,78 @@
+#pragma once
+/// \file What the solver tells the outside world: frames, history, status lines, messages.
+/// `io` implements it (HDF5 + XDMF + .sta + .msg); tests implement it to capture data.
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/timer.hpp"
+#include "common/types.hpp"
+#include "solver/model.hpp"
+#include "solver/state.hpp"
+
+namespace xpl {
+
+/// What a field frame contains.
+struct FrameRequest {
+  bool displacement = false;  ///< U
+  bool velocity = false;      ///< V
+  bool acceleration = false;  ///< A
+  bool reaction = false;      ///< RF
+  bool stress = false;        ///< S (also writes the von Mises MISES)
+  bool volume = false;        ///< EVOL
+};
+
+/// One column group of history output: `path` names an HDF5 dataset below /history
+/// ("energy/ALLKE", "node/FIXED/RF1"); width 1 is a scalar series, width > 1 has one
+/// column per node (node_ids gives the deck ids of the columns).
+struct HistorySeries {
+  std::string path;
+  Index width = 1;
+  std::vector<ExternalId> node_ids;
+};
+
+/// One line of the .sta file.
+struct StatusLine {
+  long increment = 0;
+  Real step_time = 0.0;
+  Real total_time = 0.0;
+  Real dt = 0.0;
+  ExternalId critical_element = 0;  ///< deck id of the element that limits the increment
+  Energies energies;
+};
+
+/// Severity of a .msg entry.
+enum class Severity { Info, Note, Warning, Error };
+
+/// How a run ended.
+enum class RunStatus { Completed, Checked, Failed };
+
+/// Receives everything a run produces, in this order: begin_run, (begin_step, frames,
+/// history rows, status lines, messages)*, end_run. Implementations write files; the solver
+/// never touches a file itself.
+class OutputSink {
+ public:
+  virtual ~OutputSink() = default;
+  /// Mesh and model summary; called once before frame 0.
+  virtual void begin_run(const Model& model) = 0;
+  /// A new step starts (zero-based index).
+  virtual void begin_step(const Model& model, int step) = 0;
+  /// Declares the history columns of the current step (called after begin_step, before any
+  /// append_history of that step).
+  virtual void declare_history(const std::vector<HistorySeries>& series) = 0;
+  /// One field frame at state.time (frame 0 is the initial state).
+  virtual void write_frame(const Model& model, const State& state, const FrameRequest& what) = 0;
+  /// One history row; `values` holds the declared series' columns back to back.
+  virtual void append_history(Real time, std::span<const Real> values) = 0;
+  /// One .sta line.
+  virtual void status(const StatusLine& line) = 0;
+  /// One .msg entry.
+  virtual void message(Severity severity, const std::string& text) = 0;
+  /// Called when the run ends, also after an error (`error` then says what happened),
+  /// with the per-phase timers and the element-cycles per second of the time loop.
+  virtual void end_run(RunStatus status, const std::string& error, const PhaseTimers& timers,
+                       double element_cycles_per_second) = 0;
+};
+
+}  // namespace xpl

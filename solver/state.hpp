@@ -1,0 +1,50 @@
+#pragma once
+/// \file The evolving solution: nodal fields, element output fields, energies, clock.
+
+#include <vector>
+
+#include "common/types.hpp"
+
+namespace xpl {
+
+/// Whole-model energy balance (Abaqus names in comments), J.
+struct Energies {
+  Real kinetic = 0.0;        ///< ALLKE
+  Real strain = 0.0;         ///< ALLSE, recoverable strain energy
+  Real artificial = 0.0;     ///< ALLAE, hourglass energy
+  Real viscous = 0.0;        ///< ALLVD, bulk-viscosity dissipation
+  Real external_work = 0.0;  ///< ALLWK, work of loads and of reactions at prescribed DOFs
+  /// ALLIE = ALLSE + ALLAE (+ plastic and contact energies when they exist).
+  Real internal() const { return strain + artificial; }
+  /// ETOTAL = ALLKE + ALLIE + ALLVD − ALLWK; constant for a correct, stable run.
+  Real total() const { return kinetic + internal() + viscous - external_work; }
+};
+
+/// State of a run at the end of an increment (time t_n).
+struct State {
+  NodalVectors reference;      ///< reference coordinates X (n_nodes × 3), m
+  NodalVectors position;       ///< current coordinates x_n (n_nodes × 3), m
+  NodalVectors velocity;       ///< v_n at whole time steps (n_nodes × 3), m/s
+  NodalVectors velocity_half;  ///< v_{n+1/2} (n_nodes × 3), m/s
+  NodalVectors acceleration;   ///< a_n (n_nodes × 3), m/s^2
+  NodalVectors reaction;       ///< reaction forces at prescribed DOFs (n_nodes × 3), N
+  std::vector<Real> mass;      ///< lumped nodal mass (n_nodes), kg
+
+  /// Cauchy stress per element, filled before each field frame (n_elements × 6, row-major,
+  /// Abaqus order S11 S22 S33 S12 S13 S23), Pa.
+  std::vector<Real> stress;
+  /// Current element volume, filled with `stress` (n_elements), m^3.
+  std::vector<Real> volume;
+
+  Energies energies;
+  Real time = 0.0;       ///< total time t_n, s
+  Real step_time = 0.0;  ///< time since the start of the current step, s
+  Real dt = 0.0;         ///< the increment that led to t_n, s
+  long increment = 0;    ///< total increment count
+  int step = 0;          ///< zero-based step index
+
+  /// Displacement u = x − X of node i, component c.
+  Real displacement(Index i, int c) const { return position(i, c) - reference(i, c); }
+};
+
+}  // namespace xpl
