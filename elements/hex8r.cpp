@@ -1,1 +1,331 @@
-// hex kernel: in progress
+#include "elements/hex8r.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "elements/element_coloring.hpp"
+#include "elements/hex8_geometry.hpp"
+
+namespace xpl::elements {
+
+using simd::Vec;
+
+Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
+                       const std::vector<HexMaterial>& materials, Index node_count)
+    : m_element_index(std::move(element_index)) {
+  const Index n = size();
+  const std::vector<int> color = color_elements(connectivity, 8, node_count);
+  const int n_colors = n == 0 ? 0 : *std::max_element(color.begin(), color.end()) + 1;
+
+  // Elements of each colour in their original order (keeps some locality), then batches.
+  std::vector<std::vector<Index>> by_color(n_colors);
+  for (Index e = 0; e < n; ++e) by_color[color[e]].push_back(e);
+  m_color_batches.assign(1, 0);
+  std::vector<Index> lane_owner;
+  for (const auto& members : by_color) {
+    const auto batches = static_cast<Index>((members.size() + W - 1) / W);
+    for (Index b = 0; b < batches; ++b)
+      for (int l = 0; l < W; ++l) {
+        const std::size_t k = static_cast<std::size_t>(b) * W + l;
+        lane_owner.push_back(k < members.size() ? members[k] : NO_INDEX);
+      }
+    m_color_batches.push_back(m_color_batches.back() + batches);
+  }
+  const Index n_batches = m_color_batches.back();
+  m_lane_owner = std::move(lane_owner);
+  m_conn.assign(static_cast<std::size_t>(n_batches) * 8 * W, 0);
+  m_const.assign(static_cast<std::size_t>(n_batches) * N_CONST * W, 0.0);
+  m_stress.assign(static_cast<std::size_t>(n_batches) * 6 * W, 0.0);
+  m_hourglass.assign(static_cast<std::size_t>(n_batches) * 12 * W, 0.0);
+  m_volume.assign(static_cast<std::size_t>(n_batches) * W, 0.0);
+  m_slot.assign(n, NO_INDEX);
+  m_batch_energy.assign(static_cast<std::size_t>(n_batches) * 3, 0.0);
+  m_batch_dt.assign(n_batches, 0.0);
+  m_batch_critical.assign(n_batches, NO_INDEX);
+  m_batch_failed.assign(n_batches, NO_INDEX);
+
+  for (Index b = 0; b < n_batches; ++b) {
+    for (int l = 0; l < W; ++l) {
+      const Index owner = m_lane_owner[b * W + l];
+      // Padding lanes compute a copy of lane 0 and are masked out of every result.
+      const Index e = owner != NO_INDEX ? owner : m_lane_owner[b * W];
+      if (owner != NO_INDEX) m_slot[owner] = b * W + l;
+      for (int a = 0; a < 8; ++a) m_conn[(b * 8 + a) * W + l] = connectivity[e * 8 + a];
+      const HexMaterial& m = materials[e];
+      const Real mu = m.young / (2.0 * (1.0 + m.poisson));
+      const Real lambda = m.young * m.poisson / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson));
+      Real* c = &m_const[static_cast<std::size_t>(b) * N_CONST * W + l];
+      c[LAMBDA * W] = lambda;
+      c[TWO_MU * W] = 2.0 * mu;
+      c[DENSITY * W] = m.density;
+      c[WAVE_SPEED * W] = std::sqrt((lambda + 2.0 * mu) / m.density);
+      const bool stiff = m.hourglass == HourglassForm::Stiffness;
+      c[HG_STIFFNESS * W] = stiff ? HOURGLASS_STIFFNESS * m.hourglass_scale : 0.0;
+      c[HG_VISCOSITY * W] = stiff ? 0.0 : HOURGLASS_VISCOSITY * m.hourglass_scale;
+    }
+  }
+}
+
+void Hex8rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const {
+  const Index n_batches = m_color_batches.back();
+  for (Index b = 0; b < n_batches; ++b)
+    for (int l = 0; l < W; ++l) {
+      if (m_lane_owner[b * W + l] == NO_INDEX) continue;
+      Real x[8], y[8], z[8];
+      for (int a = 0; a < 8; ++a) {
+        const Index node = m_conn[(b * 8 + a) * W + l];
+        x[a] = reference(node, 0);
+        y[a] = reference(node, 1);
+        z[a] = reference(node, 2);
+      }
+      const Real density = m_const[(static_cast<std::size_t>(b) * N_CONST + DENSITY) * W + l];
+      const Real share = density * hex8_volume(x, y, z) / 8.0;
+      for (int a = 0; a < 8; ++a) mass[m_conn[(b * 8 + a) * W + l]] += share;
+    }
+}
+
+void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
+                                 Real dt, Real bulk_linear, Real bulk_quadratic,
+                                 NodalVectors& force, HexStepTotals& totals) {
+  const Index n_nodes = static_cast<Index>(position.rows());
+  const Real* px = position.data();
+  const Real* vx = velocity_half.data();
+  Real* fx = force.data();
+  for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
+    const Index first = m_color_batches[c], last = m_color_batches[c + 1];
+#pragma omp parallel for schedule(static)
+    for (Index b = first; b < last; ++b)
+      compute_batch(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes, vx + 2 * n_nodes, dt,
+                    bulk_linear, bulk_quadratic, fx, fx + n_nodes, fx + 2 * n_nodes);
+  }
+  // Serial reduction in batch order: independent of the thread count.
+  const Index n_batches = m_color_batches.back();
+  for (Index b = 0; b < n_batches; ++b) {
+    totals.strain_energy_increment += m_batch_energy[b * 3 + 0];
+    totals.hourglass_energy_increment += m_batch_energy[b * 3 + 1];
+    totals.viscous_energy_increment += m_batch_energy[b * 3 + 2];
+    const Index crit = m_batch_critical[b];
+    if (m_batch_dt[b] < totals.stable_dt ||
+        (m_batch_dt[b] == totals.stable_dt && crit != NO_INDEX &&
+         (totals.critical_element == NO_INDEX || crit < totals.critical_element))) {
+      totals.stable_dt = m_batch_dt[b];
+      totals.critical_element = crit;
+    }
+    const Index failed = m_batch_failed[b];
+    if (failed != NO_INDEX && (totals.failed_element == NO_INDEX || failed < totals.failed_element))
+      totals.failed_element = failed;
+  }
+}
+
+void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, const Real* pz,
+                               const Real* vx, const Real* vy, const Real* vz, Real dt, Real b1,
+                               Real b2, Real* fx, Real* fy, Real* fz) {
+  const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
+  const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
+  Real* sig = &m_stress[static_cast<std::size_t>(batch) * 6 * W];
+  Real* hgq = &m_hourglass[static_cast<std::size_t>(batch) * 12 * W];
+
+  // Gather and go to mode space (positions x_{n+1}, velocities v_{n+1/2}).
+  V3<Vec> ax[8], av[8];
+  {
+    Vec cx[8], cy[8], cz[8], wx[8], wy[8], wz[8];
+    for (int a = 0; a < 8; ++a) {
+      const Index* idx = conn + a * W;
+      cx[a] = simd::gather(px, idx);
+      cy[a] = simd::gather(py, idx);
+      cz[a] = simd::gather(pz, idx);
+      wx[a] = simd::gather(vx, idx);
+      wy[a] = simd::gather(vy, idx);
+      wz[a] = simd::gather(vz, idx);
+    }
+    to_modes(cx, cy, cz, ax);
+    to_modes(wx, wy, wz, av);
+  }
+
+  // Geometry at x_{n+1} (forces, hourglass) and at x_{n+1/2} (strain increment).
+  V3<Vec> g[8], gm[8];
+  Vec vol, volm;
+  volume_gradient(ax, g, vol);
+  {
+    V3<Vec> am[8];
+    const Real half_dt = 0.5 * dt;
+    for (int k = 0; k < 8; ++k) am[k] = ax[k] - half_dt * av[k];
+    volume_gradient(am, gm, volm);
+  }
+
+  // Velocity gradient on the mid geometry: V L = Σ_k av_k ⊗ g_k.
+  Vec L[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) L[i][j] = simd::splat(0.0);
+  for (int k = 1; k < 7; ++k) {
+    const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
+    const Vec gj[3] = {gm[k].x, gm[k].y, gm[k].z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) L[i][j] += vi[i] * gj[j];
+  }
+  const Vec inv_volm = 1.0 / volm;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) L[i][j] *= inv_volm;
+
+  const Vec lambda = simd::load(cst + LAMBDA * W);
+  const Vec two_mu = simd::load(cst + TWO_MU * W);
+  const Vec density = simd::load(cst + DENSITY * W);
+  const Vec wave = simd::load(cst + WAVE_SPEED * W);
+
+  // Jaumann-rate elastic update: σ̇ = λ tr(D) I + 2μ D + Wσ − σW.
+  const Vec d00 = L[0][0], d11 = L[1][1], d22 = L[2][2];
+  const Vec d01 = 0.5 * (L[0][1] + L[1][0]), d02 = 0.5 * (L[0][2] + L[2][0]),
+            d12 = 0.5 * (L[1][2] + L[2][1]);
+  const Vec w01 = 0.5 * (L[0][1] - L[1][0]), w02 = 0.5 * (L[0][2] - L[2][0]),
+            w12 = 0.5 * (L[1][2] - L[2][1]);
+  const Vec tr = d00 + d11 + d22;
+  Vec s[6];
+  for (int c = 0; c < 6; ++c) s[c] = simd::load(sig + c * W);
+  // R = Wσ (σ symmetric: s0 s1 s2 = 11 22 33, s3 = 12, s4 = 13, s5 = 23); Wσ − σW = R + Rᵀ.
+  const Vec r00 = w01 * s[3] + w02 * s[4];
+  const Vec r11 = -w01 * s[3] + w12 * s[5];
+  const Vec r22 = -w02 * s[4] - w12 * s[5];
+  const Vec r01 = w01 * s[1] + w02 * s[5], r10 = -w01 * s[0] + w12 * s[4];
+  const Vec r02 = w01 * s[5] + w02 * s[2], r20 = -w02 * s[0] - w12 * s[3];
+  const Vec r12 = -w01 * s[4] + w12 * s[2], r21 = -w02 * s[3] - w12 * s[1];
+  const Vec lt = lambda * tr;
+  Vec sn[6];
+  sn[0] = s[0] + dt * (lt + two_mu * d00 + 2.0 * r00);
+  sn[1] = s[1] + dt * (lt + two_mu * d11 + 2.0 * r11);
+  sn[2] = s[2] + dt * (lt + two_mu * d22 + 2.0 * r22);
+  sn[3] = s[3] + dt * (two_mu * d01 + r01 + r10);
+  sn[4] = s[4] + dt * (two_mu * d02 + r02 + r20);
+  sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
+  for (int c = 0; c < 6; ++c) simd::store(sig + c * W, sn[c]);
+  const Vec strain_power =
+      0.5 * ((s[0] + sn[0]) * d00 + (s[1] + sn[1]) * d11 + (s[2] + sn[2]) * d22 +
+             2.0 * ((s[3] + sn[3]) * d01 + (s[4] + sn[4]) * d02 + (s[5] + sn[5]) * d12));
+
+  // Characteristic length L_e = V / A_max and bulk viscosity (tensile-positive pressure).
+  const Vec area = simd::sqrt(max_face_area_squared(ax));
+  const Vec length = vol / area;
+  const Vec compress = simd::min(tr, simd::splat(0.0));
+  const Vec b2l = b2 * length;
+  const Vec sv = b1 * density * wave * length * tr - density * b2l * b2l * compress * compress;
+
+  // Stable increment with bulk-viscosity damping ξ (Abaqus-style estimate).
+  const Vec xi = b1 - b2 * b2 * (length / wave) * compress;
+  const Vec dt_e = (length / wave) * (simd::sqrt(1.0 + xi * xi) - xi);
+
+  // Hourglass rates on x_{n+1}: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α), α = modes 4..7.
+  Vec Ln[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Ln[i][j] = simd::splat(0.0);
+  Vec gsum = simd::splat(0.0);
+  for (int k = 1; k < 7; ++k) {
+    const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
+    const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Ln[i][j] += vi[i] * gj[j];
+    gsum += dot(g[k], g[k]);
+  }
+  const Vec inv_vol = 1.0 / vol;
+  const Vec k_hg = simd::load(cst + HG_STIFFNESS * W) * two_mu * (gsum * 0.125) * (0.125 * inv_vol);
+  const Vec c_hg = simd::load(cst + HG_VISCOSITY * W) * density * wave * area * 0.125;
+  V3<Vec> Q[4];
+  Vec hg_power = simd::splat(0.0);
+  for (int m = 0; m < 4; ++m) {
+    const V3<Vec>& a = ax[4 + m];
+    const V3<Vec> la = {(Ln[0][0] * a.x + Ln[0][1] * a.y + Ln[0][2] * a.z) * inv_vol,
+                        (Ln[1][0] * a.x + Ln[1][1] * a.y + Ln[1][2] * a.z) * inv_vol,
+                        (Ln[2][0] * a.x + Ln[2][1] * a.y + Ln[2][2] * a.z) * inv_vol};
+    const V3<Vec> q = 8.0 * (av[4 + m] - la);
+    Real* qs = hgq + m * 3 * W;
+    const V3<Vec> q_old = {simd::load(qs), simd::load(qs + W), simd::load(qs + 2 * W)};
+    const V3<Vec> q_new = q_old + (k_hg * dt) * q;
+    simd::store(qs, q_new.x);
+    simd::store(qs + W, q_new.y);
+    simd::store(qs + 2 * W, q_new.z);
+    Q[m] = q_new + c_hg * q;
+    hg_power += dot(0.5 * (q_old + q_new) + c_hg * q, q);
+  }
+
+  // Forces: f_I = P b_I + Σ_α Γ_αI Q_α with P = σ + s_v I − (8/V) Σ_α Q_α ⊗ a_α, and
+  // b_I = ⅛ Σ_k Λ_kI g_k, so in mode space F_k = ⅛ P g_k (+ Q_α for k = 4..7).
+  Vec P[3][3] = {
+      {sn[0] + sv, sn[3], sn[4]}, {sn[3], sn[1] + sv, sn[5]}, {sn[4], sn[5], sn[2] + sv}};
+  for (int m = 0; m < 4; ++m) {
+    const Vec qi[3] = {Q[m].x, Q[m].y, Q[m].z};
+    const Vec aj[3] = {ax[4 + m].x, ax[4 + m].y, ax[4 + m].z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) P[i][j] -= 8.0 * inv_vol * qi[i] * aj[j];
+  }
+  Vec Fx[8], Fy[8], Fz[8];
+  Fx[0] = Fy[0] = Fz[0] = simd::splat(0.0);
+  for (int k = 1; k < 7; ++k) {
+    Fx[k] = 0.125 * (P[0][0] * g[k].x + P[0][1] * g[k].y + P[0][2] * g[k].z);
+    Fy[k] = 0.125 * (P[1][0] * g[k].x + P[1][1] * g[k].y + P[1][2] * g[k].z);
+    Fz[k] = 0.125 * (P[2][0] * g[k].x + P[2][1] * g[k].y + P[2][2] * g[k].z);
+  }
+  Fx[7] = Fy[7] = Fz[7] = simd::splat(0.0);
+  for (int m = 0; m < 4; ++m) {
+    Fx[4 + m] += Q[m].x;
+    Fy[4 + m] += Q[m].y;
+    Fz[4 + m] += Q[m].z;
+  }
+  Vec fnx[8], fny[8], fnz[8];
+  from_modes(Fx, fnx);
+  from_modes(Fy, fny);
+  from_modes(Fz, fnz);
+
+  simd::store(&m_volume[static_cast<std::size_t>(batch) * W], vol);
+  const Vec strain_inc = dt * volm * strain_power;
+  const Vec visc_inc = dt * volm * sv * tr;
+  const Vec hg_inc = dt * hg_power;
+
+  // Scatter (lanes of a batch share no node) and per-batch reductions over real lanes.
+  Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, best_dt = std::numeric_limits<Real>::infinity();
+  Index critical = NO_INDEX, failed = NO_INDEX;
+  for (int l = 0; l < W; ++l) {
+    const Index owner = m_lane_owner[batch * W + l];
+    if (owner == NO_INDEX) continue;
+    for (int a = 0; a < 8; ++a) {
+      const Index node = conn[a * W + l];
+      fx[node] += fnx[a][l];
+      fy[node] += fny[a][l];
+      fz[node] += fnz[a][l];
+    }
+    e_strain += strain_inc[l];
+    e_hg += hg_inc[l];
+    e_visc += visc_inc[l];
+    const Index model_e = m_element_index[owner];
+    if (!(vol[l] > 0.0) || !(volm[l] > 0.0)) {
+      if (failed == NO_INDEX || model_e < failed) failed = model_e;
+    } else if (dt_e[l] < best_dt || (dt_e[l] == best_dt && model_e < critical)) {
+      best_dt = dt_e[l];
+      critical = model_e;
+    }
+  }
+  m_batch_energy[batch * 3 + 0] = e_strain;
+  m_batch_energy[batch * 3 + 1] = e_hg;
+  m_batch_energy[batch * 3 + 2] = e_visc;
+  m_batch_dt[batch] = best_dt;
+  m_batch_critical[batch] = critical;
+  m_batch_failed[batch] = failed;
+}
+
+void Hex8rBlock::gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {
+  for (Index i = 0; i < size(); ++i) {
+    const Index slot = m_slot[i];
+    const Index b = slot / W, l = slot % W;
+    const Index e = m_element_index[i];
+    for (int c = 0; c < 6; ++c) stress[e * 6 + c] = m_stress[(b * 6 + c) * W + l];
+    volume[e] = m_volume[b * W + l];
+  }
+}
+
+std::array<Real, 6> Hex8rBlock::stress(Index i) const {
+  const Index slot = m_slot[i];
+  const Index b = slot / W, l = slot % W;
+  std::array<Real, 6> s{};
+  for (int c = 0; c < 6; ++c) s[c] = m_stress[(b * 6 + c) * W + l];
+  return s;
+}
+
+}  // namespace xpl::elements

@@ -1,0 +1,67 @@
+#pragma once
+/// \file A batch of W element lanes as one SIMD value (GCC vector extension), so that the
+/// element kernels read like scalar code while every operation runs across W elements.
+/// Without AVX-512 the compiler splits the vectors; results are identical lane by lane.
+
+#include <cmath>
+
+#include "common/types.hpp"
+
+namespace xpl::simd {
+
+/// Lanes per batch: 8 doubles = one AVX-512 register.
+inline constexpr int W = 8;
+
+/// W doubles processed together.
+typedef Real Vec __attribute__((vector_size(W * sizeof(Real))));
+/// Lane-wise comparison result (all bits set where true).
+typedef std::int64_t Mask __attribute__((vector_size(W * sizeof(Real))));
+
+inline Vec splat(Real s) {
+  return Vec{} + s;
+}
+
+/// Loads base[index[l]] into lane l.
+inline Vec gather(const Real* base, const Index* index) {
+  Vec r;
+  for (int l = 0; l < W; ++l) r[l] = base[index[l]];
+  return r;
+}
+
+/// Contiguous load/store of one batch row.
+inline Vec load(const Real* p) {
+  Vec r;
+  for (int l = 0; l < W; ++l) r[l] = p[l];
+  return r;
+}
+inline void store(Real* p, Vec v) {
+  for (int l = 0; l < W; ++l) p[l] = v[l];
+}
+
+inline Vec select(Mask m, Vec a, Vec b) {
+  return m ? a : b;
+}
+inline Vec min(Vec a, Vec b) {
+  return a < b ? a : b;
+}
+inline Vec max(Vec a, Vec b) {
+  return a > b ? a : b;
+}
+inline Vec sqrt(Vec a) {
+  Vec r;
+  for (int l = 0; l < W; ++l) r[l] = std::sqrt(a[l]);
+  return r;
+}
+
+// Scalar overloads so that geometry templates also run on plain doubles (tests, setup).
+inline Real min(Real a, Real b) {
+  return a < b ? a : b;
+}
+inline Real max(Real a, Real b) {
+  return a > b ? a : b;
+}
+inline Real sqrt(Real a) {
+  return std::sqrt(a);
+}
+
+}  // namespace xpl::simd
