@@ -1,1 +1,177 @@
-int main() { return 0; }
+// xpl command line: `xpl run DECK.inp [-o DIR] [--threads N] [--quiet]`, `xpl check DECK.inp`.
+
+#include <omp.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "common/error.hpp"
+#include "io/deck_reader.hpp"
+#include "io/result_files.hpp"
+#include "solver/explicit_solver.hpp"
+
+namespace {
+
+constexpr const char* USAGE =
+    "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet]\n"
+    "       xpl check DECK.inp [-o DIR]\n"
+    "       xpl --help | --version\n"
+    "\n"
+    "  run     read the deck, run every step, write JOB.h5, JOB.xdmf, JOB.sta, JOB.msg\n"
+    "  check   data check: read the deck, build the model, write frame 0 and the logs,\n"
+    "          stop before the first increment\n"
+    "  -o DIR  directory for the result files (default: the current directory)\n"
+    "  --threads N  OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+    "  --quiet      no progress line and no summary on the terminal\n"
+    "The job name is the deck's file name without its extension.\n";
+
+struct Arguments {
+  std::string command;
+  std::filesystem::path deck;
+  std::filesystem::path out_dir = ".";
+  int threads = 0;
+  bool quiet = false;
+};
+
+/// Parses argv; returns false (after printing why) on a usage error.
+bool parse(int argc, char** argv, Arguments& args) {
+  std::vector<std::string> words(argv + 1, argv + argc);
+  if (words.empty()) {
+    std::cerr << USAGE;
+    return false;
+  }
+  args.command = words[0];
+  for (std::size_t i = 1; i < words.size(); ++i) {
+    const std::string& w = words[i];
+    auto value = [&](const char* what) -> const std::string* {
+      if (i + 1 >= words.size()) {
+        std::cerr << "xpl: " << w << " needs " << what << "\n";
+        return nullptr;
+      }
+      return &words[++i];
+    };
+    if (w == "-o" || w == "--output") {
+      const std::string* v = value("a directory");
+      if (!v) return false;
+      args.out_dir = *v;
+    } else if (w == "--threads") {
+      const std::string* v = value("a number");
+      if (!v) return false;
+      try {
+        std::size_t used = 0;
+        args.threads = std::stoi(*v, &used);
+        if (used != v->size() || args.threads < 1) throw std::invalid_argument(*v);
+      } catch (const std::exception&) {
+        std::cerr << "xpl: --threads: '" << *v << "' is not a positive whole number\n";
+        return false;
+      }
+    } else if (w == "--quiet" || w == "-q") {
+      args.quiet = true;
+    } else if (!w.empty() && w[0] == '-') {
+      std::cerr << "xpl: unknown option '" << w << "'\n" << USAGE;
+      return false;
+    } else if (args.deck.empty()) {
+      args.deck = w;
+    } else {
+      std::cerr << "xpl: more than one deck given ('" << w << "')\n";
+      return false;
+    }
+  }
+  if (args.deck.empty()) {
+    std::cerr << "xpl: " << args.command << ": no deck given\n" << USAGE;
+    return false;
+  }
+  return true;
+}
+
+/// Peak resident memory of this process in MB (VmHWM), or 0 if unknown.
+double peak_memory_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      double kb = 0.0;
+      status >> kb;
+      return kb / 1024.0;
+    }
+    status.ignore(1 << 20, '\n');
+  }
+  return 0.0;
+}
+
+void print_summary(const xpl::RunSummary& s, const xpl::Model& model, int threads) {
+  std::printf("xpl: element cycles per second: %.6e (%d elements x %ld increments, %d threads)\n",
+              s.element_cycles_per_second, model.element_count(), s.increments, threads);
+  for (int p = 0; p < static_cast<int>(xpl::Phase::COUNT); ++p) {
+    const auto phase = static_cast<xpl::Phase>(p);
+    std::printf("xpl: phase %s: %.3f s\n", std::string(xpl::phase_name(phase)).c_str(),
+                s.timers.seconds(phase));
+  }
+  std::printf("xpl: peak memory: %.1f MB\n", peak_memory_mb());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::cout << USAGE;
+    return 0;
+  }
+  if (argc == 2 && std::string(argv[1]) == "--version") {
+    std::cout << "xpl " << XPL_VERSION << "\n";
+    return 0;
+  }
+  Arguments args;
+  if (!parse(argc, argv, args)) return 2;
+  if (args.command != "run" && args.command != "check") {
+    std::cerr << "xpl: unknown command '" << args.command << "'\n" << USAGE;
+    return 2;
+  }
+
+  xpl::Model model;
+  try {
+    model = xpl::io::read_deck(args.deck);
+  } catch (const xpl::InputError& e) {
+    for (const auto& m : e.messages()) std::cerr << m << "\n";
+    std::cerr << "xpl: " << e.messages().size() << " error(s) in " << args.deck.string()
+              << "; nothing was written\n";
+    return 1;
+  }
+
+  try {
+    xpl::io::ResultOptions ropts;
+    ropts.progress = !args.quiet;
+    xpl::io::ResultFiles files(args.out_dir, model.job_name, ropts);
+    xpl::SolverOptions sopts;
+    sopts.threads = args.threads;
+    xpl::ExplicitSolver solver(model, files, sopts);
+    const int threads = args.threads > 0 ? args.threads : omp_get_max_threads();
+    if (args.command == "check") {
+      solver.check();
+      if (!args.quiet)
+        std::printf("xpl: data check of %s completed; results in %s\n", model.job_name.c_str(),
+                    files.h5_path().string().c_str());
+      return 0;
+    }
+    const xpl::RunSummary summary = solver.run();
+    if (!args.quiet) {
+      std::printf("xpl: %s completed: %ld increments to t = %.6g s; results in %s\n",
+                  model.job_name.c_str(), summary.increments, summary.final_time,
+                  files.h5_path().string().c_str());
+      print_summary(summary, model, threads);
+    }
+    return 0;
+  } catch (const xpl::SolverError& e) {
+    std::cerr << "xpl: " << e.what() << "\n"
+              << "xpl: the run stopped; frames written so far are in the results file, "
+                 "which records the error\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "xpl: error: " << e.what() << "\n";
+    return 4;
+  }
+}

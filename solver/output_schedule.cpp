@@ -1,0 +1,169 @@
+#include "solver/output_schedule.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace xpl {
+
+const std::vector<std::string>& energy_names() {
+  static const std::vector<std::string> names = {"ALLKE", "ALLSE", "ALLAE", "ALLIE",
+                                                 "ALLVD", "ALLWK", "ETOTAL"};
+  return names;
+}
+
+Real energy_value(const Energies& e, int index) {
+  switch (index) {
+    case 0:
+      return e.kinetic;
+    case 1:
+      return e.strain;
+    case 2:
+      return e.artificial;
+    case 3:
+      return e.internal();
+    case 4:
+      return e.viscous;
+    case 5:
+      return e.external_work;
+    default:
+      return e.total();
+  }
+}
+
+namespace {
+
+Real interval_of(const OutputRequest& r, Real period, int default_count) {
+  if (r.time_interval > 0.0) return r.time_interval;
+  const int n = r.number_interval > 0 ? r.number_interval : default_count;
+  return period / n;
+}
+
+bool has(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+}  // namespace
+
+void OutputSchedule::begin_step(const Model& model, int step) {
+  const Step& s = model.steps[step];
+  m_period = s.time_period;
+  m_field.clear();
+  m_history.clear();
+  m_series.clear();
+  m_columns.clear();
+  for (const OutputRequest& r : s.outputs) {
+    if (r.kind == OutputRequest::Kind::Field) {
+      FieldRequest f;
+      f.when.interval = interval_of(r, m_period, 20);
+      f.when.next = f.when.interval;
+      f.what.displacement = has(r.node_variables, "U");
+      f.what.velocity = has(r.node_variables, "V");
+      f.what.acceleration = has(r.node_variables, "A");
+      f.what.reaction = has(r.node_variables, "RF");
+      f.what.stress = has(r.element_variables, "S") || has(r.element_variables, "MISES");
+      f.what.volume = has(r.element_variables, "EVOL");
+      m_field.push_back(f);
+      continue;
+    }
+    Timed t;
+    t.interval = interval_of(r, m_period, 200);
+    t.next = t.interval;
+    m_history.push_back(t);
+    if (r.energy) {
+      const auto& names = energy_names();
+      for (int i = 0; i < static_cast<int>(names.size()); ++i) {
+        if (!r.energy_variables.empty() && !has(r.energy_variables, names[i])) continue;
+        m_series.push_back({"energy/" + names[i], 1, {}});
+        m_columns.push_back({Quantity::Energy, i, NO_INDEX});
+      }
+    }
+    if (r.node_set == NO_INDEX) continue;
+    const NamedSet& set = model.node_sets[r.node_set];
+    for (const std::string& var : r.node_variables) {
+      // "U" means U1 U2 U3; "U2" one component.
+      const std::string base = var.substr(0, var.find_first_of("123"));
+      Quantity q = Quantity::U;
+      if (base == "V") q = Quantity::V;
+      if (base == "A") q = Quantity::A;
+      if (base == "RF") q = Quantity::RF;
+      for (int c = 0; c < 3; ++c) {
+        const std::string name = base + std::to_string(c + 1);
+        if (var != base && var != name) continue;
+        HistorySeries series{
+            "node/" + set.name + "/" + name, static_cast<Index>(set.members.size()), {}};
+        for (Index node : set.members) {
+          series.node_ids.push_back(model.node_ids[node]);
+          m_columns.push_back({q, c, node});
+        }
+        m_series.push_back(std::move(series));
+      }
+    }
+  }
+}
+
+bool OutputSchedule::fire(Timed& t, Real step_time, bool last, Real period) {
+  // A relative tolerance keeps round-off in the accumulated time from skipping an output.
+  const Real tol = 1e-9 * std::max(period, t.interval);
+  if (!last && step_time + tol < t.next) return false;
+  while (t.next <= step_time + tol) t.next += t.interval;
+  return true;
+}
+
+FrameRequest OutputSchedule::field_due(Real step_time, bool last) {
+  FrameRequest what;
+  for (FieldRequest& f : m_field) {
+    if (!fire(f.when, step_time, last, m_period)) continue;
+    what.displacement |= f.what.displacement;
+    what.velocity |= f.what.velocity;
+    what.acceleration |= f.what.acceleration;
+    what.reaction |= f.what.reaction;
+    what.stress |= f.what.stress;
+    what.volume |= f.what.volume;
+  }
+  return what;
+}
+
+FrameRequest OutputSchedule::field_all() const {
+  FrameRequest what;
+  for (const FieldRequest& f : m_field) {
+    what.displacement |= f.what.displacement;
+    what.velocity |= f.what.velocity;
+    what.acceleration |= f.what.acceleration;
+    what.reaction |= f.what.reaction;
+    what.stress |= f.what.stress;
+    what.volume |= f.what.volume;
+  }
+  return what;
+}
+
+bool OutputSchedule::history_due(Real step_time, bool last) {
+  bool due = false;
+  for (Timed& t : m_history) due |= fire(t, step_time, last, m_period);
+  return due;
+}
+
+void OutputSchedule::history_row(const State& state, std::vector<Real>& row) const {
+  row.resize(m_columns.size());
+  for (std::size_t i = 0; i < m_columns.size(); ++i) {
+    const Column& c = m_columns[i];
+    switch (c.quantity) {
+      case Quantity::U:
+        row[i] = state.displacement(c.node, c.component);
+        break;
+      case Quantity::V:
+        row[i] = state.velocity(c.node, c.component);
+        break;
+      case Quantity::A:
+        row[i] = state.acceleration(c.node, c.component);
+        break;
+      case Quantity::RF:
+        row[i] = state.reaction(c.node, c.component);
+        break;
+      case Quantity::Energy:
+        row[i] = energy_value(state.energies, c.component);
+        break;
+    }
+  }
+}
+
+}  // namespace xpl

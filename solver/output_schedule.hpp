@@ -1,0 +1,68 @@
+#pragma once
+/// \file When field frames and history rows are due within a step, and what they contain.
+/// Like Abaqus/Explicit without time marks, output is written at the first increment that
+/// reaches the requested time; the last increment of a step always gets its output.
+
+#include <string>
+#include <vector>
+
+#include "common/types.hpp"
+#include "solver/model.hpp"
+#include "solver/output_sink.hpp"
+#include "solver/state.hpp"
+
+namespace xpl {
+
+/// The output requests of one step and their next due times.
+class OutputSchedule {
+ public:
+  /// Prepares the requests of `step` (step time starts at 0).
+  void begin_step(const Model& model, int step);
+
+  /// Whether any field/history output exists in the step (P2: nothing to do otherwise).
+  bool has_field() const { return !m_field.empty(); }
+  bool has_history() const { return !m_history.empty(); }
+
+  /// Field variables due at `step_time` (any flag set means a frame is due); advances the
+  /// due times of the requests that fire. `last` forces every request to fire.
+  FrameRequest field_due(Real step_time, bool last);
+  /// Union of all field requests (frame 0).
+  FrameRequest field_all() const;
+  /// Whether a history row is due at `step_time`; advances the due times.
+  bool history_due(Real step_time, bool last);
+
+  /// History columns of the step (for OutputSink::declare_history).
+  const std::vector<HistorySeries>& series() const { return m_series; }
+  /// One history row from the state, laid out as series() says.
+  void history_row(const State& state, std::vector<Real>& row) const;
+
+ private:
+  struct Timed {
+    Real interval = 0.0;  ///< step-time spacing of outputs
+    Real next = 0.0;      ///< next due step time
+  };
+  struct FieldRequest {
+    Timed when;
+    FrameRequest what;
+  };
+  enum class Quantity { U, V, A, RF, Energy };
+  struct Column {
+    Quantity quantity = Quantity::U;
+    int component = 0;  ///< 0..2, or the energy index
+    Index node = NO_INDEX;
+  };
+  static bool fire(Timed& t, Real step_time, bool last, Real period);
+
+  Real m_period = 0.0;
+  std::vector<FieldRequest> m_field;
+  std::vector<Timed> m_history;
+  std::vector<HistorySeries> m_series;
+  std::vector<Column> m_columns;
+};
+
+/// Abaqus names of the whole-model energies, in history order.
+const std::vector<std::string>& energy_names();
+/// Value of energy `index` (into energy_names()).
+Real energy_value(const Energies& e, int index);
+
+}  // namespace xpl
