@@ -1,0 +1,183 @@
+#pragma once
+/// \file Semantic layer of the deck reader: turns keyword blocks into a Model. References
+/// (node and element ids, set, material, amplitude and controls names) are recorded while
+/// reading and resolved once the whole deck is known, so definition order does not matter
+/// within the model data.
+
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "io/deck_lines.hpp"
+#include "solver/model.hpp"
+
+namespace xpl::io {
+
+/// One accepted parameter of a keyword: `NAME=value` or a flag.
+struct ParameterSpec {
+  std::string_view name;
+  bool takes_value = true;
+  bool value_optional = false;  ///< both `NAME` and `NAME=value` are fine (NLGEOM)
+};
+
+/// A node or element given by id (numeric) or by set name, still to be resolved.
+struct DeckReference {
+  std::string token;  ///< id as written, or upper-case set name
+  SourceLocation where;
+  std::string keyword;  ///< "*BOUNDARY", for messages
+};
+
+/// Builds a Model from keyword blocks; every problem goes into one InputErrors.
+class DeckBuilder {
+ public:
+  /// `file_name`: the deck as named in messages; its stem becomes the job name.
+  DeckBuilder(InputErrors& errors, std::string file_name);
+  /// Reads the blocks in deck order.
+  void read(const std::vector<DeckBlock>& blocks);
+  /// Resolves references and checks the whole model; returns it (valid only if no errors).
+  Model finish();
+
+ private:
+  // --- one set item, resolved in finish() -------------------------------------------------
+  struct SetItem {
+    enum class Kind { Member, Id, Range, SetName, NodesOfElementSet };
+    Kind kind = Kind::Member;
+    Index member = NO_INDEX;                       ///< Kind::Member
+    long long first = 0, last = 0, increment = 1;  ///< Kind::Id (first), Kind::Range
+    std::string name;                              ///< Kind::SetName, Kind::NodesOfElementSet
+    SourceLocation where;
+    std::string keyword;
+  };
+  struct PendingSet {
+    std::vector<SetItem> items;
+    int state = 0;  ///< 0 unresolved, 1 being resolved, 2 done
+  };
+  struct PendingSection {
+    std::string element_set, material, controls;
+  };
+  struct PendingSurfaceItem {
+    DeckReference target;
+    int face = -1;  ///< 0..5, or -1 for a node surface
+  };
+  struct PendingBoundary {
+    Index step = NO_INDEX;  ///< NO_INDEX: model level, goes to the first step
+    DeckReference target;
+    BoundaryCondition condition;
+    std::string amplitude;
+  };
+  struct PendingLoad {
+    Index step = NO_INDEX;
+    DeckReference target;
+    ConcentratedLoad load;
+    std::string amplitude;
+  };
+  struct PendingVelocity {
+    DeckReference target;
+    int dof = 1;
+    Real value = 0.0;
+  };
+  struct PendingOutputSet {
+    Index step = NO_INDEX, output = NO_INDEX;
+    bool node = true;
+    DeckReference set;
+  };
+
+  // --- keyword handlers (deck_mesh.cpp, deck_properties.cpp, deck_step.cpp, deck_output.cpp)
+  void read_block(const DeckBlock& block);
+  void read_heading(const DeckBlock& block);
+  void read_node(const DeckBlock& block);
+  void read_element(const DeckBlock& block);
+  void read_set(const DeckBlock& block, bool node_set);
+  void read_surface(const DeckBlock& block);
+  void read_material(const DeckBlock& block);
+  void read_density(const DeckBlock& block);
+  void read_elastic(const DeckBlock& block);
+  void read_solid_section(const DeckBlock& block);
+  void read_section_controls(const DeckBlock& block);
+  void read_amplitude(const DeckBlock& block);
+  void read_initial_conditions(const DeckBlock& block);
+  void read_step(const DeckBlock& block);
+  void read_end_step(const DeckBlock& block);
+  void read_dynamic(const DeckBlock& block);
+  void read_bulk_viscosity(const DeckBlock& block);
+  void read_boundary(const DeckBlock& block);
+  void read_cload(const DeckBlock& block);
+  void read_output(const DeckBlock& block);
+  void read_node_output(const DeckBlock& block);
+  void read_element_output(const DeckBlock& block);
+  void read_energy_output(const DeckBlock& block);
+
+  // --- helpers (deck_builder.cpp) ------------------------------------------------------------
+  void error(const SourceLocation& where, const DeckKeyword& keyword, const std::string& problem,
+             const std::string& expected);
+  /// Reports unknown, repeated or malformed parameters; false if any.
+  bool check_parameters(const DeckKeyword& keyword, std::initializer_list<ParameterSpec> accepted);
+  static const DeckParameter* find_parameter(const DeckKeyword& keyword, std::string_view name);
+  /// Value of a required parameter, upper case and blank-collapsed; reported if missing.
+  std::optional<std::string> required_name(const DeckKeyword& keyword, std::string_view name);
+  /// Value of an optional name parameter (upper case), empty if absent.
+  std::string optional_name(const DeckKeyword& keyword, std::string_view name);
+  void expect_no_data(const DeckBlock& block);
+  /// Field i of a data line as a real; empty fields give `blank` if it has a value.
+  std::optional<Real> real_field(const DeckDataLine& line, const DeckKeyword& keyword,
+                                 std::size_t i, const std::string& what,
+                                 std::optional<Real> blank = std::nullopt);
+  std::optional<long long> integer_field(const DeckDataLine& line, const DeckKeyword& keyword,
+                                         std::size_t i, const std::string& what);
+  /// Reports a data line with more than `count` fields.
+  bool check_field_count(const DeckDataLine& line, const DeckKeyword& keyword, std::size_t count,
+                         const std::string& expected);
+  DeckReference reference(const DeckDataLine& line, const DeckKeyword& keyword, std::size_t i);
+  Index node_set_index(const std::string& name, const SourceLocation& where);
+  Index element_set_index(const std::string& name, const SourceLocation& where);
+  /// Adds an error unless `count` errors of this category were already reported, then a
+  /// summary at the end: keeps the report readable for a mesh with a million bad elements.
+  static constexpr int ERROR_CAP = 20;  ///< errors shown per capped category
+  void capped_error(int& count, const SourceLocation& where, const std::string& keyword,
+                    const std::string& problem, const std::string& expected);
+
+  // --- resolution (deck_resolve.cpp) ---------------------------------------------------------
+  void resolve_element_nodes();
+  void resolve_sets(bool node_sets);
+  void resolve_set(bool node_sets, Index set, int depth);
+  std::vector<Index> resolve_nodes(const DeckReference& reference);
+  std::vector<Index> resolve_elements(const DeckReference& reference);
+  Index resolve_amplitude(const std::string& name, const SourceLocation& where,
+                          const std::string& keyword);
+  void resolve_sections();
+  void resolve_surfaces();
+  void resolve_initial_velocity();
+  void resolve_steps();
+  void check_element_geometry();
+
+  InputErrors& m_errors;
+  std::string m_file_name;
+  Model m_model;
+  std::vector<Real> m_coordinates;             ///< x y z per node, copied into the Model at the end
+  std::vector<ExternalId> m_element_node_ids;  ///< parallel to Model::element_nodes
+  std::unordered_map<ExternalId, Index> m_node_index;
+  std::unordered_map<ExternalId, Index> m_element_index;
+  std::unordered_map<std::string, Index> m_node_set_index, m_element_set_index;
+  std::vector<PendingSet> m_node_sets, m_element_sets;  ///< parallel to the Model's sets
+  std::vector<PendingSection> m_sections;               ///< parallel to Model::solid_sections
+  std::vector<std::vector<PendingSurfaceItem>> m_surface_items;  ///< parallel to surfaces
+  std::vector<PendingBoundary> m_boundaries;
+  std::vector<PendingLoad> m_loads;
+  std::vector<PendingVelocity> m_velocities;
+  std::vector<PendingOutputSet> m_output_sets;
+
+  // --- position in the deck ------------------------------------------------------------------
+  Index m_material = NO_INDEX;  ///< the *MATERIAL that *DENSITY/*ELASTIC attach to
+  bool m_in_step = false;
+  bool m_step_has_dynamic = false;
+  Index m_output = NO_INDEX;  ///< the latest *OUTPUT of the open step
+  SourceLocation m_step_where;
+  /// capped_error counters: undefined element nodes, elements without a section, elements in
+  /// two sections, inverted elements.
+  int m_error_counts[4] = {};
+};
+
+}  // namespace xpl::io

@@ -1,0 +1,243 @@
+/// \file Mesh keywords: *HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE.
+
+#include <string>
+
+#include "io/deck_builder.hpp"
+#include "io/deck_numbers.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+std::string id_text(long long id) {
+  return std::to_string(id);
+}
+
+}  // namespace
+
+void DeckBuilder::read_heading(const DeckBlock& block) {
+  check_parameters(block.keyword, {});
+  for (const DeckDataLine& line : block.data) {
+    if (!m_model.heading.empty()) m_model.heading += '\n';
+    m_model.heading += line.text;
+  }
+}
+
+void DeckBuilder::read_node(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"NSET"}});
+  const std::string set_name = optional_name(keyword, "NSET");
+  const Index set = set_name.empty() ? NO_INDEX : node_set_index(set_name, keyword.where);
+  for (const DeckDataLine& line : block.data) {
+    check_field_count(line, keyword, 4, "id, x, y, z");
+    const std::optional<long long> id = integer_field(line, keyword, 0, "node id");
+    if (!id) continue;
+    if (*id <= 0) {
+      error(line.where, keyword, "node id " + id_text(*id) + " is not positive",
+            "expected ids 1, 2, ...");
+      continue;
+    }
+    Real x[3] = {0.0, 0.0, 0.0};
+    bool ok = true;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::optional<Real> value =
+          real_field(line, keyword, c + 1, std::string("coordinate ") + "xyz"[c], 0.0);
+      ok = ok && value.has_value();
+      if (value) x[c] = *value;
+    }
+    const auto [it, inserted] = m_node_index.emplace(*id, m_model.node_count());
+    if (!inserted) {
+      error(line.where, keyword, "node " + id_text(*id) + " is defined twice",
+            "expected each node id once");
+      continue;
+    }
+    (void)ok;  // a bad coordinate is reported; the node still counts as defined
+    m_model.node_ids.push_back(*id);
+    m_coordinates.insert(m_coordinates.end(), {x[0], x[1], x[2]});
+    if (set != NO_INDEX) {
+      SetItem item;
+      item.member = it->second;
+      m_node_sets[set].items.push_back(item);
+    }
+  }
+}
+
+void DeckBuilder::read_element(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"TYPE"}, {"ELSET"}});
+  const std::optional<std::string> type = required_name(keyword, "TYPE");
+  if (!type) return;
+  if (*type != "C3D8R") {
+    error(keyword.where, keyword, "element type " + *type + " is not supported yet",
+          "supported: C3D8R");
+    return;
+  }
+  const int n_nodes = nodes_per_element(ElementType::C3D8R);
+  const std::string set_name = optional_name(keyword, "ELSET");
+  const Index set = set_name.empty() ? NO_INDEX : element_set_index(set_name, keyword.where);
+  for (const DeckDataLine& line : block.data) {
+    const std::optional<long long> id = integer_field(line, keyword, 0, "element id");
+    if (!id) continue;
+    if (*id <= 0) {
+      error(line.where, keyword, "element id " + id_text(*id) + " is not positive",
+            "expected ids 1, 2, ...");
+      continue;
+    }
+    if (line.fields.size() != static_cast<std::size_t>(n_nodes) + 1) {
+      error(line.where, keyword,
+            "element " + id_text(*id) + " has " + std::to_string(line.fields.size() - 1) +
+                " node ids",
+            "expected 8 node ids for C3D8R (end a line with a comma to continue it)");
+      continue;
+    }
+    std::vector<ExternalId> nodes;
+    for (int k = 1; k <= n_nodes; ++k) {
+      const std::optional<long long> node =
+          integer_field(line, keyword, static_cast<std::size_t>(k), "node id");
+      if (node) nodes.push_back(*node);
+    }
+    if (nodes.size() != static_cast<std::size_t>(n_nodes)) continue;
+    const auto [it, inserted] = m_element_index.emplace(*id, m_model.element_count());
+    if (!inserted) {
+      error(line.where, keyword, "element " + id_text(*id) + " is defined twice",
+            "expected each element id once");
+      continue;
+    }
+    m_model.element_ids.push_back(*id);
+    m_model.element_types.push_back(ElementType::C3D8R);
+    m_element_node_ids.insert(m_element_node_ids.end(), nodes.begin(), nodes.end());
+    m_model.element_offsets.push_back(static_cast<Index>(m_element_node_ids.size()));
+    m_model.element_where.push_back(line.where);
+    if (set != NO_INDEX) {
+      SetItem item;
+      item.member = it->second;
+      m_element_sets[set].items.push_back(item);
+    }
+  }
+}
+
+void DeckBuilder::read_set(const DeckBlock& block, bool node_set) {
+  const DeckKeyword& keyword = block.keyword;
+  const std::string_view set_parameter = node_set ? "NSET" : "ELSET";
+  if (node_set)
+    check_parameters(keyword, {{"NSET"}, {"GENERATE", false}, {"ELSET"}});
+  else
+    check_parameters(keyword, {{"ELSET"}, {"GENERATE", false}});
+  const std::optional<std::string> name = required_name(keyword, set_parameter);
+  if (!name) return;
+  const Index set =
+      node_set ? node_set_index(*name, keyword.where) : element_set_index(*name, keyword.where);
+  std::vector<SetItem>& items = node_set ? m_node_sets[set].items : m_element_sets[set].items;
+  SetItem base;
+  base.keyword = keyword.label();
+  base.where = keyword.where;
+
+  if (node_set && find_parameter(keyword, "ELSET") != nullptr) {
+    // *NSET, NSET=name, ELSET=elset: the nodes of those elements.
+    SetItem item = base;
+    item.kind = SetItem::Kind::NodesOfElementSet;
+    item.name = optional_name(keyword, "ELSET");
+    if (!item.name.empty()) items.push_back(item);
+    if (find_parameter(keyword, "GENERATE") != nullptr)
+      error(keyword.where, keyword,
+            "GENERATE together with ELSET=", "expected either ELSET= or data lines");
+    expect_no_data(block);
+    return;
+  }
+  if (find_parameter(keyword, "GENERATE") != nullptr) {
+    for (const DeckDataLine& line : block.data) {
+      check_field_count(line, keyword, 3, "first, last[, increment]");
+      const std::optional<long long> first = integer_field(line, keyword, 0, "first id");
+      const std::optional<long long> last = integer_field(line, keyword, 1, "last id");
+      std::optional<long long> increment = 1;
+      if (line.fields.size() > 2 && !line.fields[2].empty())
+        increment = integer_field(line, keyword, 2, "increment");
+      if (!first || !last || !increment) continue;
+      if (*first <= 0 || *last < *first || *increment <= 0) {
+        error(line.where, keyword,
+              "bad range " + id_text(*first) + ", " + id_text(*last) + ", " + id_text(*increment),
+              "expected 0 < first <= last and increment >= 1");
+        continue;
+      }
+      SetItem item = base;
+      item.kind = SetItem::Kind::Range;
+      item.where = line.where;
+      item.first = *first;
+      item.last = *last;
+      item.increment = *increment;
+      items.push_back(item);
+    }
+    return;
+  }
+  for (const DeckDataLine& line : block.data) {
+    for (const std::string& field : line.fields) {
+      if (field.empty()) continue;
+      SetItem item = base;
+      item.where = line.where;
+      if (looks_numeric(field)) {
+        const std::optional<long long> id = parse_integer(field);
+        if (!id || *id <= 0) {
+          error(line.where, keyword, "bad id '" + field + "'",
+                std::string("expected positive ") + (node_set ? "node" : "element") +
+                    " ids or set names");
+          continue;
+        }
+        item.kind = SetItem::Kind::Id;
+        item.first = *id;
+      } else {
+        item.kind = SetItem::Kind::SetName;
+        item.name = normalize_name(field);
+      }
+      items.push_back(item);
+    }
+  }
+}
+
+void DeckBuilder::read_surface(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"NAME"}, {"TYPE"}});
+  const std::optional<std::string> name = required_name(keyword, "NAME");
+  const std::string type_text = optional_name(keyword, "TYPE");
+  Surface surface;
+  if (type_text == "NODE") {
+    surface.type = Surface::Type::Node;
+  } else if (!type_text.empty() && type_text != "ELEMENT") {
+    error(keyword.where, keyword, "surface type " + type_text + " is not supported",
+          "expected TYPE=ELEMENT or TYPE=NODE");
+    return;
+  }
+  if (!name) return;
+  if (m_model.find_surface(*name) != NO_INDEX) {
+    error(keyword.where, keyword, "surface " + *name + " is defined twice",
+          "expected each surface name once");
+    return;
+  }
+  surface.name = *name;
+  surface.where = keyword.where;
+  std::vector<PendingSurfaceItem> items;
+  for (const DeckDataLine& line : block.data) {
+    check_field_count(line, keyword, 2,
+                      surface.type == Surface::Type::Node ? "node or node set[, factor]"
+                                                          : "element or element set, face S1..S6");
+    PendingSurfaceItem item;
+    item.target = reference(line, keyword, 0);
+    if (surface.type == Surface::Type::Node) {
+      // The optional weight factor is checked but not kept: Surface has no field for it and
+      // node surfaces are only used as contact node lists.
+      if (line.fields.size() > 1) real_field(line, keyword, 1, "factor", 1.0);
+    } else {
+      const std::string face = line.fields.size() > 1 ? normalize_name(line.fields[1]) : "";
+      if (face.size() != 2 || face[0] != 'S' || face[1] < '1' || face[1] > '6') {
+        error(line.where, keyword, face.empty() ? "missing face label" : "bad face label " + face,
+              "expected S1, S2, S3, S4, S5 or S6");
+        continue;
+      }
+      item.face = face[1] - '1';
+    }
+    items.push_back(item);
+  }
+  m_model.surfaces.push_back(std::move(surface));
+  m_surface_items.push_back(std::move(items));
+}
+
+}  // namespace xpl::io

@@ -1,0 +1,67 @@
+#include "io/deck_numbers.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+
+namespace xpl::io {
+
+namespace {
+
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+
+}  // namespace
+
+std::optional<Real> parse_real(const std::string& text) {
+  // Validate the grammar first: from_chars alone would accept "inf", "nan" and hex forms.
+  const std::size_t n = text.size();
+  std::size_t i = 0;
+  std::string normalized;
+  if (i < n && (text[i] == '+' || text[i] == '-')) {
+    if (text[i] == '-') normalized += '-';
+    ++i;
+  }
+  std::size_t mantissa_digits = 0;
+  for (; i < n && is_digit(text[i]); ++i, ++mantissa_digits) normalized += text[i];
+  if (i < n && text[i] == '.') {
+    normalized += text[i++];
+    for (; i < n && is_digit(text[i]); ++i, ++mantissa_digits) normalized += text[i];
+  }
+  if (mantissa_digits == 0) return std::nullopt;
+  if (i < n && (text[i] == 'e' || text[i] == 'E' || text[i] == 'd' || text[i] == 'D')) {
+    normalized += 'e';
+    ++i;
+    if (i < n && (text[i] == '+' || text[i] == '-')) normalized += text[i++];
+    std::size_t exponent_digits = 0;
+    for (; i < n && is_digit(text[i]); ++i, ++exponent_digits) normalized += text[i];
+    if (exponent_digits == 0) return std::nullopt;
+  }
+  if (i != n) return std::nullopt;
+  Real value = 0.0;
+  const char* end = normalized.data() + normalized.size();
+  const auto [ptr, ec] = std::from_chars(normalized.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::optional<long long> parse_integer(const std::string& text) {
+  std::size_t start = 0;
+  if (!text.empty() && text[0] == '+') start = 1;
+  if (start >= text.size()) return std::nullopt;
+  long long value = 0;
+  const char* begin = text.data() + start;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec != std::errc() || ptr != end) return std::nullopt;
+  return value;
+}
+
+bool looks_numeric(const std::string& text) {
+  if (text.empty()) return false;
+  const char c = text[0];
+  return is_digit(c) || c == '+' || c == '-' || c == '.';
+}
+
+}  // namespace xpl::io

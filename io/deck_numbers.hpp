@@ -1,0 +1,22 @@
+#pragma once
+/// \file Strict number parsing for deck fields: nothing is silently read as zero.
+
+#include <optional>
+#include <string>
+
+#include "common/types.hpp"
+
+namespace xpl::io {
+
+/// Parses a real number: `1`, `-2.5`, `1.`, `.5`, `1e3`, `1.0E-3`, Fortran `1.0D3`.
+/// Returns nothing for anything else (`1.0e`, `abc`, `1,5`, `inf`, `nan`) or on overflow.
+std::optional<Real> parse_real(const std::string& text);
+
+/// Parses a (possibly signed) decimal integer that fits in 64 bits.
+std::optional<long long> parse_integer(const std::string& text);
+
+/// Whether a field looks like a number (starts with a digit, sign or dot): used to tell
+/// node/element ids from set names, which start with a letter.
+bool looks_numeric(const std::string& text);
+
+}  // namespace xpl::io

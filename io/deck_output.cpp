@@ -1,0 +1,249 @@
+/// \file Output request keywords: *OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, *ENERGY OUTPUT.
+
+#include <algorithm>
+#include <array>
+
+#include "io/deck_builder.hpp"
+#include "io/deck_numbers.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+constexpr std::array<std::string_view, 4> FIELD_NODE_VARIABLES = {"U", "V", "A", "RF"};
+constexpr std::array<std::string_view, 3> ELEMENT_VARIABLES = {"S", "EVOL", "MISES"};
+constexpr std::array<std::string_view, 7> ENERGY_VARIABLES = {"ALLKE", "ALLSE", "ALLAE", "ALLIE",
+                                                              "ALLVD", "ALLWK", "ETOTAL"};
+
+template <std::size_t N>
+bool contains(const std::array<std::string_view, N>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+template <std::size_t N>
+std::string joined(const std::array<std::string_view, N>& list) {
+  std::string text;
+  for (std::string_view name : list) {
+    if (!text.empty()) text += ", ";
+    text += name;
+  }
+  return text;
+}
+
+void add_unique(std::vector<std::string>& list, const std::string& name) {
+  if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
+}
+
+/// History node variables: components U1..RF3; U, V, A, RF stand for their three components.
+bool add_history_node_variable(std::vector<std::string>& list, const std::string& name) {
+  if (contains(FIELD_NODE_VARIABLES, name)) {
+    for (char c : {'1', '2', '3'}) add_unique(list, name + c);
+    return true;
+  }
+  if (name.size() >= 2 && (name.back() >= '1' && name.back() <= '3') &&
+      contains(FIELD_NODE_VARIABLES, name.substr(0, name.size() - 1))) {
+    add_unique(list, name);
+    return true;
+  }
+  return false;
+}
+
+/// A second *NODE OUTPUT (or *ELEMENT OUTPUT) under one *OUTPUT may name another set:
+/// it becomes a request of its own with the same frequency.
+OutputRequest& open_request(Step& step, Index& output, bool node) {
+  OutputRequest& current = step.outputs[static_cast<std::size_t>(output)];
+  const bool taken = node ? !current.node_variables.empty() : !current.element_variables.empty();
+  if (!taken) return current;
+  OutputRequest fresh;
+  fresh.kind = current.kind;
+  fresh.number_interval = current.number_interval;
+  fresh.time_interval = current.time_interval;
+  fresh.where = current.where;
+  step.outputs.push_back(std::move(fresh));
+  output = static_cast<Index>(step.outputs.size() - 1);
+  return step.outputs.back();
+}
+
+}  // namespace
+
+void DeckBuilder::read_output(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(
+      keyword,
+      {{"FIELD", false}, {"HISTORY", false}, {"NUMBER INTERVAL"}, {"TIME INTERVAL"}, {"VARIABLE"}});
+  expect_no_data(block);
+  const bool field = find_parameter(keyword, "FIELD") != nullptr;
+  const bool history = find_parameter(keyword, "HISTORY") != nullptr;
+  if (field == history) {
+    error(keyword.where, keyword, field ? "both FIELD and HISTORY" : "neither FIELD nor HISTORY",
+          "expected *OUTPUT, FIELD or *OUTPUT, HISTORY");
+    return;
+  }
+  OutputRequest request;
+  request.kind = field ? OutputRequest::Kind::Field : OutputRequest::Kind::History;
+  request.where = keyword.where;
+  const DeckParameter* number = find_parameter(keyword, "NUMBER INTERVAL");
+  const DeckParameter* time = find_parameter(keyword, "TIME INTERVAL");
+  if (number != nullptr && time != nullptr) {
+    error(keyword.where, keyword, "both NUMBER INTERVAL and TIME INTERVAL",
+          "expected at most one of them");
+    return;
+  }
+  if (number != nullptr && number->has_value) {
+    const std::optional<long long> n = parse_integer(number->value);
+    if (!n || *n <= 0 || *n > 1000000000)
+      error(keyword.where, keyword, "bad NUMBER INTERVAL=" + number->value,
+            "expected a positive integer");
+    else
+      request.number_interval = static_cast<int>(*n);
+  } else if (time != nullptr && time->has_value) {
+    const std::optional<Real> t = parse_real(time->value);
+    if (!t || *t <= 0.0)
+      error(keyword.where, keyword, "bad TIME INTERVAL=" + time->value,
+            "expected a time interval > 0");
+    else
+      request.time_interval = *t;
+  } else if (number == nullptr && time == nullptr) {
+    request.number_interval = field ? 20 : 200;  // the Abaqus/Explicit defaults
+  }
+  const std::string variable = optional_name(keyword, "VARIABLE");
+  if (variable == "PRESELECT") {
+    if (field) {
+      for (std::string_view name : FIELD_NODE_VARIABLES) request.node_variables.emplace_back(name);
+      request.element_variables.emplace_back("S");
+    } else {
+      request.energy = true;
+    }
+  } else if (!variable.empty()) {
+    error(keyword.where, keyword, "VARIABLE=" + variable + " is not supported",
+          "expected VARIABLE=PRESELECT or explicit *NODE/*ELEMENT/*ENERGY OUTPUT lists");
+  }
+  Step& step = m_model.steps.back();
+  step.outputs.push_back(std::move(request));
+  m_output = static_cast<Index>(step.outputs.size() - 1);
+}
+
+void DeckBuilder::read_node_output(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"NSET"}});
+  if (m_output == NO_INDEX) {
+    error(keyword.where, keyword, "no *OUTPUT to attach to",
+          "expected *OUTPUT, FIELD or *OUTPUT, HISTORY just before");
+    return;
+  }
+  Step& step = m_model.steps.back();
+  const bool history =
+      step.outputs[static_cast<std::size_t>(m_output)].kind == OutputRequest::Kind::History;
+  const std::string set = optional_name(keyword, "NSET");
+  if (history && set.empty()) {
+    error(keyword.where, keyword, "history node output needs a node set",
+          "expected *NODE OUTPUT, NSET=name");
+    return;
+  }
+  std::vector<std::string> variables;
+  for (const DeckDataLine& line : block.data) {
+    for (const std::string& field : line.fields) {
+      if (field.empty()) continue;
+      const std::string name = normalize_name(field);
+      const bool known = history ? add_history_node_variable(variables, name)
+                                 : contains(FIELD_NODE_VARIABLES, name);
+      if (!known) {
+        error(line.where, keyword, "unknown output variable " + name,
+              history ? "expected U, V, A, RF or a component U1..U3, V1..V3, A1..A3, RF1..RF3"
+                      : "expected one of " + joined(FIELD_NODE_VARIABLES));
+      } else if (!history) {
+        add_unique(variables, name);
+      }
+    }
+  }
+  if (block.data.empty()) {
+    error(keyword.where, keyword, "no output variables", "expected a data line such as U, V, RF");
+    return;
+  }
+  OutputRequest& request = open_request(step, m_output, true);
+  for (const std::string& name : variables) add_unique(request.node_variables, name);
+  if (!set.empty())
+    m_output_sets.push_back({static_cast<Index>(m_model.steps.size() - 1), m_output, true,
+                             DeckReference{set, keyword.where, keyword.label()}});
+}
+
+void DeckBuilder::read_element_output(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  // DIRECTIONS only adds local material directions to Abaqus' ODB; harmless to accept.
+  check_parameters(keyword, {{"ELSET"}, {"DIRECTIONS"}});
+  if (m_output == NO_INDEX) {
+    error(keyword.where, keyword, "no *OUTPUT to attach to", "expected *OUTPUT, FIELD just before");
+    return;
+  }
+  Step& step = m_model.steps.back();
+  if (step.outputs[static_cast<std::size_t>(m_output)].kind == OutputRequest::Kind::History) {
+    error(keyword.where, keyword, "element history output is not supported yet",
+          "expected *ELEMENT OUTPUT under *OUTPUT, FIELD");
+    return;
+  }
+  std::vector<std::string> variables;
+  for (const DeckDataLine& line : block.data) {
+    for (const std::string& field : line.fields) {
+      if (field.empty()) continue;
+      const std::string name = normalize_name(field);
+      if (contains(ELEMENT_VARIABLES, name))
+        add_unique(variables, name);
+      else
+        error(line.where, keyword, "unknown output variable " + name,
+              "expected one of " + joined(ELEMENT_VARIABLES));
+    }
+  }
+  if (block.data.empty()) {
+    error(keyword.where, keyword, "no output variables", "expected a data line such as S, EVOL");
+    return;
+  }
+  OutputRequest& request = open_request(step, m_output, false);
+  for (const std::string& name : variables) add_unique(request.element_variables, name);
+  const std::string set = optional_name(keyword, "ELSET");
+  if (!set.empty())
+    m_output_sets.push_back({static_cast<Index>(m_model.steps.size() - 1), m_output, false,
+                             DeckReference{set, keyword.where, keyword.label()}});
+}
+
+void DeckBuilder::read_energy_output(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"VARIABLE"}});
+  if (m_output == NO_INDEX) {
+    error(keyword.where, keyword, "no *OUTPUT to attach to",
+          "expected *OUTPUT, HISTORY just before");
+    return;
+  }
+  OutputRequest& request = m_model.steps.back().outputs[static_cast<std::size_t>(m_output)];
+  if (request.kind != OutputRequest::Kind::History) {
+    error(keyword.where, keyword, "energy output is history output",
+          "expected *ENERGY OUTPUT under *OUTPUT, HISTORY");
+    return;
+  }
+  const std::string variable = optional_name(keyword, "VARIABLE");
+  if (!variable.empty() && variable != "PRESELECT" && variable != "ALL") {
+    error(keyword.where, keyword, "bad VARIABLE=" + variable,
+          "expected VARIABLE=PRESELECT or VARIABLE=ALL");
+    return;
+  }
+  std::vector<std::string> variables;
+  for (const DeckDataLine& line : block.data) {
+    for (const std::string& field : line.fields) {
+      if (field.empty()) continue;
+      const std::string name = normalize_name(field);
+      if (contains(ENERGY_VARIABLES, name))
+        add_unique(variables, name);
+      else
+        error(line.where, keyword, "unknown energy variable " + name,
+              "expected one of " + joined(ENERGY_VARIABLES));
+    }
+  }
+  const bool all_already = request.energy && request.energy_variables.empty();
+  request.energy = true;
+  if (variables.empty() || !variable.empty() || all_already) {
+    request.energy_variables.clear();  // empty list: every energy
+  } else {
+    for (const std::string& name : variables) add_unique(request.energy_variables, name);
+  }
+}
+
+}  // namespace xpl::io

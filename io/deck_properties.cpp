@@ -1,0 +1,271 @@
+/// \file Property keywords: *MATERIAL, *DENSITY, *ELASTIC, *SOLID SECTION, *SECTION CONTROLS,
+/// *AMPLITUDE, *INITIAL CONDITIONS.
+
+#include <sstream>
+
+#include "io/deck_builder.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+std::string number_text(Real value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+void DeckBuilder::read_material(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"NAME"}});
+  expect_no_data(block);
+  const std::optional<std::string> name = required_name(keyword, "NAME");
+  if (!name) return;
+  if (m_model.find_material(*name) != NO_INDEX) {
+    error(keyword.where, keyword, "material " + *name + " is defined twice",
+          "expected each material name once");
+    return;
+  }
+  Material material;
+  material.name = *name;
+  material.where = keyword.where;
+  m_model.materials.push_back(material);
+  m_material = static_cast<Index>(m_model.materials.size() - 1);
+}
+
+void DeckBuilder::read_density(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {});
+  if (m_material == NO_INDEX) {
+    error(keyword.where, keyword, "no material to attach to",
+          "expected *DENSITY right after *MATERIAL, NAME=...");
+    return;
+  }
+  Material& material = m_model.materials[static_cast<std::size_t>(m_material)];
+  if (material.has_density) {
+    error(keyword.where, keyword, "material " + material.name + " already has a density",
+          "expected one *DENSITY per material");
+    return;
+  }
+  if (block.data.size() != 1) {
+    error(keyword.where, keyword, "found " + std::to_string(block.data.size()) + " data lines",
+          "expected one data line with the density");
+    return;
+  }
+  const DeckDataLine& line = block.data.front();
+  material.has_density = true;  // even if bad (reported here): no "has no density" follow-up
+  check_field_count(line, keyword, 1, "the density only (no temperature dependence)");
+  const std::optional<Real> rho = real_field(line, keyword, 0, "density");
+  if (!rho) return;
+  if (*rho <= 0.0) {
+    error(line.where, keyword, "density " + number_text(*rho) + " is not positive",
+          "expected a density > 0");
+    return;
+  }
+  material.density = *rho;
+}
+
+void DeckBuilder::read_elastic(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"TYPE"}});
+  const std::string type = optional_name(keyword, "TYPE");
+  if (!type.empty() && type != "ISOTROPIC") {
+    error(keyword.where, keyword, "elastic type " + type + " is not supported yet",
+          "supported: TYPE=ISOTROPIC");
+    if (m_material != NO_INDEX)  // no "has no elastic data" follow-up
+      m_model.materials[static_cast<std::size_t>(m_material)].has_elastic = true;
+    return;
+  }
+  if (m_material == NO_INDEX) {
+    error(keyword.where, keyword, "no material to attach to",
+          "expected *ELASTIC right after *MATERIAL, NAME=...");
+    return;
+  }
+  Material& material = m_model.materials[static_cast<std::size_t>(m_material)];
+  if (material.has_elastic) {
+    error(keyword.where, keyword, "material " + material.name + " already has elastic data",
+          "expected one *ELASTIC per material");
+    return;
+  }
+  if (block.data.size() != 1) {
+    error(keyword.where, keyword, "found " + std::to_string(block.data.size()) + " data lines",
+          "expected one data line: E, nu");
+    return;
+  }
+  const DeckDataLine& line = block.data.front();
+  material.has_elastic = true;  // even if bad (reported here): no follow-up error
+  check_field_count(line, keyword, 2, "E, nu (no temperature dependence)");
+  const std::optional<Real> young = real_field(line, keyword, 0, "Young's modulus");
+  const std::optional<Real> poisson = real_field(line, keyword, 1, "Poisson's ratio");
+  if (!young || !poisson) return;
+  bool ok = true;
+  if (*young <= 0.0) {
+    error(line.where, keyword, "Young's modulus " + number_text(*young) + " is not positive",
+          "expected E > 0");
+    ok = false;
+  }
+  if (!(*poisson > -1.0 && *poisson < 0.5)) {
+    error(line.where, keyword, "Poisson's ratio " + number_text(*poisson) + " is out of range",
+          "expected -1 < nu < 0.5");
+    ok = false;
+  }
+  if (!ok) return;
+  material.young = *young;
+  material.poisson = *poisson;
+}
+
+void DeckBuilder::read_solid_section(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"ELSET"}, {"MATERIAL"}, {"CONTROLS"}});
+  const std::optional<std::string> element_set = required_name(keyword, "ELSET");
+  const std::optional<std::string> material = required_name(keyword, "MATERIAL");
+  // Abaqus allows one data line (a thickness-like number for solids); it means nothing here.
+  if (block.data.size() > 1 || (block.data.size() == 1 && block.data.front().fields.size() > 1))
+    error(block.data.front().where, keyword, "unexpected data",
+          "expected at most one data line with at most one number");
+  else if (block.data.size() == 1)
+    real_field(block.data.front(), keyword, 0, "section value", 0.0);
+  if (!element_set || !material) return;
+  SolidSection section;
+  section.where = keyword.where;
+  m_model.solid_sections.push_back(section);
+  m_sections.push_back({*element_set, *material, optional_name(keyword, "CONTROLS")});
+}
+
+void DeckBuilder::read_section_controls(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"NAME"}, {"HOURGLASS"}});
+  const std::optional<std::string> name = required_name(keyword, "NAME");
+  SectionControls controls;
+  const std::string hourglass = optional_name(keyword, "HOURGLASS");
+  if (hourglass == "VISCOUS") {
+    controls.hourglass = HourglassType::Viscous;
+  } else if (hourglass == "RELAX STIFFNESS") {
+    controls.hourglass = HourglassType::RelaxStiffness;
+  } else if (!hourglass.empty() && hourglass != "STIFFNESS") {
+    error(keyword.where, keyword, "hourglass control " + hourglass + " is not supported",
+          "expected HOURGLASS=STIFFNESS, VISCOUS or RELAX STIFFNESS");
+    return;
+  }
+  // Abaqus/Explicit puts several scale factors on the data line. The first scales the
+  // hourglass resistance of the displacement dofs, whichever form (stiffness or viscous) is
+  // active, so it goes to both scales. The others (rotational and out-of-plane hourglass,
+  // bulk viscosity factors, ...) concern dofs or options xpl does not have: they are checked
+  // to be numbers and otherwise ignored.
+  if (block.data.size() > 1)
+    error(block.data[1].where, keyword, "unexpected second data line",
+          "expected at most one data line of scale factors");
+  if (!block.data.empty()) {
+    const DeckDataLine& line = block.data.front();
+    const std::optional<Real> scale = real_field(line, keyword, 0, "hourglass scale factor", 1.0);
+    for (std::size_t i = 1; i < line.fields.size(); ++i)
+      real_field(line, keyword, i, "scale factor " + std::to_string(i + 1), 1.0);
+    if (scale && *scale <= 0.0) {
+      error(line.where, keyword,
+            "hourglass scale factor " + number_text(*scale) + " is not positive",
+            "expected a factor > 0");
+    } else if (scale) {
+      controls.stiffness_scale = *scale;
+      controls.viscous_scale = *scale;
+    }
+  }
+  if (!name) return;
+  for (const SectionControls& other : m_model.section_controls) {
+    if (other.name == *name) {
+      error(keyword.where, keyword, "section controls " + *name + " are defined twice",
+            "expected each name once");
+      return;
+    }
+  }
+  controls.name = *name;
+  controls.where = keyword.where;
+  m_model.section_controls.push_back(controls);
+}
+
+void DeckBuilder::read_amplitude(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"NAME"}, {"DEFINITION"}, {"TIME"}});
+  const std::optional<std::string> name = required_name(keyword, "NAME");
+  const std::string definition = optional_name(keyword, "DEFINITION");
+  if (!definition.empty() && definition != "TABULAR") {
+    error(keyword.where, keyword, "amplitude definition " + definition + " is not supported yet",
+          "supported: DEFINITION=TABULAR");
+    return;
+  }
+  Amplitude amplitude;
+  const std::string time = optional_name(keyword, "TIME");
+  if (time == "TOTAL TIME") {
+    amplitude.total_time = true;
+  } else if (!time.empty() && time != "STEP TIME") {
+    error(keyword.where, keyword, "bad TIME=" + time, "expected TIME=STEP TIME or TOTAL TIME");
+    return;
+  }
+  bool ok = true;
+  for (const DeckDataLine& line : block.data) {
+    if (line.fields.size() % 2 != 0) {
+      error(line.where, keyword,
+            "odd number of values (" + std::to_string(line.fields.size()) + ")",
+            "expected pairs: time, amplitude, time, amplitude, ...");
+      ok = false;
+      continue;
+    }
+    for (std::size_t i = 0; i + 1 < line.fields.size(); i += 2) {
+      const std::optional<Real> t = real_field(line, keyword, i, "time");
+      const std::optional<Real> a = real_field(line, keyword, i + 1, "amplitude value");
+      if (!t || !a) {
+        ok = false;
+        continue;
+      }
+      if (!amplitude.time.empty() && *t < amplitude.time.back()) {
+        error(line.where, keyword,
+              "time " + number_text(*t) + " is before the previous " +
+                  number_text(amplitude.time.back()),
+              "expected times that do not decrease");
+        ok = false;
+      }
+      amplitude.time.push_back(*t);
+      amplitude.value.push_back(*a);
+    }
+  }
+  if (ok && amplitude.time.empty()) {
+    error(keyword.where, keyword, "no data points", "expected data lines t1, a1, t2, a2, ...");
+    return;
+  }
+  if (!name) return;
+  if (m_model.find_amplitude(*name) != NO_INDEX) {
+    error(keyword.where, keyword, "amplitude " + *name + " is defined twice",
+          "expected each amplitude name once");
+    return;
+  }
+  amplitude.name = *name;
+  amplitude.where = keyword.where;
+  m_model.amplitudes.push_back(std::move(amplitude));
+}
+
+void DeckBuilder::read_initial_conditions(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"TYPE"}});
+  const std::optional<std::string> type = required_name(keyword, "TYPE");
+  if (!type) return;
+  if (*type != "VELOCITY") {
+    error(keyword.where, keyword, "initial condition type " + *type + " is not supported yet",
+          "supported: TYPE=VELOCITY");
+    return;
+  }
+  for (const DeckDataLine& line : block.data) {
+    check_field_count(line, keyword, 3, "node or node set, dof, velocity");
+    const std::optional<long long> dof = integer_field(line, keyword, 1, "dof");
+    const std::optional<Real> value = real_field(line, keyword, 2, "velocity");
+    if (!dof || !value) continue;
+    if (*dof < 1 || *dof > 3) {
+      error(line.where, keyword, "dof " + std::to_string(*dof) + " is out of range",
+            "expected dof 1, 2 or 3");
+      continue;
+    }
+    m_velocities.push_back({reference(line, keyword, 0), static_cast<int>(*dof), *value});
+  }
+}
+
+}  // namespace xpl::io

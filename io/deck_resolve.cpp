@@ -1,0 +1,379 @@
+/// \file Resolution of references once the whole deck is read, and whole-model checks.
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+
+#include "io/deck_builder.hpp"
+#include "io/deck_geometry.hpp"
+#include "io/deck_numbers.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+/// Deeper set-of-set chains are almost certainly a mistake (and would deepen the recursion).
+constexpr int MAX_SET_NESTING = 100;
+
+std::string location_text(const SourceLocation& where) {
+  return where.file + ":" + std::to_string(where.line);
+}
+
+}  // namespace
+
+Model DeckBuilder::finish() {
+  if (m_in_step) {
+    m_errors.add(m_step_where, "*STEP", "step " + m_model.steps.back().name + " is not closed",
+                 "expected *END STEP");
+    if (!m_step_has_dynamic)
+      m_errors.add(m_step_where, "*STEP", "step " + m_model.steps.back().name + " has no procedure",
+                   "expected *DYNAMIC, EXPLICIT with the time period");
+  }
+  if (m_model.steps.empty())
+    m_errors.add_plain(m_file_name + ": the deck has no step; expected a *STEP with " +
+                       "*DYNAMIC, EXPLICIT and *END STEP after the model data");
+
+  const Index n_nodes = m_model.node_count();
+  m_model.coordinates.resize(n_nodes, 3);
+  for (Index i = 0; i < n_nodes; ++i)
+    for (int c = 0; c < 3; ++c)
+      m_model.coordinates(i, c) = m_coordinates[static_cast<std::size_t>(3 * i + c)];
+  m_model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
+
+  resolve_element_nodes();
+  resolve_sets(false);  // element sets first: *NSET, ELSET= needs them
+  resolve_sets(true);
+  resolve_sections();
+  resolve_surfaces();
+  resolve_initial_velocity();
+  resolve_steps();
+  check_element_geometry();
+
+  const char* categories[] = {"elements with undefined nodes", "elements without a section",
+                              "elements in two sections", "inverted elements"};
+  for (int k = 0; k < 4; ++k) {
+    if (m_error_counts[k] > ERROR_CAP)
+      m_errors.add_plain(m_file_name + ": " + std::to_string(m_error_counts[k] - ERROR_CAP) +
+                         " more " + categories[k] + " not listed");
+  }
+  return std::move(m_model);
+}
+
+void DeckBuilder::resolve_element_nodes() {
+  m_model.element_nodes.assign(m_element_node_ids.size(), NO_INDEX);
+  for (Index e = 0; e < m_model.element_count(); ++e) {
+    bool reported = false;
+    for (Index k = m_model.element_offsets[e]; k < m_model.element_offsets[e + 1]; ++k) {
+      const ExternalId id = m_element_node_ids[static_cast<std::size_t>(k)];
+      const auto it = m_node_index.find(id);
+      if (it != m_node_index.end()) {
+        m_model.element_nodes[static_cast<std::size_t>(k)] = it->second;
+      } else if (!reported) {
+        capped_error(m_error_counts[0], m_model.element_where[e], "*ELEMENT",
+                     "element " + std::to_string(m_model.element_ids[e]) +
+                         " refers to undefined node " + std::to_string(id),
+                     "expected a *NODE with id " + std::to_string(id));
+        reported = true;
+      }
+    }
+  }
+}
+
+void DeckBuilder::resolve_sets(bool node_sets) {
+  const std::size_t count = node_sets ? m_node_sets.size() : m_element_sets.size();
+  for (std::size_t s = 0; s < count; ++s) resolve_set(node_sets, static_cast<Index>(s), 0);
+}
+
+void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
+  PendingSet& pending = node_sets ? m_node_sets[set] : m_element_sets[set];
+  if (pending.state != 0) return;
+  pending.state = 1;
+  const auto& ids = node_sets ? m_node_index : m_element_index;
+  const auto& names = node_sets ? m_node_set_index : m_element_set_index;
+  const std::string what = node_sets ? "node" : "element";
+  std::vector<NamedSet>& sets = node_sets ? m_model.node_sets : m_model.element_sets;
+  std::vector<Index> members;
+  for (const SetItem& item : pending.items) {
+    switch (item.kind) {
+      case SetItem::Kind::Member:
+        members.push_back(item.member);
+        break;
+      case SetItem::Kind::Id: {
+        const auto it = ids.find(item.first);
+        if (it == ids.end())
+          m_errors.add(item.where, item.keyword,
+                       "undefined " + what + " " + std::to_string(item.first),
+                       "expected a defined " + what + " id");
+        else
+          members.push_back(it->second);
+        break;
+      }
+      case SetItem::Kind::Range: {
+        // Ids of the range that are not defined are skipped (GENERATE over sparse numbering);
+        // cost is bounded by the smaller of the range and the number of defined ids.
+        const std::size_t before = members.size();
+        const long long span = (item.last - item.first) / item.increment + 1;
+        if (static_cast<unsigned long long>(span) <= ids.size()) {
+          for (long long id = item.first; id <= item.last; id += item.increment) {
+            const auto it = ids.find(id);
+            if (it != ids.end()) members.push_back(it->second);
+          }
+        } else {
+          for (const auto& [id, index] : ids)
+            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+              members.push_back(index);
+        }
+        if (members.size() == before)
+          m_errors.add(item.where, item.keyword,
+                       "range " + std::to_string(item.first) + ".." + std::to_string(item.last) +
+                           " contains no defined " + what,
+                       "expected a range over defined " + what + " ids");
+        break;
+      }
+      case SetItem::Kind::SetName: {
+        const auto it = names.find(item.name);
+        const std::string set_keyword = node_sets ? "*NSET, NSET=" : "*ELSET, ELSET=";
+        if (it == names.end()) {
+          m_errors.add(item.where, item.keyword, "undefined " + what + " set " + item.name,
+                       "expected " + set_keyword + item.name);
+          break;
+        }
+        const PendingSet& other = node_sets ? m_node_sets[it->second] : m_element_sets[it->second];
+        if (other.state == 1 || depth >= MAX_SET_NESTING) {
+          m_errors.add(item.where, item.keyword,
+                       what + " set " + sets[set].name + " includes " + item.name +
+                           ", which includes " + sets[set].name + " again",
+                       "expected sets without circular references");
+          break;
+        }
+        resolve_set(node_sets, it->second, depth + 1);
+        const std::vector<Index>& included = sets[static_cast<std::size_t>(it->second)].members;
+        members.insert(members.end(), included.begin(), included.end());
+        break;
+      }
+      case SetItem::Kind::NodesOfElementSet: {
+        const auto it = m_element_set_index.find(item.name);
+        if (it == m_element_set_index.end()) {
+          m_errors.add(item.where, item.keyword, "undefined element set " + item.name,
+                       "expected *ELSET, ELSET=" + item.name);
+          break;
+        }
+        for (Index e : m_model.element_sets[static_cast<std::size_t>(it->second)].members)
+          for (Index k = m_model.element_offsets[e]; k < m_model.element_offsets[e + 1]; ++k)
+            if (m_model.element_nodes[k] != NO_INDEX) members.push_back(m_model.element_nodes[k]);
+        break;
+      }
+    }
+  }
+  std::sort(members.begin(), members.end());
+  members.erase(std::unique(members.begin(), members.end()), members.end());
+  sets[static_cast<std::size_t>(set)].members = std::move(members);
+  pending.state = 2;
+}
+
+std::vector<Index> DeckBuilder::resolve_nodes(const DeckReference& reference) {
+  if (reference.token.empty()) {
+    m_errors.add(reference.where, reference.keyword, "missing node or node set",
+                 "expected a node id or a node set name first");
+    return {};
+  }
+  if (looks_numeric(reference.token)) {
+    const std::optional<long long> id = parse_integer(reference.token);
+    const auto it = id ? m_node_index.find(*id) : m_node_index.end();
+    if (it == m_node_index.end()) {
+      m_errors.add(reference.where, reference.keyword, "undefined node " + reference.token,
+                   "expected a defined node id or a node set name");
+      return {};
+    }
+    return {it->second};
+  }
+  const auto it = m_node_set_index.find(reference.token);
+  if (it == m_node_set_index.end()) {
+    m_errors.add(reference.where, reference.keyword, "undefined node set " + reference.token,
+                 "expected *NSET, NSET=" + reference.token);
+    return {};
+  }
+  return m_model.node_sets[static_cast<std::size_t>(it->second)].members;
+}
+
+std::vector<Index> DeckBuilder::resolve_elements(const DeckReference& reference) {
+  if (reference.token.empty()) {
+    m_errors.add(reference.where, reference.keyword, "missing element or element set",
+                 "expected an element id or an element set name first");
+    return {};
+  }
+  if (looks_numeric(reference.token)) {
+    const std::optional<long long> id = parse_integer(reference.token);
+    const auto it = id ? m_element_index.find(*id) : m_element_index.end();
+    if (it == m_element_index.end()) {
+      m_errors.add(reference.where, reference.keyword, "undefined element " + reference.token,
+                   "expected a defined element id or an element set name");
+      return {};
+    }
+    return {it->second};
+  }
+  const auto it = m_element_set_index.find(reference.token);
+  if (it == m_element_set_index.end()) {
+    m_errors.add(reference.where, reference.keyword, "undefined element set " + reference.token,
+                 "expected *ELSET, ELSET=" + reference.token);
+    return {};
+  }
+  return m_model.element_sets[static_cast<std::size_t>(it->second)].members;
+}
+
+Index DeckBuilder::resolve_amplitude(const std::string& name, const SourceLocation& where,
+                                     const std::string& keyword) {
+  if (name.empty()) return NO_INDEX;
+  const Index amplitude = m_model.find_amplitude(name);
+  if (amplitude == NO_INDEX)
+    m_errors.add(where, keyword, "undefined amplitude " + name,
+                 "expected *AMPLITUDE, NAME=" + name);
+  return amplitude;
+}
+
+void DeckBuilder::resolve_sections() {
+  m_model.element_section.assign(static_cast<std::size_t>(m_model.element_count()), NO_INDEX);
+  std::vector<bool> material_checked(m_model.materials.size(), false);
+  for (std::size_t s = 0; s < m_sections.size(); ++s) {
+    const PendingSection& pending = m_sections[s];
+    SolidSection& section = m_model.solid_sections[s];
+    section.material = m_model.find_material(pending.material);
+    if (section.material == NO_INDEX) {
+      m_errors.add(section.where, "*SOLID SECTION", "undefined material " + pending.material,
+                   "expected *MATERIAL, NAME=" + pending.material);
+    } else if (!material_checked[static_cast<std::size_t>(section.material)]) {
+      material_checked[static_cast<std::size_t>(section.material)] = true;
+      const Material& material = m_model.materials[static_cast<std::size_t>(section.material)];
+      if (!material.has_density)
+        m_errors.add(material.where, "*MATERIAL", "material " + material.name + " has no density",
+                     "expected *DENSITY after *MATERIAL, NAME=" + material.name);
+      if (!material.has_elastic)
+        m_errors.add(material.where, "*MATERIAL",
+                     "material " + material.name + " has no elastic data",
+                     "expected *ELASTIC after *MATERIAL, NAME=" + material.name);
+    }
+    if (!pending.controls.empty()) {
+      for (std::size_t c = 0; c < m_model.section_controls.size(); ++c)
+        if (m_model.section_controls[c].name == pending.controls)
+          section.controls = static_cast<Index>(c);
+      if (section.controls == NO_INDEX)
+        m_errors.add(section.where, "*SOLID SECTION",
+                     "undefined section controls " + pending.controls,
+                     "expected *SECTION CONTROLS, NAME=" + pending.controls);
+    }
+    const auto set = m_element_set_index.find(pending.element_set);
+    if (set == m_element_set_index.end()) {
+      m_errors.add(section.where, "*SOLID SECTION", "undefined element set " + pending.element_set,
+                   "expected *ELSET, ELSET=" + pending.element_set + " or *ELEMENT, ELSET=");
+      continue;
+    }
+    section.element_set = set->second;
+    for (Index e : m_model.element_sets[static_cast<std::size_t>(set->second)].members) {
+      Index& assigned = m_model.element_section[static_cast<std::size_t>(e)];
+      if (assigned != NO_INDEX) {
+        capped_error(m_error_counts[2], section.where, "*SOLID SECTION",
+                     "element " + std::to_string(m_model.element_ids[e]) +
+                         " already has the section at " +
+                         location_text(m_model.solid_sections[assigned].where),
+                     "expected each element in exactly one *SOLID SECTION");
+        continue;
+      }
+      assigned = static_cast<Index>(s);
+    }
+  }
+  for (Index e = 0; e < m_model.element_count(); ++e) {
+    if (m_model.element_section[static_cast<std::size_t>(e)] == NO_INDEX)
+      capped_error(m_error_counts[1], m_model.element_where[e], "*ELEMENT",
+                   "element " + std::to_string(m_model.element_ids[e]) + " has no section",
+                   "expected a *SOLID SECTION covering it");
+  }
+}
+
+void DeckBuilder::resolve_surfaces() {
+  for (std::size_t s = 0; s < m_model.surfaces.size(); ++s) {
+    Surface& surface = m_model.surfaces[s];
+    for (const PendingSurfaceItem& item : m_surface_items[s]) {
+      if (surface.type == Surface::Type::Node) {
+        const std::vector<Index> nodes = resolve_nodes(item.target);
+        surface.nodes.insert(surface.nodes.end(), nodes.begin(), nodes.end());
+      } else {
+        for (Index e : resolve_elements(item.target))
+          surface.faces.push_back({e, static_cast<std::uint8_t>(item.face)});
+      }
+    }
+    std::sort(surface.nodes.begin(), surface.nodes.end());
+    surface.nodes.erase(std::unique(surface.nodes.begin(), surface.nodes.end()),
+                        surface.nodes.end());
+  }
+}
+
+void DeckBuilder::resolve_initial_velocity() {
+  for (const PendingVelocity& pending : m_velocities)
+    for (Index node : resolve_nodes(pending.target))
+      m_model.initial_velocity(node, pending.dof - 1) = pending.value;
+}
+
+void DeckBuilder::resolve_steps() {
+  // Model-level *BOUNDARY (before the first *STEP) is propagated as part of the first step,
+  // ahead of that step's own conditions; OP=NEW in the first step removes them, as in Abaqus.
+  for (const PendingBoundary& pending : m_boundaries) {
+    if (m_model.steps.empty()) break;
+    const bool model_level = pending.step == NO_INDEX;
+    Step& step = m_model.steps[static_cast<std::size_t>(model_level ? 0 : pending.step)];
+    if (model_level && step.boundaries_reset) continue;
+    const Index amplitude =
+        resolve_amplitude(pending.amplitude, pending.condition.where, pending.target.keyword);
+    for (Index node : resolve_nodes(pending.target)) {
+      BoundaryCondition condition = pending.condition;
+      condition.node = node;
+      condition.amplitude = amplitude;
+      step.boundaries.push_back(condition);
+    }
+  }
+  for (const PendingLoad& pending : m_loads) {
+    Step& step = m_model.steps[static_cast<std::size_t>(pending.step)];
+    const Index amplitude =
+        resolve_amplitude(pending.amplitude, pending.load.where, pending.target.keyword);
+    for (Index node : resolve_nodes(pending.target)) {
+      ConcentratedLoad load = pending.load;
+      load.node = node;
+      load.amplitude = amplitude;
+      step.loads.push_back(load);
+    }
+  }
+  for (const PendingOutputSet& pending : m_output_sets) {
+    OutputRequest& request = m_model.steps[static_cast<std::size_t>(pending.step)]
+                                 .outputs[static_cast<std::size_t>(pending.output)];
+    const auto& names = pending.node ? m_node_set_index : m_element_set_index;
+    const auto it = names.find(pending.set.token);
+    if (it == names.end()) {
+      m_errors.add(pending.set.where, pending.set.keyword,
+                   std::string("undefined ") + (pending.node ? "node" : "element") + " set " +
+                       pending.set.token,
+                   std::string("expected ") + (pending.node ? "*NSET, NSET=" : "*ELSET, ELSET=") +
+                       pending.set.token);
+      continue;
+    }
+    (pending.node ? request.node_set : request.element_set) = it->second;
+  }
+}
+
+void DeckBuilder::check_element_geometry() {
+  for (Index e = 0; e < m_model.element_count(); ++e) {
+    const Index* nodes = m_model.nodes_of(e);
+    if (std::any_of(nodes, nodes + 8, [](Index n) { return n == NO_INDEX; })) continue;
+    std::array<Eigen::Vector3d, 8> x;
+    for (int k = 0; k < 8; ++k) x[k] = m_model.coordinates.row(nodes[k]).transpose();
+    const CornerJacobian smallest = smallest_corner_jacobian(x);
+    if (smallest.determinant > 0.0) continue;
+    std::ostringstream problem;
+    problem << "inverted element " << m_model.element_ids[e] << ": volume " << smallest.determinant
+            << " at corner node " << m_model.node_ids[nodes[smallest.corner]];
+    capped_error(m_error_counts[3], m_model.element_where[e], "*ELEMENT", problem.str(),
+                 "expected nodes in Abaqus C3D8R order (nodes 1-4 counter-clockwise on the "
+                 "bottom face seen from the top face 5-8), i.e. a positive Jacobian at every "
+                 "corner");
+  }
+}
+
+}  // namespace xpl::io

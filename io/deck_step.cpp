@@ -1,0 +1,273 @@
+/// \file History keywords: *STEP, *END STEP, *DYNAMIC, *BULK VISCOSITY, *BOUNDARY, *CLOAD.
+
+#include <sstream>
+
+#include "io/deck_builder.hpp"
+#include "io/deck_numbers.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+std::string number_text(Real value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+/// Contiguous dof ranges of an Abaqus boundary type word; empty if the word is unknown.
+std::vector<std::pair<int, int>> boundary_type_dofs(const std::string& word) {
+  if (word == "ENCASTRE") return {{1, 6}};
+  if (word == "PINNED") return {{1, 3}};
+  if (word == "XSYMM") return {{1, 1}, {5, 6}};
+  if (word == "YSYMM") return {{2, 2}, {4, 4}, {6, 6}};
+  if (word == "ZSYMM") return {{3, 5}};
+  if (word == "XASYMM") return {{2, 4}};
+  if (word == "YASYMM") return {{1, 1}, {3, 3}, {5, 5}};
+  if (word == "ZASYMM") return {{1, 2}, {6, 6}};
+  return {};
+}
+
+}  // namespace
+
+void DeckBuilder::read_step(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"NAME"}, {"NLGEOM", false, true}, {"AMPLITUDE"}});
+  if (m_in_step) {
+    error(keyword.where, keyword, "a step is already open",
+          "expected *END STEP before the next *STEP");
+    return;
+  }
+  // An optional data line is the step's description in Abaqus: nothing to check.
+  Step step;
+  step.where = keyword.where;
+  const DeckParameter* name = find_parameter(keyword, "NAME");
+  step.name = name != nullptr && name->has_value && !name->value.empty()
+                  ? name->value
+                  : "Step-" + std::to_string(m_model.steps.size() + 1);
+  const DeckParameter* nlgeom = find_parameter(keyword, "NLGEOM");
+  if (nlgeom != nullptr && nlgeom->has_value && normalize_name(nlgeom->value) != "YES") {
+    error(keyword.where, keyword, "NLGEOM=" + nlgeom->value + " is not supported",
+          "expected NLGEOM or NLGEOM=YES (xpl is always geometrically nonlinear)");
+  }
+  const std::string amplitude = optional_name(keyword, "AMPLITUDE");
+  if (amplitude == "RAMP") {
+    step.ramp_amplitude = true;
+  } else if (!amplitude.empty() && amplitude != "STEP") {
+    error(keyword.where, keyword, "bad AMPLITUDE=" + amplitude,
+          "expected AMPLITUDE=STEP or AMPLITUDE=RAMP");
+  }
+  m_model.steps.push_back(std::move(step));
+  m_in_step = true;
+  m_step_has_dynamic = false;
+  m_step_where = keyword.where;
+}
+
+void DeckBuilder::read_end_step(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {});
+  expect_no_data(block);
+  if (!m_in_step) {
+    error(keyword.where, keyword, "no step is open", "expected *STEP before *END STEP");
+    return;
+  }
+  if (!m_step_has_dynamic)
+    m_errors.add(m_step_where, "*STEP", "step " + m_model.steps.back().name + " has no procedure",
+                 "expected *DYNAMIC, EXPLICIT with the time period");
+  m_in_step = false;
+}
+
+void DeckBuilder::read_dynamic(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword,
+                   {{"EXPLICIT", false}, {"DIRECT USER CONTROL", false}, {"SCALE FACTOR"}});
+  Step& step = m_model.steps.back();
+  if (m_step_has_dynamic) {
+    error(keyword.where, keyword, "second procedure in step " + step.name,
+          "expected one *DYNAMIC, EXPLICIT per step");
+    return;
+  }
+  m_step_has_dynamic = true;
+  if (find_parameter(keyword, "EXPLICIT") == nullptr) {
+    error(keyword.where, keyword, "implicit dynamics is not supported",
+          "expected *DYNAMIC, EXPLICIT");
+    return;
+  }
+  const bool direct = find_parameter(keyword, "DIRECT USER CONTROL") != nullptr;
+  if (const DeckParameter* factor = find_parameter(keyword, "SCALE FACTOR");
+      factor != nullptr && factor->has_value && !factor->value.empty()) {
+    const std::optional<Real> value = parse_real(factor->value);
+    if (!value || *value <= 0.0)
+      error(keyword.where, keyword, "bad SCALE FACTOR=" + factor->value,
+            "expected a number > 0, e.g. SCALE FACTOR=0.9");
+    else
+      step.time_scale_factor = *value;
+  }
+  if (block.data.size() != 1) {
+    error(keyword.where, keyword, "found " + std::to_string(block.data.size()) + " data lines",
+          "expected one data line: [time increment], time period");
+    return;
+  }
+  // Abaqus/Explicit data line: (1) blank, or the fixed increment with DIRECT USER CONTROL,
+  // (2) time period, (3) blank, (4) maximum increment (not supported).
+  const DeckDataLine& line = block.data.front();
+  check_field_count(line, keyword, 4, "[time increment], time period");
+  const std::optional<Real> period = real_field(line, keyword, 1, "time period");
+  if (period && *period <= 0.0)
+    error(line.where, keyword, "time period " + number_text(*period) + " is not positive",
+          "expected a time period > 0");
+  else if (period)
+    step.time_period = *period;
+  const bool has_increment = !line.fields.empty() && !line.fields[0].empty();
+  if (direct) {
+    const std::optional<Real> increment = real_field(line, keyword, 0, "time increment");
+    if (increment && *increment <= 0.0)
+      error(line.where, keyword, "time increment " + number_text(*increment) + " is not positive",
+            "expected a fixed time increment > 0");
+    else if (increment)
+      step.fixed_increment = *increment;
+  } else if (has_increment) {
+    error(line.where, keyword, "a time increment is given without DIRECT USER CONTROL",
+          "expected the first value blank, or *DYNAMIC, EXPLICIT, DIRECT USER CONTROL");
+  }
+  if (line.fields.size() > 2 && !line.fields[2].empty())
+    error(line.where, keyword, "unexpected third value '" + line.fields[2] + "'",
+          "expected it blank");
+  if (line.fields.size() > 3 && !line.fields[3].empty())
+    error(line.where, keyword, "a maximum time increment is not supported yet",
+          "expected the fourth value blank");
+}
+
+void DeckBuilder::read_bulk_viscosity(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {});
+  if (block.data.size() != 1) {
+    error(keyword.where, keyword, "found " + std::to_string(block.data.size()) + " data lines",
+          "expected one data line: b1, b2");
+    return;
+  }
+  Step& step = m_model.steps.back();
+  const DeckDataLine& line = block.data.front();
+  check_field_count(line, keyword, 2, "b1, b2");
+  const std::optional<Real> linear = real_field(line, keyword, 0, "b1", step.bulk_linear);
+  const std::optional<Real> quadratic = real_field(line, keyword, 1, "b2", step.bulk_quadratic);
+  if (linear && *linear < 0.0)
+    error(line.where, keyword, "b1 " + number_text(*linear) + " is negative", "expected b1 >= 0");
+  else if (linear)
+    step.bulk_linear = *linear;
+  if (quadratic && *quadratic < 0.0)
+    error(line.where, keyword, "b2 " + number_text(*quadratic) + " is negative",
+          "expected b2 >= 0");
+  else if (quadratic)
+    step.bulk_quadratic = *quadratic;
+}
+
+void DeckBuilder::read_boundary(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"TYPE"}, {"AMPLITUDE"}, {"OP"}});
+  const Index step = m_in_step ? static_cast<Index>(m_model.steps.size() - 1) : NO_INDEX;
+  BoundaryCondition condition;
+  const std::string type = optional_name(keyword, "TYPE");
+  if (type == "VELOCITY") {
+    condition.type = BoundaryType::Velocity;
+  } else if (!type.empty() && type != "DISPLACEMENT") {
+    error(keyword.where, keyword, "boundary type " + type + " is not supported",
+          "expected TYPE=DISPLACEMENT or TYPE=VELOCITY");
+    return;
+  }
+  const std::string op = optional_name(keyword, "OP");
+  if (!op.empty() && op != "MOD" && op != "NEW") {
+    error(keyword.where, keyword, "bad OP=" + op, "expected OP=MOD or OP=NEW");
+    return;
+  }
+  if (!op.empty() && step == NO_INDEX) {
+    error(keyword.where, keyword, "OP= outside a step",
+          "expected OP= only on a *BOUNDARY inside a step");
+    return;
+  }
+  if (op == "NEW") m_model.steps.back().boundaries_reset = true;
+  const std::string amplitude = optional_name(keyword, "AMPLITUDE");
+  for (const DeckDataLine& line : block.data) {
+    std::vector<std::pair<int, int>> ranges;
+    Real value = 0.0;
+    if (line.fields.size() < 2 || line.fields[1].empty()) {
+      error(line.where, keyword, "missing dof",
+            "expected node or node set, first dof[, last dof[, value]] or a type such as "
+            "ENCASTRE");
+      continue;
+    }
+    if (!looks_numeric(line.fields[1])) {
+      const std::string word = normalize_name(line.fields[1]);
+      ranges = boundary_type_dofs(word);
+      if (ranges.empty()) {
+        error(line.where, keyword, "unknown boundary type " + word,
+              "expected a dof number or ENCASTRE, PINNED, XSYMM, YSYMM, ZSYMM, XASYMM, YASYMM, "
+              "ZASYMM");
+        continue;
+      }
+      check_field_count(line, keyword, 2, "node or node set, type");
+    } else {
+      check_field_count(line, keyword, 4, "node or node set, first dof[, last dof[, value]]");
+      const std::optional<long long> first = integer_field(line, keyword, 1, "first dof");
+      std::optional<long long> last = first;
+      if (line.fields.size() > 2 && !line.fields[2].empty())
+        last = integer_field(line, keyword, 2, "last dof");
+      const std::optional<Real> magnitude = real_field(line, keyword, 3, "value", 0.0);
+      if (!first || !last || !magnitude) continue;
+      if (*first < 1 || *first > 6 || *last < 1 || *last > 6 || *last < *first) {
+        error(line.where, keyword,
+              "bad dof range " + std::to_string(*first) + ".." + std::to_string(*last),
+              "expected 1 <= first dof <= last dof <= 6");
+        continue;
+      }
+      ranges = {{static_cast<int>(*first), static_cast<int>(*last)}};
+      value = *magnitude;
+    }
+    for (const auto& [first, last] : ranges) {
+      PendingBoundary pending;
+      pending.step = step;
+      pending.target = reference(line, keyword, 0);
+      pending.condition.first_dof = first;
+      pending.condition.last_dof = last;
+      pending.condition.value = value;
+      pending.condition.type = condition.type;
+      pending.condition.where = line.where;
+      pending.amplitude = amplitude;
+      m_boundaries.push_back(std::move(pending));
+    }
+  }
+}
+
+void DeckBuilder::read_cload(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
+  const std::string op = optional_name(keyword, "OP");
+  if (!op.empty() && op != "MOD" && op != "NEW") {
+    error(keyword.where, keyword, "bad OP=" + op, "expected OP=MOD or OP=NEW");
+    return;
+  }
+  Step& step = m_model.steps.back();
+  if (op == "NEW") step.loads_reset = true;
+  const std::string amplitude = optional_name(keyword, "AMPLITUDE");
+  for (const DeckDataLine& line : block.data) {
+    check_field_count(line, keyword, 3, "node or node set, dof, magnitude");
+    const std::optional<long long> dof = integer_field(line, keyword, 1, "dof");
+    const std::optional<Real> value = real_field(line, keyword, 2, "magnitude");
+    if (!dof || !value) continue;
+    if (*dof < 1 || *dof > 3) {
+      error(line.where, keyword, "dof " + std::to_string(*dof) + " is out of range",
+            "expected dof 1, 2 or 3 (forces only)");
+      continue;
+    }
+    PendingLoad pending;
+    pending.step = static_cast<Index>(m_model.steps.size() - 1);
+    pending.target = reference(line, keyword, 0);
+    pending.load.dof = static_cast<int>(*dof);
+    pending.load.value = *value;
+    pending.load.where = line.where;
+    pending.amplitude = amplitude;
+    m_loads.push_back(std::move(pending));
+  }
+}
+
+}  // namespace xpl::io

@@ -1,0 +1,197 @@
+#include "io/h5_handles.hpp"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+namespace xpl::io::h5 {
+
+namespace {
+
+/// Collects the description of the deepest entry of the HDF5 error stack.
+herr_t collect_error(unsigned /*n*/, const H5E_error2_t* error, void* client_data) {
+  auto* text = static_cast<std::string*>(client_data);
+  if (error->desc != nullptr && error->desc[0] != '\0') *text = error->desc;
+  return 0;
+}
+
+Handle make_space(const std::vector<hsize_t>& dims, const std::vector<hsize_t>& max_dims = {}) {
+  const hsize_t* max = max_dims.empty() ? nullptr : max_dims.data();
+  return {check_id(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), max),
+                   "cannot create a dataspace"),
+          H5Sclose};
+}
+
+void write_dataset(hid_t parent, const std::string& name, hid_t type, const void* data,
+                   std::size_t size, const std::vector<hsize_t>& dims) {
+  hsize_t expected = 1;
+  for (hsize_t d : dims) expected *= d;
+  if (expected != size) {
+    throw Error("HDF5: dataset " + name + ": " + std::to_string(size) +
+                " values do not fill the requested shape");
+  }
+  const Handle space = make_space(dims);
+  const Handle dataset{check_id(H5Dcreate2(parent, name.c_str(), type, space.get(), H5P_DEFAULT,
+                                           H5P_DEFAULT, H5P_DEFAULT),
+                                "cannot create dataset " + name),
+                       H5Dclose};
+  if (size == 0) return;
+  check(H5Dwrite(dataset.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+        "cannot write dataset " + name);
+}
+
+/// Creates the attribute `name` of `object`, replacing an existing one (e.g. the status).
+Handle require_attribute(hid_t object, const std::string& name, hid_t type, hid_t space) {
+  const htri_t exists = H5Aexists(object, name.c_str());
+  if (exists < 0) fail("cannot query attribute " + name);
+  if (exists > 0) check(H5Adelete(object, name.c_str()), "cannot replace attribute " + name);
+  return {check_id(H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                   "cannot create attribute " + name),
+          H5Aclose};
+}
+
+void set_scalar_attribute(hid_t object, const std::string& name, hid_t type, const void* value) {
+  const Handle space{check_id(H5Screate(H5S_SCALAR), "cannot create a dataspace"), H5Sclose};
+  const Handle attribute = require_attribute(object, name, type, space.get());
+  check(H5Awrite(attribute.get(), type, value), "cannot write attribute " + name);
+}
+
+}  // namespace
+
+void silence_errors() {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+void fail(const std::string& what) {
+  std::string reason;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_error, &reason);
+  H5Eclear2(H5E_DEFAULT);
+  throw Error("HDF5: " + what + (reason.empty() ? std::string() : ": " + reason));
+}
+
+hid_t check_id(hid_t id, const std::string& what) {
+  if (id < 0) fail(what);
+  return id;
+}
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) fail(what);
+}
+
+Handle::Handle(Handle&& other) noexcept
+    : m_id(std::exchange(other.m_id, -1)), m_closer(other.m_closer) {}
+
+Handle& Handle::operator=(Handle&& other) noexcept {
+  if (this != &other) {
+    reset();
+    m_id = std::exchange(other.m_id, -1);
+    m_closer = other.m_closer;
+  }
+  return *this;
+}
+
+void Handle::reset() {
+  if (m_id >= 0 && m_closer != nullptr) m_closer(m_id);
+  m_id = -1;
+}
+
+Handle require_group(hid_t parent, const std::string& path) {
+  const htri_t exists = H5Lexists(parent, path.c_str(), H5P_DEFAULT);
+  if (exists > 0) {
+    return {check_id(H5Gopen2(parent, path.c_str(), H5P_DEFAULT), "cannot open group " + path),
+            H5Gclose};
+  }
+  H5Eclear2(H5E_DEFAULT);  // H5Lexists fails (harmlessly) when an intermediate link is missing
+  const Handle link_properties{check_id(H5Pcreate(H5P_LINK_CREATE), "cannot create properties"),
+                               H5Pclose};
+  check(H5Pset_create_intermediate_group(link_properties.get(), 1), "cannot set properties");
+  return {
+      check_id(H5Gcreate2(parent, path.c_str(), link_properties.get(), H5P_DEFAULT, H5P_DEFAULT),
+               "cannot create group " + path),
+      H5Gclose};
+}
+
+void write_int64(hid_t parent, const std::string& name, std::span<const std::int64_t> data,
+                 const std::vector<hsize_t>& dims) {
+  write_dataset(parent, name, H5T_NATIVE_INT64, data.data(), data.size(), dims);
+}
+
+void write_real(hid_t parent, const std::string& name, std::span<const double> data,
+                const std::vector<hsize_t>& dims) {
+  write_dataset(parent, name, H5T_NATIVE_DOUBLE, data.data(), data.size(), dims);
+}
+
+void set_string_attribute(hid_t object, const std::string& name, const std::string& value) {
+  const Handle type{check_id(H5Tcopy(H5T_C_S1), "cannot create a string type"), H5Tclose};
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "cannot create a string type");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "cannot create a string type");
+  const char* text = value.c_str();
+  set_scalar_attribute(object, name, type.get(), static_cast<const void*>(&text));
+}
+
+void set_real_attribute(hid_t object, const std::string& name, double value) {
+  set_scalar_attribute(object, name, H5T_NATIVE_DOUBLE, &value);
+}
+
+void set_int64_attribute(hid_t object, const std::string& name, std::int64_t value) {
+  set_scalar_attribute(object, name, H5T_NATIVE_INT64, &value);
+}
+
+void set_int64_array_attribute(hid_t object, const std::string& name,
+                               std::span<const std::int64_t> values) {
+  const Handle space = make_space({static_cast<hsize_t>(values.size())});
+  const Handle attribute = require_attribute(object, name, H5T_NATIVE_INT64, space.get());
+  if (values.empty()) return;
+  check(H5Awrite(attribute.get(), H5T_NATIVE_INT64, values.data()),
+        "cannot write attribute " + name);
+}
+
+AppendableDataset::AppendableDataset(hid_t parent, const std::string& name, hsize_t width)
+    : m_name(name), m_width(width) {
+  // Chunks of about 128 KiB at most: a few hundred rows of a narrow series, fewer of a wide one.
+  const hsize_t chunk_rows = std::clamp<hsize_t>(16384 / std::max<hsize_t>(width, 1), 1, 256);
+  std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{chunk_rows};
+  if (width > 0) {
+    dims.push_back(width);
+    max_dims.push_back(width);
+    chunk.push_back(width);
+  }
+  const Handle space = make_space(dims, max_dims);
+  const Handle properties{check_id(H5Pcreate(H5P_DATASET_CREATE), "cannot create properties"),
+                          H5Pclose};
+  check(H5Pset_chunk(properties.get(), static_cast<int>(chunk.size()), chunk.data()),
+        "cannot set the chunk size of " + name);
+  m_dataset = Handle{check_id(H5Dcreate2(parent, name.c_str(), H5T_NATIVE_DOUBLE, space.get(),
+                                         H5P_DEFAULT, properties.get(), H5P_DEFAULT),
+                              "cannot create dataset " + name),
+                     H5Dclose};
+}
+
+void AppendableDataset::append(const double* buffer, hsize_t rows, hsize_t buffer_width,
+                               hsize_t column) {
+  if (rows == 0) return;
+  const hsize_t width = std::max<hsize_t>(m_width, 1);
+  // For a one-dimensional dataset HDF5 reads only the first entry of these arrays.
+  const std::array<hsize_t, 2> new_dims{m_rows + rows, width};
+  check(H5Dset_extent(m_dataset.get(), new_dims.data()), "cannot extend dataset " + m_name);
+
+  const Handle file_space{check_id(H5Dget_space(m_dataset.get()), "cannot get a dataspace"),
+                          H5Sclose};
+  const std::array<hsize_t, 2> file_start{m_rows, 0}, count{rows, width};
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, file_start.data(), nullptr,
+                            count.data(), nullptr),
+        "cannot select rows of " + m_name);
+
+  // The memory side is the whole row buffer; HDF5 gathers this series' columns from it.
+  const Handle memory_space = make_space({rows, buffer_width});
+  const std::array<hsize_t, 2> memory_start{0, column};
+  check(H5Sselect_hyperslab(memory_space.get(), H5S_SELECT_SET, memory_start.data(), nullptr,
+                            count.data(), nullptr),
+        "cannot select columns for " + m_name);
+  check(H5Dwrite(m_dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
+                 H5P_DEFAULT, buffer),
+        "cannot write rows of " + m_name);
+  m_rows += rows;
+}
+
+}  // namespace xpl::io::h5

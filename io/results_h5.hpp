@@ -1,0 +1,53 @@
+#pragma once
+/// \file JOB.h5: mesh, field frames, history and the run status (layout in result_files.hpp).
+
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "io/h5_handles.hpp"
+#include "io/results_history.hpp"
+#include "solver/output_sink.hpp"
+
+namespace xpl::io {
+
+/// Abaqus name of an element type ("C3D8R"), also the name of its group below /mesh.
+const char* element_type_name(ElementType type);
+
+/// Von Mises stress of one stress row (S11 S22 S33 S12 S13 S23), Pa.
+Real von_mises(const Real* s);
+
+/// The HDF5 result file of one job. Every write that completes a frame, a block of history
+/// rows or the run flushes the file, so that a reader sees a consistent file if the run dies.
+class ResultsH5 {
+ public:
+  /// Creates (truncates) `path` with status "running".
+  ResultsH5(const std::filesystem::path& path, const std::string& job);
+
+  /// Writes /mesh and the heading attribute.
+  void write_mesh(const Model& model);
+  /// A new step (zero-based) starts: ends the history of the previous one.
+  void begin_step(int step);
+  /// Declares the history columns of the current step (/history/step_N).
+  void declare_history(const std::vector<HistorySeries>& series);
+  /// Buffers one history row (written every HistoryWriter::ROWS_PER_WRITE rows).
+  void append_history(Real time, std::span<const Real> values);
+  /// Writes /frames/NNNNNN and returns its name ("000000").
+  std::string write_frame(const Model& model, const State& state, const FrameRequest& what);
+  /// Writes pending history rows, the final status and error text, and flushes.
+  void finish(const std::string& status, const std::string& error);
+  /// Flushes the file to disk.
+  void flush();
+  /// Number of frames written.
+  int frame_count() const { return m_frames; }
+
+ private:
+  h5::Handle m_file;
+  HistoryWriter m_history;
+  std::string m_path;
+  int m_step = 0;  ///< zero-based current step
+  int m_frames = 0;
+};
+
+}  // namespace xpl::io

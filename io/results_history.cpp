@@ -1,0 +1,89 @@
+#include "io/results_history.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace xpl::io {
+
+namespace {
+
+/// Checks a series path: relative, no empty components, not clashing with `time`.
+void check_series_path(const std::string& path, int step) {
+  const bool bad = path.empty() || path == "time" || path.front() == '/' || path.back() == '/' ||
+                   path.find("//") != std::string::npos;
+  if (bad) {
+    throw std::invalid_argument("history of step " + std::to_string(step) +
+                                ": invalid series path '" + path + "'");
+  }
+}
+
+}  // namespace
+
+void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>& series) {
+  end();
+  m_step = step;
+  m_group = h5::require_group(file, "history/step_" + std::to_string(step));
+  m_time.emplace(m_group.get(), "time", 0);
+  m_columns.clear();
+  m_row_width = 0;
+  for (const HistorySeries& s : series) {
+    check_series_path(s.path, step);
+    if (s.width < 1) {
+      throw std::invalid_argument("history series " + s.path + ": width must be at least 1");
+    }
+    if (!s.node_ids.empty() && static_cast<Index>(s.node_ids.size()) != s.width) {
+      throw std::invalid_argument("history series " + s.path + ": " +
+                                  std::to_string(s.node_ids.size()) + " node ids for width " +
+                                  std::to_string(s.width));
+    }
+    const auto slash = s.path.rfind('/');
+    const hsize_t width = s.width > 1 ? static_cast<hsize_t>(s.width) : 0;
+    if (slash == std::string::npos) {
+      m_series.emplace_back(m_group.get(), s.path, width);
+    } else {
+      const h5::Handle parent = h5::require_group(m_group.get(), s.path.substr(0, slash));
+      m_series.emplace_back(parent.get(), s.path.substr(slash + 1), width);
+    }
+    if (!s.node_ids.empty()) {
+      h5::set_int64_array_attribute(m_series.back().get(), "node_ids", s.node_ids);
+    }
+    m_columns.push_back(m_row_width);
+    m_row_width += static_cast<hsize_t>(s.width);
+  }
+  m_times.reserve(ROWS_PER_WRITE);
+  m_values.reserve(ROWS_PER_WRITE * m_row_width);
+}
+
+bool HistoryWriter::append(Real time, std::span<const Real> values) {
+  if (!active()) throw std::logic_error("append_history before the history was declared");
+  if (values.size() != m_row_width) {
+    throw std::invalid_argument("history row of step " + std::to_string(m_step) + " has " +
+                                std::to_string(values.size()) + " values; " +
+                                std::to_string(m_row_width) + " columns were declared");
+  }
+  m_times.push_back(time);
+  m_values.insert(m_values.end(), values.begin(), values.end());
+  if (m_times.size() < ROWS_PER_WRITE) return false;
+  write_pending();
+  return true;
+}
+
+void HistoryWriter::write_pending() {
+  if (!active() || m_times.empty()) return;
+  const auto rows = static_cast<hsize_t>(m_times.size());
+  m_time->append(m_times.data(), rows, 1, 0);
+  for (std::size_t i = 0; i < m_series.size(); ++i) {
+    m_series[i].append(m_values.data(), rows, m_row_width, m_columns[i]);
+  }
+  m_times.clear();
+  m_values.clear();
+}
+
+void HistoryWriter::end() {
+  write_pending();
+  m_series.clear();
+  m_time.reset();
+  m_group.reset();
+}
+
+}  // namespace xpl::io

@@ -1,0 +1,46 @@
+#pragma once
+/// \file History output of one step in JOB.h5: /history/step_N/time and one extendible
+/// dataset per HistorySeries, written from a row buffer in chunks.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "io/h5_handles.hpp"
+#include "solver/output_sink.hpp"
+
+namespace xpl::io {
+
+/// Buffers history rows of the current step and appends them to JOB.h5 in blocks, so that
+/// nothing touches the file on most append() calls.
+class HistoryWriter {
+ public:
+  /// Rows buffered before they are written to the file.
+  static constexpr std::size_t ROWS_PER_WRITE = 256;
+
+  /// Starts the history of `step` (1-based; group /history/step_N below `file`) with the
+  /// given columns. Ends the history of a previous step first.
+  void begin(hid_t file, int step, const std::vector<HistorySeries>& series);
+  /// Whether a step's history is open.
+  bool active() const { return m_time.has_value(); }
+  /// Buffers one row; `values` holds every series' columns back to back. Returns true when
+  /// the buffer was written to the file (the caller may then flush the file).
+  bool append(Real time, std::span<const Real> values);
+  /// Writes the buffered rows to the file.
+  void write_pending();
+  /// Writes the buffered rows and closes the step's datasets.
+  void end();
+
+ private:
+  h5::Handle m_group;
+  std::optional<h5::AppendableDataset> m_time;
+  std::vector<h5::AppendableDataset> m_series;
+  std::vector<hsize_t> m_columns;  ///< first column of each series in a row
+  hsize_t m_row_width = 0;         ///< sum of the series widths
+  std::vector<Real> m_times;       ///< buffered times (rows)
+  std::vector<Real> m_values;      ///< buffered rows (rows × m_row_width), row-major
+  int m_step = 0;
+};
+
+}  // namespace xpl::io

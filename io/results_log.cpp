@@ -1,0 +1,175 @@
+#include "io/results_log.hpp"
+
+#include <cstdio>
+#include <ctime>
+#include <stdexcept>
+
+#include "io/results_h5.hpp"
+
+#ifndef XPL_VERSION
+#define XPL_VERSION "unknown"
+#endif
+
+namespace xpl::io {
+
+namespace {
+
+std::ofstream open_log(const std::filesystem::path& path) {
+  std::ofstream out(path, std::ios::trunc);
+  if (!out) throw std::runtime_error("cannot create " + path.string());
+  return out;
+}
+
+std::string now_text() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S", &local);
+  return text;
+}
+
+void write_header(std::ofstream& out, const char* kind, const std::string& job) {
+  out << " xpl " << XPL_VERSION << " " << kind << "\n JOB  " << job << "\n DATE " << now_text()
+      << "\n\n";
+  out.flush();
+}
+
+/// printf into a std::string (the fixed columns are easiest to get right with printf).
+template <typename... Args>
+std::string format(const char* pattern, Args... args) {
+  char text[256];
+  std::snprintf(text, sizeof text, pattern, args...);
+  return text;
+}
+
+/// The table of seconds per phase and the element-cycles per second.
+void write_timings(std::ofstream& out, const PhaseTimers& timers, double cycles_per_second) {
+  out << "\n WALL CLOCK TIME PER PHASE\n";
+  for (int p = 0; p < static_cast<int>(Phase::COUNT); ++p) {
+    const auto phase = static_cast<Phase>(p);
+    out << format("   %-20s %12.3f s\n", std::string(phase_name(phase)).c_str(),
+                  timers.seconds(phase));
+  }
+  out << format("   %-20s %12.3f s\n", "total", timers.total());
+  out << format(" ELEMENT-CYCLES PER SECOND %12.4E\n", cycles_per_second);
+}
+
+}  // namespace
+
+const char* completion_text(RunStatus status) {
+  switch (status) {
+    case RunStatus::Completed:
+      return "THE ANALYSIS HAS COMPLETED SUCCESSFULLY";
+    case RunStatus::Checked:
+      return "DATA CHECK COMPLETED";
+    case RunStatus::Failed:
+      return "THE ANALYSIS HAS NOT BEEN COMPLETED";
+  }
+  return "";
+}
+
+StaFile::StaFile(const std::filesystem::path& path, const std::string& job)
+    : m_out(open_log(path)) {
+  write_header(m_out, "STATUS FILE", job);
+}
+
+void StaFile::begin_step(int step, const std::string& name) {
+  m_out << "\n STEP " << step << "  " << name << "\n\n"
+        << "  STEP  INCREMENT   TOTAL TIME    STEP TIME       STABLE     CRITICAL      KINETIC"
+           "        TOTAL\n"
+        << "                                              INCREMENT      ELEMENT       ENERGY"
+           "       ENERGY\n";
+  m_out.flush();
+}
+
+void StaFile::line(int step, const StatusLine& line) {
+  m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12lld %12.4E %12.4E\n", step, line.increment,
+                  line.total_time, line.step_time, line.dt,
+                  static_cast<long long>(line.critical_element), line.energies.kinetic,
+                  line.energies.total());
+  m_out.flush();
+}
+
+void StaFile::finish(RunStatus status, const std::string& error, const PhaseTimers& timers,
+                     double element_cycles_per_second) {
+  m_out << "\n " << completion_text(status) << "\n";
+  if (!error.empty()) m_out << " " << error << "\n";
+  write_timings(m_out, timers, element_cycles_per_second);
+  m_out.flush();
+}
+
+MsgFile::MsgFile(const std::filesystem::path& path, const std::string& job)
+    : m_out(open_log(path)) {
+  write_header(m_out, "MESSAGE FILE", job);
+}
+
+void MsgFile::summary(const Model& model) {
+  m_out << " MODEL SUMMARY\n";
+  if (!model.heading.empty()) m_out << "   heading: " << model.heading << "\n";
+  m_out << format("   %-28s %10d\n", "nodes", model.node_count());
+  m_out << format("   %-28s %10d\n", "elements", model.element_count());
+  for (ElementType type : {ElementType::C3D8R}) {
+    long count = 0;
+    for (ElementType t : model.element_types) count += t == type ? 1 : 0;
+    if (count > 0) {
+      m_out << format("     %-26s %10ld\n", element_type_name(type), count);
+    }
+  }
+  const auto line = [&](const char* what, std::size_t n) {
+    m_out << format("   %-28s %10zu\n", what, n);
+  };
+  line("materials", model.materials.size());
+  line("solid sections", model.solid_sections.size());
+  line("node sets", model.node_sets.size());
+  line("element sets", model.element_sets.size());
+  line("surfaces", model.surfaces.size());
+  line("amplitudes", model.amplitudes.size());
+  line("steps", model.steps.size());
+  m_out << "\n";
+  m_out.flush();
+}
+
+void MsgFile::begin_step(const Model& model, int step) {
+  m_out << "\n STEP " << step + 1;
+  const auto index = static_cast<std::size_t>(step);
+  if (index < model.steps.size()) {
+    const Step& s = model.steps[index];
+    m_out << "  " << s.name << "\n" << format("   time period %12.4E s\n", s.time_period);
+    if (s.fixed_increment) m_out << format("   fixed increment %12.4E s\n", *s.fixed_increment);
+    m_out << format("   time scale factor %g, bulk viscosity %g %g\n", s.time_scale_factor,
+                    s.bulk_linear, s.bulk_quadratic);
+  } else {
+    m_out << "\n";
+  }
+  m_out << "\n";
+  m_out.flush();
+}
+
+void MsgFile::message(Severity severity, const std::string& text) {
+  switch (severity) {
+    case Severity::Info:
+      m_out << " " << text << "\n";
+      break;
+    case Severity::Note:
+      m_out << "***NOTE: " << text << "\n";
+      break;
+    case Severity::Warning:
+      m_out << "***WARNING: " << text << "\n";
+      break;
+    case Severity::Error:
+      m_out << "***ERROR: " << text << "\n";
+      break;
+  }
+  m_out.flush();
+}
+
+void MsgFile::finish(RunStatus status, const std::string& error, const PhaseTimers& timers,
+                     double element_cycles_per_second) {
+  m_out << "\n " << completion_text(status) << "\n";
+  if (!error.empty()) m_out << "***ERROR: " << error << "\n";
+  write_timings(m_out, timers, element_cycles_per_second);
+  m_out.flush();
+}
+
+}  // namespace xpl::io
