@@ -60,6 +60,7 @@ Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index
       c[TWO_MU * W] = 2.0 * mu;
       c[DENSITY * W] = m.density;
       c[WAVE_SPEED * W] = std::sqrt((lambda + 2.0 * mu) / m.density);
+      c[DT_FACTOR * W] = poisson_dt_factor(m.poisson);
       const bool stiff = m.hourglass == HourglassForm::Stiffness;
       c[HG_STIFFNESS * W] = stiff ? HOURGLASS_STIFFNESS * m.hourglass_scale : 0.0;
       c[HG_VISCOSITY * W] = stiff ? 0.0 : HOURGLASS_VISCOSITY * m.hourglass_scale;
@@ -211,7 +212,8 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
 
   // Stable increment with bulk-viscosity damping ξ (Abaqus-style estimate).
   const Vec xi = b1 - b2 * b2 * (length / wave) * compress;
-  const Vec dt_e = (length / wave) * (simd::sqrt(1.0 + xi * xi) - xi);
+  const Vec dt_e =
+      simd::load(cst + DT_FACTOR * W) * (length / wave) * (simd::sqrt(1.0 + xi * xi) - xi);
 
   // Hourglass rates on x_{n+1}: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α), α = modes 4..7.
   Vec Ln[3][3];

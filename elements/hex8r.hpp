@@ -26,6 +26,14 @@ inline constexpr Real HOURGLASS_STIFFNESS = 0.05;
 /// Viscous: Q_α = κ_v · ρ c_d A_max / 8 · q_α (≈ 14 % of critical damping on a cube).
 inline constexpr Real HOURGLASS_VISCOSITY = 0.1;
 
+/// Extra factor on the stable increment of nearly incompressible one-point hexes: L_e/c_d is
+/// not conservative there (measured limits on regular meshes, in units of L_e/c_d: 1.01 at
+/// ν = 0, 0.99 at 0.3, 0.97 at 0.4, 0.90 at 0.45, 0.86 at 0.49; tests/solver/test_stability).
+/// 1 up to ν = 0.3, then falling linearly by 0.55 per unit of ν (0.895 at ν = 0.49).
+constexpr Real poisson_dt_factor(Real poisson) {
+  return poisson <= 0.3 ? 1.0 : 1.0 - 0.55 * (poisson - 0.3);
+}
+
 /// Material and control constants of one hex element.
 struct HexMaterial {
   Real density = 0.0;  ///< kg/m^3
@@ -79,7 +87,16 @@ class Hex8rBlock {
 
  private:
   static constexpr int W = simd::W;
-  enum Constant { LAMBDA = 0, TWO_MU, DENSITY, WAVE_SPEED, HG_STIFFNESS, HG_VISCOSITY, N_CONST };
+  enum Constant {
+    LAMBDA = 0,
+    TWO_MU,
+    DENSITY,
+    WAVE_SPEED,
+    HG_STIFFNESS,
+    HG_VISCOSITY,
+    DT_FACTOR,
+    N_CONST
+  };
 
   void compute_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* vx,
                      const Real* vy, const Real* vz, Real dt, Real b1, Real b2, Real* fx, Real* fy,

@@ -329,9 +329,9 @@ void ExplicitSolver::Impl::check_health(const elements::HexStepTotals& totals) {
                       critical_id, state.increment, state.time);
   }
   if (dt_half < options.dt_floor_ratio * dt_first && !model.steps[state.step].fixed_increment) {
-    throw SolverError("stable increment collapsed to " + format_real(dt_half) + " s (element " +
-                          std::to_string(critical_id) + ") at increment " +
-                          std::to_string(state.increment),
+    throw SolverError("NaN/instability at increment " + std::to_string(state.increment) +
+                          ", element " + std::to_string(critical_id) +
+                          ": stable increment collapsed to " + format_real(dt_half) + " s",
                       critical_id, state.increment, state.time);
   }
 }
