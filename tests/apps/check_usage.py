@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Command-line usage of xpl: --help, --version and usage errors (exit code 2).
+
+Usage: check_usage.py XPL DECK WORK_DIR
+
+DECK is a valid deck (the bar example): the usage errors must be caught before it is read,
+and nothing may be written. WORK_DIR is emptied and used as the working directory.
+"""
+
+import pathlib
+import shutil
+import subprocess
+import sys
+
+VERSION = "0.1.0"
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print(f"check_usage.py: FAILED: {message}")
+    return condition
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    xpl, deck, work = sys.argv[1], str(pathlib.Path(sys.argv[2]).resolve()), pathlib.Path(sys.argv[3])
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+
+    def run(*args):
+        return subprocess.run([xpl, *args], cwd=work, capture_output=True, text=True, timeout=60)
+
+    result = run("--version")
+    check(result.returncode == 0, f"--version: exit code {result.returncode}")
+    check(result.stdout == f"xpl {VERSION}\n", f"--version printed {result.stdout!r}")
+
+    result = run("--help")
+    check(result.returncode == 0, f"--help: exit code {result.returncode}")
+    for word in ("xpl run DECK.inp", "xpl check DECK.inp", "--threads", "-o DIR"):
+        check(word in result.stdout, f"--help does not mention '{word}':\n{result.stdout}")
+
+    usage_errors = {
+        "no arguments": [],
+        "unknown command": ["frobnicate", deck],
+        "threads 0": ["run", deck, "--threads", "0", "-o", "out_threads0"],
+        "threads not a number": ["run", deck, "--threads", "two", "-o", "out_threads_two"],
+        "run without deck": ["run"],
+        "unknown option": ["run", deck, "--bogus", "-o", "out_bogus"],
+    }
+    for what, args in usage_errors.items():
+        result = run(*args)
+        check(result.returncode == 2,
+              f"{what} ({' '.join(args)}): exit code {result.returncode}, expected 2\n"
+              f"stderr:\n{result.stderr}")
+        check(result.stderr.strip() != "", f"{what}: nothing on stderr")
+        check(result.stdout == "", f"{what}: printed on stdout: {result.stdout!r}")
+    written = sorted(p.name for p in work.rglob("*"))
+    check(not written, f"usage errors wrote files: {written}")
+
+    if failures:
+        sys.exit(f"check_usage.py: {len(failures)} check(s) failed")
+    print(f"check_usage.py: --version, --help and {len(usage_errors)} usage errors OK")
+
+
+if __name__ == "__main__":
+    main()
