@@ -191,34 +191,36 @@ std::string DeckBuilder::optional_name(const DeckKeyword& keyword, std::string_v
 
 void DeckBuilder::expect_no_data(const DeckBlock& block) {
   if (!block.data.empty())
-    error(block.data.front().where, block.keyword, "unexpected data line",
+    error(block.data.front().where(), block.keyword, "unexpected data line",
           "expected no data lines after " + block.keyword.label());
 }
 
 std::optional<Real> DeckBuilder::real_field(const DeckDataLine& line, const DeckKeyword& keyword,
-                                            std::size_t i, const std::string& what,
+                                            std::size_t i, std::string_view what,
                                             std::optional<Real> blank) {
   if (i >= line.fields.size() || line.fields[i].empty()) {
-    if (!blank) error(line.where, keyword, "missing " + what, "expected a number");
+    if (!blank) error(line.where(), keyword, "missing " + std::string(what), "expected a number");
     return blank;
   }
   const std::optional<Real> value = parse_real(line.fields[i]);
   if (!value)
-    error(line.where, keyword, "bad number '" + line.fields[i] + "' for " + what,
+    error(line.where(), keyword,
+          "bad number '" + std::string(line.fields[i]) + "' for " + std::string(what),
           "expected a real number such as 2, -1.5, 1e3 or 1.0D3");
   return value;
 }
 
 std::optional<long long> DeckBuilder::integer_field(const DeckDataLine& line,
                                                     const DeckKeyword& keyword, std::size_t i,
-                                                    const std::string& what) {
+                                                    std::string_view what) {
   if (i >= line.fields.size() || line.fields[i].empty()) {
-    error(line.where, keyword, "missing " + what, "expected an integer");
+    error(line.where(), keyword, "missing " + std::string(what), "expected an integer");
     return std::nullopt;
   }
   const std::optional<long long> value = parse_integer(line.fields[i]);
   if (!value)
-    error(line.where, keyword, "bad integer '" + line.fields[i] + "' for " + what,
+    error(line.where(), keyword,
+          "bad integer '" + std::string(line.fields[i]) + "' for " + std::string(what),
           "expected an integer such as 12");
   return value;
 }
@@ -226,7 +228,7 @@ std::optional<long long> DeckBuilder::integer_field(const DeckDataLine& line,
 bool DeckBuilder::check_field_count(const DeckDataLine& line, const DeckKeyword& keyword,
                                     std::size_t count, const std::string& expected) {
   if (line.fields.size() <= count) return true;
-  error(line.where, keyword,
+  error(line.where(), keyword,
         "too many values (" + std::to_string(line.fields.size()) + ") on the data line",
         "expected " + expected);
   return false;
@@ -235,9 +237,9 @@ bool DeckBuilder::check_field_count(const DeckDataLine& line, const DeckKeyword&
 DeckReference DeckBuilder::reference(const DeckDataLine& line, const DeckKeyword& keyword,
                                      std::size_t i) {
   DeckReference ref;
-  ref.token = i < line.fields.size() ? line.fields[i] : std::string();
+  if (i < line.fields.size()) ref.token = line.fields[i];
   if (!looks_numeric(ref.token)) ref.token = normalize_name(ref.token);
-  ref.where = line.where;
+  ref.where = line.where();
   ref.keyword = keyword.label();
   return ref;
 }

@@ -43,15 +43,15 @@ class DeckBuilder {
  private:
   // --- one set item, resolved in finish() -------------------------------------------------
   struct SetItem {
-    enum class Kind { Member, Id, Range, SetName, NodesOfElementSet };
-    Kind kind = Kind::Member;
-    Index member = NO_INDEX;                       ///< Kind::Member
+    enum class Kind { Id, Range, SetName, NodesOfElementSet };
+    Kind kind = Kind::Id;
     long long first = 0, last = 0, increment = 1;  ///< Kind::Id (first), Kind::Range
     std::string name;                              ///< Kind::SetName, Kind::NodesOfElementSet
     SourceLocation where;
     std::string keyword;
   };
   struct PendingSet {
+    std::vector<Index> members;  ///< members known while reading (*NODE, NSET= / *ELEMENT, ELSET=)
     std::vector<SetItem> items;
     int state = 0;  ///< 0 unresolved, 1 being resolved, 2 done
   };
@@ -123,10 +123,10 @@ class DeckBuilder {
   void expect_no_data(const DeckBlock& block);
   /// Field i of a data line as a real; empty fields give `blank` if it has a value.
   std::optional<Real> real_field(const DeckDataLine& line, const DeckKeyword& keyword,
-                                 std::size_t i, const std::string& what,
+                                 std::size_t i, std::string_view what,
                                  std::optional<Real> blank = std::nullopt);
   std::optional<long long> integer_field(const DeckDataLine& line, const DeckKeyword& keyword,
-                                         std::size_t i, const std::string& what);
+                                         std::size_t i, std::string_view what);
   /// Reports a data line with more than `count` fields.
   bool check_field_count(const DeckDataLine& line, const DeckKeyword& keyword, std::size_t count,
                          const std::string& expected);
@@ -159,6 +159,9 @@ class DeckBuilder {
   std::vector<Real> m_coordinates;             ///< x y z per node, copied into the Model at the end
   std::vector<ExternalId> m_element_node_ids;  ///< parallel to Model::element_nodes
   std::unordered_map<ExternalId, Index> m_node_index;
+  /// Nodes whose coordinates had a bad number (already reported): their elements are not
+  /// checked for inversion, which would only repeat the same mistake as a second error.
+  std::vector<Index> m_bad_coordinate_nodes;
   std::unordered_map<ExternalId, Index> m_element_index;
   std::unordered_map<std::string, Index> m_node_set_index, m_element_set_index;
   std::vector<PendingSet> m_node_sets, m_element_sets;  ///< parallel to the Model's sets

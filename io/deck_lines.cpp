@@ -1,6 +1,6 @@
 #include "io/deck_lines.hpp"
 
-#include <cctype>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,7 +18,7 @@ bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
 }
 
-std::string trim(const std::string& text) {
+std::string_view trim(std::string_view text) {
   std::size_t begin = 0, end = text.size();
   while (begin < end && is_blank(text[begin])) ++begin;
   while (end > begin && is_blank(text[end - 1])) --end;
@@ -26,79 +26,119 @@ std::string trim(const std::string& text) {
 }
 
 /// Removes one pair of surrounding double quotes.
-std::string unquote(const std::string& text) {
+std::string_view unquote(std::string_view text) {
   if (text.size() >= 2 && text.front() == '"' && text.back() == '"')
     return text.substr(1, text.size() - 2);
   return text;
 }
 
-/// Splits at commas outside double quotes; fields trimmed and unquoted. A single trailing
-/// empty field (the line ended with a comma) is dropped.
-std::vector<std::string> split_fields(const std::string& line, bool& unterminated_quote) {
-  std::vector<std::string> fields;
-  std::string current;
+/// Splits at commas outside double quotes into `fields` (cleared first); fields trimmed and
+/// unquoted. A single trailing empty field (the line ended with a comma) is dropped. Returns
+/// whether a quote is left open.
+bool split_fields(std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
   bool quoted = false;
-  for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    if (c == ',' && !quoted) {
-      fields.push_back(unquote(trim(current)));
-      current.clear();
-    } else {
-      current += c;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.push_back(unquote(trim(line.substr(start, i - start))));
+      start = i + 1;
     }
   }
-  unterminated_quote = quoted;
-  fields.push_back(unquote(trim(current)));
+  fields.push_back(unquote(trim(line.substr(start))));
   if (fields.size() > 1 && fields.back().empty()) fields.pop_back();
-  return fields;
+  return quoted;
 }
 
-/// Physical lines of a file with their 1-based numbers, comments and blank lines removed.
+/// Whether the quotes of a line leave one open (what split_fields reports), without splitting.
+bool unterminated_quote(std::string_view line) {
+  return std::count(line.begin(), line.end(), '"') % 2 != 0;
+}
+
+/// A significant physical line: trimmed, not blank, not a comment; 1-based number.
 struct PhysicalLine {
-  std::string text;
+  std::string_view text;
   int number = 0;
 };
 
-std::vector<PhysicalLine> significant_lines(const std::string& text) {
-  std::vector<PhysicalLine> lines;
-  std::istringstream in(text);
-  std::string line;
+/// Walks the physical lines of a file (as std::getline would split them).
+struct LineCursor {
+  std::string_view text;
+  std::size_t position = 0;
   int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    std::string t = trim(line);
-    if (t.empty() || t.rfind("**", 0) == 0) continue;
-    lines.push_back({std::move(t), number});
+
+  /// The next significant line, skipping comments and blank lines; false at the end.
+  bool next(PhysicalLine& out) {
+    while (position < text.size()) {
+      const std::size_t end = text.find('\n', position);
+      const std::size_t stop = end == std::string_view::npos ? text.size() : end;
+      const std::string_view line = trim(text.substr(position, stop - position));
+      position = end == std::string_view::npos ? text.size() : end + 1;
+      ++number;
+      if (line.empty() || line.starts_with("**")) continue;
+      out = {line, number};
+      return true;
+    }
+    return false;
   }
-  return lines;
+};
+
+}  // namespace
+
+bool read_text_file(const std::filesystem::path& path, std::string& content) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  content.clear();
+  // A regular file is read straight into a string of its size; anything else (a pipe, a
+  // directory) and whatever a file gained meanwhile is read as a stream.
+  std::error_code error;
+  if (std::filesystem::is_regular_file(path, error)) {
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (!error && size > 0) {
+      content.resize(static_cast<std::size_t>(size));
+      in.read(content.data(), static_cast<std::streamsize>(size));
+      content.resize(static_cast<std::size_t>(in.gcount()));
+      if (in.peek() == std::char_traits<char>::eof()) return true;
+      in.clear();
+    }
+  }
+  std::ostringstream rest;
+  rest << in.rdbuf();
+  content += rest.str();
+  return true;
 }
+
+namespace {
 
 /// State shared by a deck and the files it includes.
 struct Lexer {
   std::vector<DeckBlock>& blocks;
+  DeckStorage& storage;
   InputErrors& errors;
   bool open_block = false;  ///< whether data lines may still be added to blocks.back()
   bool reported_stray_data = false;
 
-  void read(const std::string& text, const std::string& file_name, int depth);
+  void read(std::string_view text, const std::string& file_name, int depth);
   void include(const DeckKeyword& keyword, const std::string& file_name, int depth);
 };
 
-DeckKeyword parse_keyword(const std::string& line, const SourceLocation& where,
-                          InputErrors& errors) {
-  bool unterminated = false;
-  std::vector<std::string> fields = split_fields(line.substr(1), unterminated);
+DeckKeyword parse_keyword(std::string_view line, const SourceLocation& where, InputErrors& errors) {
+  std::vector<std::string_view> fields;
+  const bool unterminated = split_fields(line.substr(1), fields);
   DeckKeyword keyword;
   keyword.where = where;
   keyword.name = normalize_name(fields.front());
   if (unterminated)
     errors.add(where, keyword.label(), "unterminated quote", "expected a closing \"");
   for (std::size_t i = 1; i < fields.size(); ++i) {
-    const std::string& field = fields[i];
+    const std::string_view field = fields[i];
     if (field.empty()) continue;
     DeckParameter parameter;
     const std::size_t eq = field.find('=');
-    if (eq == std::string::npos) {
+    if (eq == std::string_view::npos) {
       parameter.name = normalize_name(field);
     } else {
       parameter.name = normalize_name(field.substr(0, eq));
@@ -110,44 +150,50 @@ DeckKeyword parse_keyword(const std::string& line, const SourceLocation& where,
   return keyword;
 }
 
-void Lexer::read(const std::string& text, const std::string& file_name, int depth) {
-  const std::vector<PhysicalLine> lines = significant_lines(text);
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const SourceLocation where{file_name, lines[i].number};
-    std::string joined = lines[i].text;
+void Lexer::read(std::string_view text, const std::string& file_name, int depth) {
+  const std::uint32_t file = storage.add_file(file_name);
+  LineCursor cursor{text};
+  PhysicalLine current;
+  std::string joined_text;
+  while (cursor.next(current)) {
+    std::string_view joined = current.text;
     const bool is_keyword = joined.front() == '*';
     const bool is_heading = open_block && blocks.back().keyword.name == "HEADING";
     // A line ending with a comma continues on the next line, unless that is a keyword line.
-    while (!(is_heading && !is_keyword) && joined.back() == ',' && i + 1 < lines.size() &&
-           lines[i + 1].text.front() != '*') {
-      joined += lines[++i].text;
+    if (!(is_heading && !is_keyword) && joined.back() == ',') {
+      bool joining = false;
+      PhysicalLine next;
+      for (LineCursor peek = cursor; peek.next(next) && next.text.front() != '*'; peek = cursor) {
+        if (!joining) joined_text.assign(joined);
+        joining = true;
+        joined_text += next.text;
+        cursor = peek;
+        if (next.text.back() != ',') break;
+      }
+      if (joining) joined = is_keyword ? std::string_view(joined_text) : storage.keep(joined_text);
     }
     if (is_keyword) {
+      const SourceLocation where{file_name, current.number};
       DeckKeyword keyword = parse_keyword(joined, where, errors);
       if (keyword.name == "INCLUDE") {
         include(keyword, file_name, depth);
         continue;
       }
-      blocks.push_back({std::move(keyword), {}});
+      blocks.push_back({std::move(keyword), DeckData(&storage)});
       open_block = true;
       continue;
     }
     if (!open_block) {
       if (!reported_stray_data)
-        errors.add(where, "", "data line before any keyword",
+        errors.add({file_name, current.number}, "", "data line before any keyword",
                    "expected a keyword line starting with *");
       reported_stray_data = true;
       continue;
     }
-    DeckDataLine data;
-    bool unterminated = false;
-    data.fields = split_fields(joined, unterminated);
-    data.text = joined;
-    data.where = where;
-    if (unterminated && !is_heading)
-      errors.add(where, blocks.back().keyword.label(), "unterminated quote",
+    if (!is_heading && unterminated_quote(joined))
+      errors.add({file_name, current.number}, blocks.back().keyword.label(), "unterminated quote",
                  "expected a closing \"");
-    blocks.back().data.push_back(std::move(data));
+    blocks.back().data.push_back({joined, file, current.number});
   }
 }
 
@@ -177,20 +223,36 @@ void Lexer::include(const DeckKeyword& keyword, const std::string& file_name, in
   }
   const std::filesystem::path parent = std::filesystem::path(file_name).parent_path();
   const std::filesystem::path path = (parent / input).lexically_normal();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string content;
+  if (!read_text_file(path, content)) {
     errors.add(keyword.where, keyword.label(), "cannot open included file '" + path.string() + "'",
                "expected an existing file, relative to the including file");
     return;
   }
-  std::ostringstream content;
-  content << in.rdbuf();
-  read(content.str(), path.string(), depth + 1);
+  read(storage.keep(std::move(content)), path.string(), depth + 1);
 }
 
 }  // namespace
 
-std::string normalize_name(const std::string& text) {
+std::uint32_t DeckStorage::add_file(std::string name) {
+  m_files.push_back(std::move(name));
+  return static_cast<std::uint32_t>(m_files.size() - 1);
+}
+
+std::string_view DeckStorage::keep(std::string text) {
+  m_texts.push_back(std::move(text));
+  return m_texts.back();
+}
+
+void DeckData::load(std::size_t i, DeckDataLine& line) const {
+  const Record& record = m_records[i];
+  split_fields(record.text, line.fields);
+  line.text = record.text;
+  line.file = &m_storage->file(record.file);
+  line.line = record.line;
+}
+
+std::string normalize_name(std::string_view text) {
   std::string out;
   bool pending_blank = false;
   for (char c : trim(text)) {
@@ -205,10 +267,10 @@ std::string normalize_name(const std::string& text) {
   return to_upper(out);
 }
 
-std::vector<DeckBlock> read_deck_blocks(const std::string& text, const std::string& file_name,
-                                        InputErrors& errors) {
+std::vector<DeckBlock> read_deck_blocks(std::string_view text, const std::string& file_name,
+                                        DeckStorage& storage, InputErrors& errors) {
   std::vector<DeckBlock> blocks;
-  Lexer lexer{blocks, errors};
+  Lexer lexer{blocks, storage, errors};
   lexer.read(text, file_name, 0);
   return blocks;
 }

@@ -1,5 +1,7 @@
 /// \file Mesh keywords: *HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE.
 
+#include <algorithm>
+#include <array>
 #include <string>
 
 #include "io/deck_builder.hpp"
@@ -11,6 +13,14 @@ namespace {
 
 std::string id_text(long long id) {
   return std::to_string(id);
+}
+
+/// Makes room for `extra` more items: exactly for the first block of a mesh (no slack in the
+/// usual one-block mesh), geometrically after (no quadratic copying over many small blocks).
+template <typename Container>
+void reserve_more(Container& container, std::size_t capacity, std::size_t extra) {
+  const std::size_t needed = container.size() + extra;
+  if (needed > capacity) container.reserve(std::max(needed, 2 * capacity));
 }
 
 }  // namespace
@@ -28,12 +38,18 @@ void DeckBuilder::read_node(const DeckBlock& block) {
   check_parameters(keyword, {{"NSET"}});
   const std::string set_name = optional_name(keyword, "NSET");
   const Index set = set_name.empty() ? NO_INDEX : node_set_index(set_name, keyword.where);
+  const std::size_t n_lines = block.data.size();
+  reserve_more(m_model.node_ids, m_model.node_ids.capacity(), n_lines);
+  reserve_more(m_coordinates, m_coordinates.capacity(), 3 * n_lines);
+  reserve_more(m_node_index, m_node_index.bucket_count(), n_lines);
+  if (set != NO_INDEX)
+    reserve_more(m_node_sets[set].members, m_node_sets[set].members.capacity(), n_lines);
   for (const DeckDataLine& line : block.data) {
     check_field_count(line, keyword, 4, "id, x, y, z");
     const std::optional<long long> id = integer_field(line, keyword, 0, "node id");
     if (!id) continue;
     if (*id <= 0) {
-      error(line.where, keyword, "node id " + id_text(*id) + " is not positive",
+      error(line.where(), keyword, "node id " + id_text(*id) + " is not positive",
             "expected ids 1, 2, ...");
       continue;
     }
@@ -47,18 +63,15 @@ void DeckBuilder::read_node(const DeckBlock& block) {
     }
     const auto [it, inserted] = m_node_index.emplace(*id, m_model.node_count());
     if (!inserted) {
-      error(line.where, keyword, "node " + id_text(*id) + " is defined twice",
+      error(line.where(), keyword, "node " + id_text(*id) + " is defined twice",
             "expected each node id once");
       continue;
     }
-    (void)ok;  // a bad coordinate is reported; the node still counts as defined
+    // A bad coordinate is reported; the node still counts as defined.
+    if (!ok) m_bad_coordinate_nodes.push_back(it->second);
     m_model.node_ids.push_back(*id);
     m_coordinates.insert(m_coordinates.end(), {x[0], x[1], x[2]});
-    if (set != NO_INDEX) {
-      SetItem item;
-      item.member = it->second;
-      m_node_sets[set].items.push_back(item);
-    }
+    if (set != NO_INDEX) m_node_sets[set].members.push_back(it->second);
   }
 }
 
@@ -75,44 +88,52 @@ void DeckBuilder::read_element(const DeckBlock& block) {
   const int n_nodes = nodes_per_element(ElementType::C3D8R);
   const std::string set_name = optional_name(keyword, "ELSET");
   const Index set = set_name.empty() ? NO_INDEX : element_set_index(set_name, keyword.where);
+  const std::size_t n_lines = block.data.size();
+  reserve_more(m_model.element_ids, m_model.element_ids.capacity(), n_lines);
+  reserve_more(m_model.element_types, m_model.element_types.capacity(), n_lines);
+  reserve_more(m_model.element_offsets, m_model.element_offsets.capacity(), n_lines);
+  reserve_more(m_model.element_where, m_model.element_where.capacity(), n_lines);
+  reserve_more(m_element_node_ids, m_element_node_ids.capacity(),
+               static_cast<std::size_t>(n_nodes) * n_lines);
+  reserve_more(m_element_index, m_element_index.bucket_count(), n_lines);
+  if (set != NO_INDEX)
+    reserve_more(m_element_sets[set].members, m_element_sets[set].members.capacity(), n_lines);
   for (const DeckDataLine& line : block.data) {
     const std::optional<long long> id = integer_field(line, keyword, 0, "element id");
     if (!id) continue;
     if (*id <= 0) {
-      error(line.where, keyword, "element id " + id_text(*id) + " is not positive",
+      error(line.where(), keyword, "element id " + id_text(*id) + " is not positive",
             "expected ids 1, 2, ...");
       continue;
     }
     if (line.fields.size() != static_cast<std::size_t>(n_nodes) + 1) {
-      error(line.where, keyword,
+      error(line.where(), keyword,
             "element " + id_text(*id) + " has " + std::to_string(line.fields.size() - 1) +
                 " node ids",
             "expected 8 node ids for C3D8R (end a line with a comma to continue it)");
       continue;
     }
-    std::vector<ExternalId> nodes;
+    std::array<ExternalId, 8> nodes{};
+    int found = 0;
     for (int k = 1; k <= n_nodes; ++k) {
       const std::optional<long long> node =
           integer_field(line, keyword, static_cast<std::size_t>(k), "node id");
-      if (node) nodes.push_back(*node);
+      if (node && static_cast<std::size_t>(found) < nodes.size())
+        nodes[static_cast<std::size_t>(found++)] = *node;
     }
-    if (nodes.size() != static_cast<std::size_t>(n_nodes)) continue;
+    if (found != n_nodes) continue;
     const auto [it, inserted] = m_element_index.emplace(*id, m_model.element_count());
     if (!inserted) {
-      error(line.where, keyword, "element " + id_text(*id) + " is defined twice",
+      error(line.where(), keyword, "element " + id_text(*id) + " is defined twice",
             "expected each element id once");
       continue;
     }
     m_model.element_ids.push_back(*id);
     m_model.element_types.push_back(ElementType::C3D8R);
-    m_element_node_ids.insert(m_element_node_ids.end(), nodes.begin(), nodes.end());
+    m_element_node_ids.insert(m_element_node_ids.end(), nodes.begin(), nodes.begin() + found);
     m_model.element_offsets.push_back(static_cast<Index>(m_element_node_ids.size()));
-    m_model.element_where.push_back(line.where);
-    if (set != NO_INDEX) {
-      SetItem item;
-      item.member = it->second;
-      m_element_sets[set].items.push_back(item);
-    }
+    m_model.element_where.push_back(line.where());
+    if (set != NO_INDEX) m_element_sets[set].members.push_back(it->second);
   }
 }
 
@@ -154,14 +175,14 @@ void DeckBuilder::read_set(const DeckBlock& block, bool node_set) {
         increment = integer_field(line, keyword, 2, "increment");
       if (!first || !last || !increment) continue;
       if (*first <= 0 || *last < *first || *increment <= 0) {
-        error(line.where, keyword,
+        error(line.where(), keyword,
               "bad range " + id_text(*first) + ", " + id_text(*last) + ", " + id_text(*increment),
               "expected 0 < first <= last and increment >= 1");
         continue;
       }
       SetItem item = base;
       item.kind = SetItem::Kind::Range;
-      item.where = line.where;
+      item.where = line.where();
       item.first = *first;
       item.last = *last;
       item.increment = *increment;
@@ -170,14 +191,14 @@ void DeckBuilder::read_set(const DeckBlock& block, bool node_set) {
     return;
   }
   for (const DeckDataLine& line : block.data) {
-    for (const std::string& field : line.fields) {
+    for (const std::string_view field : line.fields) {
       if (field.empty()) continue;
       SetItem item = base;
-      item.where = line.where;
+      item.where = line.where();
       if (looks_numeric(field)) {
         const std::optional<long long> id = parse_integer(field);
         if (!id || *id <= 0) {
-          error(line.where, keyword, "bad id '" + field + "'",
+          error(line.where(), keyword, "bad id '" + std::string(field) + "'",
                 std::string("expected positive ") + (node_set ? "node" : "element") +
                     " ids or set names");
           continue;
@@ -228,7 +249,7 @@ void DeckBuilder::read_surface(const DeckBlock& block) {
     } else {
       const std::string face = line.fields.size() > 1 ? normalize_name(line.fields[1]) : "";
       if (face.size() != 2 || face[0] != 'S' || face[1] < '1' || face[1] > '6') {
-        error(line.where, keyword, face.empty() ? "missing face label" : "bad face label " + face,
+        error(line.where(), keyword, face.empty() ? "missing face label" : "bad face label " + face,
               "expected S1, S2, S3, S4, S5 or S6");
         continue;
       }

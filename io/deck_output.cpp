@@ -142,13 +142,13 @@ void DeckBuilder::read_node_output(const DeckBlock& block) {
   }
   std::vector<std::string> variables;
   for (const DeckDataLine& line : block.data) {
-    for (const std::string& field : line.fields) {
+    for (const std::string_view field : line.fields) {
       if (field.empty()) continue;
       const std::string name = normalize_name(field);
       const bool known = history ? add_history_node_variable(variables, name)
                                  : contains(FIELD_NODE_VARIABLES, name);
       if (!known) {
-        error(line.where, keyword, "unknown output variable " + name,
+        error(line.where(), keyword, "unknown output variable " + name,
               history ? "expected U, V, A, RF or a component U1..U3, V1..V3, A1..A3, RF1..RF3"
                       : "expected one of " + joined(FIELD_NODE_VARIABLES));
       } else if (!history) {
@@ -183,13 +183,13 @@ void DeckBuilder::read_element_output(const DeckBlock& block) {
   }
   std::vector<std::string> variables;
   for (const DeckDataLine& line : block.data) {
-    for (const std::string& field : line.fields) {
+    for (const std::string_view field : line.fields) {
       if (field.empty()) continue;
       const std::string name = normalize_name(field);
       if (contains(ELEMENT_VARIABLES, name))
         add_unique(variables, name);
       else
-        error(line.where, keyword, "unknown output variable " + name,
+        error(line.where(), keyword, "unknown output variable " + name,
               "expected one of " + joined(ELEMENT_VARIABLES));
     }
   }
@@ -227,13 +227,13 @@ void DeckBuilder::read_energy_output(const DeckBlock& block) {
   }
   std::vector<std::string> variables;
   for (const DeckDataLine& line : block.data) {
-    for (const std::string& field : line.fields) {
+    for (const std::string_view field : line.fields) {
       if (field.empty()) continue;
       const std::string name = normalize_name(field);
       if (contains(ENERGY_VARIABLES, name))
         add_unique(variables, name);
       else
-        error(line.where, keyword, "unknown energy variable " + name,
+        error(line.where(), keyword, "unknown energy variable " + name,
               "expected one of " + joined(ENERGY_VARIABLES));
     }
   }

@@ -60,7 +60,7 @@ void DeckBuilder::read_density(const DeckBlock& block) {
   const std::optional<Real> rho = real_field(line, keyword, 0, "density");
   if (!rho) return;
   if (*rho <= 0.0) {
-    error(line.where, keyword, "density " + number_text(*rho) + " is not positive",
+    error(line.where(), keyword, "density " + number_text(*rho) + " is not positive",
           "expected a density > 0");
     return;
   }
@@ -102,12 +102,12 @@ void DeckBuilder::read_elastic(const DeckBlock& block) {
   if (!young || !poisson) return;
   bool ok = true;
   if (*young <= 0.0) {
-    error(line.where, keyword, "Young's modulus " + number_text(*young) + " is not positive",
+    error(line.where(), keyword, "Young's modulus " + number_text(*young) + " is not positive",
           "expected E > 0");
     ok = false;
   }
   if (!(*poisson > -1.0 && *poisson < 0.5)) {
-    error(line.where, keyword, "Poisson's ratio " + number_text(*poisson) + " is out of range",
+    error(line.where(), keyword, "Poisson's ratio " + number_text(*poisson) + " is out of range",
           "expected -1 < nu < 0.5");
     ok = false;
   }
@@ -123,7 +123,7 @@ void DeckBuilder::read_solid_section(const DeckBlock& block) {
   const std::optional<std::string> material = required_name(keyword, "MATERIAL");
   // Abaqus allows one data line (a thickness-like number for solids); it means nothing here.
   if (block.data.size() > 1 || (block.data.size() == 1 && block.data.front().fields.size() > 1))
-    error(block.data.front().where, keyword, "unexpected data",
+    error(block.data.front().where(), keyword, "unexpected data",
           "expected at most one data line with at most one number");
   else if (block.data.size() == 1)
     real_field(block.data.front(), keyword, 0, "section value", 0.0);
@@ -155,7 +155,7 @@ void DeckBuilder::read_section_controls(const DeckBlock& block) {
   // bulk viscosity factors, ...) concern dofs or options xpl does not have: they are checked
   // to be numbers and otherwise ignored.
   if (block.data.size() > 1)
-    error(block.data[1].where, keyword, "unexpected second data line",
+    error(block.data[1].where(), keyword, "unexpected second data line",
           "expected at most one data line of scale factors");
   if (!block.data.empty()) {
     const DeckDataLine& line = block.data.front();
@@ -163,7 +163,7 @@ void DeckBuilder::read_section_controls(const DeckBlock& block) {
     for (std::size_t i = 1; i < line.fields.size(); ++i)
       real_field(line, keyword, i, "scale factor " + std::to_string(i + 1), 1.0);
     if (scale && *scale <= 0.0) {
-      error(line.where, keyword,
+      error(line.where(), keyword,
             "hourglass scale factor " + number_text(*scale) + " is not positive",
             "expected a factor > 0");
     } else if (scale) {
@@ -205,7 +205,7 @@ void DeckBuilder::read_amplitude(const DeckBlock& block) {
   bool ok = true;
   for (const DeckDataLine& line : block.data) {
     if (line.fields.size() % 2 != 0) {
-      error(line.where, keyword,
+      error(line.where(), keyword,
             "odd number of values (" + std::to_string(line.fields.size()) + ")",
             "expected pairs: time, amplitude, time, amplitude, ...");
       ok = false;
@@ -219,7 +219,7 @@ void DeckBuilder::read_amplitude(const DeckBlock& block) {
         continue;
       }
       if (!amplitude.time.empty() && *t < amplitude.time.back()) {
-        error(line.where, keyword,
+        error(line.where(), keyword,
               "time " + number_text(*t) + " is before the previous " +
                   number_text(amplitude.time.back()),
               "expected times that do not decrease");
@@ -260,7 +260,7 @@ void DeckBuilder::read_initial_conditions(const DeckBlock& block) {
     const std::optional<Real> value = real_field(line, keyword, 2, "velocity");
     if (!dof || !value) continue;
     if (*dof < 1 || *dof > 3) {
-      error(line.where, keyword, "dof " + std::to_string(*dof) + " is out of range",
+      error(line.where(), keyword, "dof " + std::to_string(*dof) + " is out of range",
             "expected dof 1, 2 or 3");
       continue;
     }

@@ -1,33 +1,46 @@
 #include "io/deck_reader.hpp"
 
-#include <fstream>
-#include <sstream>
+#include <utility>
 
 #include "io/deck_builder.hpp"
 #include "io/deck_lines.hpp"
 
 namespace xpl::io {
 
+namespace {
+
+/// Reads the deck text and builds the Model. The blocks (views into `text` and the storage)
+/// are released before the Model is completed, and so is `owned_text` (the text, if the
+/// caller does not need it any more): the peak is then the builder's.
+Model build_model(std::string_view text, const std::string& file_name,
+                  std::string* owned_text = nullptr) {
+  InputErrors errors;
+  DeckBuilder builder(errors, file_name);
+  {
+    DeckStorage storage;
+    const std::vector<DeckBlock> blocks = read_deck_blocks(text, file_name, storage, errors);
+    builder.read(blocks);
+  }
+  if (owned_text != nullptr) std::string().swap(*owned_text);
+  Model model = builder.finish();
+  errors.throw_if_any();
+  return model;
+}
+
+}  // namespace
+
 Model read_deck(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string content;
+  if (!read_text_file(path, content)) {
     InputErrors errors;
     errors.add_plain(path.string() + ": cannot open the deck; expected a readable file");
     errors.throw_if_any();
   }
-  std::ostringstream content;
-  content << in.rdbuf();
-  return read_deck_text(content.str(), path.string());
+  return build_model(content, path.string(), &content);
 }
 
 Model read_deck_text(const std::string& text, const std::string& file_name) {
-  InputErrors errors;
-  const std::vector<DeckBlock> blocks = read_deck_blocks(text, file_name, errors);
-  DeckBuilder builder(errors, file_name);
-  builder.read(blocks);
-  Model model = builder.finish();
-  errors.throw_if_any();
-  return model;
+  return build_model(text, file_name);
 }
 
 }  // namespace xpl::io

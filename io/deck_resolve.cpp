@@ -92,12 +92,9 @@ void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
   const auto& names = node_sets ? m_node_set_index : m_element_set_index;
   const std::string what = node_sets ? "node" : "element";
   std::vector<NamedSet>& sets = node_sets ? m_model.node_sets : m_model.element_sets;
-  std::vector<Index> members;
+  std::vector<Index> members = std::move(pending.members);
   for (const SetItem& item : pending.items) {
     switch (item.kind) {
-      case SetItem::Kind::Member:
-        members.push_back(item.member);
-        break;
       case SetItem::Kind::Id: {
         const auto it = ids.find(item.first);
         if (it == ids.end())
@@ -359,9 +356,13 @@ void DeckBuilder::resolve_steps() {
 }
 
 void DeckBuilder::check_element_geometry() {
+  std::vector<char> bad(m_bad_coordinate_nodes.empty() ? 0 : m_model.node_count(), 0);
+  for (Index n : m_bad_coordinate_nodes) bad[n] = 1;
   for (Index e = 0; e < m_model.element_count(); ++e) {
     const Index* nodes = m_model.nodes_of(e);
     if (std::any_of(nodes, nodes + 8, [](Index n) { return n == NO_INDEX; })) continue;
+    if (!bad.empty() && std::any_of(nodes, nodes + 8, [&](Index n) { return bad[n] != 0; }))
+      continue;
     std::array<Eigen::Vector3d, 8> x;
     for (int k = 0; k < 8; ++k) x[k] = m_model.coordinates.row(nodes[k]).transpose();
     const CornerJacobian smallest = smallest_corner_jacobian(x);

@@ -114,7 +114,7 @@ void DeckBuilder::read_dynamic(const DeckBlock& block) {
   check_field_count(line, keyword, 4, "[time increment], time period");
   const std::optional<Real> period = real_field(line, keyword, 1, "time period");
   if (period && *period <= 0.0)
-    error(line.where, keyword, "time period " + number_text(*period) + " is not positive",
+    error(line.where(), keyword, "time period " + number_text(*period) + " is not positive",
           "expected a time period > 0");
   else if (period)
     step.time_period = *period;
@@ -122,19 +122,19 @@ void DeckBuilder::read_dynamic(const DeckBlock& block) {
   if (direct) {
     const std::optional<Real> increment = real_field(line, keyword, 0, "time increment");
     if (increment && *increment <= 0.0)
-      error(line.where, keyword, "time increment " + number_text(*increment) + " is not positive",
+      error(line.where(), keyword, "time increment " + number_text(*increment) + " is not positive",
             "expected a fixed time increment > 0");
     else if (increment)
       step.fixed_increment = *increment;
   } else if (has_increment) {
-    error(line.where, keyword, "a time increment is given without DIRECT USER CONTROL",
+    error(line.where(), keyword, "a time increment is given without DIRECT USER CONTROL",
           "expected the first value blank, or *DYNAMIC, EXPLICIT, DIRECT USER CONTROL");
   }
   if (line.fields.size() > 2 && !line.fields[2].empty())
-    error(line.where, keyword, "unexpected third value '" + line.fields[2] + "'",
+    error(line.where(), keyword, "unexpected third value '" + std::string(line.fields[2]) + "'",
           "expected it blank");
   if (line.fields.size() > 3 && !line.fields[3].empty())
-    error(line.where, keyword, "a maximum time increment is not supported yet",
+    error(line.where(), keyword, "a maximum time increment is not supported yet",
           "expected the fourth value blank");
 }
 
@@ -152,11 +152,11 @@ void DeckBuilder::read_bulk_viscosity(const DeckBlock& block) {
   const std::optional<Real> linear = real_field(line, keyword, 0, "b1", step.bulk_linear);
   const std::optional<Real> quadratic = real_field(line, keyword, 1, "b2", step.bulk_quadratic);
   if (linear && *linear < 0.0)
-    error(line.where, keyword, "b1 " + number_text(*linear) + " is negative", "expected b1 >= 0");
+    error(line.where(), keyword, "b1 " + number_text(*linear) + " is negative", "expected b1 >= 0");
   else if (linear)
     step.bulk_linear = *linear;
   if (quadratic && *quadratic < 0.0)
-    error(line.where, keyword, "b2 " + number_text(*quadratic) + " is negative",
+    error(line.where(), keyword, "b2 " + number_text(*quadratic) + " is negative",
           "expected b2 >= 0");
   else if (quadratic)
     step.bulk_quadratic = *quadratic;
@@ -191,7 +191,7 @@ void DeckBuilder::read_boundary(const DeckBlock& block) {
     std::vector<std::pair<int, int>> ranges;
     Real value = 0.0;
     if (line.fields.size() < 2 || line.fields[1].empty()) {
-      error(line.where, keyword, "missing dof",
+      error(line.where(), keyword, "missing dof",
             "expected node or node set, first dof[, last dof[, value]] or a type such as "
             "ENCASTRE");
       continue;
@@ -200,7 +200,7 @@ void DeckBuilder::read_boundary(const DeckBlock& block) {
       const std::string word = normalize_name(line.fields[1]);
       ranges = boundary_type_dofs(word);
       if (ranges.empty()) {
-        error(line.where, keyword, "unknown boundary type " + word,
+        error(line.where(), keyword, "unknown boundary type " + word,
               "expected a dof number or ENCASTRE, PINNED, XSYMM, YSYMM, ZSYMM, XASYMM, YASYMM, "
               "ZASYMM");
         continue;
@@ -215,7 +215,7 @@ void DeckBuilder::read_boundary(const DeckBlock& block) {
       const std::optional<Real> magnitude = real_field(line, keyword, 3, "value", 0.0);
       if (!first || !last || !magnitude) continue;
       if (*first < 1 || *first > 6 || *last < 1 || *last > 6 || *last < *first) {
-        error(line.where, keyword,
+        error(line.where(), keyword,
               "bad dof range " + std::to_string(*first) + ".." + std::to_string(*last),
               "expected 1 <= first dof <= last dof <= 6");
         continue;
@@ -231,7 +231,7 @@ void DeckBuilder::read_boundary(const DeckBlock& block) {
       pending.condition.last_dof = last;
       pending.condition.value = value;
       pending.condition.type = condition.type;
-      pending.condition.where = line.where;
+      pending.condition.where = line.where();
       pending.amplitude = amplitude;
       m_boundaries.push_back(std::move(pending));
     }
@@ -255,7 +255,7 @@ void DeckBuilder::read_cload(const DeckBlock& block) {
     const std::optional<Real> value = real_field(line, keyword, 2, "magnitude");
     if (!dof || !value) continue;
     if (*dof < 1 || *dof > 3) {
-      error(line.where, keyword, "dof " + std::to_string(*dof) + " is out of range",
+      error(line.where(), keyword, "dof " + std::to_string(*dof) + " is out of range",
             "expected dof 1, 2 or 3 (forces only)");
       continue;
     }
@@ -264,7 +264,7 @@ void DeckBuilder::read_cload(const DeckBlock& block) {
     pending.target = reference(line, keyword, 0);
     pending.load.dof = static_cast<int>(*dof);
     pending.load.value = *value;
-    pending.load.where = line.where;
+    pending.load.where = line.where();
     pending.amplitude = amplitude;
     m_loads.push_back(std::move(pending));
   }

@@ -432,7 +432,7 @@ RunSummary ExplicitSolver::run() {
   try {
     for (int step = 0; step < static_cast<int>(s.model.steps.size()); ++step) s.run_step(step);
   } catch (const SolverError& e) {
-    s.sink.message(Severity::Error, e.what());
+    // end_run records the error in every log; no separate message (it would repeat).
     const RunSummary summary = s.summary();
     s.sink.end_run(RunStatus::Failed, e.what(), summary.timers, summary.element_cycles_per_second);
     throw;
@@ -454,6 +454,11 @@ RunSummary ExplicitSolver::check() {
       s.critical_id = s.model.element_ids[totals.critical_element];
     s.sink.message(Severity::Info, "initial stable increment " + format_real(s.dt_half) +
                                        " s (element " + std::to_string(s.critical_id) + ")");
+    Real kinetic = 0.0;
+    for (Index i = 0; i < s.model.node_count(); ++i)
+      for (int c = 0; c < 3; ++c)
+        kinetic += 0.5 * s.state.mass[i] * s.state.velocity(i, c) * s.state.velocity(i, c);
+    s.state.energies.kinetic = kinetic;
     FrameRequest all;
     all.displacement = all.velocity = all.acceleration = all.reaction = all.stress = true;
     s.write_frame(all);

@@ -48,6 +48,14 @@ TEST_CASE("bad numbers name the token", "[io][deck][errors]") {
   CHECK(has_error(errors, at(deck, "abc", "*DENSITY") + "bad number 'abc'"));
 }
 
+TEST_CASE("a bad coordinate is one error, not also an inverted element", "[io][deck][errors]") {
+  std::string deck = two_brick_model() + simple_step();
+  deck.replace(deck.find("1000002, 1, 0, 0"), 16, "1000002, 1.0x, 0, 0");
+  const auto errors = deck_errors(deck);
+  CHECK(has_error(errors, at(deck, "1000002, 1.0x", "*NODE") + "bad number '1.0x'"));
+  CHECK(errors.size() == 1);
+}
+
 TEST_CASE("missing material", "[io][deck][errors]") {
   std::string deck = two_brick_model() + simple_step();
   deck.replace(deck.find("MATERIAL=STEEL"), 14, "MATERIAL=ALU");
