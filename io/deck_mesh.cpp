@@ -92,7 +92,8 @@ void DeckBuilder::read_element(const DeckBlock& block) {
   reserve_more(m_model.element_ids, m_model.element_ids.capacity(), n_lines);
   reserve_more(m_model.element_types, m_model.element_types.capacity(), n_lines);
   reserve_more(m_model.element_offsets, m_model.element_offsets.capacity(), n_lines);
-  reserve_more(m_model.element_where, m_model.element_where.capacity(), n_lines);
+  reserve_more(m_model.element_file, m_model.element_file.capacity(), n_lines);
+  reserve_more(m_model.element_line, m_model.element_line.capacity(), n_lines);
   reserve_more(m_element_node_ids, m_element_node_ids.capacity(),
                static_cast<std::size_t>(n_nodes) * n_lines);
   reserve_more(m_element_index, m_element_index.bucket_count(), n_lines);
@@ -132,7 +133,7 @@ void DeckBuilder::read_element(const DeckBlock& block) {
     m_model.element_types.push_back(ElementType::C3D8R);
     m_element_node_ids.insert(m_element_node_ids.end(), nodes.begin(), nodes.begin() + found);
     m_model.element_offsets.push_back(static_cast<Index>(m_element_node_ids.size()));
-    m_model.element_where.push_back(line.where());
+    m_model.add_element_source(*line.file, line.line);
     if (set != NO_INDEX) m_element_sets[set].members.push_back(it->second);
   }
 }

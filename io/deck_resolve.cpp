@@ -69,7 +69,7 @@ void DeckBuilder::resolve_element_nodes() {
       if (it != m_node_index.end()) {
         m_model.element_nodes[static_cast<std::size_t>(k)] = it->second;
       } else if (!reported) {
-        capped_error(m_error_counts[0], m_model.element_where[e], "*ELEMENT",
+        capped_error(m_error_counts[0], m_model.element_where(e), "*ELEMENT",
                      "element " + std::to_string(m_model.element_ids[e]) +
                          " refers to undefined node " + std::to_string(id),
                      "expected a *NODE with id " + std::to_string(id));
@@ -280,7 +280,7 @@ void DeckBuilder::resolve_sections() {
   }
   for (Index e = 0; e < m_model.element_count(); ++e) {
     if (m_model.element_section[static_cast<std::size_t>(e)] == NO_INDEX)
-      capped_error(m_error_counts[1], m_model.element_where[e], "*ELEMENT",
+      capped_error(m_error_counts[1], m_model.element_where(e), "*ELEMENT",
                    "element " + std::to_string(m_model.element_ids[e]) + " has no section",
                    "expected a *SOLID SECTION covering it");
   }
@@ -370,7 +370,7 @@ void DeckBuilder::check_element_geometry() {
     std::ostringstream problem;
     problem << "inverted element " << m_model.element_ids[e] << ": volume " << smallest.determinant
             << " at corner node " << m_model.node_ids[nodes[smallest.corner]];
-    capped_error(m_error_counts[3], m_model.element_where[e], "*ELEMENT", problem.str(),
+    capped_error(m_error_counts[3], m_model.element_where(e), "*ELEMENT", problem.str(),
                  "expected nodes in Abaqus C3D8R order (nodes 1-4 counter-clockwise on the "
                  "bottom face seen from the top face 5-8), i.e. a positive Jacobian at every "
                  "corner");

@@ -55,8 +55,9 @@ struct ExplicitSolver::Impl {
   BoundaryState boundary;
   OutputSchedule schedule;
   PhaseTimers timers;
-  NodalVectors force_internal;     ///< (n_nodes × 3), zeroed after each use
-  NodalVectors force_external;     ///< (n_nodes × 3), non-zero only on loaded DOFs
+  NodalVectors force_internal;  ///< (n_nodes × 3), zeroed after each use
+  /// (n_nodes × 3), non-zero only on loaded DOFs; allocated only when a step has loads (P2).
+  NodalVectors force_external;
   std::vector<Real> inverse_mass;  ///< 0 for nodes without mass (no element)
   std::vector<Real> chunk_sums;
   std::vector<Real> history_row;
@@ -101,8 +102,6 @@ void ExplicitSolver::Impl::setup() {
   state.reaction = NodalVectors::Zero(n, 3);
   state.mass.assign(n, 0.0);
   force_internal = NodalVectors::Zero(n, 3);
-  force_external = NodalVectors::Zero(n, 3);
-  previous_force = NodalVectors::Zero(n, 3);
 
   std::vector<Index> hex_elements;
   std::vector<Index> connectivity;
@@ -126,8 +125,6 @@ void ExplicitSolver::Impl::setup() {
     else
       ++massless;
   }
-  state.stress.assign(static_cast<std::size_t>(model.element_count()) * 6, 0.0);
-  state.volume.assign(model.element_count(), 0.0);
   chunk_sums.assign((n + NODE_CHUNK - 1) / NODE_CHUNK * 2, 0.0);
 
   sink.begin_run(model);
@@ -160,6 +157,8 @@ void ExplicitSolver::Impl::begin_step(int step) {
     if (!is_prescribed[static_cast<std::size_t>(l.component) * model.node_count() + l.node])
       free_loads.push_back(l);
   v_old_loaded.assign(free_loads.size(), 0.0);
+  if (previous_force.rows() == 0 && (!boundary.prescribed().empty() || !free_loads.empty()))
+    previous_force = NodalVectors::Zero(model.node_count(), 3);
   state.step = step;
   state.step_time = 0.0;
   sink.begin_step(model, step);
@@ -179,6 +178,8 @@ void ExplicitSolver::Impl::compute_forces(Real dt, elements::HexStepTotals& tota
 }
 
 void ExplicitSolver::Impl::apply_loads(Real step_time, Real total_time) {
+  if (boundary.loads().empty()) return;
+  if (force_external.rows() == 0) force_external = NodalVectors::Zero(model.node_count(), 3);
   for (const LoadedDof& l : boundary.loads()) force_external(l.node, l.component) = 0.0;
   for (const LoadedDof& l : boundary.loads())
     force_external(l.node, l.component) +=
@@ -205,7 +206,10 @@ void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_
   const Real w_new = dt_prev > 0.0 ? 0.5 : 0.0;
   const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
   Real* fi = force_internal.data();
-  const Real* fe = force_external.data();
+  // No loads in the model: the external force array does not exist and is not read.
+  const bool loaded = force_external.rows() > 0;
+  const Real* fe = loaded ? force_external.data() : fi;
+  const Real fe_scale = loaded ? 1.0 : 0.0;
   Real* v = state.velocity_half.data();
   Real* vw = state.velocity.data();
   Real* a = state.acceleration.data();
@@ -225,7 +229,7 @@ void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_
       const Index off = c * n;
 #pragma omp simd reduction(+ : ke)
       for (Index i = first; i < last; ++i) {
-        const Real acc = (fe[off + i] - fi[off + i]) * inverse_mass[i];
+        const Real acc = (fe_scale * fe[off + i] - fi[off + i]) * inverse_mass[i];
         const Real v_new = v[off + i] + dt_avg * acc;
         const Real v_whole = v[off + i] + w_new * (v_new - v[off + i]);
         ke += state.mass[i] * v_whole * v_whole;
@@ -258,12 +262,13 @@ void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_
     const Real right = v_old + w_new * (v_new - v_old);
     ke_fix += 0.5 * m * (right * right - wrong * wrong);
     const Real acc = dt_avg > 0.0 ? (v_new - v_old) / dt_avg : 0.0;
-    const Real r = m * acc - (fe[off + i] - fi[off + i]);
+    const Real f_ext = fe_scale * fe[off + i];
+    const Real r = m * acc - (f_ext - fi[off + i]);
     state.reaction(i, d.component) = r;
     a[off + i] = acc;
     v[off + i] = v_new;
     vw[off + i] = right;
-    const Real f_now = fe[off + i] + r;
+    const Real f_now = f_ext + r;
     work += 0.5 * (previous_force(i, d.component) + f_now) * dt_prev * v_old;
     previous_force(i, d.component) = f_now;
   }
@@ -283,7 +288,12 @@ void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
   ScopedTimer timer(timers, Phase::Output);
-  if (hex && (what.stress || what.volume)) hex->gather_output(state.stress, state.volume);
+  if (hex && (what.stress || what.volume)) {
+    // Element output arrays exist only in runs that write element output (P2).
+    state.stress.resize(static_cast<std::size_t>(model.element_count()) * 6, 0.0);
+    state.volume.resize(model.element_count(), 0.0);
+    hex->gather_output(state.stress, state.volume);
+  }
   sink.write_frame(model, state, what);
 }
 

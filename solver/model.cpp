@@ -32,6 +32,18 @@ Index find_by_name(const Items& items, const std::string& name) {
 }
 }  // namespace
 
+void Model::add_element_source(const std::string& file, int line) {
+  // Elements come in long runs from one file: compare with the last file first.
+  std::size_t f = element_file.empty() ? 0 : element_file.back();
+  if (f >= source_files.size() || source_files[f] != file) {
+    f = 0;
+    while (f < source_files.size() && source_files[f] != file) ++f;
+    if (f == source_files.size()) source_files.push_back(file);
+  }
+  element_file.push_back(static_cast<std::uint16_t>(f));
+  element_line.push_back(line);
+}
+
 Index Model::find_node_set(const std::string& name) const {
   return find_by_name(node_sets, name);
 }

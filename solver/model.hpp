@@ -176,12 +176,15 @@ struct Model {
   NodalVectors coordinates;          ///< reference coordinates (n_nodes × 3), m
 
   // --- elements (CSR connectivity, node indices) --------------------------------------------
-  std::vector<ExternalId> element_ids;        ///< deck id of each element (n_elements)
-  std::vector<ElementType> element_types;     ///< (n_elements)
-  std::vector<Index> element_offsets{0};      ///< (n_elements + 1) into element_nodes
-  std::vector<Index> element_nodes;           ///< node indices, Abaqus node order
-  std::vector<Index> element_section;         ///< into solid_sections, NO_INDEX if none
-  std::vector<SourceLocation> element_where;  ///< the deck line of each element
+  std::vector<ExternalId> element_ids;     ///< deck id of each element (n_elements)
+  std::vector<ElementType> element_types;  ///< (n_elements)
+  std::vector<Index> element_offsets{0};   ///< (n_elements + 1) into element_nodes
+  std::vector<Index> element_nodes;        ///< node indices, Abaqus node order
+  std::vector<Index> element_section;      ///< into solid_sections, NO_INDEX if none
+  /// Deck line of each element, compact (6 bytes per element): file index and line.
+  std::vector<std::string> source_files;
+  std::vector<std::uint16_t> element_file;
+  std::vector<std::int32_t> element_line;
 
   // --- properties --------------------------------------------------------------------------
   std::vector<Material> materials;
@@ -202,6 +205,12 @@ struct Model {
   Index element_count() const { return static_cast<Index>(element_ids.size()); }
   /// Node indices of element e.
   const Index* nodes_of(Index e) const { return element_nodes.data() + element_offsets[e]; }
+  /// The deck line of element e (for messages).
+  SourceLocation element_where(Index e) const {
+    return {source_files[element_file[e]], element_line[e]};
+  }
+  /// Records the deck line of the next element (used by io while reading).
+  void add_element_source(const std::string& file, int line);
   /// Index of a set/amplitude/material by (case-insensitive) name, or NO_INDEX.
   Index find_node_set(const std::string& name) const;
   Index find_element_set(const std::string& name) const;

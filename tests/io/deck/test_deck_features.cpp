@@ -28,7 +28,7 @@ TEST_CASE("comments, blank lines, case and continued keyword lines", "[io][deck]
   REQUIRE(set != NO_INDEX);
   CHECK(m.node_sets[set].name == "CORNER NODES");
   CHECK(m.node_sets[set].members.size() == 12);
-  CHECK(m.element_where[0].line == 20);
+  CHECK(m.element_where(0).line == 20);
   REQUIRE(m.steps.size() == 1);
   CHECK(m.steps[0].name == "S1");
   CHECK(m.steps[0].time_period == 2.5e-3);
@@ -40,8 +40,8 @@ TEST_CASE("*INCLUDE reads files relative to the including file", "[io][deck]") {
   CHECK(m.heading == "included mesh");
   CHECK(m.node_count() == 12);
   REQUIRE(m.element_count() == 2);
-  CHECK(m.element_where[1].file.find("include_elements.inp") != std::string::npos);
-  CHECK(m.element_where[1].line == 3);
+  CHECK(m.element_where(1).file.find("include_elements.inp") != std::string::npos);
+  CHECK(m.element_where(1).line == 3);
   CHECK(m.element_section == std::vector<Index>{0, 0});
 }
 
@@ -210,7 +210,7 @@ TEST_CASE("an element may come before its nodes", "[io][deck]") {
                            model.substr(material) + simple_step();
   const Model m = io::read_deck_text(deck, "order.inp");
   CHECK(m.element_nodes[15] == 8);
-  CHECK(m.element_where[0].line == 2);
+  CHECK(m.element_where(0).line == 2);
 }
 
 TEST_CASE("a GENERATE range up to 1e12 costs no more than the defined ids", "[io][deck]") {

@@ -88,15 +88,15 @@ TEST_CASE("a generated block deck gives the expected counts and locations", "[io
     const Model m = io::read_deck_text(deck.mesh + rest_of_deck(eol), "generated/block.inp");
     CHECK(m.node_count() == (n + 1) * (n + 1) * (n + 1));
     REQUIRE(m.element_count() == n * n * n);
-    REQUIRE(m.element_where.size() == static_cast<std::size_t>(n * n * n));
+    REQUIRE(m.element_line.size() == static_cast<std::size_t>(n * n * n));
     // Element 1 is on the line after *ELEMENT; the split element is found at its first line
     // and the one after it two lines later (continuation plus comment).
     const int first_element_line = 4 + (n + 1) * (n + 1) * (n + 1);
-    CHECK(m.element_where[0].file == "generated/block.inp");
-    CHECK(m.element_where[0].line == first_element_line);
-    CHECK(m.element_where[deck.split_element - 1].line == deck.split_line);
-    CHECK(m.element_where[deck.split_element].line == deck.split_line + 3);
-    CHECK(m.element_where.back().line == first_element_line + n * n * n - 1 + 2);
+    CHECK(m.element_where(0).file == "generated/block.inp");
+    CHECK(m.element_where(0).line == first_element_line);
+    CHECK(m.element_where(deck.split_element - 1).line == deck.split_line);
+    CHECK(m.element_where(deck.split_element).line == deck.split_line + 3);
+    CHECK(m.element_where(m.element_count() - 1).line == first_element_line + n * n * n - 1 + 2);
     // The split element's nodes: ids follow the grid, internal index = id - 1.
     const Index* nodes = m.nodes_of(deck.split_element - 1);
     std::string text = std::to_string(deck.split_element);
@@ -132,9 +132,9 @@ TEST_CASE("a generated deck on disk, its mesh included from a long path", "[io][
   CHECK(m.job_name == "main");
   CHECK(m.node_count() == (n + 1) * (n + 1) * (n + 1));
   REQUIRE(m.element_count() == n * n * n);
-  CHECK(m.element_where[6].file ==
+  CHECK(m.element_where(6).file ==
         (dir / "mesh_parts_directory" / "generated_block_mesh.inp").lexically_normal().string());
-  CHECK(m.element_where[6].line == deck.split_line);
+  CHECK(m.element_where(6).line == deck.split_line);
 
   // An error in the included mesh names that file and line; errors of the lexer come first.
   std::string bad = deck.mesh;

@@ -96,10 +96,10 @@ TEST_CASE("a complete small deck fills every Model field", "[io][deck]") {
   CHECK(m.element_types == std::vector<ElementType>{ElementType::C3D8R, ElementType::C3D8R});
   CHECK(m.element_offsets == std::vector<Index>{0, 8, 16});
   CHECK(m.element_nodes == std::vector<Index>{0, 1, 2, 3, 6, 7, 8, 9, 1, 4, 5, 2, 7, 10, 11, 8});
-  REQUIRE(m.element_where.size() == 2);
-  CHECK(m.element_where[0].file == "decks/impact.inp");
-  CHECK(m.element_where[0].line == 18);
-  CHECK(m.element_where[1].line == 20);
+  REQUIRE(m.element_line.size() == 2);
+  CHECK(m.element_where(0).file == "decks/impact.inp");
+  CHECK(m.element_where(0).line == 18);
+  CHECK(m.element_where(1).line == 20);
   CHECK(m.element_section == std::vector<Index>{0, 0});
 
   // Materials, controls, section.

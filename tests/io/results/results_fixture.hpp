@@ -58,7 +58,7 @@ inline Model tiny_model() {
     }
     model.element_offsets.push_back(static_cast<Index>(model.element_nodes.size()));
     model.element_section.push_back(0);
-    model.element_where.push_back({});
+    model.add_element_source("fixture.inp", 1);
   }
   model.materials.push_back({"STEEL", 7800.0, 210e9, 0.3, true, true, {}});
   model.node_sets.push_back({"FIXED", {0, 3, 6, 9}, {}});
