@@ -38,6 +38,15 @@ Real interval_of(const OutputRequest& r, Real period, int default_count) {
   return period / n;
 }
 
+void merge(FrameRequest& into, const FrameRequest& what) {
+  into.displacement |= what.displacement;
+  into.velocity |= what.velocity;
+  into.acceleration |= what.acceleration;
+  into.reaction |= what.reaction;
+  into.stress |= what.stress;
+  into.volume |= what.volume;
+}
+
 bool has(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
@@ -112,27 +121,14 @@ bool OutputSchedule::fire(Timed& t, Real step_time, bool last, Real period) {
 FrameRequest OutputSchedule::field_due(Real step_time, bool last) {
   FrameRequest what;
   for (FieldRequest& f : m_field) {
-    if (!fire(f.when, step_time, last, m_period)) continue;
-    what.displacement |= f.what.displacement;
-    what.velocity |= f.what.velocity;
-    what.acceleration |= f.what.acceleration;
-    what.reaction |= f.what.reaction;
-    what.stress |= f.what.stress;
-    what.volume |= f.what.volume;
+    if (fire(f.when, step_time, last, m_period)) merge(what, f.what);
   }
   return what;
 }
 
 FrameRequest OutputSchedule::field_all() const {
   FrameRequest what;
-  for (const FieldRequest& f : m_field) {
-    what.displacement |= f.what.displacement;
-    what.velocity |= f.what.velocity;
-    what.acceleration |= f.what.acceleration;
-    what.reaction |= f.what.reaction;
-    what.stress |= f.what.stress;
-    what.volume |= f.what.volume;
-  }
+  for (const FieldRequest& f : m_field) merge(what, f.what);
   return what;
 }
 
