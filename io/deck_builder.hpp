@@ -6,6 +6,7 @@
 
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -109,6 +110,11 @@ class DeckBuilder {
   void read_node_output(const DeckBlock& block);
   void read_element_output(const DeckBlock& block);
   void read_energy_output(const DeckBlock& block);
+  /// Names on the data lines of `block`, normalized, without repeats; names not in `known`
+  /// are reported as "unknown <what> NAME".
+  std::vector<std::string> read_names(const DeckBlock& block,
+                                      std::span<const std::string_view> known,
+                                      const std::string& what);
 
   // --- helpers (deck_builder.cpp) ------------------------------------------------------------
   void error(const SourceLocation& where, const DeckKeyword& keyword, const std::string& problem,

@@ -167,6 +167,26 @@ void DeckBuilder::read_node_output(const DeckBlock& block) {
                              DeckReference{set, keyword.where, keyword.label()}});
 }
 
+std::vector<std::string> DeckBuilder::read_names(const DeckBlock& block,
+                                                 std::span<const std::string_view> known,
+                                                 const std::string& what) {
+  std::vector<std::string> names;
+  for (const DeckDataLine& line : block.data) {
+    for (const std::string_view field : line.fields) {
+      if (field.empty()) continue;
+      const std::string name = normalize_name(field);
+      if (std::find(known.begin(), known.end(), name) != known.end()) {
+        add_unique(names, name);
+        continue;
+      }
+      std::string list;
+      for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      error(line.where(), block.keyword, "unknown " + what + " " + name, "expected one of " + list);
+    }
+  }
+  return names;
+}
+
 void DeckBuilder::read_element_output(const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   // DIRECTIONS only adds local material directions to Abaqus' ODB; harmless to accept.
@@ -181,18 +201,8 @@ void DeckBuilder::read_element_output(const DeckBlock& block) {
           "expected *ELEMENT OUTPUT under *OUTPUT, FIELD");
     return;
   }
-  std::vector<std::string> variables;
-  for (const DeckDataLine& line : block.data) {
-    for (const std::string_view field : line.fields) {
-      if (field.empty()) continue;
-      const std::string name = normalize_name(field);
-      if (contains(ELEMENT_VARIABLES, name))
-        add_unique(variables, name);
-      else
-        error(line.where(), keyword, "unknown output variable " + name,
-              "expected one of " + joined(ELEMENT_VARIABLES));
-    }
-  }
+  const std::vector<std::string> variables =
+      read_names(block, ELEMENT_VARIABLES, "output variable");
   if (block.data.empty()) {
     error(keyword.where, keyword, "no output variables", "expected a data line such as S, EVOL");
     return;
@@ -225,18 +235,7 @@ void DeckBuilder::read_energy_output(const DeckBlock& block) {
           "expected VARIABLE=PRESELECT or VARIABLE=ALL");
     return;
   }
-  std::vector<std::string> variables;
-  for (const DeckDataLine& line : block.data) {
-    for (const std::string_view field : line.fields) {
-      if (field.empty()) continue;
-      const std::string name = normalize_name(field);
-      if (contains(ENERGY_VARIABLES, name))
-        add_unique(variables, name);
-      else
-        error(line.where(), keyword, "unknown energy variable " + name,
-              "expected one of " + joined(ENERGY_VARIABLES));
-    }
-  }
+  const std::vector<std::string> variables = read_names(block, ENERGY_VARIABLES, "energy variable");
   const bool all_already = request.energy && request.energy_variables.empty();
   request.energy = true;
   if (variables.empty() || !variable.empty() || all_already) {
