@@ -36,4 +36,25 @@ std::vector<int> color_elements(const std::vector<Index>& connectivity, int node
   return color;
 }
 
+BatchLayout make_batches(const std::vector<Index>& connectivity, int nodes_per_element,
+                         Index node_count, int lanes) {
+  const std::vector<int> color = color_elements(connectivity, nodes_per_element, node_count);
+  const int n_colors = color.empty() ? 0 : *std::max_element(color.begin(), color.end()) + 1;
+  // Elements of each colour in their original order (keeps some locality), then batches.
+  std::vector<std::vector<Index>> by_color(n_colors);
+  for (std::size_t e = 0; e < color.size(); ++e)
+    by_color[color[e]].push_back(static_cast<Index>(e));
+  BatchLayout layout;
+  for (const auto& members : by_color) {
+    const auto batches = static_cast<Index>((members.size() + lanes - 1) / lanes);
+    for (Index b = 0; b < batches; ++b)
+      for (int l = 0; l < lanes; ++l) {
+        const std::size_t k = static_cast<std::size_t>(b) * lanes + l;
+        layout.lane_owner.push_back(k < members.size() ? members[k] : NO_INDEX);
+      }
+    layout.color_batches.push_back(layout.color_batches.back() + batches);
+  }
+  return layout;
+}
+
 }  // namespace xpl::elements

@@ -14,4 +14,18 @@ namespace xpl::elements {
 std::vector<int> color_elements(const std::vector<Index>& connectivity, int nodes_per_element,
                                 Index node_count);
 
+/// Elements grouped into batches of `lanes` elements of one colour.
+struct BatchLayout {
+  /// Block element of each lane ([batch][lane]); NO_INDEX marks padding lanes.
+  std::vector<Index> lane_owner;
+  /// Batches of colour c are [color_batches[c], color_batches[c + 1]).
+  std::vector<Index> color_batches{0};
+  Index batch_count() const { return color_batches.back(); }
+};
+
+/// Colours the elements (flat connectivity, n_elements × nodes_per_element) and packs each
+/// colour, in element order, into batches of `lanes`.
+BatchLayout make_batches(const std::vector<Index>& connectivity, int nodes_per_element,
+                         Index node_count, int lanes);
+
 }  // namespace xpl::elements

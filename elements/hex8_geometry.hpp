@@ -14,35 +14,9 @@
 
 #include "common/types.hpp"
 #include "elements/simd.hpp"
+#include "elements/vec3.hpp"
 
 namespace xpl::elements {
-
-/// A 3-vector whose components are T (a scalar or a SIMD batch).
-template <class T>
-struct V3 {
-  T x, y, z;
-};
-
-template <class T>
-inline V3<T> operator+(const V3<T>& a, const V3<T>& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-template <class T>
-inline V3<T> operator-(const V3<T>& a, const V3<T>& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-template <class T, class S>
-inline V3<T> operator*(const S& s, const V3<T>& a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-template <class T>
-inline V3<T> cross(const V3<T>& a, const V3<T>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-template <class T>
-inline T dot(const V3<T>& a, const V3<T>& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
 
 /// Mode order used below: index 1 ξ, 2 η, 3 ζ, 4 ξη, 5 ηζ, 6 ζξ, 7 ξηζ (0 = mean, unused).
 inline constexpr int MODE_COUNT = 8;

@@ -15,25 +15,10 @@ Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index
                        const std::vector<HexMaterial>& materials, Index node_count)
     : m_element_index(std::move(element_index)) {
   const Index n = size();
-  const std::vector<int> color = color_elements(connectivity, 8, node_count);
-  const int n_colors = n == 0 ? 0 : *std::max_element(color.begin(), color.end()) + 1;
-
-  // Elements of each colour in their original order (keeps some locality), then batches.
-  std::vector<std::vector<Index>> by_color(n_colors);
-  for (Index e = 0; e < n; ++e) by_color[color[e]].push_back(e);
-  m_color_batches.assign(1, 0);
-  std::vector<Index> lane_owner;
-  for (const auto& members : by_color) {
-    const auto batches = static_cast<Index>((members.size() + W - 1) / W);
-    for (Index b = 0; b < batches; ++b)
-      for (int l = 0; l < W; ++l) {
-        const std::size_t k = static_cast<std::size_t>(b) * W + l;
-        lane_owner.push_back(k < members.size() ? members[k] : NO_INDEX);
-      }
-    m_color_batches.push_back(m_color_batches.back() + batches);
-  }
+  BatchLayout layout = make_batches(connectivity, 8, node_count, W);
+  m_color_batches = std::move(layout.color_batches);
   const Index n_batches = m_color_batches.back();
-  m_lane_owner = std::move(lane_owner);
+  m_lane_owner = std::move(layout.lane_owner);
   m_conn.assign(static_cast<std::size_t>(n_batches) * 8 * W, 0);
   m_const.assign(static_cast<std::size_t>(n_batches) * N_CONST * W, 0.0);
   m_stress.assign(static_cast<std::size_t>(n_batches) * 6 * W, 0.0);
@@ -95,7 +80,7 @@ void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVector
   Real* fx = force.data();
   for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
     const Index first = m_color_batches[c], last = m_color_batches[c + 1];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
     for (Index b = first; b < last; ++b)
       compute_batch(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes, vx + 2 * n_nodes, dt,
                     bulk_linear, bulk_quadratic, fx, fx + n_nodes, fx + 2 * n_nodes);

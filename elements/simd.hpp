@@ -12,6 +12,11 @@ namespace xpl::simd {
 /// Lanes per batch: 8 doubles = one AVX-512 register.
 inline constexpr int W = 8;
 
+/// Colours with fewer batches than this run on one thread: forking a team and meeting at
+/// its barrier costs more than a few batches' work, and far more on an oversubscribed
+/// machine (small models in a parallel test run).
+inline constexpr int MIN_PARALLEL_BATCHES = 16;
+
 /// W doubles processed together.
 typedef Real Vec __attribute__((vector_size(W * sizeof(Real))));
 /// Lane-wise comparison result (all bits set where true).

@@ -7,7 +7,9 @@
 namespace xpl {
 
 void BoundaryState::begin_step(const Model& model, int step, const NodalVectors& displacement,
-                               const NodalVectors& velocity) {
+                               const NodalVectors& velocity, const NodalVectors& rotation,
+                               const NodalVectors& angular_velocity) {
+  const bool rotations = rotation.rows() > 0;
   const Step& s = model.steps[step];
   m_ramp = s.ramp_amplitude;
   m_period = s.time_period;
@@ -19,7 +21,7 @@ void BoundaryState::begin_step(const Model& model, int step, const NodalVectors&
     for (const PrescribedDof& d : m_prescribed) bcs[{d.node, d.component}] = d;
   for (const BoundaryCondition& bc : s.boundaries) {
     for (int dof = bc.first_dof; dof <= bc.last_dof; ++dof) {
-      if (dof > 3) {
+      if (dof > 3 && !rotations) {
         m_rotational = true;
         continue;
       }
@@ -34,8 +36,12 @@ void BoundaryState::begin_step(const Model& model, int step, const NodalVectors&
   }
   m_prescribed.clear();
   for (auto& [key, d] : bcs) {
-    d.start_value = d.type == BoundaryType::Displacement ? displacement(d.node, d.component)
-                                                         : velocity(d.node, d.component);
+    const bool turn = d.component >= 3;
+    const int c = turn ? d.component - 3 : d.component;
+    if (d.type == BoundaryType::Displacement)
+      d.start_value = turn ? rotation(d.node, c) : displacement(d.node, c);
+    else
+      d.start_value = turn ? angular_velocity(d.node, c) : velocity(d.node, c);
     m_prescribed.push_back(d);
   }
 

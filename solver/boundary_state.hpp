@@ -9,10 +9,10 @@
 
 namespace xpl {
 
-/// One prescribed translational DOF.
+/// One prescribed DOF.
 struct PrescribedDof {
   Index node = NO_INDEX;
-  int component = 0;  ///< 0..2
+  int component = 0;  ///< 0..2 translations, 3..5 rotations
   BoundaryType type = BoundaryType::Displacement;
   Real value = 0.0;            ///< target displacement or velocity
   Real start_value = 0.0;      ///< displacement or velocity at the start of the step
@@ -32,13 +32,16 @@ struct LoadedDof {
 class BoundaryState {
  public:
   /// Applies the changes of `step` to the active set. `displacement` and `velocity` of the
-  /// current state give the start values of ramped BCs.
+  /// current state give the start values of ramped BCs; `rotation` and `angular_velocity`
+  /// those of rotational DOFs, which are kept only when these arrays exist (shell models).
   void begin_step(const Model& model, int step, const NodalVectors& displacement,
-                  const NodalVectors& velocity);
+                  const NodalVectors& velocity, const NodalVectors& rotation,
+                  const NodalVectors& angular_velocity);
 
   const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
   const std::vector<LoadedDof>& loads() const { return m_loads; }
-  /// Whether any BC of the step names rotational DOFs (4..6), ignored for solid nodes.
+  /// Whether any BC of the step names rotational DOFs (4..6) that were dropped because the
+  /// model has no rotations.
   bool has_rotational_dofs() const { return m_rotational; }
 
   /// Amplitude factor at step time `step_time` / total time `total_time`.

@@ -9,8 +9,11 @@
 #include <sstream>
 
 #include "elements/hex8r.hpp"
+#include "elements/shell4r.hpp"
 #include "solver/boundary_state.hpp"
+#include "solver/node_rotations.hpp"
 #include "solver/output_schedule.hpp"
+#include "solver/pressure_loads.hpp"
 
 namespace xpl {
 
@@ -37,6 +40,44 @@ elements::HexMaterial hex_material(const Model& model, Index element) {
   return h;
 }
 
+elements::ShellProperties shell_properties(const Model& model, Index element) {
+  const ShellSection& section = model.shell_sections[model.element_section[element]];
+  const Material& m = model.materials[section.material];
+  elements::ShellProperties p;
+  p.density = m.density;
+  p.young = m.young;
+  p.poisson = m.poisson;
+  p.thickness = section.thickness;
+  p.integration_points = section.integration_points;
+  p.offset = section.offset;
+  if (section.controls != NO_INDEX)
+    p.hourglass_scale = model.section_controls[section.controls].stiffness_scale;
+  return p;
+}
+
+/// Element totals of one internal-force pass over all blocks.
+struct ElementTotals {
+  Real strain_energy_increment = 0.0;
+  Real hourglass_energy_increment = 0.0;
+  Real viscous_energy_increment = 0.0;
+  Real stable_dt = std::numeric_limits<Real>::infinity();
+  Index critical_element = NO_INDEX;
+  Index failed_element = NO_INDEX;
+
+  template <class BlockTotals>
+  void add(const BlockTotals& t) {
+    strain_energy_increment += t.strain_energy_increment;
+    hourglass_energy_increment += t.hourglass_energy_increment;
+    if (t.stable_dt < stable_dt) {
+      stable_dt = t.stable_dt;
+      critical_element = t.critical_element;
+    }
+    if (t.failed_element != NO_INDEX &&
+        (failed_element == NO_INDEX || t.failed_element < failed_element))
+      failed_element = t.failed_element;
+  }
+};
+
 std::string format_real(Real v) {
   std::ostringstream out;
   out.precision(4);
@@ -52,7 +93,16 @@ struct ExplicitSolver::Impl {
   SolverOptions options;
   State state;
   std::unique_ptr<elements::Hex8rBlock> hex;
+  std::unique_ptr<elements::Shell4rBlock> shell;
   BoundaryState boundary;
+  PressureLoads pressures;
+  NodeRotations rotations;
+  /// Shell models only (else 0 rows / empty): internal moments (n_nodes × 3), inverse rotary
+  /// inertia, and the moments of the previous increment at prescribed rotations (work).
+  NodalVectors moment_internal;
+  std::vector<Real> inverse_inertia;
+  NodalVectors previous_moment;
+  bool rotation_synced = true;  ///< state.rotation matches `rotations`
   OutputSchedule schedule;
   PhaseTimers timers;
   NodalVectors force_internal;  ///< (n_nodes × 3), zeroed after each use
@@ -61,8 +111,11 @@ struct ExplicitSolver::Impl {
   std::vector<Real> inverse_mass;  ///< 0 for nodes without mass (no element)
   std::vector<Real> chunk_sums;
   std::vector<Real> history_row;
-  NodalVectors previous_force;        ///< f_ext + reaction at the previous increment (work)
-  std::vector<LoadedDof> free_loads;  ///< loaded DOFs that are not prescribed
+  NodalVectors previous_force;            ///< f_ext + reaction at the previous increment (work)
+  std::vector<LoadedDof> free_loads;      ///< loaded DOFs that are not prescribed
+  std::vector<LoadedDof> loaded_dofs;     ///< every DOF with a load (CLOAD or pressure)
+  std::vector<PrescribedDof> prescribed;  ///< the step's prescribed DOFs that exist
+  std::vector<Real> prescribed_value;     ///< current value of each prescribed DOF
   std::vector<Real> v_old_prescribed, v_old_loaded;
   Real dt_half = 0.0;     ///< dt_{n+1/2}: the increment about to be taken
   Real dt_first = 0.0;    ///< first stable increment (for the collapse check)
@@ -76,15 +129,20 @@ struct ExplicitSolver::Impl {
   Impl(const Model& m, OutputSink& s, SolverOptions o) : model(m), sink(s), options(o) {}
 
   void setup();
+  void report_warped_shells();
   void begin_step(int step);
-  void compute_forces(Real dt, elements::HexStepTotals& totals);
-  Real next_increment(const elements::HexStepTotals& totals, Real remaining, int step) const;
+  void compute_forces(Real dt, ElementTotals& totals);
+  Real next_increment(const ElementTotals& totals, Real remaining, int step) const;
+  /// Central-difference update of the free DOFs of a field; returns its kinetic energy
+  /// (summed per chunk in chunk order: independent of the thread count).
+  Real free_update(const DofPointers& d, Real dt_avg, Real w_new, Real* sums);
   void update_nodes(Real dt_prev, Real dt_next, Real t_next_half, Real t_next_end);
   void apply_loads(Real step_time, Real total_time);
   void write_frame(const FrameRequest& what);
   void write_history();
   void write_status();
-  void check_health(const elements::HexStepTotals& totals);
+  void sync_rotation();
+  void check_health(const ElementTotals& totals);
   void run_step(int step);
   RunSummary summary() const;
 };
@@ -117,6 +175,31 @@ void ExplicitSolver::Impl::setup() {
     hex = std::make_unique<elements::Hex8rBlock>(hex_elements, connectivity, materials, n);
     hex->add_lumped_mass(state.reference, state.mass);
   }
+  std::vector<Index> shell_elements;
+  std::vector<elements::ShellProperties> shell_props;
+  connectivity.clear();
+  for (Index e = 0; e < model.element_count(); ++e) {
+    if (!is_shell(model.element_types[e])) continue;
+    shell_elements.push_back(e);
+    const Index* nodes = model.nodes_of(e);
+    connectivity.insert(connectivity.end(), nodes, nodes + 4);
+    shell_props.push_back(shell_properties(model, e));
+  }
+  if (!shell_elements.empty()) {
+    // Rotational DOFs exist only in shell models (P2).
+    shell = std::make_unique<elements::Shell4rBlock>(shell_elements, connectivity, shell_props, n);
+    state.rotation = NodalVectors::Zero(n, 3);
+    state.angular_velocity = NodalVectors::Zero(n, 3);
+    state.angular_velocity_half = NodalVectors::Zero(n, 3);
+    state.reaction_moment = NodalVectors::Zero(n, 3);
+    state.rotary_inertia.assign(n, 0.0);
+    moment_internal = NodalVectors::Zero(n, 3);
+    shell->add_lumped_mass(state.reference, state.mass, state.rotary_inertia);
+    inverse_inertia.assign(n, 0.0);
+    for (Index i = 0; i < n; ++i)
+      if (state.rotary_inertia[i] > 0.0) inverse_inertia[i] = 1.0 / state.rotary_inertia[i];
+    rotations = NodeRotations(n);
+  }
   inverse_mass.assign(n, 0.0);
   Index massless = 0;
   for (Index i = 0; i < n; ++i) {
@@ -125,9 +208,11 @@ void ExplicitSolver::Impl::setup() {
     else
       ++massless;
   }
-  chunk_sums.assign((n + NODE_CHUNK - 1) / NODE_CHUNK * 2, 0.0);
+  chunk_sums.assign(static_cast<std::size_t>((n + NODE_CHUNK - 1) / NODE_CHUNK) * 2, 0.0);
 
   sink.begin_run(model);
+  for (const DeckMessage& m : model.deck_messages)
+    sink.message(m.warning ? Severity::Warning : Severity::Note, m.text);
   for (const SectionControls& c : model.section_controls)
     if (c.hourglass == HourglassType::RelaxStiffness)
       sink.message(Severity::Note, "section controls " + c.name +
@@ -141,52 +226,132 @@ void ExplicitSolver::Impl::setup() {
     sink.message(Severity::Info, "C3D8R elements: " + std::to_string(hex->size()) + " in " +
                                      std::to_string(hex->color_count()) +
                                      " colours (race-free parallel assembly)");
+  if (shell) {
+    sink.message(Severity::Info,
+                 "S4R elements: " + std::to_string(shell->size()) + " in " +
+                     std::to_string(shell->color_count()) +
+                     " colours; rotary inertia scaled to (m/4)·max(t²/12, A/8) per node so "
+                     "that the membrane wave sets the stable increment");
+    report_warped_shells();
+    for (const SectionControls& c : model.section_controls)
+      if (c.hourglass == HourglassType::Viscous)
+        sink.message(Severity::Note, "section controls " + c.name +
+                                         ": S4R elements use the stiffness hourglass form "
+                                         "(HOURGLASS=VISCOUS applies to C3D8R only)");
+  }
+}
+
+void ExplicitSolver::Impl::report_warped_shells() {
+  // Warped elements are evaluated on their projected plane with rigid links to the nodes
+  // (accurate for moderate warping); strongly warped ones deserve the user's attention.
+  constexpr Real WARN_DEGREES = 10.0;
+  constexpr int MAX_LISTED = 20;
+  int warped = 0;
+  Real worst = 0.0;
+  for (Index i = 0; i < shell->size(); ++i) {
+    const Real angle = shell->warp_angle(state.reference, i);
+    worst = std::max(worst, angle);
+    if (angle <= WARN_DEGREES) continue;
+    if (++warped > MAX_LISTED) continue;
+    const Index e = shell->element_index(i);
+    const SourceLocation where = model.element_where(e);
+    sink.message(Severity::Warning,
+                 where.file + ":" + std::to_string(where.line) + ": *ELEMENT: S4R element " +
+                     std::to_string(model.element_ids[e]) + " is warped by " + format_real(angle) +
+                     " degrees (more than " + format_real(WARN_DEGREES) +
+                     "); refine the mesh where the surface is curved");
+  }
+  if (warped > MAX_LISTED)
+    sink.message(Severity::Warning,
+                 std::to_string(warped) + " S4R elements are warped by more than " +
+                     format_real(WARN_DEGREES) + " degrees (worst " + format_real(worst) +
+                     "); the first " + std::to_string(MAX_LISTED) + " are listed above");
 }
 
 void ExplicitSolver::Impl::begin_step(int step) {
   const NodalVectors displacement = state.position - state.reference;
-  boundary.begin_step(model, step, displacement, state.velocity);
+  sync_rotation();
+  boundary.begin_step(model, step, displacement, state.velocity, state.rotation,
+                      state.angular_velocity);
+  pressures.begin_step(model, step);
   schedule.begin_step(model, step);
   state.reaction.setZero();
-  v_old_prescribed.assign(boundary.prescribed().size(), 0.0);
-  std::vector<char> is_prescribed(static_cast<std::size_t>(model.node_count()) * 3, 0);
-  for (const PrescribedDof& d : boundary.prescribed())
-    is_prescribed[static_cast<std::size_t>(d.component) * model.node_count() + d.node] = 1;
+  if (shell) state.reaction_moment.setZero();
+  // Rotations prescribed on nodes that belong to no shell have nothing to act on.
+  prescribed.clear();
+  bool dropped_rotations = boundary.has_rotational_dofs();
+  for (const PrescribedDof& d : boundary.prescribed()) {
+    if (d.component >= 3 && state.rotary_inertia[d.node] <= 0.0) {
+      dropped_rotations = true;
+      continue;
+    }
+    prescribed.push_back(d);
+  }
+  v_old_prescribed.assign(prescribed.size(), 0.0);
+  prescribed_value.resize(prescribed.size());
+  for (std::size_t k = 0; k < prescribed.size(); ++k)
+    prescribed_value[k] = prescribed[k].component >= 3
+                              ? state.rotation(prescribed[k].node, prescribed[k].component - 3)
+                              : 0.0;
+  const auto n = static_cast<std::size_t>(model.node_count());
+  std::vector<char> is_prescribed(n * 6, 0);
+  for (const PrescribedDof& d : prescribed) is_prescribed[d.component * n + d.node] = 1;
+  // Loaded DOFs: CLOADs and the three components of every node under pressure.
+  loaded_dofs = boundary.loads();
+  std::vector<char> is_loaded(n * 3, 0);
+  for (const LoadedDof& l : loaded_dofs) is_loaded[l.component * n + l.node] = 1;
+  for (Index node : pressures.nodes())
+    for (int c = 0; c < 3; ++c)
+      if (!is_loaded[c * n + node]) loaded_dofs.push_back({node, c, 0.0, NO_INDEX});
   free_loads.clear();
-  for (const LoadedDof& l : boundary.loads())
-    if (!is_prescribed[static_cast<std::size_t>(l.component) * model.node_count() + l.node])
-      free_loads.push_back(l);
+  for (const LoadedDof& l : loaded_dofs)
+    if (!is_prescribed[l.component * n + l.node]) free_loads.push_back(l);
   v_old_loaded.assign(free_loads.size(), 0.0);
-  if (previous_force.rows() == 0 && (!boundary.prescribed().empty() || !free_loads.empty()))
+  if (previous_force.rows() == 0 && (!prescribed.empty() || !free_loads.empty()))
     previous_force = NodalVectors::Zero(model.node_count(), 3);
+  if (shell && previous_moment.rows() == 0 && !prescribed.empty())
+    previous_moment = NodalVectors::Zero(model.node_count(), 3);
   state.step = step;
   state.step_time = 0.0;
   sink.begin_step(model, step);
-  if (boundary.has_rotational_dofs())
+  if (dropped_rotations)
     sink.message(Severity::Note, "step " + model.steps[step].name +
-                                     ": boundary conditions on DOFs 4-6 are ignored (solid "
-                                     "element nodes have no rotations)");
+                                     ": boundary conditions on DOFs 4-6 of nodes that belong "
+                                     "to no shell are ignored (solid element nodes have no "
+                                     "rotations)");
   if (schedule.has_history()) sink.declare_history(schedule.series());
 }
 
-void ExplicitSolver::Impl::compute_forces(Real dt, elements::HexStepTotals& totals) {
+void ExplicitSolver::Impl::compute_forces(Real dt, ElementTotals& totals) {
   ScopedTimer timer(timers, Phase::InternalForce);
   const Step& s = model.steps[state.step];
-  if (hex)
+  if (hex) {
+    elements::HexStepTotals t;
     hex->internal_forces(state.position, state.velocity_half, dt, s.bulk_linear, s.bulk_quadratic,
-                         force_internal, totals);
+                         force_internal, t);
+    totals.add(t);
+    totals.viscous_energy_increment += t.viscous_energy_increment;
+  }
+  if (shell) {
+    elements::ShellStepTotals t;
+    shell->internal_forces(state.position, state.velocity_half, state.angular_velocity_half, dt,
+                           force_internal, moment_internal, t);
+    totals.add(t);
+  }
 }
 
 void ExplicitSolver::Impl::apply_loads(Real step_time, Real total_time) {
-  if (boundary.loads().empty()) return;
+  if (loaded_dofs.empty()) return;
   if (force_external.rows() == 0) force_external = NodalVectors::Zero(model.node_count(), 3);
-  for (const LoadedDof& l : boundary.loads()) force_external(l.node, l.component) = 0.0;
+  for (const LoadedDof& l : loaded_dofs) force_external(l.node, l.component) = 0.0;
   for (const LoadedDof& l : boundary.loads())
     force_external(l.node, l.component) +=
         l.value * boundary.factor(model, l.amplitude, step_time, total_time);
+  if (!pressures.empty())
+    pressures.add_forces(model, boundary, state.position, step_time, total_time, force_external);
 }
 
-Real ExplicitSolver::Impl::next_increment(const elements::HexStepTotals& totals, Real remaining,
+Real ExplicitSolver::Impl::next_increment(const ElementTotals& totals, Real remaining,
                                           int step) const {
   const Step& s = model.steps[step];
   Real dt = s.fixed_increment ? *s.fixed_increment
@@ -197,6 +362,52 @@ Real ExplicitSolver::Impl::next_increment(const elements::HexStepTotals& totals,
   return dt;
 }
 
+namespace {
+
+/// The free central-difference update of nodes [first, last) of one field component block;
+/// returns Σ m v². Accelerations are stored only where the field keeps them.
+template <bool STORE_ACCELERATION>
+Real update_range(const ExplicitSolver::DofPointers& d, Index off, Index first, Index last,
+                  Real dt_avg, Real w_new) {
+  Real* v = d.velocity_half + off;
+  Real* vw = d.velocity + off;
+  Real* a = STORE_ACCELERATION ? d.acceleration + off : nullptr;
+  const Real* fi = d.force_internal + off;
+  const Real* fe = d.force_external + off;
+  const Real scale = d.external_scale;
+  Real ke = 0.0;
+#pragma omp simd reduction(+ : ke)
+  for (Index i = first; i < last; ++i) {
+    const Real acc = (scale * fe[i] - fi[i]) * d.inverse_mass[i];
+    const Real v_new = v[i] + dt_avg * acc;
+    const Real v_whole = v[i] + w_new * (v_new - v[i]);
+    ke += d.mass[i] * v_whole * v_whole;
+    if constexpr (STORE_ACCELERATION) a[i] = acc;
+    v[i] = v_new;
+    vw[i] = v_whole;
+  }
+  return ke;
+}
+
+}  // namespace
+
+Real ExplicitSolver::Impl::free_update(const DofPointers& d, Real dt_avg, Real w_new, Real* sums) {
+  const Index n = model.node_count();
+  const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
+#pragma omp parallel for schedule(static) if (n_chunks > 1)
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) {
+    const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
+    Real ke = 0.0;
+    for (int c = 0; c < 3; ++c)
+      ke += d.acceleration ? update_range<true>(d, c * n, first, last, dt_avg, w_new)
+                           : update_range<false>(d, c * n, first, last, dt_avg, w_new);
+    sums[chunk] = 0.5 * ke;
+  }
+  Real ke = 0.0;
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) ke += sums[chunk];
+  return ke;
+}
+
 void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_half,
                                         Real t_next_end) {
   ScopedTimer timer(timers, Phase::Integration);
@@ -205,41 +416,41 @@ void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_
   // At t = 0 the whole-step velocity is the initial velocity itself.
   const Real w_new = dt_prev > 0.0 ? 0.5 : 0.0;
   const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
-  Real* fi = force_internal.data();
   // No loads in the model: the external force array does not exist and is not read.
   const bool loaded = force_external.rows() > 0;
-  const Real* fe = loaded ? force_external.data() : fi;
-  const Real fe_scale = loaded ? 1.0 : 0.0;
-  Real* v = state.velocity_half.data();
-  Real* vw = state.velocity.data();
-  Real* a = state.acceleration.data();
+  DofPointers translation{state.velocity_half.data(),
+                          state.velocity.data(),
+                          state.acceleration.data(),
+                          force_internal.data(),
+                          loaded ? force_external.data() : force_internal.data(),
+                          loaded ? 1.0 : 0.0,
+                          inverse_mass.data(),
+                          state.mass.data()};
+  // Rotations carry no external moments.
+  DofPointers rotation{};
+  if (shell)
+    rotation = {state.angular_velocity_half.data(),
+                state.angular_velocity.data(),
+                nullptr,
+                moment_internal.data(),
+                moment_internal.data(),
+                0.0,
+                inverse_inertia.data(),
+                state.rotary_inertia.data()};
 
-  // Prescribed and loaded DOFs keep v_{n-1/2} for the work and reaction terms.
-  const auto& prescribed = boundary.prescribed();
-  for (std::size_t k = 0; k < prescribed.size(); ++k)
-    v_old_prescribed[k] = state.velocity_half(prescribed[k].node, prescribed[k].component);
+  // Prescribed and loaded DOFs keep their velocity at n-1/2 for the work and reaction terms.
+  auto field_of = [&](int component) -> const DofPointers& {
+    return component < 3 ? translation : rotation;
+  };
+  for (std::size_t k = 0; k < prescribed.size(); ++k) {
+    const PrescribedDof& d = prescribed[k];
+    v_old_prescribed[k] = field_of(d.component).velocity_half[(d.component % 3) * n + d.node];
+  }
   for (std::size_t k = 0; k < free_loads.size(); ++k)
     v_old_loaded[k] = state.velocity_half(free_loads[k].node, free_loads[k].component);
 
-#pragma omp parallel for schedule(static)
-  for (Index chunk = 0; chunk < n_chunks; ++chunk) {
-    const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
-    Real ke = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      const Index off = c * n;
-#pragma omp simd reduction(+ : ke)
-      for (Index i = first; i < last; ++i) {
-        const Real acc = (fe_scale * fe[off + i] - fi[off + i]) * inverse_mass[i];
-        const Real v_new = v[off + i] + dt_avg * acc;
-        const Real v_whole = v[off + i] + w_new * (v_new - v[off + i]);
-        ke += state.mass[i] * v_whole * v_whole;
-        a[off + i] = acc;
-        v[off + i] = v_new;
-        vw[off + i] = v_whole;
-      }
-    }
-    chunk_sums[chunk] = 0.5 * ke;
-  }
+  Real ke = free_update(translation, dt_avg, w_new, chunk_sums.data());
+  if (shell) ke += free_update(rotation, dt_avg, w_new, chunk_sums.data() + n_chunks);
 
   // Prescribed DOFs: velocity from the BC, reaction = m a - (f_ext - f_int).
   // External work by the trapezoidal rule over [t_{n-1}, t_n]: exact for constant forces.
@@ -248,29 +459,37 @@ void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_
   const Real step_next_end = state.step_time + dt_next;
   for (std::size_t k = 0; k < prescribed.size(); ++k) {
     const PrescribedDof& d = prescribed[k];
-    const Index i = d.node, off = d.component * n;
+    const bool turn = d.component >= 3;
+    const int c = d.component % 3;
+    const DofPointers& field = field_of(d.component);
+    const Index i = d.node, at = c * n + i;
     const Real v_old = v_old_prescribed[k];
     Real v_new = 0.0;
     if (d.type == BoundaryType::Velocity) {
       v_new = boundary.target(model, d, step_next_half, t_next_half);
-    } else if (dt_next > 0.0) {
-      const Real u_next = boundary.target(model, d, step_next_end, t_next_end);
-      v_new = (state.reference(i, d.component) + u_next - state.position(i, d.component)) / dt_next;
+    } else {
+      // Translations correct against the actual position; rotations against the prescribed
+      // value carried along (components of the rotation vector, exact about a fixed axis).
+      Real& current = prescribed_value[k];
+      current = turn ? current + dt_prev * v_old : state.displacement(i, c);
+      if (dt_next > 0.0)
+        v_new = (boundary.target(model, d, step_next_end, t_next_end) - current) / dt_next;
     }
-    const Real m = state.mass[i];
-    const Real wrong = vw[off + i];  // what the free update counted
+    const Real m = field.mass[i];
+    const Real wrong = field.velocity[at];  // what the free update counted
     const Real right = v_old + w_new * (v_new - v_old);
     ke_fix += 0.5 * m * (right * right - wrong * wrong);
     const Real acc = dt_avg > 0.0 ? (v_new - v_old) / dt_avg : 0.0;
-    const Real f_ext = fe_scale * fe[off + i];
-    const Real r = m * acc - (f_ext - fi[off + i]);
-    state.reaction(i, d.component) = r;
-    a[off + i] = acc;
-    v[off + i] = v_new;
-    vw[off + i] = right;
+    const Real f_ext = field.external_scale * field.force_external[at];
+    const Real r = m * acc - (f_ext - field.force_internal[at]);
+    (turn ? state.reaction_moment : state.reaction)(i, c) = r;
+    if (field.acceleration) field.acceleration[at] = acc;
+    field.velocity_half[at] = v_new;
+    field.velocity[at] = right;
     const Real f_now = f_ext + r;
-    work += 0.5 * (previous_force(i, d.component) + f_now) * dt_prev * v_old;
-    previous_force(i, d.component) = f_now;
+    Real& f_before = (turn ? previous_moment : previous_force)(i, c);
+    work += 0.5 * (f_before + f_now) * dt_prev * v_old;
+    f_before = f_now;
   }
   for (std::size_t k = 0; k < free_loads.size(); ++k) {
     const Index i = free_loads[k].node;
@@ -279,26 +498,42 @@ void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_
     work += 0.5 * (previous_force(i, c) + f_now) * dt_prev * v_old_loaded[k];
     previous_force(i, c) = f_now;
   }
-  Real ke = 0.0;
-  for (Index chunk = 0; chunk < n_chunks; ++chunk) ke += chunk_sums[chunk];
   state.energies.kinetic = ke + ke_fix;
   state.energies.external_work += work;
   force_internal.setZero();
+  if (shell) moment_internal.setZero();
 }
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
   ScopedTimer timer(timers, Phase::Output);
-  if (hex && (what.stress || what.volume)) {
+  const auto n_elements = static_cast<std::size_t>(model.element_count());
+  if (what.stress || what.volume || what.thickness) {
     // Element output arrays exist only in runs that write element output (P2).
-    state.stress.resize(static_cast<std::size_t>(model.element_count()) * 6, 0.0);
-    state.volume.resize(model.element_count(), 0.0);
-    hex->gather_output(state.stress, state.volume);
+    state.stress.resize(n_elements * 6, 0.0);
+    state.volume.resize(n_elements, 0.0);
+    if (hex) hex->gather_output(state.stress, state.volume);
+    if (shell) {
+      const Real nan = std::numeric_limits<Real>::quiet_NaN();
+      state.stress_bottom.resize(n_elements * 6, nan);
+      state.stress_top.resize(n_elements * 6, nan);
+      state.thickness.resize(n_elements, nan);
+      shell->gather_output(state.position, state.stress, state.stress_bottom, state.stress_top,
+                           state.thickness);
+    }
   }
+  sync_rotation();
   sink.write_frame(model, state, what);
+}
+
+void ExplicitSolver::Impl::sync_rotation() {
+  if (!shell || rotation_synced) return;
+  rotations.rotation_vectors(state.rotation);
+  rotation_synced = true;
 }
 
 void ExplicitSolver::Impl::write_history() {
   ScopedTimer timer(timers, Phase::Output);
+  sync_rotation();
   schedule.history_row(state, history_row);
   sink.append_history(state.time, history_row);
 }
@@ -315,7 +550,7 @@ void ExplicitSolver::Impl::write_status() {
   sink.status(line);
 }
 
-void ExplicitSolver::Impl::check_health(const elements::HexStepTotals& totals) {
+void ExplicitSolver::Impl::check_health(const ElementTotals& totals) {
   if (totals.failed_element != NO_INDEX) {
     const ExternalId id = model.element_ids[totals.failed_element];
     throw SolverError("NaN/instability at increment " + std::to_string(state.increment) +
@@ -350,7 +585,7 @@ void ExplicitSolver::Impl::run_step(int step) {
   begin_step(step);
   const Real period = model.steps[step].time_period;
   const Real step_start = state.time;
-  elements::HexStepTotals totals;
+  ElementTotals totals;
 
   if (!started) {
     // t = 0: forces on the initial geometry, first increment, half-step velocity.
@@ -378,6 +613,10 @@ void ExplicitSolver::Impl::run_step(int step) {
     {
       ScopedTimer timer(timers, Phase::Integration);
       state.position += dt_half * state.velocity_half;
+      if (shell) {
+        rotations.advance(state.angular_velocity_half, dt_half);
+        rotation_synced = false;
+      }
     }
     const Real dt_prev = dt_half;
     state.time += dt_prev;
@@ -387,7 +626,7 @@ void ExplicitSolver::Impl::run_step(int step) {
     ++state.increment;
     state.dt = dt_prev;
 
-    totals = elements::HexStepTotals{};
+    totals = ElementTotals{};
     compute_forces(dt_prev, totals);
     state.energies.strain += totals.strain_energy_increment;
     state.energies.artificial += totals.hourglass_energy_increment;
@@ -401,9 +640,7 @@ void ExplicitSolver::Impl::run_step(int step) {
     check_health(totals);
 
     const FrameRequest frame = schedule.field_due(state.step_time, last);
-    if (frame.displacement || frame.velocity || frame.acceleration || frame.reaction ||
-        frame.stress || frame.volume)
-      write_frame(frame);
+    if (frame.any()) write_frame(frame);
     if (schedule.has_history() && schedule.history_due(state.step_time, last)) write_history();
     if (state.step_time >= next_status || last) {
       write_status();
@@ -419,7 +656,8 @@ RunSummary ExplicitSolver::Impl::summary() const {
   RunSummary s;
   s.increments = state.increment;
   s.final_time = state.time;
-  const double cycles = static_cast<double>(hex ? hex->size() : 0) * state.increment;
+  const double elements = (hex ? hex->size() : 0) + (shell ? shell->size() : 0);
+  const double cycles = elements * state.increment;
   s.element_cycles_per_second = loop_seconds > 0.0 ? cycles / loop_seconds : 0.0;
   s.timers = timers;
   s.energies = state.energies;
@@ -456,9 +694,10 @@ RunSummary ExplicitSolver::check() {
   Impl& s = *m_impl;
   if (!s.model.steps.empty()) {
     s.begin_step(0);
-    elements::HexStepTotals totals;
+    ElementTotals totals;
     s.compute_forces(0.0, totals);
     s.force_internal.setZero();
+    if (s.shell) s.moment_internal.setZero();
     s.dt_half = s.next_increment(totals, s.model.steps[0].time_period, 0);
     if (totals.critical_element != NO_INDEX)
       s.critical_id = s.model.element_ids[totals.critical_element];

@@ -32,6 +32,10 @@ Index find_by_name(const Items& items, const std::string& name) {
 }
 }  // namespace
 
+bool Model::has_shells() const {
+  return std::any_of(element_types.begin(), element_types.end(), is_shell);
+}
+
 void Model::add_element_source(const std::string& file, int line) {
   // Elements come in long runs from one file: compare with the last file first.
   std::size_t f = element_file.empty() ? 0 : element_file.back();

@@ -17,13 +17,21 @@ namespace xpl {
 /// Element formulations known to the solver.
 enum class ElementType : std::uint8_t {
   C3D8R,  ///< 8-node hex, one-point integration, hourglass control
+  S4R,    ///< 4-node shell, one in-plane point, hourglass control (S4 is read as S4R)
 };
+
+/// Whether elements of a type carry rotational degrees of freedom at their nodes.
+constexpr bool is_shell(ElementType type) {
+  return type == ElementType::S4R;
+}
 
 /// Number of nodes of an element type.
 constexpr int nodes_per_element(ElementType type) {
   switch (type) {
     case ElementType::C3D8R:
       return 8;
+    case ElementType::S4R:
+      return 4;
   }
   return 0;
 }
@@ -63,6 +71,21 @@ struct SolidSection {
   SourceLocation where;
 };
 
+/// `*SHELL SECTION, ELSET=, MATERIAL=[, OFFSET=][, CONTROLS=]` with the data line
+/// `thickness[, integration points]` (Simpson's rule through the thickness).
+struct ShellSection {
+  Index element_set = NO_INDEX;  ///< into Model::element_sets
+  Index material = NO_INDEX;     ///< into Model::materials
+  Index controls = NO_INDEX;     ///< into Model::section_controls, NO_INDEX = defaults
+  Real thickness = 0.0;          ///< initial shell thickness, m (> 0)
+  int integration_points = 5;    ///< through the thickness, odd, >= 1
+  /// Position of the reference surface (the nodes) measured from the mid-surface, as a
+  /// fraction of the thickness along the shell normal: OFFSET=SPOS is 0.5, SNEG is -0.5,
+  /// MIDSURFACE (default) is 0.
+  Real offset = 0.0;
+  SourceLocation where;
+};
+
 /// A named set of nodes or elements (internal indices, sorted, unique).
 struct NamedSet {
   std::string name;  ///< upper-case name
@@ -70,8 +93,18 @@ struct NamedSet {
   SourceLocation where;
 };
 
-/// One face of a solid element: C3D8R faces S1..S6 are stored as 0..5 (Abaqus numbering:
-/// S1 = nodes 1-2-3-4, S2 = 5-8-7-6, S3 = 1-5-6-2, S4 = 2-6-7-3, S5 = 3-7-8-4, S6 = 4-8-5-1).
+/// Corner nodes (0-based, element node order) of the C3D8R faces S1..S6. The right-hand
+/// normal of each corner cycle points into the element (Abaqus' face numbering).
+inline constexpr int HEX_FACE_NODES[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1},
+                                             {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}};
+
+/// Faces of an S4R element: SNEG (the side opposite the normal n = (x3−x1)×(x4−x2)) and SPOS.
+inline constexpr std::uint8_t SHELL_FACE_NEG = 0;
+inline constexpr std::uint8_t SHELL_FACE_POS = 1;
+
+/// One face of an element: C3D8R faces S1..S6 are stored as 0..5 (Abaqus numbering:
+/// S1 = nodes 1-2-3-4, S2 = 5-8-7-6, S3 = 1-5-6-2, S4 = 2-6-7-3, S5 = 3-7-8-4, S6 = 4-8-5-1);
+/// S4R faces are SHELL_FACE_NEG (SNEG) and SHELL_FACE_POS (SPOS).
 struct ElementFace {
   Index element = NO_INDEX;
   std::uint8_t face = 0;
@@ -103,8 +136,8 @@ struct Amplitude {
 enum class BoundaryType { Displacement, Velocity };
 
 /// One prescribed degree-of-freedom range on one node (sets are expanded by io).
-/// DOFs use Abaqus numbering 1..6; C3D8R nodes only have 1..3 (4..6 are accepted and ignored
-/// until shells exist).
+/// DOFs use Abaqus numbering 1..6; 4..6 act on the rotations of shell nodes and are ignored
+/// (with a .msg note) on nodes that have no rotational DOFs.
 struct BoundaryCondition {
   Index node = NO_INDEX;
   int first_dof = 1;
@@ -124,6 +157,16 @@ struct ConcentratedLoad {
   SourceLocation where;
 };
 
+/// A pressure on one element face (`*DLOAD` P / Pn, `*DSLOAD` P on an element-based
+/// surface), following the current geometry. Positive pressure pushes against the face's
+/// outward normal: into a solid; for a shell, `*DLOAD P` and SPOS push along −n, SNEG along +n.
+struct PressureLoad {
+  ElementFace face;
+  Real value = 0.0;  ///< Pa, times the amplitude
+  Index amplitude = NO_INDEX;
+  SourceLocation where;
+};
+
 /// `*OUTPUT, FIELD|HISTORY` with the `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*ENERGY OUTPUT`
 /// requests that follow it.
 struct OutputRequest {
@@ -133,10 +176,11 @@ struct OutputRequest {
   /// history NUMBER INTERVAL=200 (as Abaqus/Explicit).
   int number_interval = 0;
   Real time_interval = 0.0;
-  /// Node variables, upper case: field U V A RF; history also components U1..RF3.
+  /// Node variables, upper case: field U V A RF UR VR RM; history also components U1..RF3,
+  /// UR1..RM3. As in Abaqus, U/V/RF on shell models also write UR/VR/RM.
   std::vector<std::string> node_variables;
   Index node_set = NO_INDEX;  ///< NO_INDEX: all nodes (field) / none (history)
-  /// Element variables, upper case: S, EVOL, ...
+  /// Element variables, upper case: S, EVOL, MISES, STH (shell thickness), ...
   std::vector<std::string> element_variables;
   Index element_set = NO_INDEX;
   /// Whole-model energies (history): ALLKE ALLSE ALLAE ALLIE ALLVD ALLWK ETOTAL; `energy`
@@ -163,13 +207,24 @@ struct Step {
   bool boundaries_reset = false;
   std::vector<ConcentratedLoad> loads;  ///< same propagation rule as boundaries
   bool loads_reset = false;
+  /// Pressures of `*DLOAD`/`*DSLOAD`, same propagation rule (a later entry for the same face
+  /// replaces an earlier one; OP=NEW on either keyword clears all earlier pressures).
+  std::vector<PressureLoad> pressures;
+  bool pressures_reset = false;
   std::vector<OutputRequest> outputs;
+};
+
+/// Something the deck reader wants the user to see in the .msg file (not an error).
+struct DeckMessage {
+  bool warning = false;  ///< false: a note
+  std::string text;      ///< starts with `file:LINE: *KEYWORD:`
 };
 
 /// The whole analysis as read from a deck.
 struct Model {
   std::string heading;
-  std::string job_name;  ///< deck stem
+  std::vector<DeckMessage> deck_messages;  ///< written to .msg by the solver at the start
+  std::string job_name;                    ///< deck stem
 
   // --- nodes -------------------------------------------------------------------------------
   std::vector<ExternalId> node_ids;  ///< deck id of each node (n_nodes)
@@ -180,7 +235,9 @@ struct Model {
   std::vector<ElementType> element_types;  ///< (n_elements)
   std::vector<Index> element_offsets{0};   ///< (n_elements + 1) into element_nodes
   std::vector<Index> element_nodes;        ///< node indices, Abaqus node order
-  std::vector<Index> element_section;      ///< into solid_sections, NO_INDEX if none
+  /// Section of each element: into solid_sections for solids, into shell_sections for
+  /// shells (the element type says which), NO_INDEX if none.
+  std::vector<Index> element_section;
   /// Deck line of each element, compact (6 bytes per element): file index and line.
   std::vector<std::string> source_files;
   std::vector<std::uint16_t> element_file;
@@ -190,6 +247,7 @@ struct Model {
   std::vector<Material> materials;
   std::vector<SectionControls> section_controls;
   std::vector<SolidSection> solid_sections;
+  std::vector<ShellSection> shell_sections;
 
   // --- sets, surfaces, amplitudes ------------------------------------------------------------
   std::vector<NamedSet> node_sets;
@@ -200,6 +258,10 @@ struct Model {
   // --- initial conditions and history --------------------------------------------------------
   NodalVectors initial_velocity;  ///< (n_nodes × 3), zero unless given, m/s
   std::vector<Step> steps;
+
+  /// Whether any element is a shell (then nodes carry rotations; P2: otherwise nothing
+  /// rotational is allocated or computed).
+  bool has_shells() const;
 
   Index node_count() const { return static_cast<Index>(node_ids.size()); }
   Index element_count() const { return static_cast<Index>(element_ids.size()); }

@@ -45,6 +45,7 @@ void merge(FrameRequest& into, const FrameRequest& what) {
   into.reaction |= what.reaction;
   into.stress |= what.stress;
   into.volume |= what.volume;
+  into.thickness |= what.thickness;
 }
 
 bool has(const std::vector<std::string>& names, const std::string& name) {
@@ -60,17 +61,21 @@ void OutputSchedule::begin_step(const Model& model, int step) {
   m_history.clear();
   m_series.clear();
   m_columns.clear();
+  const bool shells = model.has_shells();
   for (const OutputRequest& r : s.outputs) {
     if (r.kind == OutputRequest::Kind::Field) {
       FieldRequest f;
       f.when.interval = interval_of(r, m_period, 20);
       f.when.next = f.when.interval;
-      f.what.displacement = has(r.node_variables, "U");
-      f.what.velocity = has(r.node_variables, "V");
+      // Translations and rotations are written together (as Abaqus does with U and UR).
+      f.what.displacement = has(r.node_variables, "U") || has(r.node_variables, "UR");
+      f.what.velocity = has(r.node_variables, "V") || has(r.node_variables, "VR");
       f.what.acceleration = has(r.node_variables, "A");
-      f.what.reaction = has(r.node_variables, "RF");
+      f.what.reaction = has(r.node_variables, "RF") || has(r.node_variables, "RM");
       f.what.stress = has(r.element_variables, "S") || has(r.element_variables, "MISES");
       f.what.volume = has(r.element_variables, "EVOL");
+      // P2: a model without shells has no thickness to compute or write.
+      f.what.thickness = shells && has(r.element_variables, "STH");
       m_field.push_back(f);
       continue;
     }
@@ -91,10 +96,7 @@ void OutputSchedule::begin_step(const Model& model, int step) {
     for (const std::string& var : r.node_variables) {
       // "U" means U1 U2 U3; "U2" one component.
       const std::string base = var.substr(0, var.find_first_of("123"));
-      Quantity q = Quantity::U;
-      if (base == "V") q = Quantity::V;
-      if (base == "A") q = Quantity::A;
-      if (base == "RF") q = Quantity::RF;
+      const Quantity q = node_quantity(base, shells);
       for (int c = 0; c < 3; ++c) {
         const std::string name = base + std::to_string(c + 1);
         if (var != base && var != name) continue;
@@ -108,6 +110,17 @@ void OutputSchedule::begin_step(const Model& model, int step) {
       }
     }
   }
+}
+
+OutputSchedule::Quantity OutputSchedule::node_quantity(const std::string& base, bool shells) {
+  if (base == "V") return Quantity::V;
+  if (base == "A") return Quantity::A;
+  if (base == "RF") return Quantity::RF;
+  // Without shells the rotations are not allocated: their history columns hold zeros.
+  if (base == "UR") return shells ? Quantity::UR : Quantity::Zero;
+  if (base == "VR") return shells ? Quantity::VR : Quantity::Zero;
+  if (base == "RM") return shells ? Quantity::RM : Quantity::Zero;
+  return Quantity::U;
 }
 
 bool OutputSchedule::fire(Timed& t, Real step_time, bool last, Real period) {
@@ -154,6 +167,18 @@ void OutputSchedule::history_row(const State& state, std::vector<Real>& row) con
         break;
       case Quantity::RF:
         row[i] = state.reaction(c.node, c.component);
+        break;
+      case Quantity::UR:
+        row[i] = state.rotation(c.node, c.component);
+        break;
+      case Quantity::VR:
+        row[i] = state.angular_velocity(c.node, c.component);
+        break;
+      case Quantity::RM:
+        row[i] = state.reaction_moment(c.node, c.component);
+        break;
+      case Quantity::Zero:
+        row[i] = 0.0;
         break;
       case Quantity::Energy:
         row[i] = energy_value(state.energies, c.component);

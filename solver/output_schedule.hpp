@@ -17,6 +17,10 @@ namespace xpl {
 class OutputSchedule {
  public:
   /// Prepares the requests of `step` (step time starts at 0).
+  /// Field UR/VR/RM request U/V/RF (they are written together; FrameRequest); STH requests
+  /// the thickness on shell models and nothing otherwise. History UR1..RM3 read the
+  /// rotational state on shell models; on a model without shells their columns are declared
+  /// as usual and hold zeros (nodes have no rotational DOFs, so their rotation is zero).
   void begin_step(const Model& model, int step);
 
   /// Whether any field/history output exists in the step (P2: nothing to do otherwise).
@@ -45,13 +49,16 @@ class OutputSchedule {
     Timed when;
     FrameRequest what;
   };
-  enum class Quantity { U, V, A, RF, Energy };
+  /// What a history column reads; Zero: a rotational variable on a model without shells.
+  enum class Quantity { U, V, A, RF, UR, VR, RM, Zero, Energy };
   struct Column {
     Quantity quantity = Quantity::U;
     int component = 0;  ///< 0..2, or the energy index
     Index node = NO_INDEX;
   };
   static bool fire(Timed& t, Real step_time, bool last, Real period);
+  /// The quantity of a node variable without its component ("U", "UR", ...).
+  static Quantity node_quantity(const std::string& base, bool shells);
 
   Real m_period = 0.0;
   std::vector<FieldRequest> m_field;

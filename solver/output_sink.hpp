@@ -14,13 +14,20 @@
 namespace xpl {
 
 /// What a field frame contains.
+/// On models with shells, U/V/RF also write UR/VR/RM (as Abaqus does) and S also writes the
+/// shell section stresses S_SNEG and S_SPOS.
 struct FrameRequest {
-  bool displacement = false;  ///< U
-  bool velocity = false;      ///< V
+  bool displacement = false;  ///< U (+ UR)
+  bool velocity = false;      ///< V (+ VR)
   bool acceleration = false;  ///< A
-  bool reaction = false;      ///< RF
+  bool reaction = false;      ///< RF (+ RM)
   bool stress = false;        ///< S (also writes the von Mises MISES)
   bool volume = false;        ///< EVOL
+  bool thickness = false;     ///< STH (shells)
+  /// Whether anything at all is requested.
+  bool any() const {
+    return displacement || velocity || acceleration || reaction || stress || volume || thickness;
+  }
 };
 
 /// One column group of history output: `path` names an HDF5 dataset below /history

@@ -30,9 +30,25 @@ struct State {
   NodalVectors reaction;       ///< reaction forces at prescribed DOFs (n_nodes × 3), N
   std::vector<Real> mass;      ///< lumped nodal mass (n_nodes), kg
 
+  // Rotational DOFs: allocated (n_nodes × 3) only when the model has shells, else 0 rows.
+  // Nodes that belong to no shell keep zeros.
+  NodalVectors rotation;               ///< UR, rotation vector of each node (finite), rad
+  NodalVectors angular_velocity;       ///< VR at whole steps, rad/s
+  NodalVectors angular_velocity_half;  ///< ω_{n+1/2}, rad/s
+  NodalVectors reaction_moment;        ///< RM at prescribed rotational DOFs, N·m
+  std::vector<Real> rotary_inertia;    ///< lumped, scaled (see the shell element), kg·m^2
+
   /// Cauchy stress per element, filled before each field frame (n_elements × 6, row-major,
-  /// Abaqus order S11 S22 S33 S12 S13 S23), Pa.
+  /// Abaqus order S11 S22 S33 S12 S13 S23), Pa. Solids: global axes. Shells: the middle
+  /// section point, in the shell's local axes (Abaqus default: local 1 = projection of the
+  /// global x axis on the shell, local 2 = n × 1), S33 = 0, S13/S23 = transverse shear.
   std::vector<Real> stress;
+  /// Shell section stresses at the bottom (SNEG) and top (SPOS) section points, same layout
+  /// as `stress`; rows of non-shell elements are NaN. Empty unless the model has shells.
+  std::vector<Real> stress_bottom, stress_top;
+  /// Current shell thickness STH (n_elements), m; NaN for non-shell elements. Empty unless
+  /// the model has shells.
+  std::vector<Real> thickness;
   /// Current element volume, filled with `stress` (n_elements), m^3.
   std::vector<Real> volume;
 

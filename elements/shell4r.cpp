@@ -1,0 +1,390 @@
+#include "elements/shell4r.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "elements/element_coloring.hpp"
+#include "elements/quad_shell_geometry.hpp"
+
+namespace xpl::elements {
+
+using simd::Vec;
+
+namespace {
+
+/// Simpson's rule on ζ ∈ [−1, 1] with `points` (odd) points, weights normalised to Σ = 1;
+/// one point is the mid-surface alone (membrane only).
+void simpson(int points, Real* zeta, Real* weight) {
+  if (points == 1) {
+    zeta[0] = 0.0;
+    weight[0] = 1.0;
+    return;
+  }
+  const Real h = 2.0 / (points - 1);
+  for (int k = 0; k < points; ++k) {
+    zeta[k] = -1.0 + k * h;
+    const Real w = (k == 0 || k == points - 1) ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+    weight[k] = 0.5 * w * h / 3.0;
+  }
+}
+
+template <class T>
+void gather_corners(const NodalVectors& position, const Index* nodes, V3<T> p[4]) {
+  for (int a = 0; a < 4; ++a)
+    p[a] = {position(nodes[a], 0), position(nodes[a], 1), position(nodes[a], 2)};
+}
+
+/// Node signs of the gradient operator: B_I = sign_I · (b_a for I = 0, 2; b_b for I = 1, 3).
+constexpr Real B_SIGN[4] = {1.0, 1.0, -1.0, -1.0};
+/// Hourglass pattern Γ.
+constexpr Real GAMMA[4] = {1.0, -1.0, 1.0, -1.0};
+
+}  // namespace
+
+Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
+                           const std::vector<ShellProperties>& properties, Index node_count)
+    : m_element_index(std::move(element_index)) {
+  const Index n = size();
+  for (const ShellProperties& p : properties)
+    m_points = std::max(m_points, std::min(p.integration_points, SHELL_MAX_POINTS));
+  BatchLayout layout = make_batches(connectivity, 4, node_count, W);
+  m_color_batches = std::move(layout.color_batches);
+  m_lane_owner = std::move(layout.lane_owner);
+  const auto n_batches = static_cast<std::size_t>(m_color_batches.back());
+  m_conn.assign(n_batches * 4 * W, 0);
+  m_const.assign(n_batches * N_CONST * W, 0.0);
+  m_zeta.assign(n_batches * m_points * W, 0.0);
+  m_weight.assign(n_batches * m_points * W, 0.0);
+  m_thickness.assign(n_batches * W, 0.0);
+  m_stress.assign(n_batches * m_points * 3 * W, 0.0);
+  m_shear.assign(n_batches * 2 * W, 0.0);
+  m_hourglass.assign(n_batches * N_HOURGLASS * W, 0.0);
+  m_slot.assign(n, NO_INDEX);
+  m_batch_energy.assign(n_batches * 2, 0.0);
+  m_batch_dt.assign(n_batches, 0.0);
+  m_batch_critical.assign(n_batches, NO_INDEX);
+  m_batch_failed.assign(n_batches, NO_INDEX);
+
+  for (std::size_t b = 0; b < n_batches; ++b)
+    for (int l = 0; l < W; ++l) {
+      const Index owner = m_lane_owner[b * W + l];
+      // Padding lanes compute a copy of lane 0 and are masked out of every result.
+      const Index e = owner != NO_INDEX ? owner : m_lane_owner[b * W];
+      if (owner != NO_INDEX) m_slot[owner] = static_cast<Index>(b * W + l);
+      for (int a = 0; a < 4; ++a) m_conn[(b * 4 + a) * W + l] = connectivity[e * 4 + a];
+      const ShellProperties& p = properties[e];
+      const Real nu = p.poisson;
+      const Real q11 = p.young / (1.0 - nu * nu);
+      const Real g = p.young / (2.0 * (1.0 + nu));
+      Real* c = &m_const[b * N_CONST * W + l];
+      c[Q11 * W] = q11;
+      c[Q12 * W] = nu * q11;
+      c[SHEAR * W] = g;
+      c[SHEAR_T * W] = SHELL_SHEAR_FACTOR * g;
+      c[NU_RATIO * W] = nu / (1.0 - nu);
+      c[DT_SPEED * W] = std::sqrt(q11 / p.density) * std::sqrt(1.0 + std::max(nu, 0.0));
+      c[HG_MODULUS * W] = SHELL_HOURGLASS_STIFFNESS * p.hourglass_scale * p.young;
+      c[OFFSET * W] = p.offset;
+      c[DENSITY * W] = p.density;
+      c[THICKNESS0 * W] = p.thickness;
+      m_thickness[b * W + l] = p.thickness;
+      Real zeta[SHELL_MAX_POINTS], weight[SHELL_MAX_POINTS];
+      const int points = std::min(p.integration_points, SHELL_MAX_POINTS);
+      simpson(points, zeta, weight);
+      for (int k = 0; k < points; ++k) {
+        m_zeta[(b * m_points + k) * W + l] = zeta[k];
+        m_weight[(b * m_points + k) * W + l] = weight[k];
+      }
+    }
+}
+
+void Shell4rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass,
+                                   std::vector<Real>& rotary_inertia) const {
+  for (Index i = 0; i < size(); ++i) {
+    const std::size_t s = slot_of(i), b = s / W, l = s % W;
+    Index nodes[4];
+    for (int a = 0; a < 4; ++a) nodes[a] = m_conn[(b * 4 + a) * W + l];
+    V3<Real> p[4];
+    gather_corners(reference, nodes, p);
+    const Real area = quad_frame(p).area;
+    const Real t = m_const[(b * N_CONST + THICKNESS0) * W + l];
+    const Real share = m_const[(b * N_CONST + DENSITY) * W + l] * t * area / 4.0;
+    const Real inertia = share * std::max(t * t / 12.0, area / 8.0);
+    for (Index node : nodes) {
+      mass[node] += share;
+      rotary_inertia[node] += inertia;
+    }
+  }
+}
+
+std::vector<Real> Shell4rBlock::node_thickness(const NodalVectors& reference,
+                                               Index node_count) const {
+  std::vector<Real> weighted(node_count, 0.0), area_sum(node_count, 0.0);
+  for (Index i = 0; i < size(); ++i) {
+    const std::size_t s = slot_of(i), b = s / W, l = s % W;
+    Index nodes[4];
+    for (int a = 0; a < 4; ++a) nodes[a] = m_conn[(b * 4 + a) * W + l];
+    V3<Real> p[4];
+    gather_corners(reference, nodes, p);
+    const Real area = quad_frame(p).area;
+    const Real t = m_const[(b * N_CONST + THICKNESS0) * W + l];
+    for (Index node : nodes) {
+      weighted[node] += area * t;
+      area_sum[node] += area;
+    }
+  }
+  for (Index i = 0; i < node_count; ++i)
+    if (area_sum[i] > 0.0) weighted[i] /= area_sum[i];
+  return weighted;
+}
+
+Real Shell4rBlock::warp_angle(const NodalVectors& position, Index i) const {
+  const std::size_t s = slot_of(i), b = s / W, l = s % W;
+  Index nodes[4];
+  for (int a = 0; a < 4; ++a) nodes[a] = m_conn[(b * 4 + a) * W + l];
+  V3<Real> p[4];
+  gather_corners(position, nodes, p);
+  return quad_warp_angle(p);
+}
+
+void Shell4rBlock::internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
+                                   const NodalVectors& angular_velocity_half, Real dt,
+                                   NodalVectors& force, NodalVectors& moment,
+                                   ShellStepTotals& totals) {
+  const Index nn = static_cast<Index>(position.rows());
+  const Real* const p[3] = {position.data(), position.data() + nn, position.data() + 2 * nn};
+  const Real* const v[3] = {velocity_half.data(), velocity_half.data() + nn,
+                            velocity_half.data() + 2 * nn};
+  const Real* const w[3] = {angular_velocity_half.data(), angular_velocity_half.data() + nn,
+                            angular_velocity_half.data() + 2 * nn};
+  Real* const f[3] = {force.data(), force.data() + nn, force.data() + 2 * nn};
+  Real* const m[3] = {moment.data(), moment.data() + nn, moment.data() + 2 * nn};
+  for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
+    const Index first = m_color_batches[c], last = m_color_batches[c + 1];
+#pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
+    for (Index b = first; b < last; ++b) compute_batch(b, p, v, w, dt, f, m);
+  }
+  const Index n_batches = m_color_batches.back();
+  for (Index b = 0; b < n_batches; ++b) {
+    totals.strain_energy_increment += m_batch_energy[b * 2 + 0];
+    totals.hourglass_energy_increment += m_batch_energy[b * 2 + 1];
+    const Index crit = m_batch_critical[b];
+    if (m_batch_dt[b] < totals.stable_dt ||
+        (m_batch_dt[b] == totals.stable_dt && crit != NO_INDEX &&
+         (totals.critical_element == NO_INDEX || crit < totals.critical_element))) {
+      totals.stable_dt = m_batch_dt[b];
+      totals.critical_element = crit;
+    }
+    const Index failed = m_batch_failed[b];
+    if (failed != NO_INDEX && (totals.failed_element == NO_INDEX || failed < totals.failed_element))
+      totals.failed_element = failed;
+  }
+}
+
+void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
+                                 const Real* const w[3], Real dt, Real* const f[3],
+                                 Real* const m[3]) {
+  const std::size_t b = static_cast<std::size_t>(batch);
+  const Index* conn = &m_conn[b * 4 * W];
+  const Real* cst = &m_const[b * N_CONST * W];
+  auto constant = [&](Constant k) { return simd::load(cst + k * W); };
+
+  V3<Vec> x[4], vel[4], om[4];
+  for (int a = 0; a < 4; ++a) {
+    const Index* idx = conn + a * W;
+    x[a] = {simd::gather(p[0], idx), simd::gather(p[1], idx), simd::gather(p[2], idx)};
+    vel[a] = {simd::gather(v[0], idx), simd::gather(v[1], idx), simd::gather(v[2], idx)};
+    om[a] = {simd::gather(w[0], idx), simd::gather(w[1], idx), simd::gather(w[2], idx)};
+  }
+
+  // Rates on the mid-increment geometry: exactly strain free for rigid rotations.
+  QuadFrame<Vec> fm;
+  {
+    V3<Vec> xm[4];
+    for (int a = 0; a < 4; ++a) xm[a] = x[a] - (0.5 * dt) * vel[a];
+    fm = quad_frame(xm);
+  }
+  QuadCombos<Vec> vx, vy, vz, tx, ty, tz;
+  local_combos(fm, vel, vx, vy, vz);
+  local_combos(fm, om, tx, ty, tz);
+  const V3<Vec> om_sum = om[0] + om[1] + om[2] + om[3];
+  const Vec tbx = 0.25 * dot(fm.e1, om_sum), tby = 0.25 * dot(fm.e2, om_sum);
+  // Velocities of the projections of the (warped) nodes onto the element plane.
+  const Vec zh = fm.warp;
+  const QuadCombos<Vec> ux = {vx.d02 - zh * ty.d02, vx.d13 + zh * ty.d13, vx.hg - 4.0 * zh * tby};
+  const QuadCombos<Vec> uy = {vy.d02 + zh * tx.d02, vy.d13 - zh * tx.d13, vy.hg + 4.0 * zh * tbx};
+
+  const Vec dxx = grad_x(fm, ux), dyy = grad_y(fm, uy);
+  const Vec gxy = grad_x(fm, uy) + grad_y(fm, ux);
+  const Vec kxx = grad_x(fm, ty), kyy = -grad_y(fm, tx);
+  const Vec kxy = grad_y(fm, ty) - grad_x(fm, tx);
+  const Vec gxz = grad_x(fm, vz) + tby, gyz = grad_y(fm, vz) - tbx;
+
+  // Through-thickness integration (z from the reference surface, which is OFFSET·t above
+  // the mid-surface), plane stress.
+  const Vec q11 = constant(Q11), q12 = constant(Q12), g = constant(SHEAR);
+  const Vec t = simd::load(&m_thickness[b * W]);
+  const Vec offset = constant(OFFSET);
+  Vec nxx = simd::splat(0.0), nyy = nxx, nxy = nxx, mxx = nxx, myy = nxx, mxy = nxx;
+  Vec work = simd::splat(0.0);  // strain energy increment per unit area
+  for (int k = 0; k < m_points; ++k) {
+    const Vec zk = t * (0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset);
+    const Vec tw = t * simd::load(&m_weight[(b * m_points + k) * W]);
+    const Vec exx = dt * (dxx + zk * kxx), eyy = dt * (dyy + zk * kyy);
+    const Vec exy = dt * (gxy + zk * kxy);
+    Real* s = &m_stress[(b * m_points + k) * 3 * W];
+    const Vec sxx = simd::load(s), syy = simd::load(s + W), sxy = simd::load(s + 2 * W);
+    const Vec sxx_n = sxx + q11 * exx + q12 * eyy;
+    const Vec syy_n = syy + q12 * exx + q11 * eyy;
+    const Vec sxy_n = sxy + g * exy;
+    simd::store(s, sxx_n);
+    simd::store(s + W, syy_n);
+    simd::store(s + 2 * W, sxy_n);
+    nxx += tw * sxx_n;
+    nyy += tw * syy_n;
+    nxy += tw * sxy_n;
+    mxx += (tw * zk) * sxx_n;
+    myy += (tw * zk) * syy_n;
+    mxy += (tw * zk) * sxy_n;
+    work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
+  }
+  Real* shear = &m_shear[b * 2 * W];
+  const Vec kg = constant(SHEAR_T);
+  const Vec txz = simd::load(shear), tyz = simd::load(shear + W);
+  const Vec txz_n = txz + (kg * dt) * gxz, tyz_n = tyz + (kg * dt) * gyz;
+  simd::store(shear, txz_n);
+  simd::store(shear + W, tyz_n);
+  work += (0.5 * dt) * t * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
+  const Vec qx = t * txz_n, qy = t * tyz_n;
+  // Plane stress: the thickness follows the mid-surface in-plane dilatation.
+  const Vec z_mid = -offset * t;
+  simd::store(&m_thickness[b * W],
+              t * (1.0 - constant(NU_RATIO) * dt * (dxx + dyy + z_mid * (kxx + kyy))));
+
+  // Hourglass resultants (stiffness form, accumulated in the corotational frame).
+  const Vec bb = 2.0 * (fm.b1a * fm.b1a + fm.b1b * fm.b1b + fm.b2a * fm.b2a + fm.b2b * fm.b2b);
+  const Vec hg_e = constant(HG_MODULUS);
+  const Vec bend = hg_e * t * t * t * (1.0 / 12.0);
+  const Vec c_plane = hg_e * t * fm.area * bb * 0.25;
+  const Vec c_rot = bend * fm.area * bb * 0.25;
+  const Vec c_w = bend * bb;
+  const Vec rate[N_HOURGLASS] = {hourglass_rate(fm, ux), hourglass_rate(fm, uy),
+                                 hourglass_rate(fm, vz), hourglass_rate(fm, tx),
+                                 hourglass_rate(fm, ty)};
+  const Vec stiff[N_HOURGLASS] = {c_plane, c_plane, c_w, c_rot, c_rot};
+  Vec hq[N_HOURGLASS];
+  Vec hg_work = simd::splat(0.0);
+  Real* hstore = &m_hourglass[b * N_HOURGLASS * W];
+  for (int h = 0; h < N_HOURGLASS; ++h) {
+    const Vec old = simd::load(hstore + h * W);
+    hq[h] = old + (stiff[h] * dt) * rate[h];
+    simd::store(hstore + h * W, hq[h]);
+    hg_work += (0.5 * dt) * (old + hq[h]) * rate[h];
+  }
+
+  // Forces and moments on x_{n+1}.
+  const QuadFrame<Vec> fe = quad_frame(x);
+  const Vec area = fe.area;
+  const Vec ba[2] = {fe.b1a, fe.b1b}, bc[2] = {fe.b2a, fe.b2b};
+  const Vec gam[4] = {1.0 - fe.sa, -1.0 - fe.sb, 1.0 + fe.sa, -1.0 + fe.sb};
+  V3<Vec> fn[4], mn[4];
+  for (int a = 0; a < 4; ++a) {
+    const Vec b1 = B_SIGN[a] * ba[a % 2], b2 = B_SIGN[a] * bc[a % 2];
+    const Vec fbx = area * (b1 * nxx + b2 * nxy) + gam[a] * hq[0];
+    const Vec fby = area * (b2 * nyy + b1 * nxy) + gam[a] * hq[1];
+    const Vec fz = area * (b1 * qx + b2 * qy) + gam[a] * hq[2];
+    const Vec za = GAMMA[a] * fe.warp;
+    const Vec mx = area * (-b2 * myy - b1 * mxy - 0.25 * qy) + gam[a] * hq[3] + za * fby;
+    const Vec my = area * (b1 * mxx + b2 * mxy + 0.25 * qx) + gam[a] * hq[4] - za * fbx;
+    fn[a] = fbx * fe.e1 + fby * fe.e2 + fz * fe.e3;
+    mn[a] = mx * fe.e1 + my * fe.e2;
+  }
+
+  // Stable increment of the one-point quad: its breathing mode has ω = 2 c √(1+ν) / h on a
+  // square; L = √2 A / (longer diagonal) is h on a square and shorter on skewed elements.
+  const Vec dt_e = (1.41421356237309515 * area / fe.diagonal) / constant(DT_SPEED);
+  const Vec strain_inc = fm.area * work;
+
+  Real e_strain = 0.0, e_hg = 0.0, best_dt = std::numeric_limits<Real>::infinity();
+  Index critical = NO_INDEX, failed = NO_INDEX;
+  for (int l = 0; l < W; ++l) {
+    const Index owner = m_lane_owner[b * W + l];
+    if (owner == NO_INDEX) continue;
+    for (int a = 0; a < 4; ++a) {
+      const Index node = conn[a * W + l];
+      f[0][node] += fn[a].x[l];
+      f[1][node] += fn[a].y[l];
+      f[2][node] += fn[a].z[l];
+      m[0][node] += mn[a].x[l];
+      m[1][node] += mn[a].y[l];
+      m[2][node] += mn[a].z[l];
+    }
+    e_strain += strain_inc[l];
+    e_hg += hg_work[l];
+    const Index model_e = m_element_index[owner];
+    if (!(area[l] > 0.0) || !(fm.area[l] > 0.0) || !std::isfinite(dt_e[l])) {
+      if (failed == NO_INDEX || model_e < failed) failed = model_e;
+    } else if (dt_e[l] < best_dt || (dt_e[l] == best_dt && model_e < critical)) {
+      best_dt = dt_e[l];
+      critical = model_e;
+    }
+  }
+  m_batch_energy[b * 2 + 0] = e_strain;
+  m_batch_energy[b * 2 + 1] = e_hg;
+  m_batch_dt[b] = best_dt;
+  m_batch_critical[b] = critical;
+  m_batch_failed[b] = failed;
+}
+
+ShellSectionOutput Shell4rBlock::section_output(const NodalVectors& position, Index i) const {
+  const std::size_t s = slot_of(i), b = s / W, l = s % W;
+  Index nodes[4];
+  for (int a = 0; a < 4; ++a) nodes[a] = m_conn[(b * 4 + a) * W + l];
+  V3<Real> p[4];
+  gather_corners(position, nodes, p);
+  const QuadFrame<Real> fr = quad_frame(p);
+  // Abaqus default local 1-axis: global x projected on the shell, or global z when x is
+  // within 0.1° of the normal.
+  V3<Real> axis = {1.0, 0.0, 0.0};
+  if (std::abs(fr.e3.x) > std::cos(0.1 * 3.14159265358979323846 / 180.0)) axis = {0.0, 0.0, 1.0};
+  const Real c0 = dot(axis, fr.e1), s0 = dot(axis, fr.e2);
+  const Real len = std::sqrt(c0 * c0 + s0 * s0);
+  const Real c = c0 / len, sn = s0 / len;
+
+  // Points used by this element: those with a weight (unused trailing points have none).
+  int points = 0;
+  while (points < m_points && m_weight[(b * m_points + points) * W + l] > 0.0) ++points;
+  const int pick[3] = {0, (points - 1) / 2, points - 1};
+  ShellSectionOutput out;
+  const Real txz = m_shear[(b * 2) * W + l], tyz = m_shear[(b * 2 + 1) * W + l];
+  for (int q = 0; q < 3; ++q) {
+    const Real* st = &m_stress[(b * m_points + pick[q]) * 3 * W + l];
+    const Real sxx = st[0], syy = st[W], sxy = st[2 * W];
+    std::array<Real, 6>& o = out.stress[q];
+    o[0] = c * c * sxx + 2.0 * c * sn * sxy + sn * sn * syy;
+    o[1] = sn * sn * sxx - 2.0 * c * sn * sxy + c * c * syy;
+    o[2] = 0.0;
+    o[3] = -c * sn * sxx + (c * c - sn * sn) * sxy + c * sn * syy;
+    o[4] = c * txz + sn * tyz;
+    o[5] = -sn * txz + c * tyz;
+  }
+  out.thickness = m_thickness[b * W + l];
+  return out;
+}
+
+void Shell4rBlock::gather_output(const NodalVectors& position, std::vector<Real>& stress,
+                                 std::vector<Real>& bottom, std::vector<Real>& top,
+                                 std::vector<Real>& thickness) const {
+  for (Index i = 0; i < size(); ++i) {
+    const ShellSectionOutput out = section_output(position, i);
+    const std::size_t e = static_cast<std::size_t>(m_element_index[i]);
+    for (int c = 0; c < 6; ++c) {
+      bottom[e * 6 + c] = out.stress[0][c];
+      stress[e * 6 + c] = out.stress[1][c];
+      top[e * 6 + c] = out.stress[2][c];
+    }
+    thickness[e] = out.thickness;
+  }
+}
+
+}  // namespace xpl::elements

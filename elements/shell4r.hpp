@@ -1,0 +1,149 @@
+#pragma once
+/// \file S4R: 4-node Belytschko–Tsay-type shell with one in-plane integration point.
+///
+/// Corotational local frame per element (see quad_shell_geometry.hpp); Mindlin kinematics
+/// with nodal translations and rotations; membrane + bending integrated through the
+/// thickness (Simpson's rule), plane-stress linear elasticity; transverse shear with the
+/// shear correction factor 5/6; stiffness-form hourglass control of the five hourglass
+/// patterns (two in-plane, one transverse, two rotational); warped elements are evaluated
+/// on their projected plane, with each node joined to its projection by a rigid link of
+/// length z_h Γ_I along the normal (velocities projected, forces and moments transferred
+/// back), so rigid rotations of warped elements stay strain and hourglass free.
+///
+/// Rotary inertia is lumped and scaled: each node gets (m_e/4)·max(t²/12, A/8) from each
+/// element, so the rotational and transverse-shear frequencies stay below the membrane
+/// frequency and the stable increment is set by the membrane wave.
+///
+/// Elements are coloured and batched like the C3D8R block: race-free, deterministic.
+
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "common/types.hpp"
+#include "elements/simd.hpp"
+
+namespace xpl::elements {
+
+/// Default hourglass stiffness coefficient of the shell (times the user's scale factor).
+/// In-plane: C = κ E t A (B·B)/4; rotational: κ (E t³/12) A (B·B)/4; transverse:
+/// κ (E t³/12)(B·B). On a square the in-plane value is about 20 % of what full integration
+/// would give to the same pattern.
+inline constexpr Real SHELL_HOURGLASS_STIFFNESS = 0.05;
+/// Transverse shear correction factor.
+inline constexpr Real SHELL_SHEAR_FACTOR = 5.0 / 6.0;
+/// Largest number of through-thickness integration points.
+inline constexpr int SHELL_MAX_POINTS = 15;
+
+/// Material and section constants of one shell element.
+struct ShellProperties {
+  Real density = 0.0;          ///< kg/m^3
+  Real young = 0.0;            ///< Pa
+  Real poisson = 0.0;          ///< -
+  Real thickness = 0.0;        ///< initial thickness, m
+  int integration_points = 5;  ///< through the thickness (Simpson, odd), 1 = membrane only
+  Real offset = 0.0;           ///< reference surface above the mid-surface / thickness
+  Real hourglass_scale = 1.0;  ///< scales SHELL_HOURGLASS_STIFFNESS
+};
+
+/// What one shell internal-force pass reports (sums over the block in a fixed order).
+struct ShellStepTotals {
+  Real strain_energy_increment = 0.0;     ///< ΔALLSE, J
+  Real hourglass_energy_increment = 0.0;  ///< ΔALLAE, J
+  Real stable_dt = std::numeric_limits<Real>::infinity();
+  Index critical_element = NO_INDEX;  ///< model index
+  Index failed_element = NO_INDEX;    ///< first element with collapsed area or NaN
+};
+
+/// Section output of one shell element.
+struct ShellSectionOutput {
+  /// S11 S22 S33 S12 S13 S23 at the bottom, middle and top section points, in the Abaqus
+  /// default local axes (1 = projection of global x, or of global z when x is normal).
+  std::array<std::array<Real, 6>, 3> stress{};
+  Real thickness = 0.0;  ///< current thickness, m
+};
+
+/// A set of S4R elements and their state.
+class Shell4rBlock {
+ public:
+  /// `element_index`: model index per element; `connectivity`: 4 node indices per element;
+  /// `properties`: one per element.
+  Shell4rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
+               const std::vector<ShellProperties>& properties, Index node_count);
+
+  Index size() const { return static_cast<Index>(m_element_index.size()); }
+  int color_count() const { return static_cast<int>(m_color_batches.size()) - 1; }
+  /// Model index of block element i.
+  Index element_index(Index i) const { return m_element_index[i]; }
+
+  /// Adds the lumped translational mass ρ t A/4 and the scaled rotary inertia to the nodes.
+  void add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass,
+                       std::vector<Real>& rotary_inertia) const;
+
+  /// Thickness of each node: the area-weighted mean initial thickness of the shells around
+  /// it (n_nodes; 0 for nodes on no shell), for contact.
+  std::vector<Real> node_thickness(const NodalVectors& reference, Index node_count) const;
+
+  /// Warp angle (degrees) of block element i in the given configuration.
+  Real warp_angle(const NodalVectors& position, Index i) const;
+
+  /// One internal-force evaluation at the end of an increment: positions x_{n+1}, velocities
+  /// v_{n+1/2}, angular velocities ω_{n+1/2} (n_nodes × 3 each), dt = t_{n+1} − t_n. Strain
+  /// increments are taken on the mid-increment geometry, forces on x_{n+1}. Adds forces and
+  /// moments into `force` and `moment` (n_nodes × 3).
+  void internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
+                       const NodalVectors& angular_velocity_half, Real dt, NodalVectors& force,
+                       NodalVectors& moment, ShellStepTotals& totals);
+
+  /// Section output of block element i in the configuration `position`.
+  ShellSectionOutput section_output(const NodalVectors& position, Index i) const;
+
+  /// Writes middle/bottom/top stresses (rows e·6.., Abaqus order) and thickness of every block
+  /// element at its model index into model-sized arrays.
+  void gather_output(const NodalVectors& position, std::vector<Real>& stress,
+                     std::vector<Real>& bottom, std::vector<Real>& top,
+                     std::vector<Real>& thickness) const;
+
+ private:
+  static constexpr int W = simd::W;
+  enum Constant {
+    Q11 = 0,     ///< E / (1 − ν²)
+    Q12,         ///< ν E / (1 − ν²)
+    SHEAR,       ///< G
+    SHEAR_T,     ///< κ_s G (transverse)
+    NU_RATIO,    ///< ν / (1 − ν): thickness strain per unit in-plane dilatation
+    DT_SPEED,    ///< √(E/ρ(1−ν²)) · √(1+ν): the one-point quad's breathing-mode speed
+    HG_MODULUS,  ///< κ E
+    OFFSET,      ///< reference surface above the mid-surface / thickness
+    DENSITY,
+    THICKNESS0,  ///< initial thickness
+    N_CONST
+  };
+  /// Hourglass resultants: in-plane x, y, transverse, rotational x, y.
+  static constexpr int N_HOURGLASS = 5;
+
+  void compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
+                     const Real* const w[3], Real dt, Real* const f[3], Real* const m[3]);
+  std::size_t slot_of(Index i) const { return static_cast<std::size_t>(m_slot[i]); }
+
+  std::vector<Index> m_element_index;
+  int m_points = 1;  ///< integration points of the block (max over elements)
+  // Batched (AoSoA) data, batch b lane l.
+  std::vector<Index> m_conn;           ///< [b][4][W]
+  std::vector<Index> m_lane_owner;     ///< [b][W]
+  std::vector<Real> m_const;           ///< [b][N_CONST][W]
+  std::vector<Real> m_zeta;            ///< [b][m_points][W] point position in [−1, 1]
+  std::vector<Real> m_weight;          ///< [b][m_points][W] weight, Σ = 1 (0: unused point)
+  std::vector<Real> m_thickness;       ///< [b][W] current thickness
+  std::vector<Real> m_stress;          ///< [b][m_points][3][W] σxx σyy σxy, local frame
+  std::vector<Real> m_shear;           ///< [b][2][W] τxz τyz
+  std::vector<Real> m_hourglass;       ///< [b][N_HOURGLASS][W]
+  std::vector<Index> m_slot;           ///< block element -> b*W + l
+  std::vector<Index> m_color_batches;  ///< batches of colour c: [c], [c+1]
+  std::vector<Real> m_batch_energy;    ///< [b][2]
+  std::vector<Real> m_batch_dt;
+  std::vector<Index> m_batch_critical;
+  std::vector<Index> m_batch_failed;
+};
+
+}  // namespace xpl::elements

@@ -1,0 +1,50 @@
+#include "solver/pressure_loads.hpp"
+
+#include <algorithm>
+
+#include <Eigen/Geometry>
+
+namespace xpl {
+
+void PressureLoads::begin_step(const Model& model, int step) {
+  const Step& s = model.steps[step];
+  if (s.pressures_reset) m_active.clear();
+  for (const PressureLoad& p : s.pressures) m_active[{p.face.element, p.face.face}] = p;
+  m_faces.clear();
+  m_nodes.clear();
+  for (const auto& [key, p] : m_active) {
+    const Index e = p.face.element;
+    const Index* en = model.nodes_of(e);
+    Face f;
+    if (is_shell(model.element_types[e])) {
+      for (int a = 0; a < 4; ++a) f.nodes[a] = en[a];
+      // Positive pressure pushes against the face's outward normal: SPOS faces +n, so the
+      // load acts along −n; SNEG faces −n, so it acts along +n.
+      f.sign = p.face.face == SHELL_FACE_POS ? -1.0 : 1.0;
+    } else {
+      for (int a = 0; a < 4; ++a) f.nodes[a] = en[HEX_FACE_NODES[p.face.face][a]];
+      f.sign = 1.0;  // the corner cycle's normal points into the element
+    }
+    f.value = p.value;
+    f.amplitude = p.amplitude;
+    m_faces.push_back(f);
+    m_nodes.insert(m_nodes.end(), f.nodes, f.nodes + 4);
+  }
+  std::sort(m_nodes.begin(), m_nodes.end());
+  m_nodes.erase(std::unique(m_nodes.begin(), m_nodes.end()), m_nodes.end());
+}
+
+void PressureLoads::add_forces(const Model& model, const BoundaryState& amplitudes,
+                               const NodalVectors& position, Real step_time, Real total_time,
+                               NodalVectors& force) const {
+  for (const Face& f : m_faces) {
+    const Real p = f.sign * f.value * amplitudes.factor(model, f.amplitude, step_time, total_time);
+    if (p == 0.0) continue;
+    const Eigen::RowVector3d d13 = position.row(f.nodes[2]) - position.row(f.nodes[0]);
+    const Eigen::RowVector3d d24 = position.row(f.nodes[3]) - position.row(f.nodes[1]);
+    const Eigen::RowVector3d share = (0.125 * p) * d13.cross(d24);
+    for (Index n : f.nodes) force.row(n) += share;
+  }
+}
+
+}  // namespace xpl
