@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <utility>
 
 #include "io/deck_numbers.hpp"
@@ -16,11 +17,31 @@ using Handler = void (*)(DeckBuilder&, const DeckBlock&);
 
 constexpr const char* SUPPORTED_KEYWORDS =
     "*HEADING, *INCLUDE, *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE, *MATERIAL, *DENSITY, "
-    "*ELASTIC, *SOLID SECTION, *SECTION CONTROLS, *AMPLITUDE, *INITIAL CONDITIONS, *BOUNDARY, "
-    "*STEP, *DYNAMIC, *BULK VISCOSITY, *CLOAD, *OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, "
-    "*ENERGY OUTPUT, *END STEP, *PREPRINT";
+    "*ELASTIC, *SOLID SECTION, *SHELL SECTION, *SECTION CONTROLS, *AMPLITUDE, "
+    "*INITIAL CONDITIONS, *BOUNDARY, *STEP, *DYNAMIC, *BULK VISCOSITY, *CLOAD, *DLOAD, *DSLOAD, "
+    "*OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, *ENERGY OUTPUT, *END STEP, *PREPRINT";
 
 }  // namespace
+
+std::string location_text(const SourceLocation& where) {
+  return where.file + ":" + std::to_string(where.line);
+}
+
+std::string_view deck_type_name(ElementType type) {
+  switch (type) {
+    case ElementType::C3D8R:
+      return "C3D8R";
+    case ElementType::S4R:
+      return "S4R";
+  }
+  return "?";
+}
+
+std::string number_text(Real value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 DeckBuilder::DeckBuilder(InputErrors& errors, std::string file_name)
     : m_errors(errors), m_file_name(std::move(file_name)) {
@@ -48,6 +69,8 @@ void DeckBuilder::read_block(const DeckBlock& block) {
       {"DENSITY", Context::Model, &DeckBuilder::read_density},
       {"ELASTIC", Context::Model, &DeckBuilder::read_elastic},
       {"SOLID SECTION", Context::Model, &DeckBuilder::read_solid_section},
+      {"SHELL SECTION", Context::Model, &DeckBuilder::read_shell_section},
+      {"SHELL GENERAL SECTION", Context::Model, &DeckBuilder::read_shell_general_section},
       {"SECTION CONTROLS", Context::Model, &DeckBuilder::read_section_controls},
       {"AMPLITUDE", Context::Model, &DeckBuilder::read_amplitude},
       {"INITIAL CONDITIONS", Context::Model, &DeckBuilder::read_initial_conditions},
@@ -57,6 +80,8 @@ void DeckBuilder::read_block(const DeckBlock& block) {
       {"DYNAMIC", Context::Step, &DeckBuilder::read_dynamic},
       {"BULK VISCOSITY", Context::Step, &DeckBuilder::read_bulk_viscosity},
       {"CLOAD", Context::Step, &DeckBuilder::read_cload},
+      {"DLOAD", Context::Step, &DeckBuilder::read_dload},
+      {"DSLOAD", Context::Step, &DeckBuilder::read_dsload},
       {"OUTPUT", Context::Step, &DeckBuilder::read_output},
       {"NODE OUTPUT", Context::Step, &DeckBuilder::read_node_output},
       {"ELEMENT OUTPUT", Context::Step, &DeckBuilder::read_element_output},

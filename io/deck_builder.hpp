@@ -31,6 +31,15 @@ struct DeckReference {
   std::string keyword;  ///< "*BOUNDARY", for messages
 };
 
+/// `file:LINE`, as messages name a place in the deck.
+std::string location_text(const SourceLocation& where);
+
+/// A real number as messages show it (6 significant digits, e.g. 2.1e+11).
+std::string number_text(Real value);
+
+/// The deck name of an element type ("C3D8R", "S4R"), for messages.
+std::string_view deck_type_name(ElementType type);
+
 /// Builds a Model from keyword blocks; every problem goes into one InputErrors.
 class DeckBuilder {
  public:
@@ -61,7 +70,9 @@ class DeckBuilder {
   };
   struct PendingSurfaceItem {
     DeckReference target;
-    int face = -1;  ///< 0..5, or -1 for a node surface
+    int face = -1;       ///< 0..5 (S1..S6), SHELL_FACE_NEG/POS if `shell`, -1 for a node surface
+    bool shell = false;  ///< SPOS/SNEG: only shell elements fit
+    std::string label;   ///< the face word, upper case, for messages
   };
   struct PendingBoundary {
     Index step = NO_INDEX;  ///< NO_INDEX: model level, goes to the first step
@@ -73,6 +84,16 @@ class DeckBuilder {
     Index step = NO_INDEX;
     DeckReference target;
     ConcentratedLoad load;
+    std::string amplitude;
+  };
+  /// A `*DLOAD` (element or element set, `P` or `P1`..`P6`) or `*DSLOAD` (surface, `P`) line.
+  struct PendingPressure {
+    Index step = NO_INDEX;
+    DeckReference target;  ///< element/element set, or the surface name (`on_surface`)
+    bool on_surface = false;
+    int solid_face = -1;    ///< *DLOAD P1..P6: 0..5; -1 for P (shells, face SPOS)
+    std::string load_type;  ///< upper case, for messages
+    PressureLoad load;
     std::string amplitude;
   };
   struct PendingVelocity {
@@ -97,6 +118,8 @@ class DeckBuilder {
   void read_density(const DeckBlock& block);
   void read_elastic(const DeckBlock& block);
   void read_solid_section(const DeckBlock& block);
+  void read_shell_section(const DeckBlock& block);
+  void read_shell_general_section(const DeckBlock& block);
   void read_section_controls(const DeckBlock& block);
   void read_amplitude(const DeckBlock& block);
   void read_initial_conditions(const DeckBlock& block);
@@ -106,6 +129,10 @@ class DeckBuilder {
   void read_bulk_viscosity(const DeckBlock& block);
   void read_boundary(const DeckBlock& block);
   void read_cload(const DeckBlock& block);
+  void read_dload(const DeckBlock& block);
+  void read_dsload(const DeckBlock& block);
+  /// OP= of *CLOAD, *DLOAD, *DSLOAD: false (reported) if bad; sets `reset` for OP=NEW.
+  bool read_load_op(const DeckKeyword& keyword, bool& reset);
   void read_output(const DeckBlock& block);
   void read_node_output(const DeckBlock& block);
   void read_element_output(const DeckBlock& block);
@@ -151,13 +178,25 @@ class DeckBuilder {
   void resolve_set(bool node_sets, Index set, int depth);
   std::vector<Index> resolve_nodes(const DeckReference& reference);
   std::vector<Index> resolve_elements(const DeckReference& reference);
+  /// "S4R element 7" (with " of set NAME" if `reference` names a set), for messages.
+  std::string element_text(Index e, const DeckReference& reference) const;
   Index resolve_amplitude(const std::string& name, const SourceLocation& where,
                           const std::string& keyword);
   void resolve_sections();
+  /// Material and controls of a section (reported if undefined); returns its element set or
+  /// NO_INDEX (reported).
+  Index resolve_section_references(const PendingSection& pending, const std::string& keyword,
+                                   const SourceLocation& where, Index& material, Index& controls,
+                                   std::vector<bool>& material_checked);
+  /// Gives section `section` (of the shell or solid kind) to the elements of `set`.
+  void assign_section(Index set, Index section, bool shell, const SourceLocation& where);
   void resolve_surfaces();
   void resolve_initial_velocity();
   void resolve_steps();
+  void resolve_pressures();
   void check_element_geometry();
+  void check_hex_geometry(Index element);
+  void check_shell_geometry(Index element);
 
   InputErrors& m_errors;
   std::string m_file_name;
@@ -172,9 +211,17 @@ class DeckBuilder {
   std::unordered_map<std::string, Index> m_node_set_index, m_element_set_index;
   std::vector<PendingSet> m_node_sets, m_element_sets;  ///< parallel to the Model's sets
   std::vector<PendingSection> m_sections;               ///< parallel to Model::solid_sections
+  std::vector<PendingSection> m_shell_sections;         ///< parallel to Model::shell_sections
+  /// ELSET= of refused section keywords (*SHELL GENERAL SECTION): their elements are not
+  /// reported again as having no section.
+  std::vector<std::string> m_refused_section_sets;
+  /// Elements whose section problem is reported already (refused section, section of the
+  /// wrong kind): no "has no section" follow-up. Empty while there are none.
+  std::vector<char> m_section_reported;
   std::vector<std::vector<PendingSurfaceItem>> m_surface_items;  ///< parallel to surfaces
   std::vector<PendingBoundary> m_boundaries;
   std::vector<PendingLoad> m_loads;
+  std::vector<PendingPressure> m_pressures;
   std::vector<PendingVelocity> m_velocities;
   std::vector<PendingOutputSet> m_output_sets;
 
@@ -184,9 +231,17 @@ class DeckBuilder {
   bool m_step_has_dynamic = false;
   Index m_output = NO_INDEX;  ///< the latest *OUTPUT of the open step
   SourceLocation m_step_where;
-  /// capped_error counters: undefined element nodes, elements without a section, elements in
-  /// two sections, inverted elements.
-  int m_error_counts[4] = {};
+  /// Categories of capped_error, one counter each.
+  enum ErrorCategory {
+    UNDEFINED_NODES,
+    NO_SECTION,
+    TWO_SECTIONS,
+    WRONG_SECTION_KIND,
+    INVERTED,
+    DEGENERATE,
+    ERROR_CATEGORIES
+  };
+  int m_error_counts[ERROR_CATEGORIES] = {};
 };
 
 }  // namespace xpl::io

@@ -1,8 +1,25 @@
+/// \file Element geometry checks: the shape measures, and the builder's per-element checks run
+/// once the whole mesh is known.
+
 #include "io/deck_geometry.hpp"
+
+#include <algorithm>
+#include <sstream>
 
 #include <Eigen/Geometry>
 
+#include "io/deck_builder.hpp"
+
 namespace xpl::io {
+
+namespace {
+
+/// Relative tolerance of the shell checks: a length below this fraction of the longest edge
+/// (an area below it times the longest edge squared) counts as zero. Far below any sane
+/// element aspect ratio, far above round-off.
+constexpr Real QUAD_TOLERANCE = 1e-8;
+
+}  // namespace
 
 CornerJacobian smallest_corner_jacobian(const std::array<Eigen::Vector3d, 8>& x) {
   CornerJacobian smallest;
@@ -22,6 +39,99 @@ CornerJacobian smallest_corner_jacobian(const std::array<Eigen::Vector3d, 8>& x)
     if (c == 0 || det < smallest.determinant) smallest = {det, c};
   }
   return smallest;
+}
+
+QuadShape quad_shape(const std::array<Eigen::Vector3d, 4>& x) {
+  QuadShape shape;
+  const Eigen::Vector3d normal = (x[2] - x[0]).cross(x[3] - x[1]);
+  const Real twice_area = normal.norm();
+  shape.area = 0.5 * twice_area;
+  for (int k = 0; k < 4; ++k) {
+    const Real edge = (x[(k + 1) % 4] - x[k]).norm();
+    shape.longest_edge = std::max(shape.longest_edge, edge);
+    if (k == 0 || edge < shape.shortest_edge) {
+      shape.shortest_edge = edge;
+      shape.shortest_edge_start = k;
+    }
+    if (twice_area > 0.0)
+      shape.corner[k] =
+          (x[(k + 1) % 4] - x[k]).cross(x[(k + 3) % 4] - x[k]).dot(normal) / twice_area;
+  }
+  return shape;
+}
+
+void DeckBuilder::check_element_geometry() {
+  std::vector<char> bad(m_bad_coordinate_nodes.empty() ? 0 : m_model.node_count(), 0);
+  for (Index n : m_bad_coordinate_nodes) bad[n] = 1;
+  for (Index e = 0; e < m_model.element_count(); ++e) {
+    const Index* nodes = m_model.nodes_of(e);
+    const Index* end = nodes + (m_model.element_offsets[e + 1] - m_model.element_offsets[e]);
+    // Undefined nodes and bad coordinates are reported already; a shape error would repeat them.
+    if (std::any_of(nodes, end, [](Index n) { return n == NO_INDEX; })) continue;
+    if (!bad.empty() && std::any_of(nodes, end, [&](Index n) { return bad[n] != 0; })) continue;
+    if (is_shell(m_model.element_types[static_cast<std::size_t>(e)]))
+      check_shell_geometry(e);
+    else
+      check_hex_geometry(e);
+  }
+}
+
+void DeckBuilder::check_hex_geometry(Index e) {
+  const Index* nodes = m_model.nodes_of(e);
+  std::array<Eigen::Vector3d, 8> x;
+  for (int k = 0; k < 8; ++k) x[k] = m_model.coordinates.row(nodes[k]).transpose();
+  const CornerJacobian smallest = smallest_corner_jacobian(x);
+  if (smallest.determinant > 0.0) return;
+  std::ostringstream problem;
+  problem << "inverted element " << m_model.element_ids[e] << ": volume " << smallest.determinant
+          << " at corner node " << m_model.node_ids[nodes[smallest.corner]];
+  capped_error(m_error_counts[INVERTED], m_model.element_where(e), "*ELEMENT", problem.str(),
+               "expected nodes in Abaqus C3D8R order (nodes 1-4 counter-clockwise on the "
+               "bottom face seen from the top face 5-8), i.e. a positive Jacobian at every "
+               "corner");
+}
+
+void DeckBuilder::check_shell_geometry(Index e) {
+  const Index* nodes = m_model.nodes_of(e);
+  // Messages are built only for a bad element: this runs on every shell of a large mesh.
+  auto report = [&](const std::string& what, const std::string& problem,
+                    const std::string& expected) {
+    capped_error(m_error_counts[DEGENERATE], m_model.element_where(e), "*ELEMENT",
+                 what + " element " + std::to_string(m_model.element_ids[e]) + ": " + problem,
+                 expected);
+  };
+  auto node_id = [&](int k) { return std::to_string(m_model.node_ids[nodes[k]]); };
+  const std::string distinct =
+      "expected 4 distinct corner nodes (triangles and collapsed quadrilaterals are not "
+      "supported)";
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < 4; ++j) {
+      if (nodes[i] != nodes[j]) continue;
+      report("degenerate", "node " + node_id(i) + " appears twice", distinct);
+      return;
+    }
+  }
+  std::array<Eigen::Vector3d, 4> x;
+  for (int k = 0; k < 4; ++k) x[k] = m_model.coordinates.row(nodes[k]).transpose();
+  const QuadShape shape = quad_shape(x);
+  const Real length = shape.longest_edge;
+  const Real small_area = QUAD_TOLERANCE * length * length;
+  if (shape.shortest_edge <= QUAD_TOLERANCE * length) {
+    const int k = shape.shortest_edge_start;
+    report("degenerate",
+           "nodes " + node_id(k) + " and " + node_id((k + 1) % 4) + " are at the same place",
+           distinct);
+  } else if (shape.area <= small_area) {
+    report("degenerate",
+           "area " + number_text(shape.area) + " with edges up to " + number_text(length),
+           "expected 4 corner nodes in order around a quadrilateral of non-zero area");
+  } else if (std::count_if(shape.corner.begin(), shape.corner.end(),
+                           [&](Real c) { return c < -small_area; }) >= 2) {
+    // Two corners turning against the others: the nodes zigzag across the element. (A single
+    // one is a concave element, poor but usable: the solver judges element quality.)
+    report("crossed", "seen along its normal, edges 1-2 and 3-4 or 2-3 and 4-1 cross",
+           "expected 4 corner nodes in order around the quadrilateral");
+  }
 }
 
 }  // namespace xpl::io

@@ -1,4 +1,4 @@
-/// \file Mesh keywords: *HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE.
+/// \file Mesh keywords: *HEADING, *NODE, *ELEMENT (C3D8R, S4R), *NSET, *ELSET, *SURFACE.
 
 #include <algorithm>
 #include <array>
@@ -80,12 +80,19 @@ void DeckBuilder::read_element(const DeckBlock& block) {
   check_parameters(keyword, {{"TYPE"}, {"ELSET"}});
   const std::optional<std::string> type = required_name(keyword, "TYPE");
   if (!type) return;
-  if (*type != "C3D8R") {
+  ElementType element_type = ElementType::C3D8R;
+  if (*type == "S4R" || *type == "S4") {
+    element_type = ElementType::S4R;
+  } else if (*type != "C3D8R") {
     error(keyword.where, keyword, "element type " + *type + " is not supported yet",
-          "supported: C3D8R");
+          "supported: C3D8R, S4R (S4 is run as S4R)");
     return;
   }
-  const int n_nodes = nodes_per_element(ElementType::C3D8R);
+  if (*type == "S4")
+    m_model.deck_messages.push_back(
+        {false, location_text(keyword.where) + ": " + keyword.label() +
+                    ": S4 elements are run as S4R (reduced integration with hourglass control)"});
+  const int n_nodes = nodes_per_element(element_type);
   const std::string set_name = optional_name(keyword, "ELSET");
   const Index set = set_name.empty() ? NO_INDEX : element_set_index(set_name, keyword.where);
   const std::size_t n_lines = block.data.size();
@@ -111,7 +118,8 @@ void DeckBuilder::read_element(const DeckBlock& block) {
       error(line.where(), keyword,
             "element " + id_text(*id) + " has " + std::to_string(line.fields.size() - 1) +
                 " node ids",
-            "expected 8 node ids for C3D8R (end a line with a comma to continue it)");
+            "expected " + std::to_string(n_nodes) + " node ids for " + *type +
+                " (end a line with a comma to continue it)");
       continue;
     }
     std::array<ExternalId, 8> nodes{};
@@ -130,7 +138,7 @@ void DeckBuilder::read_element(const DeckBlock& block) {
       continue;
     }
     m_model.element_ids.push_back(*id);
-    m_model.element_types.push_back(ElementType::C3D8R);
+    m_model.element_types.push_back(element_type);
     m_element_node_ids.insert(m_element_node_ids.end(), nodes.begin(), nodes.begin() + found);
     m_model.element_offsets.push_back(static_cast<Index>(m_element_node_ids.size()));
     m_model.add_element_source(*line.file, line.line);
@@ -239,8 +247,9 @@ void DeckBuilder::read_surface(const DeckBlock& block) {
   std::vector<PendingSurfaceItem> items;
   for (const DeckDataLine& line : block.data) {
     check_field_count(line, keyword, 2,
-                      surface.type == Surface::Type::Node ? "node or node set[, factor]"
-                                                          : "element or element set, face S1..S6");
+                      surface.type == Surface::Type::Node
+                          ? "node or node set[, factor]"
+                          : "element or element set, face S1..S6 (solids) or SPOS, SNEG (shells)");
     PendingSurfaceItem item;
     item.target = reference(line, keyword, 0);
     if (surface.type == Surface::Type::Node) {
@@ -248,13 +257,20 @@ void DeckBuilder::read_surface(const DeckBlock& block) {
       // node surfaces are only used as contact node lists.
       if (line.fields.size() > 1) real_field(line, keyword, 1, "factor", 1.0);
     } else {
+      // Whether the face fits the element type is checked once the elements are known.
       const std::string face = line.fields.size() > 1 ? normalize_name(line.fields[1]) : "";
-      if (face.size() != 2 || face[0] != 'S' || face[1] < '1' || face[1] > '6') {
+      item.label = face;
+      if (face == "SPOS" || face == "SNEG") {
+        item.shell = true;
+        item.face = face == "SPOS" ? SHELL_FACE_POS : SHELL_FACE_NEG;
+      } else if (face.size() == 2 && face[0] == 'S' && face[1] >= '1' && face[1] <= '6') {
+        item.face = face[1] - '1';
+      } else {
         error(line.where(), keyword, face.empty() ? "missing face label" : "bad face label " + face,
-              "expected S1, S2, S3, S4, S5 or S6");
+              "expected S1, S2, S3, S4, S5 or S6 on C3D8R elements, SPOS or SNEG on S4R "
+              "elements");
         continue;
       }
-      item.face = face[1] - '1';
     }
     items.push_back(item);
   }

@@ -10,8 +10,13 @@ namespace xpl::io {
 
 namespace {
 
-constexpr std::array<std::string_view, 4> FIELD_NODE_VARIABLES = {"U", "V", "A", "RF"};
-constexpr std::array<std::string_view, 3> ELEMENT_VARIABLES = {"S", "EVOL", "MISES"};
+/// UR, VR, RM: rotation, angular velocity and reaction moment of shell nodes.
+constexpr std::array<std::string_view, 7> FIELD_NODE_VARIABLES = {"U",  "V",  "A", "RF",
+                                                                  "UR", "VR", "RM"};
+/// What VARIABLE=PRESELECT writes (on shell models the writer adds UR, VR, RM to U, V, RF).
+constexpr std::array<std::string_view, 4> PRESELECT_NODE_VARIABLES = {"U", "V", "A", "RF"};
+/// STH: the current shell thickness.
+constexpr std::array<std::string_view, 4> ELEMENT_VARIABLES = {"S", "EVOL", "MISES", "STH"};
 constexpr std::array<std::string_view, 7> ENERGY_VARIABLES = {"ALLKE", "ALLSE", "ALLAE", "ALLIE",
                                                               "ALLVD", "ALLWK", "ETOTAL"};
 
@@ -34,7 +39,8 @@ void add_unique(std::vector<std::string>& list, const std::string& name) {
   if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
 }
 
-/// History node variables: components U1..RF3; U, V, A, RF stand for their three components.
+/// History node variables: components U1..RF3, UR1..RM3; U, V, A, RF, UR, VR, RM stand for
+/// their three components.
 bool add_history_node_variable(std::vector<std::string>& list, const std::string& name) {
   if (contains(FIELD_NODE_VARIABLES, name)) {
     for (char c : {'1', '2', '3'}) add_unique(list, name + c);
@@ -109,7 +115,8 @@ void DeckBuilder::read_output(const DeckBlock& block) {
   const std::string variable = optional_name(keyword, "VARIABLE");
   if (variable == "PRESELECT") {
     if (field) {
-      for (std::string_view name : FIELD_NODE_VARIABLES) request.node_variables.emplace_back(name);
+      for (std::string_view name : PRESELECT_NODE_VARIABLES)
+        request.node_variables.emplace_back(name);
       request.element_variables.emplace_back("S");
     } else {
       request.energy = true;
@@ -149,7 +156,8 @@ void DeckBuilder::read_node_output(const DeckBlock& block) {
                                  : contains(FIELD_NODE_VARIABLES, name);
       if (!known) {
         error(line.where(), keyword, "unknown output variable " + name,
-              history ? "expected U, V, A, RF or a component U1..U3, V1..V3, A1..A3, RF1..RF3"
+              history ? "expected one of " + joined(FIELD_NODE_VARIABLES) +
+                            " or a component such as U1, RF3, UR2, RM1"
                       : "expected one of " + joined(FIELD_NODE_VARIABLES));
       } else if (!history) {
         add_unique(variables, name);

@@ -1,21 +1,9 @@
-/// \file Property keywords: *MATERIAL, *DENSITY, *ELASTIC, *SOLID SECTION, *SECTION CONTROLS,
-/// *AMPLITUDE, *INITIAL CONDITIONS.
-
-#include <sstream>
+/// \file Property keywords: *MATERIAL, *DENSITY, *ELASTIC, *SECTION CONTROLS, *AMPLITUDE,
+/// *INITIAL CONDITIONS. Sections are in deck_sections.cpp.
 
 #include "io/deck_builder.hpp"
 
 namespace xpl::io {
-
-namespace {
-
-std::string number_text(Real value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
-}  // namespace
 
 void DeckBuilder::read_material(const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
@@ -114,24 +102,6 @@ void DeckBuilder::read_elastic(const DeckBlock& block) {
   if (!ok) return;
   material.young = *young;
   material.poisson = *poisson;
-}
-
-void DeckBuilder::read_solid_section(const DeckBlock& block) {
-  const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"ELSET"}, {"MATERIAL"}, {"CONTROLS"}});
-  const std::optional<std::string> element_set = required_name(keyword, "ELSET");
-  const std::optional<std::string> material = required_name(keyword, "MATERIAL");
-  // Abaqus allows one data line (a thickness-like number for solids); it means nothing here.
-  if (block.data.size() > 1 || (block.data.size() == 1 && block.data.front().fields.size() > 1))
-    error(block.data.front().where(), keyword, "unexpected data",
-          "expected at most one data line with at most one number");
-  else if (block.data.size() == 1)
-    real_field(block.data.front(), keyword, 0, "section value", 0.0);
-  if (!element_set || !material) return;
-  SolidSection section;
-  section.where = keyword.where;
-  m_model.solid_sections.push_back(section);
-  m_sections.push_back({*element_set, *material, optional_name(keyword, "CONTROLS")});
 }
 
 void DeckBuilder::read_section_controls(const DeckBlock& block) {

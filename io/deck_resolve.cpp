@@ -1,11 +1,11 @@
-/// \file Resolution of references once the whole deck is read, and whole-model checks.
+/// \file Resolution of references once the whole deck is read: element nodes, sets, surfaces,
+/// initial conditions, boundary conditions, loads and output sets. Sections are resolved in
+/// deck_sections.cpp, pressures in deck_pressure.cpp, element shapes checked in
+/// deck_geometry.cpp.
 
 #include <algorithm>
-#include <array>
-#include <sstream>
 
 #include "io/deck_builder.hpp"
-#include "io/deck_geometry.hpp"
 #include "io/deck_numbers.hpp"
 
 namespace xpl::io {
@@ -14,10 +14,6 @@ namespace {
 
 /// Deeper set-of-set chains are almost certainly a mistake (and would deepen the recursion).
 constexpr int MAX_SET_NESTING = 100;
-
-std::string location_text(const SourceLocation& where) {
-  return where.file + ":" + std::to_string(where.line);
-}
 
 }  // namespace
 
@@ -47,11 +43,16 @@ Model DeckBuilder::finish() {
   resolve_surfaces();
   resolve_initial_velocity();
   resolve_steps();
+  resolve_pressures();
   check_element_geometry();
 
-  const char* categories[] = {"elements with undefined nodes", "elements without a section",
-                              "elements in two sections", "inverted elements"};
-  for (int k = 0; k < 4; ++k) {
+  const char* categories[ERROR_CATEGORIES] = {"elements with undefined nodes",
+                                              "elements without a section",
+                                              "elements in two sections",
+                                              "elements with a section of the wrong kind",
+                                              "inverted elements",
+                                              "degenerate elements"};
+  for (int k = 0; k < ERROR_CATEGORIES; ++k) {
     if (m_error_counts[k] > ERROR_CAP)
       m_errors.add_plain(m_file_name + ": " + std::to_string(m_error_counts[k] - ERROR_CAP) +
                          " more " + categories[k] + " not listed");
@@ -69,7 +70,7 @@ void DeckBuilder::resolve_element_nodes() {
       if (it != m_node_index.end()) {
         m_model.element_nodes[static_cast<std::size_t>(k)] = it->second;
       } else if (!reported) {
-        capped_error(m_error_counts[0], m_model.element_where(e), "*ELEMENT",
+        capped_error(m_error_counts[UNDEFINED_NODES], m_model.element_where(e), "*ELEMENT",
                      "element " + std::to_string(m_model.element_ids[e]) +
                          " refers to undefined node " + std::to_string(id),
                      "expected a *NODE with id " + std::to_string(id));
@@ -218,6 +219,14 @@ std::vector<Index> DeckBuilder::resolve_elements(const DeckReference& reference)
   return m_model.element_sets[static_cast<std::size_t>(it->second)].members;
 }
 
+std::string DeckBuilder::element_text(Index e, const DeckReference& reference) const {
+  std::string text =
+      std::string(deck_type_name(m_model.element_types[static_cast<std::size_t>(e)])) +
+      " element " + std::to_string(m_model.element_ids[e]);
+  if (!looks_numeric(reference.token)) text += " of set " + reference.token;
+  return text;
+}
+
 Index DeckBuilder::resolve_amplitude(const std::string& name, const SourceLocation& where,
                                      const std::string& keyword) {
   if (name.empty()) return NO_INDEX;
@@ -228,64 +237,6 @@ Index DeckBuilder::resolve_amplitude(const std::string& name, const SourceLocati
   return amplitude;
 }
 
-void DeckBuilder::resolve_sections() {
-  m_model.element_section.assign(static_cast<std::size_t>(m_model.element_count()), NO_INDEX);
-  std::vector<bool> material_checked(m_model.materials.size(), false);
-  for (std::size_t s = 0; s < m_sections.size(); ++s) {
-    const PendingSection& pending = m_sections[s];
-    SolidSection& section = m_model.solid_sections[s];
-    section.material = m_model.find_material(pending.material);
-    if (section.material == NO_INDEX) {
-      m_errors.add(section.where, "*SOLID SECTION", "undefined material " + pending.material,
-                   "expected *MATERIAL, NAME=" + pending.material);
-    } else if (!material_checked[static_cast<std::size_t>(section.material)]) {
-      material_checked[static_cast<std::size_t>(section.material)] = true;
-      const Material& material = m_model.materials[static_cast<std::size_t>(section.material)];
-      if (!material.has_density)
-        m_errors.add(material.where, "*MATERIAL", "material " + material.name + " has no density",
-                     "expected *DENSITY after *MATERIAL, NAME=" + material.name);
-      if (!material.has_elastic)
-        m_errors.add(material.where, "*MATERIAL",
-                     "material " + material.name + " has no elastic data",
-                     "expected *ELASTIC after *MATERIAL, NAME=" + material.name);
-    }
-    if (!pending.controls.empty()) {
-      for (std::size_t c = 0; c < m_model.section_controls.size(); ++c)
-        if (m_model.section_controls[c].name == pending.controls)
-          section.controls = static_cast<Index>(c);
-      if (section.controls == NO_INDEX)
-        m_errors.add(section.where, "*SOLID SECTION",
-                     "undefined section controls " + pending.controls,
-                     "expected *SECTION CONTROLS, NAME=" + pending.controls);
-    }
-    const auto set = m_element_set_index.find(pending.element_set);
-    if (set == m_element_set_index.end()) {
-      m_errors.add(section.where, "*SOLID SECTION", "undefined element set " + pending.element_set,
-                   "expected *ELSET, ELSET=" + pending.element_set + " or *ELEMENT, ELSET=");
-      continue;
-    }
-    section.element_set = set->second;
-    for (Index e : m_model.element_sets[static_cast<std::size_t>(set->second)].members) {
-      Index& assigned = m_model.element_section[static_cast<std::size_t>(e)];
-      if (assigned != NO_INDEX) {
-        capped_error(m_error_counts[2], section.where, "*SOLID SECTION",
-                     "element " + std::to_string(m_model.element_ids[e]) +
-                         " already has the section at " +
-                         location_text(m_model.solid_sections[assigned].where),
-                     "expected each element in exactly one *SOLID SECTION");
-        continue;
-      }
-      assigned = static_cast<Index>(s);
-    }
-  }
-  for (Index e = 0; e < m_model.element_count(); ++e) {
-    if (m_model.element_section[static_cast<std::size_t>(e)] == NO_INDEX)
-      capped_error(m_error_counts[1], m_model.element_where(e), "*ELEMENT",
-                   "element " + std::to_string(m_model.element_ids[e]) + " has no section",
-                   "expected a *SOLID SECTION covering it");
-  }
-}
-
 void DeckBuilder::resolve_surfaces() {
   for (std::size_t s = 0; s < m_model.surfaces.size(); ++s) {
     Surface& surface = m_model.surfaces[s];
@@ -294,8 +245,19 @@ void DeckBuilder::resolve_surfaces() {
         const std::vector<Index> nodes = resolve_nodes(item.target);
         surface.nodes.insert(surface.nodes.end(), nodes.begin(), nodes.end());
       } else {
-        for (Index e : resolve_elements(item.target))
-          surface.faces.push_back({e, static_cast<std::uint8_t>(item.face)});
+        bool reported = false;  // one mismatch per data line, not one per element of a set
+        for (Index e : resolve_elements(item.target)) {
+          const ElementType type = m_model.element_types[static_cast<std::size_t>(e)];
+          if (is_shell(type) == item.shell) {
+            surface.faces.push_back({e, static_cast<std::uint8_t>(item.face)});
+          } else if (!reported) {
+            reported = true;
+            m_errors.add(item.target.where, item.target.keyword,
+                         "face " + item.label + " does not fit " + element_text(e, item.target),
+                         is_shell(type) ? "expected SPOS or SNEG on S4R shell elements"
+                                        : "expected S1..S6 on C3D8R solid elements");
+          }
+        }
       }
     }
     std::sort(surface.nodes.begin(), surface.nodes.end());
@@ -352,28 +314,6 @@ void DeckBuilder::resolve_steps() {
       continue;
     }
     (pending.node ? request.node_set : request.element_set) = it->second;
-  }
-}
-
-void DeckBuilder::check_element_geometry() {
-  std::vector<char> bad(m_bad_coordinate_nodes.empty() ? 0 : m_model.node_count(), 0);
-  for (Index n : m_bad_coordinate_nodes) bad[n] = 1;
-  for (Index e = 0; e < m_model.element_count(); ++e) {
-    const Index* nodes = m_model.nodes_of(e);
-    if (std::any_of(nodes, nodes + 8, [](Index n) { return n == NO_INDEX; })) continue;
-    if (!bad.empty() && std::any_of(nodes, nodes + 8, [&](Index n) { return bad[n] != 0; }))
-      continue;
-    std::array<Eigen::Vector3d, 8> x;
-    for (int k = 0; k < 8; ++k) x[k] = m_model.coordinates.row(nodes[k]).transpose();
-    const CornerJacobian smallest = smallest_corner_jacobian(x);
-    if (smallest.determinant > 0.0) continue;
-    std::ostringstream problem;
-    problem << "inverted element " << m_model.element_ids[e] << ": volume " << smallest.determinant
-            << " at corner node " << m_model.node_ids[nodes[smallest.corner]];
-    capped_error(m_error_counts[3], m_model.element_where(e), "*ELEMENT", problem.str(),
-                 "expected nodes in Abaqus C3D8R order (nodes 1-4 counter-clockwise on the "
-                 "bottom face seen from the top face 5-8), i.e. a positive Jacobian at every "
-                 "corner");
   }
 }
 

@@ -1,6 +1,5 @@
 /// \file History keywords: *STEP, *END STEP, *DYNAMIC, *BULK VISCOSITY, *BOUNDARY, *CLOAD.
-
-#include <sstream>
+/// Pressures (*DLOAD, *DSLOAD) are in deck_pressure.cpp.
 
 #include "io/deck_builder.hpp"
 #include "io/deck_numbers.hpp"
@@ -8,12 +7,6 @@
 namespace xpl::io {
 
 namespace {
-
-std::string number_text(Real value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 /// Contiguous dof ranges of an Abaqus boundary type word; empty if the word is unknown.
 std::vector<std::pair<int, int>> boundary_type_dofs(const std::string& word) {
@@ -238,16 +231,20 @@ void DeckBuilder::read_boundary(const DeckBlock& block) {
   }
 }
 
-void DeckBuilder::read_cload(const DeckBlock& block) {
-  const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
+bool DeckBuilder::read_load_op(const DeckKeyword& keyword, bool& reset) {
   const std::string op = optional_name(keyword, "OP");
   if (!op.empty() && op != "MOD" && op != "NEW") {
     error(keyword.where, keyword, "bad OP=" + op, "expected OP=MOD or OP=NEW");
-    return;
+    return false;
   }
-  Step& step = m_model.steps.back();
-  if (op == "NEW") step.loads_reset = true;
+  if (op == "NEW") reset = true;
+  return true;
+}
+
+void DeckBuilder::read_cload(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
+  if (!read_load_op(keyword, m_model.steps.back().loads_reset)) return;
   const std::string amplitude = optional_name(keyword, "AMPLITUDE");
   for (const DeckDataLine& line : block.data) {
     check_field_count(line, keyword, 3, "node or node set, dof, magnitude");

@@ -116,10 +116,7 @@ ResultFiles::~ResultFiles() {
 
 void ResultFiles::begin_run(const Model& model) {
   m_impl->start = Clock::now();
-  m_impl->h5_file.write_mesh(model);
-  Index hexahedra = 0;
-  for (ElementType type : model.element_types) hexahedra += type == ElementType::C3D8R ? 1 : 0;
-  m_impl->xdmf_file.set_mesh(model.node_count(), hexahedra, model.element_count());
+  m_impl->xdmf_file.set_mesh(m_impl->h5_file.write_mesh(model));
   m_impl->msg_file.summary(model);
 }
 

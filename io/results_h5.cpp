@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "io/results_mesh.hpp"
+
 namespace xpl::io {
 
 namespace {
@@ -11,15 +13,6 @@ namespace {
 #ifndef XPL_VERSION
 #define XPL_VERSION "unknown"
 #endif
-
-/// A nodal field as a row-major (n_nodes × 3) buffer, the HDF5 layout.
-std::vector<double> row_major(const NodalVectors& field) {
-  std::vector<double> out(static_cast<std::size_t>(field.rows()) * 3);
-  for (Eigen::Index i = 0; i < field.rows(); ++i) {
-    for (int c = 0; c < 3; ++c) out[static_cast<std::size_t>(i) * 3 + c] = field(i, c);
-  }
-  return out;
-}
 
 void check_rows(const NodalVectors& field, Index n_nodes, const char* name) {
   if (field.rows() != n_nodes) {
@@ -29,45 +22,51 @@ void check_rows(const NodalVectors& field, Index n_nodes, const char* name) {
   }
 }
 
-void write_nodal(hid_t group, const char* name, const NodalVectors& field, Index n_nodes) {
-  check_rows(field, n_nodes, name);
-  h5::write_real(group, name, row_major(field), {static_cast<hsize_t>(n_nodes), 3});
-}
-
-/// Deck ids of the members of a set.
-std::vector<std::int64_t> member_ids(const NamedSet& set, const std::vector<ExternalId>& ids) {
-  std::vector<std::int64_t> out;
-  out.reserve(set.members.size());
-  for (Index m : set.members) out.push_back(ids.at(static_cast<std::size_t>(m)));
-  return out;
-}
-
-/// A set name as an HDF5 link name ('/' would make it a path).
-std::string link_name(std::string name) {
-  for (char& c : name) {
-    if (c == '/') c = '_';
+void check_size(const std::vector<Real>& values, std::size_t expected, const char* name) {
+  if (values.size() != expected) {
+    throw std::invalid_argument(std::string("write_frame: state.") + name + " has " +
+                                std::to_string(values.size()) + " values; expected " +
+                                std::to_string(expected));
   }
-  return name;
 }
 
-void write_sets(hid_t mesh, const char* group_name, const std::vector<NamedSet>& sets,
-                const std::vector<ExternalId>& ids) {
-  const h5::Handle group = h5::require_group(mesh, group_name);
-  for (const NamedSet& set : sets) {
-    const std::vector<std::int64_t> members = member_ids(set, ids);
-    h5::write_int64(group.get(), link_name(set.name), members, {members.size()});
+/// Throws std::invalid_argument, before anything is written, if a field the frame needs does
+/// not have the size of the model.
+void check_frame(const State& state, const FrameRequest& what, Index n_nodes,
+                 std::size_t n_elements, bool shells) {
+  if (what.displacement) {
+    check_rows(state.reference, n_nodes, "reference");
+    check_rows(state.position, n_nodes, "position");
   }
+  if (what.velocity) check_rows(state.velocity, n_nodes, "V");
+  if (what.acceleration) check_rows(state.acceleration, n_nodes, "A");
+  if (what.reaction) check_rows(state.reaction, n_nodes, "RF");
+  if (what.stress) check_size(state.stress, n_elements * 6, "stress");
+  if (what.volume) check_size(state.volume, n_elements, "volume");
+  if (!shells) return;
+  if (what.displacement) check_rows(state.rotation, n_nodes, "UR");
+  if (what.velocity) check_rows(state.angular_velocity, n_nodes, "VR");
+  if (what.reaction) check_rows(state.reaction_moment, n_nodes, "RM");
+  if (what.stress) {
+    check_size(state.stress_bottom, n_elements * 6, "stress_bottom");
+    check_size(state.stress_top, n_elements * 6, "stress_top");
+  }
+  if (what.thickness) check_size(state.thickness, n_elements, "thickness");
+}
+
+void write_nodal(hid_t group, const char* name, const NodalVectors& field) {
+  h5::write_real(group, name, row_major(field), {static_cast<hsize_t>(field.rows()), 3});
+}
+
+/// Writes an element field of `width` values per element (width 1: one-dimensional).
+void write_cells(hid_t group, const char* name, const std::vector<Real>& values,
+                 std::size_t width) {
+  std::vector<hsize_t> dims{values.size() / width};
+  if (width > 1) dims.push_back(width);
+  h5::write_real(group, name, values, dims);
 }
 
 }  // namespace
-
-const char* element_type_name(ElementType type) {
-  switch (type) {
-    case ElementType::C3D8R:
-      return "C3D8R";
-  }
-  return "UNKNOWN";
-}
 
 Real von_mises(const Real* s) {
   const Real d1 = s[0] - s[1], d2 = s[1] - s[2], d3 = s[2] - s[0];
@@ -95,35 +94,11 @@ ResultsH5::ResultsH5(const std::filesystem::path& path, const std::string& job)
   flush();
 }
 
-void ResultsH5::write_mesh(const Model& model) {
-  const hid_t file = m_file.get();
-  h5::set_string_attribute(file, "heading", model.heading);
-  const h5::Handle mesh = h5::require_group(file, "mesh");
-  const auto n_nodes = static_cast<hsize_t>(model.node_count());
-  if (model.coordinates.rows() != model.node_count()) {
-    throw std::invalid_argument("model coordinates do not match the number of nodes");
-  }
-  h5::write_int64(mesh.get(), "node_ids", model.node_ids, {n_nodes});
-  h5::write_real(mesh.get(), "coordinates", row_major(model.coordinates), {n_nodes, 3});
-  h5::write_int64(mesh.get(), "element_ids", model.element_ids, {model.element_ids.size()});
-
-  for (ElementType type : {ElementType::C3D8R}) {
-    const auto corners = static_cast<std::size_t>(nodes_per_element(type));
-    std::vector<std::int64_t> ids, connectivity;
-    for (Index e = 0; e < model.element_count(); ++e) {
-      if (model.element_types[static_cast<std::size_t>(e)] != type) continue;
-      ids.push_back(model.element_ids[static_cast<std::size_t>(e)]);
-      const Index* nodes = model.nodes_of(e);
-      connectivity.insert(connectivity.end(), nodes, nodes + corners);
-    }
-    if (ids.empty()) continue;
-    const h5::Handle group = h5::require_group(mesh.get(), element_type_name(type));
-    h5::write_int64(group.get(), "element_ids", ids, {ids.size()});
-    h5::write_int64(group.get(), "connectivity", connectivity, {ids.size(), corners});
-  }
-  write_sets(mesh.get(), "node_sets", model.node_sets, model.node_ids);
-  write_sets(mesh.get(), "element_sets", model.element_sets, model.element_ids);
+XdmfMesh ResultsH5::write_mesh(const Model& model) {
+  h5::set_string_attribute(m_file.get(), "heading", model.heading);
+  XdmfMesh mesh = write_mesh_group(m_file.get(), model);
   flush();
+  return mesh;
 }
 
 void ResultsH5::begin_step(int step) {
@@ -145,6 +120,10 @@ void ResultsH5::append_history(Real time, std::span<const Real> values) {
 
 std::string ResultsH5::write_frame(const Model& model, const State& state,
                                    const FrameRequest& what) {
+  // A scan of one byte per element: negligible next to the fields of a frame.
+  const bool shells = model.has_shells();
+  const auto n_elements = static_cast<std::size_t>(model.element_count());
+  check_frame(state, what, model.node_count(), n_elements, shells);
   m_history.write_pending();
   char name[16];
   std::snprintf(name, sizeof name, "%06d", m_frames);
@@ -158,34 +137,25 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
                            step_index < model.steps.size() ? model.steps[step_index].name : "");
   h5::set_int64_attribute(g, "increment", state.increment);
 
-  const Index n_nodes = model.node_count();
-  const auto n_elements = static_cast<std::size_t>(model.element_count());
-  if (what.displacement) {
-    check_rows(state.reference, n_nodes, "reference");
-    write_nodal(g, "U", state.position - state.reference, n_nodes);
-  }
-  if (what.velocity) write_nodal(g, "V", state.velocity, n_nodes);
-  if (what.acceleration) write_nodal(g, "A", state.acceleration, n_nodes);
-  if (what.reaction) write_nodal(g, "RF", state.reaction, n_nodes);
+  if (what.displacement) write_nodal(g, "U", state.position - state.reference);
+  if (what.displacement && shells) write_nodal(g, "UR", state.rotation);
+  if (what.velocity) write_nodal(g, "V", state.velocity);
+  if (what.velocity && shells) write_nodal(g, "VR", state.angular_velocity);
+  if (what.acceleration) write_nodal(g, "A", state.acceleration);
+  if (what.reaction) write_nodal(g, "RF", state.reaction);
+  if (what.reaction && shells) write_nodal(g, "RM", state.reaction_moment);
   if (what.stress) {
-    if (state.stress.size() != n_elements * 6) {
-      throw std::invalid_argument("write_frame: state.stress has " +
-                                  std::to_string(state.stress.size()) + " values; expected " +
-                                  std::to_string(n_elements * 6));
-    }
-    h5::write_real(g, "S", state.stress, {n_elements, 6});
+    write_cells(g, "S", state.stress, 6);
     std::vector<double> mises(n_elements);
     for (std::size_t e = 0; e < n_elements; ++e) mises[e] = von_mises(&state.stress[e * 6]);
     h5::write_real(g, "MISES", mises, {n_elements});
   }
-  if (what.volume) {
-    if (state.volume.size() != n_elements) {
-      throw std::invalid_argument("write_frame: state.volume has " +
-                                  std::to_string(state.volume.size()) + " values; expected " +
-                                  std::to_string(n_elements));
-    }
-    h5::write_real(g, "EVOL", state.volume, {n_elements});
+  if (what.stress && shells) {
+    write_cells(g, "S_SNEG", state.stress_bottom, 6);
+    write_cells(g, "S_SPOS", state.stress_top, 6);
   }
+  if (what.volume) write_cells(g, "EVOL", state.volume, 1);
+  if (what.thickness && shells) write_cells(g, "STH", state.thickness, 1);
   ++m_frames;
   flush();
   return name;

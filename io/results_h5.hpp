@@ -1,5 +1,5 @@
 #pragma once
-/// \file JOB.h5: mesh, field frames, history and the run status (layout in result_files.hpp).
+/// \file JOB.h5: mesh, field frames, history and the run status (layout in README.md).
 
 #include <filesystem>
 #include <span>
@@ -8,12 +8,10 @@
 
 #include "io/h5_handles.hpp"
 #include "io/results_history.hpp"
+#include "io/xdmf_writer.hpp"
 #include "solver/output_sink.hpp"
 
 namespace xpl::io {
-
-/// Abaqus name of an element type ("C3D8R"), also the name of its group below /mesh.
-const char* element_type_name(ElementType type);
 
 /// Von Mises stress of one stress row (S11 S22 S33 S12 S13 S23), Pa.
 Real von_mises(const Real* s);
@@ -25,15 +23,17 @@ class ResultsH5 {
   /// Creates (truncates) `path` with status "running".
   ResultsH5(const std::filesystem::path& path, const std::string& job);
 
-  /// Writes /mesh and the heading attribute.
-  void write_mesh(const Model& model);
+  /// Writes /mesh (results_mesh.hpp) and the heading attribute; returns how the XDMF file
+  /// finds the mesh.
+  XdmfMesh write_mesh(const Model& model);
   /// A new step (zero-based) starts: ends the history of the previous one.
   void begin_step(int step);
   /// Declares the history columns of the current step (/history/step_N).
   void declare_history(const std::vector<HistorySeries>& series);
   /// Buffers one history row (written every HistoryWriter::ROWS_PER_WRITE rows).
   void append_history(Real time, std::span<const Real> values);
-  /// Writes /frames/NNNNNN and returns its name ("000000").
+  /// Writes /frames/NNNNNN and returns its name ("000000"). On shell models U, V, RF, S come
+  /// with UR, VR, RM, S_SNEG + S_SPOS; STH is written only on shell models.
   std::string write_frame(const Model& model, const State& state, const FrameRequest& what);
   /// Writes pending history rows, the final status and error text, and flushes.
   void finish(const std::string& status, const std::string& error);

@@ -4,7 +4,7 @@
 #include <ctime>
 #include <stdexcept>
 
-#include "io/results_h5.hpp"
+#include "io/results_mesh.hpp"
 
 #ifndef XPL_VERSION
 #define XPL_VERSION "unknown"
@@ -109,7 +109,7 @@ void MsgFile::summary(const Model& model) {
   if (!model.heading.empty()) m_out << "   heading: " << model.heading << "\n";
   m_out << format("   %-28s %10d\n", "nodes", model.node_count());
   m_out << format("   %-28s %10d\n", "elements", model.element_count());
-  for (ElementType type : {ElementType::C3D8R}) {
+  for (ElementType type : {ElementType::C3D8R, ElementType::S4R}) {
     long count = 0;
     for (ElementType t : model.element_types) count += t == type ? 1 : 0;
     if (count > 0) {
@@ -121,6 +121,7 @@ void MsgFile::summary(const Model& model) {
   };
   line("materials", model.materials.size());
   line("solid sections", model.solid_sections.size());
+  if (!model.shell_sections.empty()) line("shell sections", model.shell_sections.size());
   line("node sets", model.node_sets.size());
   line("element sets", model.element_sets.size());
   line("surfaces", model.surfaces.size());

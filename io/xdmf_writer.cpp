@@ -46,10 +46,8 @@ std::string exact(Real value) {
 XdmfWriter::XdmfWriter(std::filesystem::path path, std::string h5_name)
     : m_path(std::move(path)), m_h5_name(xml_escape(h5_name)) {}
 
-void XdmfWriter::set_mesh(Index n_nodes, Index n_hexahedra, Index n_elements) {
-  m_nodes = n_nodes;
-  m_hexahedra = n_hexahedra;
-  m_elements = n_elements;
+void XdmfWriter::set_mesh(XdmfMesh mesh) {
+  m_mesh = std::move(mesh);
 }
 
 std::string XdmfWriter::data_item(const std::string& dims, const char* type,
@@ -59,14 +57,14 @@ std::string XdmfWriter::data_item(const std::string& dims, const char* type,
 }
 
 void XdmfWriter::add_frame(const std::string& frame, Real time, const FrameRequest& what) {
-  const std::string nodes = std::to_string(m_nodes);
-  const std::string cells = std::to_string(m_elements);
+  const std::string nodes = std::to_string(m_mesh.nodes);
+  const std::string cells = std::to_string(m_mesh.cells);
   const std::string prefix = "/frames/" + frame + "/";
   std::string grid = "      <Grid Name=\"frame_" + frame + "\" GridType=\"Uniform\">\n";
   grid += "        <Time Value=\"" + exact(time) + "\"/>\n";
-  grid += "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" +
-          std::to_string(m_hexahedra) + "\">\n          " +
-          data_item(std::to_string(m_hexahedra) + " 8", "Int", "/mesh/C3D8R/connectivity") +
+  grid += "        <Topology TopologyType=\"" + m_mesh.topology_type + "\" NumberOfElements=\"" +
+          cells + "\">\n          " +
+          data_item(m_mesh.topology_dimensions, "Int", m_mesh.topology_dataset) +
           "\n        </Topology>\n";
   grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
           data_item(nodes + " 3", "Float", "/mesh/coordinates") + "\n        </Geometry>\n";
@@ -76,15 +74,25 @@ void XdmfWriter::add_frame(const std::string& frame, Real time, const FrameReque
             "\" Center=\"" + center + "\">\n          " + data_item(dims, "Float", prefix + name) +
             "\n        </Attribute>\n";
   };
-  if (what.displacement) attribute("U", "Vector", "Node", nodes + " 3");
-  if (what.velocity) attribute("V", "Vector", "Node", nodes + " 3");
-  if (what.acceleration) attribute("A", "Vector", "Node", nodes + " 3");
-  if (what.reaction) attribute("RF", "Vector", "Node", nodes + " 3");
+  const auto vector = [&](const char* name) { attribute(name, "Vector", "Node", nodes + " 3"); };
+  const bool shells = m_mesh.shells;
+  if (what.displacement) vector("U");
+  if (what.displacement && shells) vector("UR");
+  if (what.velocity) vector("V");
+  if (what.velocity && shells) vector("VR");
+  if (what.acceleration) vector("A");
+  if (what.reaction) vector("RF");
+  if (what.reaction && shells) vector("RM");
   if (what.stress) {
     attribute("S", "Tensor6", "Cell", cells + " 6");
     attribute("MISES", "Scalar", "Cell", cells);
   }
+  if (what.stress && shells) {
+    attribute("S_SNEG", "Tensor6", "Cell", cells + " 6");
+    attribute("S_SPOS", "Tensor6", "Cell", cells + " 6");
+  }
   if (what.volume) attribute("EVOL", "Scalar", "Cell", cells);
+  if (what.thickness && shells) attribute("STH", "Scalar", "Cell", cells);
   grid += "      </Grid>\n";
   m_grids += grid;
   ++m_frames;

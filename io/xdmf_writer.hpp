@@ -10,14 +10,29 @@
 
 namespace xpl::io {
 
+/// The mesh every frame shares, and where JOB.h5 keeps its topology (see write_mesh_group).
+struct XdmfMesh {
+  Index nodes = 0;  ///< rows of /mesh/coordinates
+  Index cells = 0;  ///< all elements, in the row order of the cell fields (S, EVOL, ...)
+  /// XDMF TopologyType: "Hexahedron" (only C3D8R), "Quadrilateral" (only S4R) or "Mixed".
+  std::string topology_type = "Hexahedron";
+  /// HDF5 path of the topology array: a per-type connectivity, or /mesh/mixed_topology.
+  std::string topology_dataset = "/mesh/C3D8R/connectivity";
+  /// Dimensions of the topology DataItem: "cells 8", "cells 4", or the length of the flat
+  /// Mixed array (each cell: XDMF type code, then its node rows).
+  std::string topology_dimensions = "0 8";
+  /// Shell models: U, V, RF, S, STH also list UR, VR, RM, S_SNEG + S_SPOS, STH.
+  bool shells = false;
+};
+
 /// Writes the XDMF index of the frames in an HDF5 result file.
 class XdmfWriter {
  public:
   /// `path` is the .xdmf file; `h5_name` the HDF5 file name relative to its directory.
   XdmfWriter(std::filesystem::path path, std::string h5_name);
 
-  /// Mesh sizes: nodes, hexahedra (/mesh/C3D8R/connectivity), all elements (cell fields).
-  void set_mesh(Index n_nodes, Index n_hexahedra, Index n_elements);
+  /// The mesh of all frames (call before the first add_frame).
+  void set_mesh(XdmfMesh mesh);
   /// Adds the frame /frames/`frame` at total time `time` with the fields `what` and rewrites
   /// the file.
   void add_frame(const std::string& frame, Real time, const FrameRequest& what);
@@ -31,9 +46,7 @@ class XdmfWriter {
 
   std::filesystem::path m_path;
   std::string m_h5_name;  ///< XML-escaped
-  Index m_nodes = 0;
-  Index m_hexahedra = 0;
-  Index m_elements = 0;
+  XdmfMesh m_mesh;
   std::string m_grids;  ///< XML of every frame so far
   int m_frames = 0;
 };

@@ -36,6 +36,28 @@ inline std::string two_brick_model() {
          "*SOLID SECTION, ELSET=BRICKS, MATERIAL=STEEL\n";
 }
 
+/// Model data of a flat plate of two S4R elements 11, 12 in z = 0 (nodes 1..6, x in [0, 2],
+/// y in [0, 1]; normals along +z), a material ALU and a 2 mm shell section: no step.
+inline std::string shell_plate_model() {
+  return "*NODE, NSET=PLATE_NODES\n"
+         "1, 0, 0, 0\n"
+         "2, 1, 0, 0\n"
+         "3, 2, 0, 0\n"
+         "4, 0, 1, 0\n"
+         "5, 1, 1, 0\n"
+         "6, 2, 1, 0\n"
+         "*ELEMENT, TYPE=S4R, ELSET=PLATE\n"
+         "11, 1, 2, 5, 4\n"
+         "12, 2, 3, 6, 5\n"
+         "*MATERIAL, NAME=ALU\n"
+         "*DENSITY\n"
+         "2700.\n"
+         "*ELASTIC\n"
+         "7e10, 0.33\n"
+         "*SHELL SECTION, ELSET=PLATE, MATERIAL=ALU\n"
+         "0.002\n";
+}
+
 /// A minimal valid step.
 inline std::string simple_step() {
   return "*STEP\n"
@@ -54,6 +76,12 @@ inline int line_of(const std::string& deck, const std::string& needle) {
   return line;
 }
 
+/// The expected message prefix `file:LINE: *KEYWORD: ` for `needle`'s line in `deck`.
+inline std::string at(const std::string& deck, const std::string& needle,
+                      const std::string& keyword, const std::string& file_name = "t.inp") {
+  return file_name + ":" + std::to_string(line_of(deck, needle)) + ": " + keyword + ": ";
+}
+
 /// The messages of the InputError thrown by reading `deck`; empty if it reads fine.
 inline std::vector<std::string> deck_errors(const std::string& deck,
                                             const std::string& file_name = "t.inp") {
@@ -63,6 +91,13 @@ inline std::vector<std::string> deck_errors(const std::string& deck,
     return e.messages();
   }
   return {};
+}
+
+/// Whether one of the messages is exactly `message`.
+inline bool has_message(const std::vector<std::string>& messages, const std::string& message) {
+  for (const std::string& m : messages)
+    if (m == message) return true;
+  return false;
 }
 
 /// Whether some message starts with `prefix` and contains `text`.

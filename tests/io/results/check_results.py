@@ -3,22 +3,97 @@
 
 Usage: check_results.py DIRECTORY JOB
 
-h5py: the documented layout of JOB.h5 (shapes, ids, status, history).
-meshio: JOB.xdmf through meshio.xdmf.TimeSeriesReader (mesh and every frame's point data U),
-compared with the datasets in JOB.h5. Exits non-zero with a message on the first mismatch.
+h5py: the documented layout of JOB.h5 (shapes, ids, per-type connectivity, the mixed
+topology of hex + shell meshes, status, history).
+meshio: JOB.xdmf through meshio.xdmf.TimeSeriesReader (mesh and every frame's point and cell
+data), and single frames of it through meshio.read (which reads one grid, not a temporal
+collection), compared with the datasets in JOB.h5; the cell data must line up with the cells
+(shell-only fields are NaN exactly on the hexahedra). Exits non-zero on the first mismatch.
 """
 
 import pathlib
 import sys
+import xml.etree.ElementTree as ET
 
 import h5py
 import meshio
 import numpy as np
 
+# Abaqus element type (group below /mesh): meshio cell type, nodes, XDMF Mixed cell code.
+ELEMENT_TYPES = {"C3D8R": ("hexahedron", 8, 9), "S4R": ("quad", 4, 5)}
+NODE_FIELDS = ("U", "V", "A", "RF")
+ROTATIONS = {"U": "UR", "V": "VR", "RF": "RM"}  # written with U/V/RF on shell models
+CELL_WIDTHS = {"S": 6, "MISES": 1, "EVOL": 1, "S_SNEG": 6, "S_SPOS": 6, "STH": 1}
+SHELL_ONLY = ("S_SNEG", "S_SPOS", "STH")  # NaN on the rows of solid elements
+
 
 def check(condition, message):
     if not condition:
         sys.exit(f"check_results.py: FAILED: {message}")
+
+
+def element_cells(mesh):
+    """meshio type and node rows of every element, in the row order of the cell fields."""
+    n_nodes = mesh["node_ids"].shape[0]
+    element_ids = mesh["element_ids"][()]
+    types = [name for name in ELEMENT_TYPES if name in mesh]
+    mixed = len(types) > 1
+    check(types or len(element_ids) == 0, "no element type group below /mesh")
+    kinds = [None] * len(element_ids)
+    nodes = [None] * len(element_ids)
+    for name in types:
+        group = mesh[name]
+        meshio_type, corners, _ = ELEMENT_TYPES[name]
+        ids = group["element_ids"][()]
+        connectivity = group["connectivity"][()]
+        check(connectivity.shape == (len(ids), corners), f"{name}/connectivity shape")
+        check(connectivity.min() >= 0 and connectivity.max() < n_nodes, f"{name} node rows")
+        check(("element_rows" in group) == mixed, f"{name}/element_rows only in mixed meshes")
+        rows = group["element_rows"][()] if mixed else np.arange(len(ids))
+        check(np.array_equal(element_ids[rows], ids), f"{name}/element_rows do not match ids")
+        for row, element_nodes in zip(rows, connectivity):
+            check(kinds[row] is None, f"element row {row} in two type groups")
+            kinds[row], nodes[row] = meshio_type, element_nodes
+    check(all(kind is not None for kind in kinds), "an element is in no type group")
+    check(("mixed_topology" in mesh) == mixed, "/mesh/mixed_topology only in mixed meshes")
+    if mixed:
+        codes = {meshio_type: code for meshio_type, _, code in ELEMENT_TYPES.values()}
+        expected = np.concatenate([[codes[k], *n] for k, n in zip(kinds, nodes)])
+        check(np.array_equal(mesh["mixed_topology"][()], expected), "mixed_topology")
+    return kinds, nodes
+
+
+def cell_blocks(kinds, nodes):
+    """The cell blocks meshio makes of elements in this order: one per run of a type."""
+    blocks = []
+    for kind, element_nodes in zip(kinds, nodes):
+        if blocks and blocks[-1][0] == kind:
+            blocks[-1][1].append(element_nodes)
+        else:
+            blocks.append((kind, [element_nodes]))
+    return [(kind, np.array(rows)) for kind, rows in blocks]
+
+
+def check_frame(name, frame, n_nodes, kinds):
+    shells = "quad" in kinds
+    for field in NODE_FIELDS + tuple(ROTATIONS.values()):
+        if field in frame:
+            check(frame[field].shape == (n_nodes, 3), f"{name}/{field} shape")
+    for base, rotation in ROTATIONS.items():
+        check((rotation in frame) == (shells and base in frame), f"{name}/{rotation} with {base}")
+    for field, width in CELL_WIDTHS.items():
+        if field not in frame:
+            continue
+        expected = (len(kinds),) if width == 1 else (len(kinds), width)
+        check(frame[field].shape == expected, f"{name}/{field} shape")
+        if field in SHELL_ONLY:
+            values = frame[field][()].reshape(len(kinds), -1)
+            finite = np.isfinite(values).all(axis=1)
+            check(np.array_equal(finite, np.array(kinds) == "quad"), f"{name}/{field} NaN rows")
+    check(("MISES" in frame) == ("S" in frame), f"{name}: MISES with S")
+    for field in ("S_SNEG", "S_SPOS"):
+        check((field in frame) == (shells and "S" in frame), f"{name}/{field} with S")
+    check(shells or "STH" not in frame, f"{name}/STH without shells")
 
 
 def check_h5(path):
@@ -28,24 +103,17 @@ def check_h5(path):
         for name in ("xpl_version", "job", "heading"):
             check(isinstance(f.attrs[name], str), f"attribute {name} is not a string")
         n_nodes = f["mesh/node_ids"].shape[0]
-        n_elements = f["mesh/element_ids"].shape[0]
         check(f["mesh/coordinates"].shape == (n_nodes, 3), "coordinates shape")
-        connectivity = f["mesh/C3D8R/connectivity"][()]
-        check(connectivity.shape == (f["mesh/C3D8R/element_ids"].shape[0], 8), "connectivity")
-        check(connectivity.min() >= 0 and connectivity.max() < n_nodes, "connectivity rows")
         check(f["mesh/node_ids"].dtype == np.int64, "node_ids dtype")
+        kinds, nodes = element_cells(f["mesh"])
         frames = sorted(f["frames"].keys())
         check(len(frames) > 0, "no frames")
-        times = []
+        data, times = [], []
         for name in frames:
             frame = f["frames"][name]
+            check_frame(name, frame, n_nodes, kinds)
             times.append(frame.attrs["time"])
-            for field in ("U", "V", "A", "RF"):
-                if field in frame:
-                    check(frame[field].shape == (n_nodes, 3), f"{name}/{field} shape")
-            if "S" in frame:
-                check(frame["S"].shape == (n_elements, 6), f"{name}/S shape")
-                check(frame["MISES"].shape == (n_elements,), f"{name}/MISES shape")
+            data.append({field: frame[field][()] for field in frame})
         check(all(np.diff(times) >= 0), "frame times decrease")
         for step in f["history"].values():
             nt = step["time"].shape[0]
@@ -58,32 +126,77 @@ def check_h5(path):
                         check(obj.attrs["node_ids"].shape == (obj.shape[1],), f"{name} node_ids")
 
             step.visititems(visit)
-        return f["mesh/coordinates"][()], {name: f["frames"][name]["U"][()] for name in frames}, times
+        return f["mesh/coordinates"][()], cell_blocks(kinds, nodes), data, times
 
 
-def check_xdmf(path, coordinates, displacements, times):
+def check_cells(cells, blocks, what):
+    check([c.type for c in cells] == [kind for kind, _ in blocks], f"{what}: cells {cells}")
+    for cell, (kind, rows) in zip(cells, blocks):
+        check(np.array_equal(cell.data, rows), f"{what}: {kind} connectivity differs from h5")
+
+
+def check_fields(point_data, cell_data, cells, frame, what):
+    """meshio's point and cell data equal the frame's datasets; cell data split by block."""
+    node_fields = {f for f in frame if f in NODE_FIELDS or f in ROTATIONS.values()}
+    check(set(point_data) == node_fields, f"{what}: point data {sorted(point_data)}")
+    for field in node_fields:
+        check(np.array_equal(point_data[field], frame[field]), f"{what}: {field}")
+    check(set(cell_data) == set(frame) - node_fields, f"{what}: cell data {sorted(cell_data)}")
+    for field, blocks in cell_data.items():
+        check([len(b) for b in blocks] == [len(c.data) for c in cells], f"{what}: {field} blocks")
+        check(np.array_equal(np.concatenate(blocks), frame[field], equal_nan=True),
+              f"{what}: {field} differs from h5")
+        if field in SHELL_ONLY:
+            for cell, block in zip(cells, blocks):
+                finite = np.isfinite(block).all()
+                check(finite == (cell.type == "quad"), f"{what}: {field} on {cell.type} cells")
+
+
+def check_time_series(path, coordinates, blocks, data, times):
     with meshio.xdmf.TimeSeriesReader(path) as reader:
         points, cells = reader.read_points_cells()
         check(np.array_equal(points, coordinates), "XDMF geometry differs from /mesh/coordinates")
-        check(len(cells) == 1 and cells[0].type == "hexahedron", f"cells: {cells}")
-        check(reader.num_steps == len(displacements), f"{reader.num_steps} XDMF time steps")
-        for k, (name, u) in enumerate(sorted(displacements.items())):
+        check_cells(cells, blocks, "TimeSeriesReader")
+        check(reader.num_steps == len(data), f"{reader.num_steps} XDMF time steps")
+        for k, frame in enumerate(data):
             t, point_data, cell_data = reader.read_data(k)
             check(t == times[k], f"time of step {k}: {t} != {times[k]}")
-            check(np.array_equal(point_data["U"], u), f"U of frame {name}")
-            check(point_data["V"].shape == u.shape, f"V of frame {name}")
-            if "S" in cell_data:
-                check(cell_data["S"][0].shape == (cells[0].data.shape[0], 6), f"S of {name}")
+            check_fields(point_data, cell_data, cells, frame, f"XDMF step {k}")
     return reader.num_steps
+
+
+def check_single_frames(path, coordinates, blocks, data):
+    """meshio.read reads one grid: each frame, cut out of the collection, must read alone."""
+    grids = ET.parse(path).getroot().find("Domain").find("Grid").findall("Grid")
+    check(len(grids) == len(data), "XDMF grids")
+    single = path.with_name(path.stem + ".single_frame.xdmf")  # beside JOB.h5: same relative path
+    try:
+        for k in (0, len(grids) - 1):
+            grid = grids[k]
+            for time in grid.findall("Time"):
+                grid.remove(time)  # meshio.read knows no Time outside a collection
+            root = ET.Element("Xdmf", Version="3.0")
+            ET.SubElement(root, "Domain").append(grid)
+            ET.ElementTree(root).write(single)
+            mesh = meshio.read(single)
+            check(np.array_equal(mesh.points, coordinates), f"meshio.read frame {k}: points")
+            check_cells(mesh.cells, blocks, f"meshio.read frame {k}")
+            check_fields(mesh.point_data, mesh.cell_data, mesh.cells, data[k],
+                         f"meshio.read frame {k}")
+    finally:
+        single.unlink(missing_ok=True)
 
 
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     directory, job = pathlib.Path(sys.argv[1]), sys.argv[2]
-    coordinates, displacements, times = check_h5(directory / f"{job}.h5")
-    steps = check_xdmf(directory / f"{job}.xdmf", coordinates, displacements, times)
-    print(f"check_results.py: {job}: h5py layout and {steps} XDMF frames OK")
+    coordinates, blocks, data, times = check_h5(directory / f"{job}.h5")
+    xdmf = directory / f"{job}.xdmf"
+    steps = check_time_series(xdmf, coordinates, blocks, data, times)
+    check_single_frames(xdmf, coordinates, blocks, data)
+    types = ", ".join(f"{len(rows)} {kind}" for kind, rows in blocks)
+    print(f"check_results.py: {job}: h5py layout and {steps} XDMF frames ({types}) OK")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,132 @@
+/// \file Pressure loads: *DLOAD (element or element set, P on shells, P1..P6 on solid faces)
+/// and *DSLOAD (P on an element-based surface), resolved into one PressureLoad per face.
+
+#include "io/deck_builder.hpp"
+#include "io/deck_numbers.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+constexpr const char* DLOAD_TYPES =
+    "supported: P on S4R elements (face SPOS), P1..P6 on C3D8R elements (faces S1..S6)";
+
+/// Face of a *DLOAD load type: 0..5 for P1..P6, -1 for P; nothing for other types.
+std::optional<int> dload_face(const std::string& type) {
+  if (type == "P") return -1;
+  if (type.size() == 2 && type[0] == 'P' && type[1] >= '1' && type[1] <= '6') return type[1] - '1';
+  return std::nullopt;
+}
+
+}  // namespace
+
+void DeckBuilder::read_dload(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
+  if (!read_load_op(keyword, m_model.steps.back().pressures_reset)) return;
+  const std::string amplitude = optional_name(keyword, "AMPLITUDE");
+  for (const DeckDataLine& line : block.data) {
+    if (line.fields.size() < 2 || line.fields[1].empty()) {
+      error(line.where(), keyword, "missing load type",
+            "expected element or element set, load type, magnitude");
+      continue;
+    }
+    const std::string type = normalize_name(line.fields[1]);
+    const std::optional<int> face = dload_face(type);
+    if (!face) {  // before the field count: GRAV and BX have other data lines
+      error(line.where(), keyword, "load type " + type + " is not supported yet", DLOAD_TYPES);
+      continue;
+    }
+    check_field_count(line, keyword, 3, "element or element set, load type, magnitude");
+    const std::optional<Real> magnitude = real_field(line, keyword, 2, "magnitude");
+    if (!magnitude) continue;
+    PendingPressure pending;
+    pending.step = static_cast<Index>(m_model.steps.size() - 1);
+    pending.target = reference(line, keyword, 0);
+    pending.solid_face = *face;
+    pending.load_type = type;
+    pending.load.value = *magnitude;
+    pending.load.where = line.where();
+    pending.amplitude = amplitude;
+    m_pressures.push_back(std::move(pending));
+  }
+}
+
+void DeckBuilder::read_dsload(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
+  if (!read_load_op(keyword, m_model.steps.back().pressures_reset)) return;
+  const std::string amplitude = optional_name(keyword, "AMPLITUDE");
+  for (const DeckDataLine& line : block.data) {
+    if (line.fields.empty() || line.fields[0].empty()) {
+      error(line.where(), keyword, "missing surface name", "expected surface, P, magnitude");
+      continue;
+    }
+    const std::string type = line.fields.size() > 1 ? normalize_name(line.fields[1]) : "";
+    if (type.empty()) {
+      error(line.where(), keyword, "missing load type", "expected surface, P, magnitude");
+      continue;
+    }
+    if (type != "P") {
+      error(line.where(), keyword, "load type " + type + " is not supported yet",
+            "supported: P (pressure on an element-based surface)");
+      continue;
+    }
+    check_field_count(line, keyword, 3, "surface, P, magnitude");
+    const std::optional<Real> magnitude = real_field(line, keyword, 2, "magnitude");
+    if (!magnitude) continue;
+    PendingPressure pending;
+    pending.step = static_cast<Index>(m_model.steps.size() - 1);
+    pending.target = {normalize_name(line.fields[0]), line.where(), keyword.label()};
+    pending.on_surface = true;
+    pending.load_type = type;
+    pending.load.value = *magnitude;
+    pending.load.where = line.where();
+    pending.amplitude = amplitude;
+    m_pressures.push_back(std::move(pending));
+  }
+}
+
+void DeckBuilder::resolve_pressures() {
+  for (const PendingPressure& pending : m_pressures) {
+    Step& step = m_model.steps[static_cast<std::size_t>(pending.step)];
+    const DeckReference& target = pending.target;
+    PressureLoad load = pending.load;
+    load.amplitude = resolve_amplitude(pending.amplitude, load.where, target.keyword);
+    if (pending.on_surface) {
+      const Index s = m_model.find_surface(target.token);
+      if (s == NO_INDEX) {
+        m_errors.add(target.where, target.keyword, "undefined surface " + target.token,
+                     "expected *SURFACE, NAME=" + target.token);
+        continue;
+      }
+      const Surface& surface = m_model.surfaces[static_cast<std::size_t>(s)];
+      if (surface.type != Surface::Type::Element) {
+        m_errors.add(target.where, target.keyword, "surface " + target.token + " is node-based",
+                     "expected an element-based surface (*SURFACE, TYPE=ELEMENT) under a pressure");
+        continue;
+      }
+      for (const ElementFace& face : surface.faces) {
+        load.face = face;
+        step.pressures.push_back(load);
+      }
+      continue;
+    }
+    bool reported = false;  // one mismatch per data line, not one per element of a set
+    for (Index e : resolve_elements(target)) {
+      const bool shell = is_shell(m_model.element_types[static_cast<std::size_t>(e)]);
+      if (shell == (pending.solid_face < 0)) {
+        load.face = {e, shell ? SHELL_FACE_POS : static_cast<std::uint8_t>(pending.solid_face)};
+        step.pressures.push_back(load);
+      } else if (!reported) {
+        reported = true;
+        m_errors.add(target.where, target.keyword,
+                     "load type " + pending.load_type + " does not fit " + element_text(e, target),
+                     shell ? "expected P on S4R shell elements"
+                           : "expected P1..P6 on C3D8R solid elements (faces S1..S6)");
+      }
+    }
+  }
+}
+
+}  // namespace xpl::io
