@@ -11,6 +11,7 @@
 #include "elements/hex8r.hpp"
 #include "elements/shell4r.hpp"
 #include "solver/boundary_state.hpp"
+#include "solver/gravity_loads.hpp"
 #include "solver/node_rotations.hpp"
 #include "solver/output_schedule.hpp"
 #include "solver/pressure_loads.hpp"
@@ -96,6 +97,7 @@ struct ExplicitSolver::Impl {
   std::unique_ptr<elements::Shell4rBlock> shell;
   BoundaryState boundary;
   PressureLoads pressures;
+  GravityLoads gravity;
   NodeRotations rotations;
   /// Shell models only (else 0 rows / empty): internal moments (n_nodes × 3), inverse rotary
   /// inertia, and the moments of the previous increment at prescribed rotations (work).
@@ -274,6 +276,7 @@ void ExplicitSolver::Impl::begin_step(int step) {
   boundary.begin_step(model, step, displacement, state.velocity, state.rotation,
                       state.angular_velocity);
   pressures.begin_step(model, step);
+  gravity.begin_step(model, step, state.reference, state.mass);
   schedule.begin_step(model, step);
   state.reaction.setZero();
   if (shell) state.reaction_moment.setZero();
@@ -296,13 +299,17 @@ void ExplicitSolver::Impl::begin_step(int step) {
   const auto n = static_cast<std::size_t>(model.node_count());
   std::vector<char> is_prescribed(n * 6, 0);
   for (const PrescribedDof& d : prescribed) is_prescribed[d.component * n + d.node] = 1;
-  // Loaded DOFs: CLOADs and the three components of every node under pressure.
+  // Loaded DOFs: CLOADs and the three components of every node under pressure or gravity.
   loaded_dofs = boundary.loads();
   std::vector<char> is_loaded(n * 3, 0);
   for (const LoadedDof& l : loaded_dofs) is_loaded[l.component * n + l.node] = 1;
-  for (Index node : pressures.nodes())
-    for (int c = 0; c < 3; ++c)
-      if (!is_loaded[c * n + node]) loaded_dofs.push_back({node, c, 0.0, NO_INDEX});
+  for (const std::vector<Index>* nodes : {&pressures.nodes(), &gravity.nodes()})
+    for (Index node : *nodes)
+      for (int c = 0; c < 3; ++c)
+        if (!is_loaded[c * n + node]) {
+          is_loaded[c * n + node] = 1;
+          loaded_dofs.push_back({node, c, 0.0, NO_INDEX});
+        }
   free_loads.clear();
   for (const LoadedDof& l : loaded_dofs)
     if (!is_prescribed[l.component * n + l.node]) free_loads.push_back(l);
@@ -349,6 +356,7 @@ void ExplicitSolver::Impl::apply_loads(Real step_time, Real total_time) {
         l.value * boundary.factor(model, l.amplitude, step_time, total_time);
   if (!pressures.empty())
     pressures.add_forces(model, boundary, state.position, step_time, total_time, force_external);
+  if (!gravity.empty()) gravity.add_forces(model, boundary, step_time, total_time, force_external);
 }
 
 Real ExplicitSolver::Impl::next_increment(const ElementTotals& totals, Real remaining,
@@ -662,6 +670,24 @@ RunSummary ExplicitSolver::Impl::summary() const {
   s.timers = timers;
   s.energies = state.energies;
   return s;
+}
+
+std::vector<std::string> unsupported_features(const Model& model) {
+  std::vector<std::string> out;
+  auto refuse = [&](const SourceLocation& where, const std::string& keyword,
+                    const std::string& what) {
+    out.push_back(where.file + ":" + std::to_string(where.line) + ": " + keyword + ": " + what +
+                  " is read but not run by this version of xpl yet; expected a model without it");
+  };
+  for (const RigidBody& r : model.rigid_bodies) refuse(r.where, "*RIGID BODY", "a rigid body");
+  for (const PointInertia& p : model.point_inertias)
+    refuse(p.where, "*MASS", "a point mass or rotary inertia");
+  for (const ContactPair& c : model.contact_pairs) refuse(c.where, "*CONTACT PAIR", "contact");
+  for (const Step& s : model.steps) {
+    if (s.contact) refuse(s.contact->where, "*CONTACT", "general contact");
+    for (const ContactPair& c : s.contact_pairs) refuse(c.where, "*CONTACT PAIR", "contact");
+  }
+  return out;
 }
 
 ExplicitSolver::ExplicitSolver(const Model& model, OutputSink& sink, SolverOptions options)

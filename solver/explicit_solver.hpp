@@ -3,6 +3,8 @@
 /// element-by-element stable increment every increment, bulk viscosity, energy balance.
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "common/timer.hpp"
 #include "solver/model.hpp"
@@ -30,6 +32,11 @@ struct RunSummary {
   PhaseTimers timers;
   Energies energies;  ///< at the end
 };
+
+/// Features the deck reader accepts but the time loop does not run yet, one message per
+/// keyword occurrence (`file:LINE: *KEYWORD: problem; expectation`). The CLI refuses such a
+/// model before writing anything rather than ignoring part of it.
+std::vector<std::string> unsupported_features(const Model& model);
 
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.
 class ExplicitSolver {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/error.hpp"
@@ -167,6 +168,79 @@ struct PressureLoad {
   SourceLocation where;
 };
 
+/// `*DLOAD` GRAV: a body force ρ·g·direction on the elements of a set (all elements when
+/// `element_set` is NO_INDEX), N/kg times the amplitude.
+struct GravityLoad {
+  Index element_set = NO_INDEX;
+  Real magnitude = 0.0;            ///< m/s^2
+  Real direction[3] = {0, 0, -1};  ///< unit vector (normalised by io)
+  Index amplitude = NO_INDEX;
+  SourceLocation where;
+};
+
+/// `*SURFACE INTERACTION, NAME=` with `*FRICTION` and `*SURFACE BEHAVIOR`.
+struct SurfaceInteraction {
+  std::string name;     ///< upper-case name
+  Real friction = 0.0;  ///< Coulomb coefficient μ (`*FRICTION`), 0 = frictionless
+  /// `*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=`: HARD (default) and LINEAR both run as penalty
+  /// contact; LINEAR with a slope uses it (pressure per unit overclosure, Pa/m) as the
+  /// penalty stiffness per unit area, HARD uses the default penalty.
+  bool linear = false;
+  Real linear_slope = 0.0;  ///< Pa/m, > 0 when given
+  SourceLocation where;
+};
+
+/// A pair of surfaces (indices into Model::surfaces). NO_INDEX stands for "all exterior
+/// faces" (an empty surface field in the deck); `first == second` is self contact.
+struct SurfacePair {
+  Index first = NO_INDEX;
+  Index second = NO_INDEX;
+  SourceLocation where;
+};
+
+/// `*CONTACT` (general contact) in a step, with its sub-options.
+struct GeneralContact {
+  /// `*CONTACT INCLUSIONS, ALL EXTERIOR`: every exterior solid face and both sides of every
+  /// shell, including self contact.
+  bool all_exterior = false;
+  std::vector<SurfacePair> inclusions;  ///< `*CONTACT INCLUSIONS` data lines
+  std::vector<SurfacePair> exclusions;  ///< `*CONTACT EXCLUSIONS` data lines
+  /// `*CONTACT PROPERTY ASSIGNMENT`: interaction (into Model::surface_interactions) per
+  /// pair; a pair of two NO_INDEX surfaces is the global default.
+  std::vector<std::pair<SurfacePair, Index>> properties;
+  /// `*CONTACT CONTROLS ASSIGNMENT` penalty scale factor (`*CONTACT CONTROLS, NAME=,
+  /// PENALTY SCALE FACTOR=`... or the data-line form), multiplies the default penalty.
+  Real penalty_scale = 1.0;
+  SourceLocation where;
+};
+
+/// `*CONTACT PAIR, INTERACTION=` (CalculiX/Abaqus pairwise contact): slave, master surfaces.
+struct ContactPair {
+  Index slave = NO_INDEX;   ///< into Model::surfaces
+  Index master = NO_INDEX;  ///< into Model::surfaces
+  Index interaction = NO_INDEX;
+  SourceLocation where;
+};
+
+/// `*RIGID BODY, REF NODE=, ELSET=[, PIN NSET=][, TIE NSET=]`: the elements of the set (and
+/// the pinned/tied nodes) move with the reference node as one rigid body.
+struct RigidBody {
+  Index reference_node = NO_INDEX;
+  Index element_set = NO_INDEX;  ///< NO_INDEX: none
+  Index pin_node_set = NO_INDEX;
+  Index tie_node_set = NO_INDEX;
+  SourceLocation where;
+};
+
+/// A point mass (`*ELEMENT, TYPE=MASS` + `*MASS, ELSET=`) or rotary inertia
+/// (`TYPE=ROTARYI` + `*ROTARY INERTIA`: I11, I22, I33, I12, I13, I23 in global axes) on a node.
+struct PointInertia {
+  Index node = NO_INDEX;
+  Real mass = 0.0;                       ///< kg
+  Real inertia[6] = {0, 0, 0, 0, 0, 0};  ///< kg·m^2
+  SourceLocation where;
+};
+
 /// `*OUTPUT, FIELD|HISTORY` with the `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*ENERGY OUTPUT`
 /// requests that follow it.
 struct OutputRequest {
@@ -183,10 +257,14 @@ struct OutputRequest {
   /// Element variables, upper case: S, EVOL, MISES, STH (shell thickness), ...
   std::vector<std::string> element_variables;
   Index element_set = NO_INDEX;
-  /// Whole-model energies (history): ALLKE ALLSE ALLAE ALLIE ALLVD ALLWK ETOTAL; `energy`
+  /// Whole-model energies (history): ALLKE ALLSE ALLAE ALLIE ALLVD ALLWK ETOTAL, and with
+  /// contact ALLFD (frictional dissipation) and ALLPW (work of contact penalties); `energy`
   /// with an empty list means all of them.
   bool energy = false;
   std::vector<std::string> energy_variables;
+  /// Contact variables (`*CONTACT OUTPUT`, field), upper case: CSTRESS (contact pressure and
+  /// shear stress), CSTATUS, CFORCE; over the whole contact domain.
+  std::vector<std::string> contact_variables;
   SourceLocation where;
 };
 
@@ -211,6 +289,18 @@ struct Step {
   /// replaces an earlier one; OP=NEW on either keyword clears all earlier pressures).
   std::vector<PressureLoad> pressures;
   bool pressures_reset = false;
+  /// Gravity of `*DLOAD` GRAV lines, same propagation rule (keyed by element set).
+  std::vector<GravityLoad> gravity;
+  /// `*DLOAD, OP=NEW` in this step: gravity of earlier steps is removed (it also sets
+  /// `pressures_reset`; `*DSLOAD, OP=NEW` sets only that).
+  bool gravity_reset = false;
+  /// General contact in effect from this step on, when the step has `*CONTACT`: complete, i.e.
+  /// the definition of the latest earlier step with `*CONTACT` plus this step's options
+  /// (`*CONTACT, OP=NEW`: this step's options only; no inclusions then means no general
+  /// contact). Empty when the step has no `*CONTACT` (contact of an earlier step carries
+  /// over, as Abaqus does).
+  std::optional<GeneralContact> contact;
+  std::vector<ContactPair> contact_pairs;  ///< `*CONTACT PAIR` given in this step
   std::vector<OutputRequest> outputs;
 };
 
@@ -254,6 +344,12 @@ struct Model {
   std::vector<NamedSet> element_sets;
   std::vector<Surface> surfaces;
   std::vector<Amplitude> amplitudes;
+
+  // --- contact, rigid bodies, point inertia --------------------------------------------------
+  std::vector<SurfaceInteraction> surface_interactions;
+  std::vector<ContactPair> contact_pairs;  ///< model-level `*CONTACT PAIR` (CalculiX style)
+  std::vector<RigidBody> rigid_bodies;
+  std::vector<PointInertia> point_inertias;
 
   // --- initial conditions and history --------------------------------------------------------
   NodalVectors initial_velocity;  ///< (n_nodes × 3), zero unless given, m/s

@@ -110,3 +110,52 @@ TEST_CASE("rotations prescribed on solid nodes are dropped with a note", "[solve
     noted = noted || text.find("DOFs 4-6 of nodes that belong to no shell") != std::string::npos;
   CHECK(noted);
 }
+
+TEST_CASE("gravity accelerates a free block at g and its work is kinetic energy",
+          "[solver][gravity]") {
+  BoxSpec spec;
+  spec.nx = spec.ny = spec.nz = 2;
+  spec.lx = spec.ly = spec.lz = 0.02;
+  spec.fix_x0 = false;
+  spec.velocity_x = 0.0;
+  spec.period = 1e-4;
+  for (bool whole_model : {true, false}) {
+    Model m = make_box(spec);
+    m.steps[0].boundaries.clear();
+    GravityLoad g;
+    g.element_set = whole_model ? NO_INDEX : 0;  // set 0 is ALL: the same elements
+    g.magnitude = 9.81;
+    g.direction[0] = 0.6;
+    g.direction[1] = 0.0;
+    g.direction[2] = -0.8;
+    m.steps[0].gravity.push_back(g);
+    CaptureSink sink;
+    ExplicitSolver solver(m, sink);
+    solver.run();
+    const State& s = solver.state();
+    Real mass = 0.0, p[3] = {0, 0, 0};
+    for (Index n = 0; n < m.node_count(); ++n) {
+      mass += s.mass[n];
+      for (int c = 0; c < 3; ++c) p[c] += s.mass[n] * s.velocity(n, c);
+    }
+    CHECK(p[0] / mass == Approx(9.81 * 0.6 * s.time).epsilon(1e-9));
+    CHECK(p[2] / mass == Approx(-9.81 * 0.8 * s.time).epsilon(1e-9));
+    CHECK(s.energies.kinetic == Approx(s.energies.external_work).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("features read but not run yet are refused with their deck line", "[solver]") {
+  BoxSpec spec;
+  spec.nx = spec.ny = spec.nz = 1;
+  Model m = make_box(spec);
+  CHECK(unsupported_features(m).empty());
+  m.rigid_bodies.push_back({0, 0, NO_INDEX, NO_INDEX, {"box.inp", 12}});
+  GeneralContact contact;
+  contact.all_exterior = true;
+  contact.where = {"box.inp", 30};
+  m.steps[0].contact = contact;
+  const auto refused = unsupported_features(m);
+  REQUIRE(refused.size() == 2);
+  CHECK(refused[0].rfind("box.inp:12: *RIGID BODY: a rigid body is read but not run", 0) == 0);
+  CHECK(refused[1].rfind("box.inp:30: *CONTACT: general contact is read but not run", 0) == 0);
+}

@@ -1,0 +1,74 @@
+#include "solver/gravity_loads.hpp"
+
+#include <algorithm>
+
+#include "elements/hex8_geometry.hpp"
+#include "elements/quad_shell_geometry.hpp"
+
+namespace xpl {
+
+Real element_node_mass(const Model& model, Index e, const NodalVectors& reference) {
+  const Index* nodes = model.nodes_of(e);
+  if (is_shell(model.element_types[e])) {
+    const ShellSection& s = model.shell_sections[model.element_section[e]];
+    elements::V3<Real> p[4];
+    for (int a = 0; a < 4; ++a)
+      p[a] = {reference(nodes[a], 0), reference(nodes[a], 1), reference(nodes[a], 2)};
+    return model.materials[s.material].density * s.thickness * elements::quad_frame(p).area / 4.0;
+  }
+  Real x[8], y[8], z[8];
+  for (int a = 0; a < 8; ++a) {
+    x[a] = reference(nodes[a], 0);
+    y[a] = reference(nodes[a], 1);
+    z[a] = reference(nodes[a], 2);
+  }
+  const SolidSection& s = model.solid_sections[model.element_section[e]];
+  return model.materials[s.material].density * elements::hex8_volume(x, y, z) / 8.0;
+}
+
+void GravityLoads::begin_step(const Model& model, int step, const NodalVectors& reference,
+                              const std::vector<Real>& nodal_mass) {
+  const Step& s = model.steps[step];
+  if (s.pressures_reset) m_active.clear();
+  for (const GravityLoad& g : s.gravity) m_active[g.element_set] = g;
+  m_terms.clear();
+  m_nodes.clear();
+  for (const auto& [set, g] : m_active) {
+    Term t;
+    for (int c = 0; c < 3; ++c) t.acceleration[c] = g.magnitude * g.direction[c];
+    t.amplitude = g.amplitude;
+    if (set == NO_INDEX) {
+      for (Index n = 0; n < model.node_count(); ++n)
+        if (nodal_mass[n] > 0.0) {
+          t.nodes.push_back(n);
+          t.mass.push_back(nodal_mass[n]);
+        }
+    } else {
+      std::map<Index, Real> share;
+      for (Index e : model.element_sets[set].members) {
+        const Real m = element_node_mass(model, e, reference);
+        const Index* nodes = model.nodes_of(e);
+        for (int a = 0; a < nodes_per_element(model.element_types[e]); ++a) share[nodes[a]] += m;
+      }
+      for (const auto& [node, m] : share) {
+        t.nodes.push_back(node);
+        t.mass.push_back(m);
+      }
+    }
+    m_nodes.insert(m_nodes.end(), t.nodes.begin(), t.nodes.end());
+    m_terms.push_back(std::move(t));
+  }
+  std::sort(m_nodes.begin(), m_nodes.end());
+  m_nodes.erase(std::unique(m_nodes.begin(), m_nodes.end()), m_nodes.end());
+}
+
+void GravityLoads::add_forces(const Model& model, const BoundaryState& amplitudes, Real step_time,
+                              Real total_time, NodalVectors& force) const {
+  for (const Term& t : m_terms) {
+    const Real f = amplitudes.factor(model, t.amplitude, step_time, total_time);
+    for (std::size_t k = 0; k < t.nodes.size(); ++k)
+      for (int c = 0; c < 3; ++c) force(t.nodes[k], c) += f * t.mass[k] * t.acceleration[c];
+  }
+}
+
+}  // namespace xpl

@@ -1,0 +1,47 @@
+#pragma once
+/// \file Gravity (`*DLOAD` GRAV) active per step: a body force m·g on each node, with the
+/// lumped mass of the loaded elements (the whole nodal mass when no element set is given).
+
+#include <map>
+#include <vector>
+
+#include "common/types.hpp"
+#include "solver/boundary_state.hpp"
+#include "solver/model.hpp"
+
+namespace xpl {
+
+/// The gravity loads in force during one step.
+class GravityLoads {
+ public:
+  /// Applies the changes of `step` (keyed by element set; `pressures_reset` — OP=NEW on
+  /// *DLOAD — also clears gravity). `nodal_mass` (n_nodes) is the lumped mass used for
+  /// whole-model gravity; element sets use their elements' own lumped mass.
+  void begin_step(const Model& model, int step, const NodalVectors& reference,
+                  const std::vector<Real>& nodal_mass);
+
+  bool empty() const { return m_terms.empty(); }
+  /// Nodes that carry gravity forces (sorted, unique).
+  const std::vector<Index>& nodes() const { return m_nodes; }
+
+  /// Adds m·g·direction·amplitude to `force` (n_nodes × 3).
+  void add_forces(const Model& model, const BoundaryState& amplitudes, Real step_time,
+                  Real total_time, NodalVectors& force) const;
+
+ private:
+  struct Term {
+    std::vector<Index> nodes;
+    std::vector<Real> mass;  ///< per node, kg
+    Real acceleration[3];    ///< g · direction, m/s^2
+    Index amplitude;
+  };
+  std::map<Index, GravityLoad> m_active;
+  std::vector<Term> m_terms;
+  std::vector<Index> m_nodes;
+};
+
+/// Lumped mass per node of element e in the configuration `reference`: ρV/8 (C3D8R),
+/// ρtA/4 (S4R), kg.
+Real element_node_mass(const Model& model, Index e, const NodalVectors& reference);
+
+}  // namespace xpl
