@@ -1,0 +1,177 @@
+#include "contact/broad_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace xpl::contact {
+
+namespace {
+
+/// Upper bound on buckets per face: keeps the grid O(n_faces) however the faces spread out.
+constexpr double MAX_BUCKETS_PER_FACE = 4.0;
+
+Index bucket_coordinate(Real x, Real origin, Real cell, Index dim) {
+  const auto i = static_cast<Index>(std::floor((x - origin) / cell));
+  return std::clamp<Index>(i, 0, dim - 1);
+}
+
+}  // namespace
+
+BroadPhase::BroadPhase(Real margin) : m_margin(margin) {
+  if (!(margin > 0.0)) throw std::invalid_argument("BroadPhase: the search margin must be > 0");
+}
+
+void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
+                       const NodalVectors& position, std::span<const Real> node_thickness) {
+  const auto n_faces = static_cast<Index>(faces.size());
+  const auto n_slave = static_cast<Index>(slave_nodes.size());
+  const auto n_nodes = static_cast<Index>(position.rows());
+  ++m_builds;
+
+  // Inflated face boxes and their joint box.
+  m_box_lo.resize(3 * static_cast<std::size_t>(n_faces));
+  m_box_hi.resize(3 * static_cast<std::size_t>(n_faces));
+  Real lo0 = std::numeric_limits<Real>::max(), lo1 = lo0, lo2 = lo0;
+  Real hi0 = std::numeric_limits<Real>::lowest(), hi1 = hi0, hi2 = hi0;
+  Real extent_sum = 0.0;
+#pragma omp parallel for schedule(static) reduction(min : lo0, lo1, lo2) \
+    reduction(max : hi0, hi1, hi2) reduction(+ : extent_sum)
+  for (Index f = 0; f < n_faces; ++f) {
+    Vec3 corner[4];
+    face_corners(faces[f], position, node_thickness, corner);
+    Real extent = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      Real lo = corner[0][d], hi = corner[0][d];
+      for (int a = 1; a < 4; ++a) {
+        lo = std::min(lo, corner[a][d]);
+        hi = std::max(hi, corner[a][d]);
+      }
+      m_box_lo[3 * f + d] = lo - m_margin;
+      m_box_hi[3 * f + d] = hi + m_margin;
+      extent = std::max(extent, hi - lo + 2.0 * m_margin);
+    }
+    extent_sum += extent;
+    lo0 = std::min(lo0, m_box_lo[3 * f]);
+    lo1 = std::min(lo1, m_box_lo[3 * f + 1]);
+    lo2 = std::min(lo2, m_box_lo[3 * f + 2]);
+    hi0 = std::max(hi0, m_box_hi[3 * f]);
+    hi1 = std::max(hi1, m_box_hi[3 * f + 1]);
+    hi2 = std::max(hi2, m_box_hi[3 * f + 2]);
+  }
+
+  // Bucket size: the mean box size, grown until the grid has O(n_faces) buckets. The sum may
+  // round differently with other thread counts; that moves bucket walls, never the result,
+  // which is decided by the exact box test and sorted by face index.
+  m_dims = {0, 0, 0};
+  if (n_faces > 0) {
+    m_origin = Vec3(lo0, lo1, lo2);
+    const Real span[3] = {hi0 - lo0, hi1 - lo1, hi2 - lo2};
+    m_cell = extent_sum / n_faces;
+    const double max_buckets = MAX_BUCKETS_PER_FACE * n_faces + 64.0;
+    for (;;) {
+      double total = 1.0;
+      for (int d = 0; d < 3; ++d) total *= std::max(1.0, std::ceil(span[d] / m_cell));
+      if (total <= max_buckets) break;
+      m_cell *= std::max(1.01, std::cbrt(total / max_buckets));
+    }
+    for (int d = 0; d < 3; ++d)
+      m_dims[d] = static_cast<Index>(std::max(1.0, std::ceil(span[d] / m_cell)));
+  }
+  const Index n_cells = m_dims[0] * m_dims[1] * m_dims[2];
+
+  // Bucket -> faces by counting sort: faces ascending within each bucket.
+  auto for_each_bucket = [&](Index f, auto&& visit) {
+    Index a[3], b[3];
+    for (int d = 0; d < 3; ++d) {
+      a[d] = bucket_coordinate(m_box_lo[3 * f + d], m_origin[d], m_cell, m_dims[d]);
+      b[d] = bucket_coordinate(m_box_hi[3 * f + d], m_origin[d], m_cell, m_dims[d]);
+    }
+    for (Index k = a[2]; k <= b[2]; ++k)
+      for (Index j = a[1]; j <= b[1]; ++j)
+        for (Index i = a[0]; i <= b[0]; ++i) visit(i + m_dims[0] * (j + m_dims[1] * k));
+  };
+  m_cell_offsets.assign(static_cast<std::size_t>(n_cells) + 1, 0);
+  for (Index f = 0; f < n_faces; ++f) for_each_bucket(f, [&](Index c) { ++m_cell_offsets[c + 1]; });
+  for (Index c = 0; c < n_cells; ++c) m_cell_offsets[c + 1] += m_cell_offsets[c];
+  m_cell_faces.resize(static_cast<std::size_t>(m_cell_offsets[n_cells]));
+  m_cell_fill.assign(m_cell_offsets.begin(), m_cell_offsets.end() - 1);
+  for (Index f = 0; f < n_faces; ++f)
+    for_each_bucket(f, [&](Index c) { m_cell_faces[m_cell_fill[c]++] = f; });
+
+  // Candidates: count per slave node, prefix sum, fill (both passes parallel, no races).
+  m_offsets.resize(static_cast<std::size_t>(n_slave) + 1);
+  m_offsets[0] = 0;
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Index s = 0; s < n_slave; ++s) {
+    const Index n = slave_nodes[s];
+    m_offsets[s + 1] =
+        scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)), faces, nullptr);
+  }
+  for (Index s = 0; s < n_slave; ++s) m_offsets[s + 1] += m_offsets[s];
+  m_candidates.resize(static_cast<std::size_t>(m_offsets[n_slave]));
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Index s = 0; s < n_slave; ++s) {
+    const Index n = slave_nodes[s];
+    scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)), faces,
+                m_candidates.data() + m_offsets[s]);
+  }
+
+  // Nodes to watch: every face corner and every slave node, ascending.
+  m_is_tracked.assign(static_cast<std::size_t>(n_nodes), 0);
+  for (const ContactFace& f : faces)
+    for (Index n : f.nodes) m_is_tracked[n] = 1;
+  for (Index n : slave_nodes) m_is_tracked[n] = 1;
+  m_tracked.clear();
+  for (Index n = 0; n < n_nodes; ++n)
+    if (m_is_tracked[n]) m_tracked.push_back(n);
+  m_tracked_position.resize(3 * m_tracked.size());
+  for (std::size_t i = 0; i < m_tracked.size(); ++i)
+    for (int d = 0; d < 3; ++d) m_tracked_position[3 * i + d] = position(m_tracked[i], d);
+}
+
+Index BroadPhase::scan_bucket(Index node, const Vec3& p, std::span<const ContactFace> faces,
+                              Index* out) const {
+  if (m_cell_offsets.size() < 2) return 0;
+  Index cell[3];
+  for (int d = 0; d < 3; ++d) {
+    const Real top = m_origin[d] + m_dims[d] * m_cell;
+    if (p[d] < m_origin[d] || p[d] > top) return 0;  // outside every box
+    cell[d] = bucket_coordinate(p[d], m_origin[d], m_cell, m_dims[d]);
+  }
+  const Index c = cell[0] + m_dims[0] * (cell[1] + m_dims[1] * cell[2]);
+  Index count = 0;
+  for (Index k = m_cell_offsets[c]; k < m_cell_offsets[c + 1]; ++k) {
+    const Index f = m_cell_faces[k];
+    bool inside = true;
+    for (int d = 0; d < 3 && inside; ++d)
+      inside = p[d] >= m_box_lo[3 * f + d] && p[d] <= m_box_hi[3 * f + d];
+    if (!inside) continue;
+    const auto& fn = faces[f].nodes;
+    if (fn[0] == node || fn[1] == node || fn[2] == node || fn[3] == node) continue;
+    if (out) out[count] = f;
+    ++count;
+  }
+  return count;
+}
+
+bool BroadPhase::needs_rebuild(const NodalVectors& position) const {
+  if (m_builds == 0) return true;
+  const auto n_tracked = static_cast<Index>(m_tracked.size());
+  Real max_sq = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_sq)
+  for (Index i = 0; i < n_tracked; ++i) {
+    const Index n = m_tracked[i];
+    Real sq = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const Real u = position(n, d) - m_tracked_position[3 * i + d];
+      sq += u * u;
+    }
+    max_sq = std::max(max_sq, sq);
+  }
+  const Real limit = 0.5 * m_margin;
+  return max_sq > limit * limit;
+}
+
+}  // namespace xpl::contact

@@ -1,0 +1,80 @@
+#pragma once
+/// \file Broad phase of node-to-face contact: candidate faces for every slave node (stage 2).
+///
+/// Face bounding boxes, inflated by the search margin, are binned into a uniform grid of
+/// buckets over their joint bounding box; a slave node looks only at the faces of the bucket
+/// it lies in and keeps those whose inflated box contains it. The list stays valid while no
+/// node has moved more than half the margin since the build: a node and a face then close in
+/// on each other by at most one margin, so every pair that touches now was within the margin
+/// at the build and is in the list (OpenRadioss re-sorts on the same kind of criterion).
+///
+/// Candidates are stored per slave node in compressed-row form, face indices ascending, so
+/// the result does not depend on the number of threads. Storage is reused from build to build:
+/// once the arrays have grown to their working size nothing is allocated.
+
+#include <span>
+#include <vector>
+
+#include "contact/contact_faces.hpp"
+
+namespace xpl::contact {
+
+/// Bucket grid over inflated face boxes and the candidate faces of each slave node.
+class BroadPhase {
+ public:
+  /// `margin` (m, > 0): how far boxes are inflated on every side, and twice the motion that
+  /// triggers a rebuild.
+  explicit BroadPhase(Real margin);
+
+  /// Builds the grid and the candidate lists of the slave nodes `slave_nodes` (node indices,
+  /// n_slave) against `faces`, on positions (n_nodes × 3, m) with shell node thickness
+  /// (n_nodes, m, or empty). A face is never a candidate of its own corner nodes. Remembers
+  /// the positions of every face node and slave node for needs_rebuild().
+  void build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
+             const NodalVectors& position, std::span<const Real> node_thickness);
+
+  /// Whether any node tracked at the last build has moved more than margin/2 since then
+  /// (true before the first build). Parallel max-reduction, no allocation.
+  bool needs_rebuild(const NodalVectors& position) const;
+
+  /// Candidate faces of slave slot s (index into the `slave_nodes` of the last build).
+  std::span<const Index> candidates(Index s) const {
+    return {m_candidates.data() + m_offsets[s],
+            static_cast<std::size_t>(m_offsets[s + 1] - m_offsets[s])};
+  }
+  /// Candidate CSR: slot s has faces m_candidates[offsets[s] .. offsets[s + 1]) (n_slave + 1).
+  const std::vector<Index>& offsets() const { return m_offsets; }
+  /// Candidate face indices, ascending within each slave node.
+  const std::vector<Index>& candidate_faces() const { return m_candidates; }
+  Real margin() const { return m_margin; }
+  /// Number of builds so far.
+  long build_count() const { return m_builds; }
+  /// Buckets per direction of the last build.
+  const std::array<Index, 3>& grid_size() const { return m_dims; }
+
+ private:
+  /// Counts the candidate faces of `node` at `p` and, when `out` is not null, writes them there.
+  Index scan_bucket(Index node, const Vec3& p, std::span<const ContactFace> faces,
+                    Index* out) const;
+
+  Real m_margin;
+  long m_builds = 0;
+  // Grid: origin, bucket size, buckets per direction, bucket -> faces (CSR).
+  Vec3 m_origin = Vec3::Zero();
+  Real m_cell = 1.0;
+  std::array<Index, 3> m_dims{0, 0, 0};
+  std::vector<Index> m_cell_offsets;
+  std::vector<Index> m_cell_faces;
+  std::vector<Index> m_cell_fill;
+  // Inflated box of each face: lo (n_faces × 3) and hi.
+  std::vector<Real> m_box_lo, m_box_hi;
+  // Candidates per slave node (CSR).
+  std::vector<Index> m_offsets{0};
+  std::vector<Index> m_candidates;
+  // Nodes whose motion is watched and their positions at the last build (n_tracked × 3).
+  std::vector<Index> m_tracked;
+  std::vector<Real> m_tracked_position;
+  std::vector<char> m_is_tracked;
+};
+
+}  // namespace xpl::contact

@@ -1,0 +1,162 @@
+#include "contact/closest_point.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace xpl::contact {
+
+namespace {
+
+constexpr Real CORNER_XI[4] = {-1.0, 1.0, 1.0, -1.0};
+constexpr Real CORNER_ETA[4] = {-1.0, -1.0, 1.0, 1.0};
+constexpr int MAX_NEWTON_ITERATIONS = 30;
+/// Newton stops when a step moves (ξ, η) by less than this (the coordinates are O(1)).
+constexpr Real NEWTON_STEP_TOLERANCE = 1e-13;
+/// Warp |a3·n| / √|a1 × a2| (out-of-plane twist over the in-plane half size, n the unit
+/// centre normal) above which a face gets Newton starts in its four quadrants as well as at
+/// its centre: a 2 % twist.
+constexpr Real STRONG_WARP = 0.02;
+constexpr Real START_XI[5] = {0.0, -0.5, 0.5, 0.5, -0.5};
+constexpr Real START_ETA[5] = {0.0, -0.5, -0.5, 0.5, 0.5};
+
+Real length(const Vec3& v) {
+  return std::sqrt(v.dot(v));
+}
+
+/// Coefficients of x = a0 + a1 ξ + a2 η + a3 ξη.
+struct Bilinear {
+  Vec3 a0, a1, a2, a3;
+  explicit Bilinear(const Vec3 x[4])
+      : a0(0.25 * (x[0] + x[1] + x[2] + x[3])),
+        a1(0.25 * (-x[0] + x[1] + x[2] - x[3])),
+        a2(0.25 * (-x[0] - x[1] + x[2] + x[3])),
+        a3(0.25 * (x[0] - x[1] + x[2] - x[3])) {}
+  Vec3 at(Real xi, Real eta) const { return a0 + xi * a1 + eta * a2 + (xi * eta) * a3; }
+};
+
+/// Stationary point of |x(ξ, η) − p|² strictly inside the square, if Newton started at
+/// (xi, eta) finds one.
+bool newton_interior(const Bilinear& q, const Vec3& p, Real& xi, Real& eta) {
+  for (int it = 0; it < MAX_NEWTON_ITERATIONS; ++it) {
+    const Vec3 r = q.at(xi, eta) - p;
+    const Vec3 x_xi = q.a1 + eta * q.a3;
+    const Vec3 x_eta = q.a2 + xi * q.a3;
+    const Real g0 = r.dot(x_xi), g1 = r.dot(x_eta);
+    const Real h00 = x_xi.dot(x_xi), h11 = x_eta.dot(x_eta);
+    Real h01 = x_xi.dot(x_eta) + r.dot(q.a3);
+    Real det = h00 * h11 - h01 * h01;
+    const Real scale = h00 * h11;
+    if (!(det > 1e-12 * scale)) {  // exact Hessian not positive definite: Gauss–Newton
+      h01 = x_xi.dot(x_eta);
+      det = h00 * h11 - h01 * h01;
+      if (!(det > 1e-14 * scale)) return false;  // degenerate face
+    }
+    const Real d_xi = -(h11 * g0 - h01 * g1) / det;
+    const Real d_eta = -(h00 * g1 - h01 * g0) / det;
+    const Real new_xi = std::clamp(xi + d_xi, -1.0, 1.0);
+    const Real new_eta = std::clamp(eta + d_eta, -1.0, 1.0);
+    const Real step = std::max(std::abs(new_xi - xi), std::abs(new_eta - eta));
+    xi = new_xi;
+    eta = new_eta;
+    if (step < NEWTON_STEP_TOLERANCE) return std::abs(xi) < 1.0 && std::abs(eta) < 1.0;
+  }
+  return false;
+}
+
+/// Closest point of segment a → b to p: parameter t ∈ [0, 1].
+Real segment_parameter(const Vec3& a, const Vec3& b, const Vec3& p) {
+  const Vec3 ab = b - a;
+  const Real len_sq = ab.dot(ab);
+  if (len_sq <= 0.0) return 0.0;
+  return std::clamp((p - a).dot(ab) / len_sq, 0.0, 1.0);
+}
+
+}  // namespace
+
+std::array<Real, 4> quad_shape(Real xi, Real eta) {
+  std::array<Real, 4> n;
+  for (int a = 0; a < 4; ++a) n[a] = 0.25 * (1.0 + CORNER_XI[a] * xi) * (1.0 + CORNER_ETA[a] * eta);
+  return n;
+}
+
+Vec3 quad_point(const Vec3 corner[4], Real xi, Real eta) {
+  return Bilinear(corner).at(xi, eta);
+}
+
+Vec3 quad_normal(const Vec3 corner[4], Real xi, Real eta) {
+  const Bilinear q(corner);
+  Vec3 n = (q.a1 + eta * q.a3).cross(q.a2 + xi * q.a3);
+  Real len = length(n);
+  const Vec3 diagonal = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+  const Real diagonal_len = length(diagonal);
+  // At a collapsed corner x_ξ × x_η vanishes while the face still has an area.
+  if (len <= 1e-10 * diagonal_len) {
+    n = diagonal;
+    len = diagonal_len;
+  }
+  return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p) {
+  const Bilinear q(corner);
+  ClosestPoint best;
+  Real best_sq = std::numeric_limits<Real>::infinity();
+
+  // A flat or mildly warped face has one stationary point near the face, found from the
+  // centre; a strongly warped one can have several, so it is started from the quadrant
+  // centres as well and the nearest stationary point is kept.
+  const Vec3 centre_normal = q.a1.cross(q.a2);
+  const Real normal_len = length(centre_normal);
+  const Real warp = std::abs(q.a3.dot(centre_normal)) / (normal_len * std::sqrt(normal_len));
+  const int starts = warp > STRONG_WARP ? 5 : 1;
+  for (int s = 0; s < starts; ++s) {
+    Real xi = START_XI[s], eta = START_ETA[s];
+    if (!newton_interior(q, p, xi, eta)) continue;
+    const Vec3 c = q.at(xi, eta);
+    const Real sq = (p - c).dot(p - c);
+    if (!(sq < best_sq)) continue;
+    best_sq = sq;
+    best.xi = xi;
+    best.eta = eta;
+    best.point = c;
+  }
+  // Edge e runs from corner e to corner e + 1; it is a straight segment of the bilinear face.
+  for (int e = 0; e < 4; ++e) {
+    const int b = (e + 1) % 4;
+    const Real t = segment_parameter(corner[e], corner[b], p);
+    const Vec3 c = (1.0 - t) * corner[e] + t * corner[b];
+    const Real sq = (p - c).dot(p - c);
+    // Strictly closer only: the interior point wins ties, and so does the lower edge number.
+    if (!(sq < best_sq)) continue;
+    best_sq = sq;
+    best.xi = (1.0 - t) * CORNER_XI[e] + t * CORNER_XI[b];
+    best.eta = (1.0 - t) * CORNER_ETA[e] + t * CORNER_ETA[b];
+    best.point = c;
+    if (t <= 0.0 || t >= 1.0) {
+      best.region = QuadRegion::Corner;
+      best.feature = t <= 0.0 ? e : b;
+    } else {
+      best.region = QuadRegion::Edge;
+      best.feature = e;
+    }
+  }
+
+  best.distance = std::sqrt(best_sq);
+  best.weights = quad_shape(best.xi, best.eta);
+  const Vec3 face_normal = quad_normal(corner, best.xi, best.eta);
+  const Vec3 d = p - best.point;
+  const Real along = d.dot(face_normal);
+  best.normal = face_normal;
+  best.gap = along;
+  if (best.region != QuadRegion::Interior && along >= 0.0) {
+    // Outside beside an edge or corner: point from c to the node (continuous with n at the
+    // edge of the face region). A node on the face itself keeps the face normal.
+    const Real size = length(corner[2] - corner[0]) + length(corner[3] - corner[1]);
+    if (best.distance > 1e-12 * size) best.normal = d / best.distance;
+    best.gap = best.distance;
+  }
+  return best;
+}
+
+}  // namespace xpl::contact

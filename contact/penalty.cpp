@@ -1,0 +1,51 @@
+#include "contact/penalty.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace xpl::contact {
+
+Real normal_contact_update(ContactConstraint& constraint, Real gap, Real stiffness) {
+  if (!constraint.offset_permanent) constraint.offset = updated_offset(-gap, constraint.offset);
+  const Real f = penalty_force(gap, constraint.offset, stiffness);
+  constraint.status = f > 0.0 ? ContactStatus::Closed : ContactStatus::Open;
+  return f;
+}
+
+Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>& corner_mass) {
+  Real m = 0.0;
+  for (int a = 0; a < 4; ++a) m += weights[a] * corner_mass[a];
+  return m;
+}
+
+Real default_penalty_stiffness(Real slave_mass, Real master_mass, Real dt, Real scale) {
+  if (!(slave_mass > 0.0) || !(master_mass > 0.0) || !(dt > 0.0)) return 0.0;
+  const Real m_eff = slave_mass * master_mass / (slave_mass + master_mass);
+  return DEFAULT_PENALTY_FACTOR * scale * m_eff / (dt * dt);
+}
+
+FrictionUpdate friction_update(const Vec3& previous_force, const Vec3& relative_velocity,
+                               const Vec3& normal, Real normal_force, Real mu, Real k_t, Real dt) {
+  FrictionUpdate out;
+  // Previous force turned into the current tangent plane with its magnitude kept.
+  Vec3 f = previous_force - previous_force.dot(normal) * normal;
+  const Real f_prev_len = std::sqrt(previous_force.dot(previous_force));
+  const Real f_len = std::sqrt(f.dot(f));
+  if (f_len > 0.0) f *= f_prev_len / f_len;
+
+  const Vec3 v_t = relative_velocity - relative_velocity.dot(normal) * normal;
+  const Vec3 trial = f - (k_t * dt) * v_t;
+  const Real trial_len = std::sqrt(trial.dot(trial));
+  const Real cap = mu * std::max(normal_force, 0.0);
+  if (trial_len <= cap) {
+    out.force = trial;
+    return out;
+  }
+  out.slipping = true;
+  out.force = (cap / trial_len) * trial;
+  // Work of the returned force over the slip increment (backward Euler return map).
+  out.dissipation = k_t > 0.0 ? cap * (trial_len - cap) / k_t : 0.0;
+  return out;
+}
+
+}  // namespace xpl::contact

@@ -1,0 +1,108 @@
+#pragma once
+/// \file The penalty law of node-to-face contact, its offset rule and friction (stage 4).
+///
+/// Everything here is a small pure function of one constraint so that the force loop, the
+/// initial-overclosure module and the tests share one definition. Sign conventions: the gap
+/// g is positive when the slave node is outside the master face (ClosestPoint::gap), the
+/// penetration is d = −g, and forces are magnitudes along the contact normal (pushing the
+/// slave node out along +normal, the master face nodes by −N_I·f·normal).
+
+#include <array>
+#include <cstdint>
+
+#include "contact/contact_faces.hpp"
+
+namespace xpl::contact {
+
+/// What a slave node's constraint is doing in this increment.
+enum class ContactStatus : std::uint8_t {
+  Inactive,  ///< no master face found (no candidate, or excluded)
+  Open,      ///< paired with a face, no normal force
+  Closed,    ///< paired with a face and pressed: normal force > 0
+};
+
+/// The contact state of one slave node, kept from increment to increment.
+///
+/// The offset belongs to the slave node, not to a node–face pair: a node that slides onto
+/// the next face keeps its unresolved overclosure. The initial-overclosure module (SPEC C2,
+/// C3, C6, C7) fills `offset` (and `offset_permanent`) for every slave slot at t = 0 before the
+/// first increment; a default-constructed constraint has no offset.
+struct ContactConstraint {
+  Index master_face = NO_INDEX;  ///< index into the contact face list, NO_INDEX when none
+  Real xi = 0.0, eta = 0.0;      ///< face coordinates of the closest point
+  Real offset = 0.0;             ///< d0 ≥ 0: penetration that produces no force, m
+  /// `*CONTACT CLEARANCE, ADJUST=NO` (C7): the offset is kept, never shrunk by the C3 rule.
+  bool offset_permanent = false;
+  ContactStatus status = ContactStatus::Inactive;
+  Vec3 tangential_force = Vec3::Zero();  ///< friction force on the slave node, N
+};
+
+/// Normal force magnitude f = k·max(0, d − d0) for gap g (d = −g, m), offset d0 (m) and
+/// stiffness k (N/m); N.
+inline Real penalty_force(Real gap, Real offset, Real stiffness) {
+  const Real excess = -gap - offset;
+  return excess > 0.0 ? stiffness * excess : 0.0;
+}
+
+/// Energy ½ k·max(0, d − d0)² stored in the penalty spring, J.
+inline Real penalty_energy(Real gap, Real offset, Real stiffness) {
+  const Real excess = -gap - offset;
+  return excess > 0.0 ? 0.5 * stiffness * excess * excess : 0.0;
+}
+
+/// The offset rule of SPEC C3 for penetration d (m) and offset d0 (m): whenever d < d0 the
+/// offset becomes max(d, 0). It shrinks as the surfaces separate, never grows, reaches zero
+/// and stays there; so the force k·(d − d0) is zero at the moment the offset is reduced and
+/// an offset never pushes.
+inline Real updated_offset(Real penetration, Real offset) {
+  if (penetration >= offset) return offset;
+  return penetration > 0.0 ? penetration : 0.0;
+}
+
+/// One increment of the normal law for a paired constraint with gap g (m) and stiffness k
+/// (N/m): applies the offset rule (unless the offset is permanent), then returns the normal
+/// force (N) and sets the status to Closed or Open.
+Real normal_contact_update(ContactConstraint& constraint, Real gap, Real stiffness);
+
+/// Default α of the penalty stiffness (see default_penalty_stiffness).
+inline constexpr Real DEFAULT_PENALTY_FACTOR = 0.5;
+
+/// Mass of the master face at the contact point, Σ N_I m_I (weights N_I, corner masses m_I in
+/// kg); kg.
+Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>& corner_mass);
+
+/// Default penalty stiffness k = α·s·m_eff/Δt², N/m, with α = DEFAULT_PENALTY_FACTOR, s the
+/// user's penalty scale factor, Δt the stable time increment (s) and m_eff = m_s m_m /
+/// (m_s + m_m) the harmonic mean of the slave node's mass and the master mass at the contact
+/// point (kg), as LS-DYNA's soft-constraint formulation (SOFT=1) does.
+///
+/// Why this does not lower the stable increment (SPEC C1): a spring k between masses m_s and
+/// m_m oscillates at ω² = k (1/m_s + 1/m_m) = k / m_eff, and central differences are stable
+/// for ω Δt < 2, i.e. k < 4 m_eff/Δt². With α = 0.5 the spring alone reaches ω² Δt² = 0.5, an
+/// eighth of the limit, which leaves room for the element stiffness already on the node
+/// (frequencies add in squares) and for a node carrying several springs (a slave node that is
+/// also a master corner, both views of balanced contact). Returns 0 when either mass is zero
+/// and Δt ≤ 0 is a caller error (returns 0 too).
+Real default_penalty_stiffness(Real slave_mass, Real master_mass, Real dt, Real scale = 1.0);
+
+/// Result of one friction update.
+struct FrictionUpdate {
+  Vec3 force = Vec3::Zero();  ///< tangential force on the slave node after the update, N
+  Real dissipation = 0.0;     ///< frictional dissipation of this increment (for ALLFD), J
+  bool slipping = false;      ///< the force was capped at μ·f_n
+};
+
+/// Coulomb friction regularised by an elastic stick spring ("penalty stick"), one increment.
+///
+/// The previous force (N) is turned into the current tangent plane of unit normal `normal`
+/// (keeping its magnitude), the trial force is f* = f_prev − k_t·v_t·Δt with v_t the tangential
+/// part of the slave-minus-master velocity `relative_velocity` (m/s) over Δt (s), and f* is
+/// scaled back onto the Coulomb cone |f| ≤ μ f_n (normal force f_n in N, μ ≥ 0; k_t in N/m,
+/// the normal penalty stiffness by default). The dissipation is the work of the new force
+/// over the slip part of the tangential motion, |f| (|f*| − |f|)/k_t ≥ 0: zero while sticking,
+/// μ f_n times the slip distance in steady sliding. When the normal force drops, the part of
+/// the stored tangential force above the new cap is counted as slip.
+FrictionUpdate friction_update(const Vec3& previous_force, const Vec3& relative_velocity,
+                               const Vec3& normal, Real normal_force, Real mu, Real k_t, Real dt);
+
+}  // namespace xpl::contact
