@@ -17,9 +17,19 @@ using Handler = void (*)(DeckBuilder&, const DeckBlock&);
 
 constexpr const char* SUPPORTED_KEYWORDS =
     "*HEADING, *INCLUDE, *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE, *MATERIAL, *DENSITY, "
-    "*ELASTIC, *SOLID SECTION, *SHELL SECTION, *SECTION CONTROLS, *AMPLITUDE, "
+    "*ELASTIC, *SOLID SECTION, *SHELL SECTION, *SECTION CONTROLS, *MASS, *ROTARY INERTIA, "
+    "*RIGID BODY, *SURFACE INTERACTION, *FRICTION, *SURFACE BEHAVIOR, *CONTACT PAIR, *AMPLITUDE, "
     "*INITIAL CONDITIONS, *BOUNDARY, *STEP, *DYNAMIC, *BULK VISCOSITY, *CLOAD, *DLOAD, *DSLOAD, "
-    "*OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, *ENERGY OUTPUT, *END STEP, *PREPRINT";
+    "*CONTACT, *CONTACT INCLUSIONS, *CONTACT EXCLUSIONS, *CONTACT PROPERTY ASSIGNMENT, "
+    "*CONTACT CONTROLS ASSIGNMENT, *OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, *ENERGY OUTPUT, "
+    "*CONTACT OUTPUT, *NODE FILE, *EL FILE, *NODE PRINT, *EL PRINT, *CONTACT FILE, "
+    "*CONTACT PRINT, *END STEP, *PREPRINT";
+
+/// General contact and its options: step data (as in Abaqus/Explicit).
+bool is_general_contact(const std::string& name) {
+  return name == "CONTACT" || name == "CONTACT INCLUSIONS" || name == "CONTACT EXCLUSIONS" ||
+         name == "CONTACT PROPERTY ASSIGNMENT" || name == "CONTACT CONTROLS ASSIGNMENT";
+}
 
 }  // namespace
 
@@ -72,6 +82,13 @@ void DeckBuilder::read_block(const DeckBlock& block) {
       {"SHELL SECTION", Context::Model, &DeckBuilder::read_shell_section},
       {"SHELL GENERAL SECTION", Context::Model, &DeckBuilder::read_shell_general_section},
       {"SECTION CONTROLS", Context::Model, &DeckBuilder::read_section_controls},
+      {"MASS", Context::Model, nullptr},
+      {"ROTARY INERTIA", Context::Model, nullptr},
+      {"RIGID BODY", Context::Model, &DeckBuilder::read_rigid_body},
+      {"SURFACE INTERACTION", Context::Model, &DeckBuilder::read_surface_interaction},
+      {"FRICTION", Context::Model, &DeckBuilder::read_friction},
+      {"SURFACE BEHAVIOR", Context::Model, &DeckBuilder::read_surface_behavior},
+      {"CONTACT PAIR", Context::Anywhere, &DeckBuilder::read_contact_pair},
       {"AMPLITUDE", Context::Model, &DeckBuilder::read_amplitude},
       {"INITIAL CONDITIONS", Context::Model, &DeckBuilder::read_initial_conditions},
       {"BOUNDARY", Context::Anywhere, &DeckBuilder::read_boundary},
@@ -82,10 +99,25 @@ void DeckBuilder::read_block(const DeckBlock& block) {
       {"CLOAD", Context::Step, &DeckBuilder::read_cload},
       {"DLOAD", Context::Step, &DeckBuilder::read_dload},
       {"DSLOAD", Context::Step, &DeckBuilder::read_dsload},
+      {"CONTACT", Context::Step, &DeckBuilder::read_contact},
+      {"CONTACT INCLUSIONS", Context::Step, nullptr},
+      {"CONTACT EXCLUSIONS", Context::Step, nullptr},
+      {"CONTACT PROPERTY ASSIGNMENT", Context::Step,
+       &DeckBuilder::read_contact_property_assignment},
+      {"CONTACT CONTROLS ASSIGNMENT", Context::Step,
+       &DeckBuilder::read_contact_controls_assignment},
       {"OUTPUT", Context::Step, &DeckBuilder::read_output},
       {"NODE OUTPUT", Context::Step, &DeckBuilder::read_node_output},
       {"ELEMENT OUTPUT", Context::Step, &DeckBuilder::read_element_output},
       {"ENERGY OUTPUT", Context::Step, &DeckBuilder::read_energy_output},
+      {"CONTACT OUTPUT", Context::Step, &DeckBuilder::read_contact_output},
+      // CalculiX output requests, mapped onto *OUTPUT requests or noted.
+      {"NODE FILE", Context::Step, nullptr},
+      {"EL FILE", Context::Step, nullptr},
+      {"NODE PRINT", Context::Step, &DeckBuilder::read_node_print},
+      {"EL PRINT", Context::Step, nullptr},
+      {"CONTACT FILE", Context::Step, nullptr},
+      {"CONTACT PRINT", Context::Step, nullptr},
       // Only echo control of the Abaqus pre-processor: nothing to do, safe to ignore.
       {"PREPRINT", Context::Anywhere, nullptr},
   };
@@ -97,8 +129,10 @@ void DeckBuilder::read_block(const DeckBlock& block) {
   // *DENSITY and *ELASTIC belong to the material opened just before; *NODE OUTPUT & co. to
   // the latest *OUTPUT. Any other keyword closes those option blocks.
   if (name != "DENSITY" && name != "ELASTIC") m_material = NO_INDEX;
+  if (name != "FRICTION" && name != "SURFACE BEHAVIOR") m_interaction = NO_INDEX;
   const bool output_family = name == "OUTPUT" || name == "NODE OUTPUT" ||
-                             name == "ELEMENT OUTPUT" || name == "ENERGY OUTPUT";
+                             name == "ELEMENT OUTPUT" || name == "ENERGY OUTPUT" ||
+                             name == "CONTACT OUTPUT";
   if (!output_family) m_output = NO_INDEX;
 
   if (entry == std::end(entries)) {
@@ -111,10 +145,16 @@ void DeckBuilder::read_block(const DeckBlock& block) {
           "expected it before the first *STEP");
     return;
   }
-  if ((entry->context == Context::Model || name == "BOUNDARY") && !m_in_step &&
-      !m_model.steps.empty()) {
+  if ((entry->context == Context::Model || name == "BOUNDARY" || name == "CONTACT PAIR") &&
+      !m_in_step && !m_model.steps.empty()) {
     error(keyword.where, keyword, "model data after the first step",
           "expected all model data before the first *STEP");
+    return;
+  }
+  if (is_general_contact(name) && !m_in_step) {
+    error(keyword.where, keyword, "general contact outside a step",
+          "expected *CONTACT and its options between *STEP and *END STEP, as in "
+          "Abaqus/Explicit (*CONTACT PAIR may be model data)");
     return;
   }
   if (entry->context == Context::Step && !m_in_step) {
@@ -124,6 +164,18 @@ void DeckBuilder::read_block(const DeckBlock& block) {
   }
   if (name == "NSET" || name == "ELSET") {
     read_set(block, name == "NSET");
+  } else if (name == "MASS" || name == "ROTARY INERTIA") {
+    read_point_property(block, name == "ROTARY INERTIA");
+  } else if (name == "CONTACT INCLUSIONS" || name == "CONTACT EXCLUSIONS") {
+    read_contact_inclusions(block, name == "CONTACT INCLUSIONS");
+  } else if (name == "NODE FILE" || name == "EL FILE") {
+    read_file_output(block, name == "NODE FILE");
+  } else if (name == "EL PRINT") {
+    read_ignored_output(block, "element history output is not available in xpl; ignored");
+  } else if (name == "CONTACT FILE" || name == "CONTACT PRINT") {
+    read_ignored_output(block,
+                        "ignored: contact results are requested with *CONTACT OUTPUT (CSTRESS, "
+                        "CSTATUS, CFORCE) and the energies ALLFD, ALLPW in *ENERGY OUTPUT");
   } else if (entry->handler != nullptr) {
     (this->*(entry->handler))(block);
   }
@@ -212,6 +264,12 @@ std::optional<std::string> DeckBuilder::required_name(const DeckKeyword& keyword
 std::string DeckBuilder::optional_name(const DeckKeyword& keyword, std::string_view name) {
   const DeckParameter* p = find_parameter(keyword, name);
   return p != nullptr && p->has_value ? normalize_name(p->value) : std::string();
+}
+
+void DeckBuilder::note(const SourceLocation& where, const DeckKeyword& keyword,
+                       const std::string& text) {
+  m_model.deck_messages.push_back(
+      {false, location_text(where) + ": " + keyword.label() + ": " + text});
 }
 
 void DeckBuilder::expect_no_data(const DeckBlock& block) {

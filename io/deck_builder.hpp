@@ -62,6 +62,9 @@ class DeckBuilder {
   };
   struct PendingSet {
     std::vector<Index> members;  ///< members known while reading (*NODE, NSET= / *ELEMENT, ELSET=)
+    /// Element sets: MASS/ROTARYI elements (into m_point_elements), which the Model's element
+    /// arrays do not hold; sorted and unique once resolved.
+    std::vector<Index> point_members;
     std::vector<SetItem> items;
     int state = 0;  ///< 0 unresolved, 1 being resolved, 2 done
   };
@@ -72,7 +75,9 @@ class DeckBuilder {
     DeckReference target;
     int face = -1;       ///< 0..5 (S1..S6), SHELL_FACE_NEG/POS if `shell`, -1 for a node surface
     bool shell = false;  ///< SPOS/SNEG: only shell elements fit
-    std::string label;   ///< the face word, upper case, for messages
+    /// No face label: both sides of shells, the exposed faces of solids (as Abaqus).
+    bool all_faces = false;
+    std::string label;  ///< the face word, upper case, for messages
   };
   struct PendingBoundary {
     Index step = NO_INDEX;  ///< NO_INDEX: model level, goes to the first step
@@ -96,6 +101,13 @@ class DeckBuilder {
     PressureLoad load;
     std::string amplitude;
   };
+  /// A `*DLOAD` GRAV line.
+  struct PendingGravity {
+    Index step = NO_INDEX;
+    std::string element_set;  ///< upper case; empty: the whole model
+    GravityLoad load;
+    std::string amplitude;
+  };
   struct PendingVelocity {
     DeckReference target;
     int dof = 1;
@@ -106,6 +118,34 @@ class DeckBuilder {
     bool node = true;
     DeckReference set;
   };
+  /// `*CONTACT PAIR` data line; names upper case.
+  struct PendingContactPair {
+    Index step = NO_INDEX;  ///< NO_INDEX: model level
+    std::string slave, master, interaction;
+    SourceLocation where;
+  };
+  /// `*RIGID BODY`; set names upper case, empty when not given.
+  struct PendingRigidBody {
+    DeckReference reference_node;
+    std::string element_set, pin_node_set, tie_node_set;
+  };
+  /// A `*ELEMENT, TYPE=MASS|ROTARYI` element: the solver has no point elements, so it stays
+  /// out of the Model's element arrays; `*MASS`/`*ROTARY INERTIA` make it a PointInertia.
+  struct PointElement {
+    ExternalId id = 0;
+    ExternalId node_id = 0;
+    Index node = NO_INDEX;      ///< resolved in finish()
+    bool rotary = false;        ///< ROTARYI, else MASS
+    Index property = NO_INDEX;  ///< into m_point_properties: the *MASS/*ROTARY INERTIA covering it
+    SourceLocation where;
+  };
+  /// `*MASS` (mass in values[0]) or `*ROTARY INERTIA` (I11 I22 I33 I12 I13 I23).
+  struct PointProperty {
+    std::string element_set;
+    bool rotary = false;
+    Real values[6] = {0, 0, 0, 0, 0, 0};
+    SourceLocation where;
+  };
 
   // --- keyword handlers (deck_mesh.cpp, deck_properties.cpp, deck_step.cpp, deck_output.cpp)
   void read_block(const DeckBlock& block);
@@ -114,6 +154,11 @@ class DeckBuilder {
   void read_element(const DeckBlock& block);
   void read_set(const DeckBlock& block, bool node_set);
   void read_surface(const DeckBlock& block);
+  /// `*ELEMENT, TYPE=MASS|ROTARYI` (deck_point_mass.cpp).
+  void read_point_elements(const DeckBlock& block, bool rotary);
+  /// `*MASS` or (`rotary`) `*ROTARY INERTIA` (deck_point_mass.cpp).
+  void read_point_property(const DeckBlock& block, bool rotary);
+  void read_rigid_body(const DeckBlock& block);  ///< deck_rigid.cpp
   void read_material(const DeckBlock& block);
   void read_density(const DeckBlock& block);
   void read_elastic(const DeckBlock& block);
@@ -131,12 +176,41 @@ class DeckBuilder {
   void read_cload(const DeckBlock& block);
   void read_dload(const DeckBlock& block);
   void read_dsload(const DeckBlock& block);
+  void read_gravity(const DeckDataLine& line, const DeckKeyword& keyword,
+                    const std::string& amplitude);
+  // --- contact (deck_interaction.cpp, deck_contact.cpp) ---------------------------------------
+  void read_surface_interaction(const DeckBlock& block);
+  void read_friction(const DeckBlock& block);
+  void read_surface_behavior(const DeckBlock& block);
+  void read_contact(const DeckBlock& block);
+  /// *CONTACT INCLUSIONS (`inclusions`) or *CONTACT EXCLUSIONS.
+  void read_contact_inclusions(const DeckBlock& block, bool inclusions);
+  void read_contact_property_assignment(const DeckBlock& block);
+  void read_contact_controls_assignment(const DeckBlock& block);
+  void read_contact_pair(const DeckBlock& block);
+  /// The general contact of the open step; nullptr (reported) if the step has no *CONTACT.
+  GeneralContact* open_contact(const DeckKeyword& keyword);
+  /// Surfaces 1 and 2 of a contact data line (blank: all exterior; surface 2 blank: self
+  /// contact of surface 1); nothing (reported) if a surface is undefined.
+  std::optional<SurfacePair> surface_pair(const DeckDataLine& line, const DeckKeyword& keyword);
+  /// A surface by name, or NO_INDEX (reported).
+  Index contact_surface(const std::string& name, const SourceLocation& where,
+                        const std::string& keyword);
+  Index surface_interaction(const std::string& name, const SourceLocation& where,
+                            const std::string& keyword);
   /// OP= of *CLOAD, *DLOAD, *DSLOAD: false (reported) if bad; sets `reset` for OP=NEW.
   bool read_load_op(const DeckKeyword& keyword, bool& reset);
   void read_output(const DeckBlock& block);
   void read_node_output(const DeckBlock& block);
   void read_element_output(const DeckBlock& block);
   void read_energy_output(const DeckBlock& block);
+  void read_contact_output(const DeckBlock& block);
+  // --- CalculiX output keywords (deck_calculix_output.cpp) -----------------------------------
+  /// *NODE FILE (`node`) or *EL FILE: a field output request.
+  void read_file_output(const DeckBlock& block, bool node);
+  void read_node_print(const DeckBlock& block);
+  /// *EL PRINT, *CONTACT FILE, *CONTACT PRINT: accepted with a note, nothing written.
+  void read_ignored_output(const DeckBlock& block, const std::string& why);
   /// Names on the data lines of `block`, normalized, without repeats; names not in `known`
   /// are reported as "unknown <what> NAME".
   std::vector<std::string> read_names(const DeckBlock& block,
@@ -154,6 +228,8 @@ class DeckBuilder {
   /// Value of an optional name parameter (upper case), empty if absent.
   std::string optional_name(const DeckKeyword& keyword, std::string_view name);
   void expect_no_data(const DeckBlock& block);
+  /// Adds a note (not an error) for the .msg file: `file:LINE: *KEYWORD: text`.
+  void note(const SourceLocation& where, const DeckKeyword& keyword, const std::string& text);
   /// Field i of a data line as a real; empty fields give `blank` if it has a value.
   std::optional<Real> real_field(const DeckDataLine& line, const DeckKeyword& keyword,
                                  std::size_t i, std::string_view what,
@@ -194,6 +270,13 @@ class DeckBuilder {
   void resolve_initial_velocity();
   void resolve_steps();
   void resolve_pressures();
+  void resolve_gravity();
+  void resolve_contact_pairs();
+  void resolve_rigid_bodies();
+  void resolve_point_inertias();
+  /// Faces of the C3D8R elements of `elements` (unique) that no other C3D8R element shares,
+  /// ordered by element and face.
+  std::vector<ElementFace> exposed_hex_faces(const std::vector<Index>& elements);
   void check_element_geometry();
   void check_hex_geometry(Index element);
   void check_shell_geometry(Index element);
@@ -224,9 +307,17 @@ class DeckBuilder {
   std::vector<PendingPressure> m_pressures;
   std::vector<PendingVelocity> m_velocities;
   std::vector<PendingOutputSet> m_output_sets;
+  std::vector<PendingGravity> m_gravity;
+  std::vector<PendingContactPair> m_contact_pairs;
+  std::vector<PendingRigidBody> m_rigid_bodies;  ///< parallel to Model::rigid_bodies
+  std::vector<PointElement> m_point_elements;
+  std::unordered_map<ExternalId, Index> m_point_element_index;  ///< into m_point_elements
+  std::vector<PointProperty> m_point_properties;
 
   // --- position in the deck ------------------------------------------------------------------
-  Index m_material = NO_INDEX;  ///< the *MATERIAL that *DENSITY/*ELASTIC attach to
+  Index m_material = NO_INDEX;     ///< the *MATERIAL that *DENSITY/*ELASTIC attach to
+  Index m_interaction = NO_INDEX;  ///< the *SURFACE INTERACTION that *FRICTION & co. attach to
+  bool m_has_friction = false, m_has_behavior = false;  ///< given for m_interaction already
   bool m_in_step = false;
   bool m_step_has_dynamic = false;
   Index m_output = NO_INDEX;  ///< the latest *OUTPUT of the open step

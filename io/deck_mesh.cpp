@@ -81,11 +81,15 @@ void DeckBuilder::read_element(const DeckBlock& block) {
   const std::optional<std::string> type = required_name(keyword, "TYPE");
   if (!type) return;
   ElementType element_type = ElementType::C3D8R;
+  if (*type == "MASS" || *type == "ROTARYI") {
+    read_point_elements(block, *type == "ROTARYI");
+    return;
+  }
   if (*type == "S4R" || *type == "S4") {
     element_type = ElementType::S4R;
   } else if (*type != "C3D8R") {
     error(keyword.where, keyword, "element type " + *type + " is not supported yet",
-          "supported: C3D8R, S4R (S4 is run as S4R)");
+          "supported: C3D8R, S4R (S4 is run as S4R), MASS, ROTARYI");
     return;
   }
   if (*type == "S4")
@@ -132,7 +136,8 @@ void DeckBuilder::read_element(const DeckBlock& block) {
     }
     if (found != n_nodes) continue;
     const auto [it, inserted] = m_element_index.emplace(*id, m_model.element_count());
-    if (!inserted) {
+    if (!inserted || (!m_point_element_index.empty() && m_point_element_index.contains(*id))) {
+      if (inserted) m_element_index.erase(it);
       error(line.where(), keyword, "element " + id_text(*id) + " is defined twice",
             "expected each element id once");
       continue;
@@ -260,15 +265,17 @@ void DeckBuilder::read_surface(const DeckBlock& block) {
       // Whether the face fits the element type is checked once the elements are known.
       const std::string face = line.fields.size() > 1 ? normalize_name(line.fields[1]) : "";
       item.label = face;
-      if (face == "SPOS" || face == "SNEG") {
+      if (face.empty()) {
+        item.all_faces = true;  // both sides of shells, exposed faces of solids (as Abaqus)
+      } else if (face == "SPOS" || face == "SNEG") {
         item.shell = true;
         item.face = face == "SPOS" ? SHELL_FACE_POS : SHELL_FACE_NEG;
       } else if (face.size() == 2 && face[0] == 'S' && face[1] >= '1' && face[1] <= '6') {
         item.face = face[1] - '1';
       } else {
-        error(line.where(), keyword, face.empty() ? "missing face label" : "bad face label " + face,
+        error(line.where(), keyword, "bad face label " + face,
               "expected S1, S2, S3, S4, S5 or S6 on C3D8R elements, SPOS or SNEG on S4R "
-              "elements");
+              "elements, or none (all exposed faces, both sides of shells)");
         continue;
       }
     }

@@ -1,58 +1,16 @@
-/// \file Output request keywords: *OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, *ENERGY OUTPUT.
+/// \file Output request keywords: *OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, *ENERGY OUTPUT,
+/// *CONTACT OUTPUT. CalculiX's *NODE FILE & co. are in deck_calculix_output.cpp.
 
 #include <algorithm>
 #include <array>
 
 #include "io/deck_builder.hpp"
 #include "io/deck_numbers.hpp"
+#include "io/deck_output_variables.hpp"
 
 namespace xpl::io {
 
 namespace {
-
-/// UR, VR, RM: rotation, angular velocity and reaction moment of shell nodes.
-constexpr std::array<std::string_view, 7> FIELD_NODE_VARIABLES = {"U",  "V",  "A", "RF",
-                                                                  "UR", "VR", "RM"};
-/// What VARIABLE=PRESELECT writes (on shell models the writer adds UR, VR, RM to U, V, RF).
-constexpr std::array<std::string_view, 4> PRESELECT_NODE_VARIABLES = {"U", "V", "A", "RF"};
-/// STH: the current shell thickness.
-constexpr std::array<std::string_view, 4> ELEMENT_VARIABLES = {"S", "EVOL", "MISES", "STH"};
-constexpr std::array<std::string_view, 7> ENERGY_VARIABLES = {"ALLKE", "ALLSE", "ALLAE", "ALLIE",
-                                                              "ALLVD", "ALLWK", "ETOTAL"};
-
-template <std::size_t N>
-bool contains(const std::array<std::string_view, N>& list, const std::string& name) {
-  return std::find(list.begin(), list.end(), name) != list.end();
-}
-
-template <std::size_t N>
-std::string joined(const std::array<std::string_view, N>& list) {
-  std::string text;
-  for (std::string_view name : list) {
-    if (!text.empty()) text += ", ";
-    text += name;
-  }
-  return text;
-}
-
-void add_unique(std::vector<std::string>& list, const std::string& name) {
-  if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
-}
-
-/// History node variables: components U1..RF3, UR1..RM3; U, V, A, RF, UR, VR, RM stand for
-/// their three components.
-bool add_history_node_variable(std::vector<std::string>& list, const std::string& name) {
-  if (contains(FIELD_NODE_VARIABLES, name)) {
-    for (char c : {'1', '2', '3'}) add_unique(list, name + c);
-    return true;
-  }
-  if (name.size() >= 2 && (name.back() >= '1' && name.back() <= '3') &&
-      contains(FIELD_NODE_VARIABLES, name.substr(0, name.size() - 1))) {
-    add_unique(list, name);
-    return true;
-  }
-  return false;
-}
 
 /// A second *NODE OUTPUT (or *ELEMENT OUTPUT) under one *OUTPUT may name another set:
 /// it becomes a request of its own with the same frequency.
@@ -251,6 +209,38 @@ void DeckBuilder::read_energy_output(const DeckBlock& block) {
   } else {
     for (const std::string& name : variables) add_unique(request.energy_variables, name);
   }
+}
+
+void DeckBuilder::read_contact_output(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"GENERAL CONTACT", false}, {"VARIABLE"}});
+  if (m_output == NO_INDEX) {
+    error(keyword.where, keyword, "no *OUTPUT to attach to", "expected *OUTPUT, FIELD just before");
+    return;
+  }
+  OutputRequest& request = m_model.steps.back().outputs[static_cast<std::size_t>(m_output)];
+  if (request.kind != OutputRequest::Kind::Field) {
+    error(keyword.where, keyword, "contact history output is not supported yet",
+          "expected *CONTACT OUTPUT under *OUTPUT, FIELD (contact energies: ALLFD, ALLPW in "
+          "*ENERGY OUTPUT)");
+    return;
+  }
+  const std::string variable = optional_name(keyword, "VARIABLE");
+  if (!variable.empty() && variable != "PRESELECT" && variable != "ALL") {
+    error(keyword.where, keyword, "bad VARIABLE=" + variable,
+          "expected VARIABLE=PRESELECT or VARIABLE=ALL");
+    return;
+  }
+  std::vector<std::string> variables =
+      read_names(block, CONTACT_VARIABLES, "contact output variable");
+  if (!variable.empty()) {
+    for (std::string_view name : CONTACT_VARIABLES) add_unique(variables, std::string(name));
+  } else if (block.data.empty()) {
+    error(keyword.where, keyword, "no output variables",
+          "expected a data line such as CSTRESS, CSTATUS, or VARIABLE=PRESELECT");
+    return;
+  }
+  for (const std::string& name : variables) add_unique(request.contact_variables, name);
 }
 
 }  // namespace xpl::io

@@ -1,5 +1,8 @@
-/// \file Pressure loads: *DLOAD (element or element set, P on shells, P1..P6 on solid faces)
-/// and *DSLOAD (P on an element-based surface), resolved into one PressureLoad per face.
+/// \file Distributed loads: *DLOAD (element or element set, P on shells, P1..P6 on solid faces;
+/// GRAV on an element set or the whole model) and *DSLOAD (P on an element-based surface),
+/// resolved into one PressureLoad per face and one GravityLoad per GRAV line.
+
+#include <cmath>
 
 #include "io/deck_builder.hpp"
 #include "io/deck_numbers.hpp"
@@ -9,7 +12,10 @@ namespace xpl::io {
 namespace {
 
 constexpr const char* DLOAD_TYPES =
-    "supported: P on S4R elements (face SPOS), P1..P6 on C3D8R elements (faces S1..S6)";
+    "supported: P on S4R elements (face SPOS), P1..P6 on C3D8R elements (faces S1..S6), GRAV "
+    "(gravity)";
+
+constexpr const char* GRAV_LINE = "element set or blank, GRAV, magnitude, dx, dy, dz";
 
 /// Face of a *DLOAD load type: 0..5 for P1..P6, -1 for P; nothing for other types.
 std::optional<int> dload_face(const std::string& type) {
@@ -23,7 +29,10 @@ std::optional<int> dload_face(const std::string& type) {
 void DeckBuilder::read_dload(const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
-  if (!read_load_op(keyword, m_model.steps.back().pressures_reset)) return;
+  Step& step = m_model.steps.back();
+  bool reset = false;  // OP=NEW on *DLOAD removes earlier pressures and gravity
+  if (!read_load_op(keyword, reset)) return;
+  if (reset) step.pressures_reset = step.gravity_reset = true;
   const std::string amplitude = optional_name(keyword, "AMPLITUDE");
   for (const DeckDataLine& line : block.data) {
     if (line.fields.size() < 2 || line.fields[1].empty()) {
@@ -32,6 +41,10 @@ void DeckBuilder::read_dload(const DeckBlock& block) {
       continue;
     }
     const std::string type = normalize_name(line.fields[1]);
+    if (type == "GRAV") {
+      read_gravity(line, keyword, amplitude);
+      continue;
+    }
     const std::optional<int> face = dload_face(type);
     if (!face) {  // before the field count: GRAV and BX have other data lines
       error(line.where(), keyword, "load type " + type + " is not supported yet", DLOAD_TYPES);
@@ -126,6 +139,63 @@ void DeckBuilder::resolve_pressures() {
                            : "expected P1..P6 on C3D8R solid elements (faces S1..S6)");
       }
     }
+  }
+}
+
+void DeckBuilder::read_gravity(const DeckDataLine& line, const DeckKeyword& keyword,
+                               const std::string& amplitude) {
+  check_field_count(line, keyword, 6, GRAV_LINE);
+  const std::string target = line.fields.empty() ? "" : std::string(line.fields[0]);
+  if (looks_numeric(target)) {
+    error(line.where(), keyword, "GRAV on a single element (" + target + ") is not supported",
+          std::string("expected an element set name, or the first field blank for the whole "
+                      "model: ") +
+              GRAV_LINE);
+    return;
+  }
+  const std::optional<Real> magnitude = real_field(line, keyword, 2, "gravity magnitude");
+  Real direction[3] = {0.0, 0.0, 0.0};
+  bool ok = magnitude.has_value();
+  for (std::size_t c = 0; c < 3; ++c) {
+    const std::optional<Real> value =
+        real_field(line, keyword, 3 + c, std::string("direction d") + "xyz"[c], 0.0);
+    ok = ok && value.has_value();
+    if (value) direction[c] = *value;
+  }
+  if (!ok) return;
+  const Real length = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] +
+                                direction[2] * direction[2]);
+  if (!(length > 0.0) || !std::isfinite(length)) {
+    error(line.where(), keyword,
+          "gravity direction " + number_text(direction[0]) + ", " + number_text(direction[1]) +
+              ", " + number_text(direction[2]) + " has no length",
+          "expected a nonzero direction dx, dy, dz (it is normalised)");
+    return;
+  }
+  PendingGravity pending;
+  pending.step = static_cast<Index>(m_model.steps.size() - 1);
+  pending.element_set = normalize_name(target);
+  pending.load.magnitude = *magnitude;
+  for (int c = 0; c < 3; ++c) pending.load.direction[c] = direction[c] / length;
+  pending.load.where = line.where();
+  pending.amplitude = amplitude;
+  m_gravity.push_back(std::move(pending));
+}
+
+void DeckBuilder::resolve_gravity() {
+  for (const PendingGravity& pending : m_gravity) {
+    GravityLoad load = pending.load;
+    load.amplitude = resolve_amplitude(pending.amplitude, load.where, "*DLOAD");
+    if (!pending.element_set.empty()) {
+      load.element_set = m_model.find_element_set(pending.element_set);
+      if (load.element_set == NO_INDEX) {
+        m_errors.add(load.where, "*DLOAD", "undefined element set " + pending.element_set,
+                     "expected *ELSET, ELSET=" + pending.element_set +
+                         ", or the first field blank for the whole model");
+        continue;
+      }
+    }
+    m_model.steps[static_cast<std::size_t>(pending.step)].gravity.push_back(load);
   }
 }
 

@@ -1,7 +1,8 @@
-/// \file Resolution of references once the whole deck is read: element nodes, sets, surfaces,
-/// initial conditions, boundary conditions, loads and output sets. Sections are resolved in
-/// deck_sections.cpp, pressures in deck_pressure.cpp, element shapes checked in
-/// deck_geometry.cpp.
+/// \file Resolution of references once the whole deck is read: element nodes, sets, initial
+/// conditions, boundary conditions, loads and output sets. Sections are resolved in
+/// deck_sections.cpp, surfaces in deck_surfaces.cpp, pressures and gravity in
+/// deck_pressure.cpp, contact pairs in deck_contact.cpp, rigid bodies in deck_rigid.cpp, point
+/// masses in deck_point_mass.cpp, element shapes checked in deck_geometry.cpp.
 
 #include <algorithm>
 
@@ -44,6 +45,10 @@ Model DeckBuilder::finish() {
   resolve_initial_velocity();
   resolve_steps();
   resolve_pressures();
+  resolve_gravity();
+  resolve_contact_pairs();
+  resolve_rigid_bodies();
+  resolve_point_inertias();
   check_element_geometry();
 
   const char* categories[ERROR_CATEGORIES] = {"elements with undefined nodes",
@@ -78,6 +83,16 @@ void DeckBuilder::resolve_element_nodes() {
       }
     }
   }
+  for (PointElement& element : m_point_elements) {
+    const auto it = m_node_index.find(element.node_id);
+    if (it != m_node_index.end())
+      element.node = it->second;
+    else
+      capped_error(m_error_counts[UNDEFINED_NODES], element.where, "*ELEMENT",
+                   "element " + std::to_string(element.id) + " refers to undefined node " +
+                       std::to_string(element.node_id),
+                   "expected a *NODE with id " + std::to_string(element.node_id));
+  }
 }
 
 void DeckBuilder::resolve_sets(bool node_sets) {
@@ -94,22 +109,29 @@ void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
   const std::string what = node_sets ? "node" : "element";
   std::vector<NamedSet>& sets = node_sets ? m_model.node_sets : m_model.element_sets;
   std::vector<Index> members = std::move(pending.members);
+  // MASS/ROTARYI elements of an element set: kept beside the Model's members.
+  std::vector<Index>& points = pending.point_members;
+  const bool has_points = !node_sets && !m_point_element_index.empty();
   for (const SetItem& item : pending.items) {
     switch (item.kind) {
       case SetItem::Kind::Id: {
         const auto it = ids.find(item.first);
-        if (it == ids.end())
+        const auto point =
+            has_points ? m_point_element_index.find(item.first) : m_point_element_index.end();
+        if (it != ids.end())
+          members.push_back(it->second);
+        else if (point != m_point_element_index.end())
+          points.push_back(point->second);
+        else
           m_errors.add(item.where, item.keyword,
                        "undefined " + what + " " + std::to_string(item.first),
                        "expected a defined " + what + " id");
-        else
-          members.push_back(it->second);
         break;
       }
       case SetItem::Kind::Range: {
         // Ids of the range that are not defined are skipped (GENERATE over sparse numbering);
         // cost is bounded by the smaller of the range and the number of defined ids.
-        const std::size_t before = members.size();
+        const std::size_t before = members.size() + points.size();
         const long long span = (item.last - item.first) / item.increment + 1;
         if (static_cast<unsigned long long>(span) <= ids.size()) {
           for (long long id = item.first; id <= item.last; id += item.increment) {
@@ -121,7 +143,11 @@ void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
             if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
               members.push_back(index);
         }
-        if (members.size() == before)
+        if (has_points)
+          for (const auto& [id, index] : m_point_element_index)
+            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+              points.push_back(index);
+        if (members.size() + points.size() == before)
           m_errors.add(item.where, item.keyword,
                        "range " + std::to_string(item.first) + ".." + std::to_string(item.last) +
                            " contains no defined " + what,
@@ -147,6 +173,10 @@ void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
         resolve_set(node_sets, it->second, depth + 1);
         const std::vector<Index>& included = sets[static_cast<std::size_t>(it->second)].members;
         members.insert(members.end(), included.begin(), included.end());
+        if (!node_sets) {
+          const std::vector<Index>& other_points = m_element_sets[it->second].point_members;
+          points.insert(points.end(), other_points.begin(), other_points.end());
+        }
         break;
       }
       case SetItem::Kind::NodesOfElementSet: {
@@ -159,6 +189,9 @@ void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
         for (Index e : m_model.element_sets[static_cast<std::size_t>(it->second)].members)
           for (Index k = m_model.element_offsets[e]; k < m_model.element_offsets[e + 1]; ++k)
             if (m_model.element_nodes[k] != NO_INDEX) members.push_back(m_model.element_nodes[k]);
+        for (Index p : m_element_sets[it->second].point_members)
+          if (m_point_elements[static_cast<std::size_t>(p)].node != NO_INDEX)
+            members.push_back(m_point_elements[static_cast<std::size_t>(p)].node);
         break;
       }
     }
@@ -166,6 +199,8 @@ void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
   std::sort(members.begin(), members.end());
   members.erase(std::unique(members.begin(), members.end()), members.end());
   sets[static_cast<std::size_t>(set)].members = std::move(members);
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
   pending.state = 2;
 }
 
@@ -235,35 +270,6 @@ Index DeckBuilder::resolve_amplitude(const std::string& name, const SourceLocati
     m_errors.add(where, keyword, "undefined amplitude " + name,
                  "expected *AMPLITUDE, NAME=" + name);
   return amplitude;
-}
-
-void DeckBuilder::resolve_surfaces() {
-  for (std::size_t s = 0; s < m_model.surfaces.size(); ++s) {
-    Surface& surface = m_model.surfaces[s];
-    for (const PendingSurfaceItem& item : m_surface_items[s]) {
-      if (surface.type == Surface::Type::Node) {
-        const std::vector<Index> nodes = resolve_nodes(item.target);
-        surface.nodes.insert(surface.nodes.end(), nodes.begin(), nodes.end());
-      } else {
-        bool reported = false;  // one mismatch per data line, not one per element of a set
-        for (Index e : resolve_elements(item.target)) {
-          const ElementType type = m_model.element_types[static_cast<std::size_t>(e)];
-          if (is_shell(type) == item.shell) {
-            surface.faces.push_back({e, static_cast<std::uint8_t>(item.face)});
-          } else if (!reported) {
-            reported = true;
-            m_errors.add(item.target.where, item.target.keyword,
-                         "face " + item.label + " does not fit " + element_text(e, item.target),
-                         is_shell(type) ? "expected SPOS or SNEG on S4R shell elements"
-                                        : "expected S1..S6 on C3D8R solid elements");
-          }
-        }
-      }
-    }
-    std::sort(surface.nodes.begin(), surface.nodes.end());
-    surface.nodes.erase(std::unique(surface.nodes.begin(), surface.nodes.end()),
-                        surface.nodes.end());
-  }
 }
 
 void DeckBuilder::resolve_initial_velocity() {

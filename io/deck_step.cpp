@@ -25,7 +25,8 @@ std::vector<std::pair<int, int>> boundary_type_dofs(const std::string& word) {
 
 void DeckBuilder::read_step(const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"NAME"}, {"NLGEOM", false, true}, {"AMPLITUDE"}});
+  // INC= and INCF= are CalculiX's increment limits: accepted, noted as not used.
+  check_parameters(keyword, {{"NAME"}, {"NLGEOM", false, true}, {"AMPLITUDE"}, {"INC"}, {"INCF"}});
   if (m_in_step) {
     error(keyword.where, keyword, "a step is already open",
           "expected *END STEP before the next *STEP");
@@ -50,6 +51,12 @@ void DeckBuilder::read_step(const DeckBlock& block) {
     error(keyword.where, keyword, "bad AMPLITUDE=" + amplitude,
           "expected AMPLITUDE=STEP or AMPLITUDE=RAMP");
   }
+  for (const char* limit : {"INC", "INCF"})
+    if (const DeckParameter* p = find_parameter(keyword, limit); p != nullptr && p->has_value)
+      note(keyword.where, keyword,
+           p->name + "=" + p->value +
+               " (CalculiX's maximum number of increments) is not used: an explicit step runs "
+               "until its time period");
   m_model.steps.push_back(std::move(step));
   m_in_step = true;
   m_step_has_dynamic = false;

@@ -686,6 +686,8 @@ std::vector<std::string> unsupported_features(const Model& model) {
   for (const Step& s : model.steps) {
     if (s.contact) refuse(s.contact->where, "*CONTACT", "general contact");
     for (const ContactPair& c : s.contact_pairs) refuse(c.where, "*CONTACT PAIR", "contact");
+    for (const OutputRequest& r : s.outputs)
+      if (!r.contact_variables.empty()) refuse(r.where, "*CONTACT OUTPUT", "contact output");
   }
   return out;
 }

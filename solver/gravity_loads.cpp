@@ -29,7 +29,7 @@ Real element_node_mass(const Model& model, Index e, const NodalVectors& referenc
 void GravityLoads::begin_step(const Model& model, int step, const NodalVectors& reference,
                               const std::vector<Real>& nodal_mass) {
   const Step& s = model.steps[step];
-  if (s.pressures_reset) m_active.clear();
+  if (s.gravity_reset) m_active.clear();
   for (const GravityLoad& g : s.gravity) m_active[g.element_set] = g;
   m_terms.clear();
   m_nodes.clear();

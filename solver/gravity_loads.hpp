@@ -14,8 +14,8 @@ namespace xpl {
 /// The gravity loads in force during one step.
 class GravityLoads {
  public:
-  /// Applies the changes of `step` (keyed by element set; `pressures_reset` — OP=NEW on
-  /// *DLOAD — also clears gravity). `nodal_mass` (n_nodes) is the lumped mass used for
+  /// Applies the changes of `step` (keyed by element set; `gravity_reset` — OP=NEW on *DLOAD —
+  /// clears the earlier steps' gravity). `nodal_mass` (n_nodes) is the lumped mass used for
   /// whole-model gravity; element sets use their elements' own lumped mass.
   void begin_step(const Model& model, int step, const NodalVectors& reference,
                   const std::vector<Real>& nodal_mass);

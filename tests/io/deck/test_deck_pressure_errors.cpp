@@ -15,7 +15,8 @@ using test::two_brick_model;
 namespace {
 
 const std::string DLOAD_SUPPORTED =
-    "supported: P on S4R elements (face SPOS), P1..P6 on C3D8R elements (faces S1..S6)";
+    "supported: P on S4R elements (face SPOS), P1..P6 on C3D8R elements (faces S1..S6), GRAV "
+    "(gravity)";
 
 }  // namespace
 
@@ -29,7 +30,7 @@ TEST_CASE("*DLOAD and *DSLOAD errors are all reported, each at its line",
                            "*DLOAD\n"
                            "BRICKS, P, 1e5\n"
                            "11, P3, 1e5\n"
-                           "PLATE, GRAV, 9.81, 0, 0, -1\n"
+                           "PLATE, GRAV, 9.81, 0, 0, 0\n"
                            "PLATE, BZ, 1e3\n"
                            "PLATE, P, lots\n"
                            "NOPE, P, 1\n"
@@ -52,7 +53,9 @@ TEST_CASE("*DLOAD and *DSLOAD errors are all reported, each at its line",
   const std::vector<std::string> expected = {
       at(deck, "*DLOAD\nPLATE, P, 1.", "*DLOAD") +
           "history data outside a step; expected it between *STEP and *END STEP",
-      dload("PLATE, GRAV") + "load type GRAV is not supported yet; " + DLOAD_SUPPORTED,
+      dload("PLATE, GRAV") +
+          "gravity direction 0, 0, 0 has no length; expected a nonzero direction dx, dy, dz (it "
+          "is normalised)",
       dload("PLATE, BZ") + "load type BZ is not supported yet; " + DLOAD_SUPPORTED,
       dload("PLATE, P, lots") +
           "bad number 'lots' for magnitude; expected a real number such as 2, -1.5, 1e3 or 1.0D3",
@@ -122,7 +125,8 @@ TEST_CASE("every shell error of a deck is reported together", "[io][deck][shell]
           "expected an odd number of points from 1 to 99 "
           "(Simpson's rule through the thickness), e.g. 5",
       at(deck, "*ELEMENT, TYPE=S3R", "*ELEMENT") +
-          "element type S3R is not supported yet; supported: C3D8R, S4R (S4 is run as S4R)",
+          "element type S3R is not supported yet; supported: C3D8R, S4R (S4 is run as S4R), "
+          "MASS, ROTARYI",
       at(deck, "*SOLID SECTION", "*SOLID SECTION") +
           "element 11 is an S4R shell element; expected a *SHELL SECTION for it (*SOLID SECTION "
           "is for C3D8R elements)",

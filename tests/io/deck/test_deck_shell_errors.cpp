@@ -226,7 +226,8 @@ TEST_CASE("faces that do not fit the element type", "[io][deck][shell][errors]")
                                 "expected S1..S6 on C3D8R solid elements"));
   CHECK(has_message(errors, at(deck, "11, SIDE", "*SURFACE") +
                                 "bad face label SIDE; expected S1, S2, S3, S4, S5 or S6 on C3D8R "
-                                "elements, SPOS or SNEG on S4R elements"));
+                                "elements, SPOS or SNEG on S4R elements, or none (all exposed "
+                                "faces, both sides of shells)"));
   CHECK(has_message(errors, at(deck, "12, S3", "*SURFACE") +
                                 "face S3 does not fit S4R element 12; expected SPOS or SNEG on "
                                 "S4R shell elements"));
