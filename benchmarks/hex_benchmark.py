@@ -125,8 +125,19 @@ MARKDOWN_HEADER = [
 ]
 
 
-def plot(csv_path, png_path):
-    """Element cycles per second and phase times against threads, newest measurement."""
+def loop_seconds(row):
+    """Wall time of the time loop, s: elements x increments / element cycles per second."""
+    return float(row["elements"]) * float(row["increments"]) / float(row["element_cycles_per_s"])
+
+
+def untimed_seconds(row):
+    """Loop time in no phase timer (e.g. applying loads), s; setup is outside the loop."""
+    return max(0.0, loop_seconds(row) - sum(float(row[c]) for c in PHASE_COLUMNS[1:]))
+
+
+def plot(csv_path, png_path, title="C3D8R block", show_untimed=False):
+    """Element cycles per second and phase times against threads, newest measurement.
+    show_untimed adds the loop time outside the phase timers as a last bar segment."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -147,13 +158,16 @@ def plot(csv_path, png_path):
         ax_rate.annotate(f"{value:.2f}", (i, value), ha="center", va="bottom")
     ax_rate.set_xlabel("threads")
     ax_rate.set_ylabel("element cycles per second (millions)")
-    ax_rate.set_title(f"C3D8R block, {rows[0]['elements']} elements")
+    ax_rate.set_title(f"{title}, {rows[0]['elements']} elements")
 
     bottom = [0.0] * len(rows)
     for phase, column in zip(PHASES, PHASE_COLUMNS):
         seconds = [float(r[column]) for r in rows]
         ax_phase.bar(labels, seconds, bottom=bottom, label=phase)
         bottom = [b + s for b, s in zip(bottom, seconds)]
+    if show_untimed:
+        ax_phase.bar(labels, [untimed_seconds(r) for r in rows], bottom=bottom,
+                     label="untimed (loads, checks)", color="lightgray")
     ax_phase.set_xlabel("threads")
     ax_phase.set_ylabel("wall time (s)")
     ax_phase.set_title(f"phases, {rows[0]['increments']} increments")
