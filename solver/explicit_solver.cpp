@@ -349,6 +349,8 @@ void ExplicitSolver::Impl::compute_forces(Real dt, ElementTotals& totals) {
 
 void ExplicitSolver::Impl::apply_loads(Real step_time, Real total_time) {
   if (loaded_dofs.empty()) return;
+  // External forces are part of the nodal update: timed with it, so the phases add up.
+  ScopedTimer timer(timers, Phase::Integration);
   if (force_external.rows() == 0) force_external = NodalVectors::Zero(model.node_count(), 3);
   for (const LoadedDof& l : loaded_dofs) force_external(l.node, l.component) = 0.0;
   for (const LoadedDof& l : boundary.loads())
