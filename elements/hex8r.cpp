@@ -91,16 +91,7 @@ void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVector
     totals.strain_energy_increment += m_batch_energy[b * 3 + 0];
     totals.hourglass_energy_increment += m_batch_energy[b * 3 + 1];
     totals.viscous_energy_increment += m_batch_energy[b * 3 + 2];
-    const Index crit = m_batch_critical[b];
-    if (m_batch_dt[b] < totals.stable_dt ||
-        (m_batch_dt[b] == totals.stable_dt && crit != NO_INDEX &&
-         (totals.critical_element == NO_INDEX || crit < totals.critical_element))) {
-      totals.stable_dt = m_batch_dt[b];
-      totals.critical_element = crit;
-    }
-    const Index failed = m_batch_failed[b];
-    if (failed != NO_INDEX && (totals.failed_element == NO_INDEX || failed < totals.failed_element))
-      totals.failed_element = failed;
+    totals.merge(m_batch_dt[b], m_batch_critical[b], m_batch_failed[b]);
   }
 }
 

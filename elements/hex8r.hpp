@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "elements/increment_limit.hpp"
 #include "elements/simd.hpp"
 
 namespace xpl::elements {
@@ -44,13 +45,10 @@ struct HexMaterial {
 };
 
 /// What one internal-force pass reports (sums are over the block, in a fixed order).
-struct HexStepTotals {
-  Real strain_energy_increment = 0.0;                      ///< ΔALLSE, J
-  Real hourglass_energy_increment = 0.0;                   ///< ΔALLAE, J
-  Real viscous_energy_increment = 0.0;                     ///< ΔALLVD, J
-  Real stable_dt = std::numeric_limits<Real>::infinity();  ///< min over elements, s
-  Index critical_element = NO_INDEX;  ///< model element index with the smallest stable dt
-  Index failed_element = NO_INDEX;    ///< first element with non-positive or NaN volume
+struct HexStepTotals : IncrementLimit {
+  Real strain_energy_increment = 0.0;     ///< ΔALLSE, J
+  Real hourglass_energy_increment = 0.0;  ///< ΔALLAE, J
+  Real viscous_energy_increment = 0.0;    ///< ΔALLVD, J
 };
 
 /// A set of C3D8R elements and their state (stress, hourglass forces).

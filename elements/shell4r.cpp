@@ -168,16 +168,7 @@ void Shell4rBlock::internal_forces(const NodalVectors& position, const NodalVect
   for (Index b = 0; b < n_batches; ++b) {
     totals.strain_energy_increment += m_batch_energy[b * 2 + 0];
     totals.hourglass_energy_increment += m_batch_energy[b * 2 + 1];
-    const Index crit = m_batch_critical[b];
-    if (m_batch_dt[b] < totals.stable_dt ||
-        (m_batch_dt[b] == totals.stable_dt && crit != NO_INDEX &&
-         (totals.critical_element == NO_INDEX || crit < totals.critical_element))) {
-      totals.stable_dt = m_batch_dt[b];
-      totals.critical_element = crit;
-    }
-    const Index failed = m_batch_failed[b];
-    if (failed != NO_INDEX && (totals.failed_element == NO_INDEX || failed < totals.failed_element))
-      totals.failed_element = failed;
+    totals.merge(m_batch_dt[b], m_batch_critical[b], m_batch_failed[b]);
   }
 }
 

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "elements/increment_limit.hpp"
 #include "elements/simd.hpp"
 
 namespace xpl::elements {
@@ -47,12 +48,9 @@ struct ShellProperties {
 };
 
 /// What one shell internal-force pass reports (sums over the block in a fixed order).
-struct ShellStepTotals {
+struct ShellStepTotals : IncrementLimit {
   Real strain_energy_increment = 0.0;     ///< ΔALLSE, J
   Real hourglass_energy_increment = 0.0;  ///< ΔALLAE, J
-  Real stable_dt = std::numeric_limits<Real>::infinity();
-  Index critical_element = NO_INDEX;  ///< model index
-  Index failed_element = NO_INDEX;    ///< first element with collapsed area or NaN
 };
 
 /// Section output of one shell element.

@@ -37,16 +37,6 @@ std::string location_text(const SourceLocation& where) {
   return where.file + ":" + std::to_string(where.line);
 }
 
-std::string_view deck_type_name(ElementType type) {
-  switch (type) {
-    case ElementType::C3D8R:
-      return "C3D8R";
-    case ElementType::S4R:
-      return "S4R";
-  }
-  return "?";
-}
-
 std::string number_text(Real value) {
   std::ostringstream out;
   out << value;

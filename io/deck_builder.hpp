@@ -37,9 +37,6 @@ std::string location_text(const SourceLocation& where);
 /// A real number as messages show it (6 significant digits, e.g. 2.1e+11).
 std::string number_text(Real value);
 
-/// The deck name of an element type ("C3D8R", "S4R"), for messages.
-std::string_view deck_type_name(ElementType type);
-
 /// Builds a Model from keyword blocks; every problem goes into one InputErrors.
 class DeckBuilder {
  public:

@@ -256,7 +256,7 @@ std::vector<Index> DeckBuilder::resolve_elements(const DeckReference& reference)
 
 std::string DeckBuilder::element_text(Index e, const DeckReference& reference) const {
   std::string text =
-      std::string(deck_type_name(m_model.element_types[static_cast<std::size_t>(e)])) +
+      std::string(element_type_name(m_model.element_types[static_cast<std::size_t>(e)])) +
       " element " + std::to_string(m_model.element_ids[e]);
   if (!looks_numeric(reference.token)) text += " of set " + reference.token;
   return text;

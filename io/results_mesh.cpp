@@ -81,16 +81,6 @@ void write_sets(hid_t mesh, const char* group_name, const std::vector<NamedSet>&
 
 }  // namespace
 
-const char* element_type_name(ElementType type) {
-  switch (type) {
-    case ElementType::C3D8R:
-      return "C3D8R";
-    case ElementType::S4R:
-      return "S4R";
-  }
-  return "UNKNOWN";
-}
-
 const char* xdmf_cell_name(ElementType type) {
   switch (type) {
     case ElementType::C3D8R:

@@ -18,9 +18,6 @@
 
 namespace xpl::io {
 
-/// Abaqus name of an element type ("C3D8R"), also the name of its group below /mesh.
-const char* element_type_name(ElementType type);
-
 /// XDMF name of the cell shape of an element type ("Hexahedron", "Quadrilateral").
 const char* xdmf_cell_name(ElementType type);
 

@@ -57,25 +57,16 @@ elements::ShellProperties shell_properties(const Model& model, Index element) {
 }
 
 /// Element totals of one internal-force pass over all blocks.
-struct ElementTotals {
+struct ElementTotals : elements::IncrementLimit {
   Real strain_energy_increment = 0.0;
   Real hourglass_energy_increment = 0.0;
   Real viscous_energy_increment = 0.0;
-  Real stable_dt = std::numeric_limits<Real>::infinity();
-  Index critical_element = NO_INDEX;
-  Index failed_element = NO_INDEX;
 
   template <class BlockTotals>
   void add(const BlockTotals& t) {
     strain_energy_increment += t.strain_energy_increment;
     hourglass_energy_increment += t.hourglass_energy_increment;
-    if (t.stable_dt < stable_dt) {
-      stable_dt = t.stable_dt;
-      critical_element = t.critical_element;
-    }
-    if (t.failed_element != NO_INDEX &&
-        (failed_element == NO_INDEX || t.failed_element < failed_element))
-      failed_element = t.failed_element;
+    merge(t);
   }
 };
 

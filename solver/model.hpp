@@ -21,6 +21,17 @@ enum class ElementType : std::uint8_t {
   S4R,    ///< 4-node shell, one in-plane point, hourglass control (S4 is read as S4R)
 };
 
+/// Abaqus name of an element type ("C3D8R", "S4R"), as in decks and result files.
+constexpr const char* element_type_name(ElementType type) {
+  switch (type) {
+    case ElementType::C3D8R:
+      return "C3D8R";
+    case ElementType::S4R:
+      return "S4R";
+  }
+  return "UNKNOWN";
+}
+
 /// Whether elements of a type carry rotational degrees of freedom at their nodes.
 constexpr bool is_shell(ElementType type) {
   return type == ElementType::S4R;
