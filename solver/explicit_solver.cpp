@@ -554,10 +554,11 @@ void ExplicitSolver::Impl::write_status() {
 void ExplicitSolver::Impl::check_health(const ElementTotals& totals) {
   if (totals.failed_element != NO_INDEX) {
     const ExternalId id = model.element_ids[totals.failed_element];
-    throw SolverError("NaN/instability at increment " + std::to_string(state.increment) +
-                          ", element " + std::to_string(id) +
-                          ": non-positive or undefined volume (element inverted)",
-                      id, state.increment, state.time);
+    throw SolverError(
+        "NaN/instability at increment " + std::to_string(state.increment) + ", element " +
+            std::to_string(id) +
+            ": non-positive or undefined volume or area (element inverted or collapsed)",
+        id, state.increment, state.time);
   }
   const Energies& e = state.energies;
   if (!std::isfinite(e.kinetic) || !std::isfinite(e.total())) {
