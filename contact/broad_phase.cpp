@@ -19,8 +19,11 @@ Index bucket_coordinate(Real x, Real origin, Real cell, Index dim) {
 
 }  // namespace
 
-BroadPhase::BroadPhase(Real margin) : m_margin(margin) {
+BroadPhase::BroadPhase(Real margin, Real rebuild_motion)
+    : m_margin(margin), m_rebuild_motion(rebuild_motion > 0.0 ? rebuild_motion : 0.5 * margin) {
   if (!(margin > 0.0)) throw std::invalid_argument("BroadPhase: the search margin must be > 0");
+  if (m_rebuild_motion > 0.5 * margin)
+    throw std::invalid_argument("BroadPhase: the rebuild motion must not exceed margin/2");
 }
 
 void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
@@ -170,7 +173,7 @@ bool BroadPhase::needs_rebuild(const NodalVectors& position) const {
     }
     max_sq = std::max(max_sq, sq);
   }
-  const Real limit = 0.5 * m_margin;
+  const Real limit = m_rebuild_motion;
   return max_sq > limit * limit;
 }
 

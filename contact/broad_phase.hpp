@@ -22,9 +22,11 @@ namespace xpl::contact {
 /// Bucket grid over inflated face boxes and the candidate faces of each slave node.
 class BroadPhase {
  public:
-  /// `margin` (m, > 0): how far boxes are inflated on every side, and twice the motion that
-  /// triggers a rebuild.
-  explicit BroadPhase(Real margin);
+  /// `margin` (m, > 0): how far boxes are inflated on every side. `rebuild_motion` (m, > 0,
+  /// ≤ margin/2; default margin/2): how far a node may move before the lists are rebuilt.
+  /// A smaller value leaves part of the margin for a contact thickness around the slave node
+  /// (a shell's half thickness): pairs within that thickness of touching stay in the lists.
+  explicit BroadPhase(Real margin, Real rebuild_motion = 0.0);
 
   /// Builds the grid and the candidate lists of the slave nodes `slave_nodes` (node indices,
   /// n_slave) against `faces`, on positions (n_nodes × 3, m) with shell node thickness
@@ -33,7 +35,7 @@ class BroadPhase {
   void build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
              const NodalVectors& position, std::span<const Real> node_thickness);
 
-  /// Whether any node tracked at the last build has moved more than margin/2 since then
+  /// Whether any node tracked at the last build has moved more than the rebuild motion since it
   /// (true before the first build). Parallel max-reduction, no allocation.
   bool needs_rebuild(const NodalVectors& position) const;
 
@@ -58,6 +60,7 @@ class BroadPhase {
                     Index* out) const;
 
   Real m_margin;
+  Real m_rebuild_motion;
   long m_builds = 0;
   // Grid: origin, bucket size, buckets per direction, bucket -> faces (CSR).
   Vec3 m_origin = Vec3::Zero();

@@ -163,7 +163,9 @@ SlaveNodes::SlaveNodes(std::span<const ContactFace> faces, Index node_count)
     m_face_offsets.push_back(static_cast<Index>(m_node_faces.size()));
   }
   m_face_area.assign(faces.size(), 0.0);
+  m_face_normal.assign(3 * faces.size(), 0.0);
   m_areas.assign(m_nodes.size(), 0.0);
+  m_normals.assign(3 * m_nodes.size(), 0.0);
 }
 
 void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVectors& position) {
@@ -174,15 +176,24 @@ void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVec
   for (Index i = 0; i < n_faces; ++i) {
     Vec3 corner[4];
     face_corners(faces[i], position, {}, corner);
-    m_face_area[i] = quad_area(corner);
+    const Vec3 n = 0.5 * cross_diagonals(corner);
+    m_face_area[i] = length(n);
+    for (int d = 0; d < 3; ++d) m_face_normal[3 * i + d] = n[d];
   }
   const Index n_slave = size();
 #pragma omp parallel for schedule(static)
   for (Index s = 0; s < n_slave; ++s) {
     Real a = 0.0;
-    for (Index k = m_face_offsets[s]; k < m_face_offsets[s + 1]; ++k)
-      a += m_face_area[m_node_faces[k]];
+    Vec3 n = Vec3::Zero();
+    for (Index k = m_face_offsets[s]; k < m_face_offsets[s + 1]; ++k) {
+      const Index f = m_node_faces[k];
+      a += m_face_area[f];
+      n += Vec3(m_face_normal[3 * f], m_face_normal[3 * f + 1], m_face_normal[3 * f + 2]);
+    }
     m_areas[s] = 0.25 * a;
+    const Real n_len = length(n);
+    if (n_len > 0.0) n /= n_len;
+    for (int d = 0; d < 3; ++d) m_normals[3 * s + d] = n[d];
   }
 }
 

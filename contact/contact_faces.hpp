@@ -95,13 +95,19 @@ class SlaveNodes {
   /// Collects the nodes of `faces` (ascending node index) and the node → face lists.
   SlaveNodes(std::span<const ContactFace> faces, Index node_count);
 
-  /// Tributary areas on the configuration `position` (n_nodes × 3, m) of the mid-surface.
+  /// Tributary areas and node normals on the configuration `position` (n_nodes × 3, m) of
+  /// the mid-surface.
   void update_areas(std::span<const ContactFace> faces, const NodalVectors& position);
 
   /// Slave node indices, ascending (n_slave).
   const std::vector<Index>& nodes() const { return m_nodes; }
   /// Tributary area of each slave node (n_slave), m²; zero until update_areas.
   const std::vector<Real>& areas() const { return m_areas; }
+  /// Unit normal of slave slot s: the area-weighted mean of the normals of the faces around
+  /// it (outward for solids; for a shell, the normal of one side); zero until update_areas.
+  Vec3 normal(Index s) const {
+    return Vec3(m_normals[3 * s], m_normals[3 * s + 1], m_normals[3 * s + 2]);
+  }
   /// Slot of `node` in nodes(), or NO_INDEX when it is no slave node.
   Index slot(Index node) const { return m_slot[node]; }
   Index size() const { return static_cast<Index>(m_nodes.size()); }
@@ -112,7 +118,9 @@ class SlaveNodes {
   std::vector<Index> m_face_offsets;  // (n_slave + 1) into m_node_faces
   std::vector<Index> m_node_faces;    // faces around each slave node, one per shell element
   std::vector<Real> m_face_area;      // (n_faces) scratch
+  std::vector<Real> m_face_normal;    // (n_faces × 3) scratch: area vectors
   std::vector<Real> m_areas;
+  std::vector<Real> m_normals;  // (n_slave × 3)
 };
 
 }  // namespace xpl::contact

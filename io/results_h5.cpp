@@ -54,6 +54,19 @@ void check_frame(const State& state, const FrameRequest& what, Index n_nodes,
   if (what.thickness) check_size(state.thickness, n_elements, "thickness");
 }
 
+void check_contact(const State& state, const FrameRequest& what, Index n_nodes) {
+  const auto n = static_cast<std::size_t>(n_nodes);
+  if (what.contact_stress) {
+    check_size(state.contact_pressure, n, "contact_pressure");
+    check_rows(state.contact_shear, n_nodes, "CSHEAR");
+  }
+  if (what.contact_status) check_size(state.contact_status, n, "contact_status");
+  if (what.contact_force) {
+    check_rows(state.contact_normal_force, n_nodes, "CNORMF");
+    check_rows(state.contact_shear_force, n_nodes, "CSHEARF");
+  }
+}
+
 void write_nodal(hid_t group, const char* name, const NodalVectors& field) {
   h5::write_real(group, name, row_major(field), {static_cast<hsize_t>(field.rows()), 3});
 }
@@ -124,6 +137,7 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
   const bool shells = model.has_shells();
   const auto n_elements = static_cast<std::size_t>(model.element_count());
   check_frame(state, what, model.node_count(), n_elements, shells);
+  check_contact(state, what, model.node_count());
   m_history.write_pending();
   char name[16];
   std::snprintf(name, sizeof name, "%06d", m_frames);
@@ -156,6 +170,16 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
   }
   if (what.volume) write_cells(g, "EVOL", state.volume, 1);
   if (what.thickness && shells) write_cells(g, "STH", state.thickness, 1);
+  const auto n_nodes = static_cast<hsize_t>(model.node_count());
+  if (what.contact_stress) {
+    h5::write_real(g, "CPRESS", state.contact_pressure, {n_nodes});
+    write_nodal(g, "CSHEAR", state.contact_shear);
+  }
+  if (what.contact_status) h5::write_real(g, "CSTATUS", state.contact_status, {n_nodes});
+  if (what.contact_force) {
+    write_nodal(g, "CNORMF", state.contact_normal_force);
+    write_nodal(g, "CSHEARF", state.contact_shear_force);
+  }
   ++m_frames;
   flush();
   return name;

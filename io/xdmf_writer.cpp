@@ -93,6 +93,15 @@ void XdmfWriter::add_frame(const std::string& frame, Real time, const FrameReque
   }
   if (what.volume) attribute("EVOL", "Scalar", "Cell", cells);
   if (what.thickness && shells) attribute("STH", "Scalar", "Cell", cells);
+  if (what.contact_stress) {
+    attribute("CPRESS", "Scalar", "Node", nodes);
+    vector("CSHEAR");
+  }
+  if (what.contact_status) attribute("CSTATUS", "Scalar", "Node", nodes);
+  if (what.contact_force) {
+    vector("CNORMF");
+    vector("CSHEARF");
+  }
   grid += "      </Grid>\n";
   m_grids += grid;
   ++m_frames;

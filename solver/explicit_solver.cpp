@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "contact/contact_engine.hpp"
 #include "elements/hex8r.hpp"
 #include "elements/shell4r.hpp"
 #include "solver/boundary_state.hpp"
@@ -15,6 +16,7 @@
 #include "solver/node_rotations.hpp"
 #include "solver/output_schedule.hpp"
 #include "solver/pressure_loads.hpp"
+#include "solver/rigid_bodies.hpp"
 
 namespace xpl {
 
@@ -90,6 +92,13 @@ struct ExplicitSolver::Impl {
   PressureLoads pressures;
   GravityLoads gravity;
   NodeRotations rotations;
+  RigidBodies rigid;
+  /// General contact of the current step; null when the step has none (P2).
+  std::unique_ptr<contact::ContactEngine> contact;
+  std::vector<Real> node_thickness;  ///< shell node thickness for contact (n_nodes), or empty
+  std::vector<contact::ElementKind> element_kinds;  ///< (n_elements), for the contact domain
+  /// Contact pair names, in the engine's pair order (history output).
+  std::vector<std::string> contact_pair_names;
   /// Shell models only (else 0 rows / empty): internal moments (n_nodes × 3), inverse rotary
   /// inertia, and the moments of the previous increment at prescribed rotations (work).
   NodalVectors moment_internal;
@@ -124,6 +133,10 @@ struct ExplicitSolver::Impl {
   void setup();
   void report_warped_shells();
   void begin_step(int step);
+  /// Builds (or keeps) the contact engine of `step`.
+  void begin_contact(int step);
+  /// Contact forces at the current positions into force_internal, energies into the state.
+  void apply_contact(Real dt_taken, Real dt_penalty);
   void compute_forces(Real dt, ElementTotals& totals);
   Real next_increment(const ElementTotals& totals, Real remaining, int step) const;
   /// Central-difference update of the free DOFs of a field; returns its kinetic energy
@@ -132,6 +145,8 @@ struct ExplicitSolver::Impl {
   void update_nodes(Real dt_prev, Real dt_next, Real t_next_half, Real t_next_end);
   void apply_loads(Real step_time, Real total_time);
   void write_frame(const FrameRequest& what);
+  /// Per-node contact pressure, status and forces into the state (for a frame).
+  void fill_contact_output();
   void write_history();
   void write_status();
   void sync_rotation();
@@ -154,11 +169,15 @@ void ExplicitSolver::Impl::setup() {
   state.mass.assign(n, 0.0);
   force_internal = NodalVectors::Zero(n, 3);
 
+  rigid = RigidBodies(model);
+  auto deformable = [&](Index e) {
+    return rigid.element_body().empty() || rigid.element_body()[e] == NO_INDEX;
+  };
   std::vector<Index> hex_elements;
   std::vector<Index> connectivity;
   std::vector<elements::HexMaterial> materials;
   for (Index e = 0; e < model.element_count(); ++e) {
-    if (model.element_types[e] != ElementType::C3D8R) continue;
+    if (model.element_types[e] != ElementType::C3D8R || !deformable(e)) continue;
     hex_elements.push_back(e);
     const Index* nodes = model.nodes_of(e);
     connectivity.insert(connectivity.end(), nodes, nodes + 8);
@@ -172,7 +191,7 @@ void ExplicitSolver::Impl::setup() {
   std::vector<elements::ShellProperties> shell_props;
   connectivity.clear();
   for (Index e = 0; e < model.element_count(); ++e) {
-    if (!is_shell(model.element_types[e])) continue;
+    if (!is_shell(model.element_types[e]) || !deformable(e)) continue;
     shell_elements.push_back(e);
     const Index* nodes = model.nodes_of(e);
     connectivity.insert(connectivity.end(), nodes, nodes + 4);
@@ -193,9 +212,42 @@ void ExplicitSolver::Impl::setup() {
       if (state.rotary_inertia[i] > 0.0) inverse_inertia[i] = 1.0 / state.rotary_inertia[i];
     rotations = NodeRotations(n);
   }
+  // Rigid elements: their lumped mass joins the body; point masses join their node.
+  for (Index e = 0; e < model.element_count(); ++e) {
+    if (deformable(e)) continue;
+    const Real m = element_node_mass(model, e, state.reference);
+    const Index* nodes = model.nodes_of(e);
+    for (int a = 0; a < nodes_per_element(model.element_types[e]); ++a) state.mass[nodes[a]] += m;
+  }
+  for (const PointInertia& p : model.point_inertias) state.mass[p.node] += p.mass;
+  element_kinds.resize(static_cast<std::size_t>(model.element_count()));
+  for (Index e = 0; e < model.element_count(); ++e)
+    element_kinds[e] = model.element_types[e] == ElementType::C3D8R ? contact::ElementKind::Hex
+                       : is_shell(model.element_types[e])           ? contact::ElementKind::Shell
+                                                                    : contact::ElementKind::Other;
+  std::vector<std::string> rigid_messages;
+  if (!rigid.empty()) {
+    if (!shell) {
+      // The reference nodes carry rotations (UR, VR, RM) even without shells.
+      state.rotation = NodalVectors::Zero(n, 3);
+      state.angular_velocity = NodalVectors::Zero(n, 3);
+      state.angular_velocity_half = NodalVectors::Zero(n, 3);
+      state.reaction_moment = NodalVectors::Zero(n, 3);
+    }
+    rigid_messages = rigid.setup(model, state.mass, state);
+  }
+  if (shell) node_thickness = shell->node_thickness(state.reference, n);
+  for (Index e = 0; e < model.element_count(); ++e) {
+    if (deformable(e) || !is_shell(model.element_types[e])) continue;
+    if (node_thickness.empty()) node_thickness.assign(n, 0.0);
+    const Real t = model.shell_sections[model.element_section[e]].thickness;
+    const Index* nodes = model.nodes_of(e);
+    for (int a = 0; a < 4; ++a) node_thickness[nodes[a]] = std::max(node_thickness[nodes[a]], t);
+  }
   inverse_mass.assign(n, 0.0);
   Index massless = 0;
   for (Index i = 0; i < n; ++i) {
+    if (rigid.is_rigid_node(i)) continue;  // moved by its body
     if (state.mass[i] > 0.0)
       inverse_mass[i] = 1.0 / state.mass[i];
     else
@@ -211,6 +263,7 @@ void ExplicitSolver::Impl::setup() {
       sink.message(Severity::Note, "section controls " + c.name +
                                        ": HOURGLASS=RELAX STIFFNESS is run as STIFFNESS "
                                        "(Flanagan-Belytschko stiffness form)");
+  for (const std::string& m : rigid_messages) sink.message(Severity::Info, m);
   if (massless > 0)
     sink.message(Severity::Warning, std::to_string(massless) +
                                         " node(s) belong to no element and have no mass; "
@@ -271,11 +324,14 @@ void ExplicitSolver::Impl::begin_step(int step) {
   schedule.begin_step(model, step);
   state.reaction.setZero();
   if (shell) state.reaction_moment.setZero();
+  // Reference nodes of rigid bodies drive their body; members cannot be prescribed.
+  std::vector<PrescribedDof> active = boundary.prescribed();
+  const Index dropped_members = rigid.empty() ? 0 : rigid.begin_step(active, state);
   // Rotations prescribed on nodes that belong to no shell have nothing to act on.
   prescribed.clear();
   bool dropped_rotations = boundary.has_rotational_dofs();
-  for (const PrescribedDof& d : boundary.prescribed()) {
-    if (d.component >= 3 && state.rotary_inertia[d.node] <= 0.0) {
+  for (const PrescribedDof& d : active) {
+    if (d.component >= 3 && (state.rotary_inertia.empty() || state.rotary_inertia[d.node] <= 0.0)) {
       dropped_rotations = true;
       continue;
     }
@@ -317,7 +373,116 @@ void ExplicitSolver::Impl::begin_step(int step) {
                                      ": boundary conditions on DOFs 4-6 of nodes that belong "
                                      "to no shell are ignored (solid element nodes have no "
                                      "rotations)");
-  if (schedule.has_history()) sink.declare_history(schedule.series());
+  if (dropped_members > 0)
+    sink.message(Severity::Warning,
+                 "step " + model.steps[step].name + ": " + std::to_string(dropped_members) +
+                     " boundary condition(s) on member nodes of rigid bodies are ignored; "
+                     "prescribe the motion on the REF NODE");
+  begin_contact(step);
+  if (schedule.has_history()) {
+    std::vector<HistorySeries> series = schedule.series();
+    if (contact)
+      for (const std::string& name : contact_pair_names)
+        for (const char* v : {"CFN", "CFS"}) series.push_back({"contact/" + name + "/" + v, 1, {}});
+    sink.declare_history(series);
+  }
+}
+
+void ExplicitSolver::Impl::begin_contact(int step) {
+  // The definition in force: the latest *CONTACT up to this step, and every *CONTACT PAIR.
+  const Step& s = model.steps[step];
+  const bool changed = step == 0 || s.contact || !s.contact_pairs.empty();
+  if (!changed) return;
+  const GeneralContact* general = nullptr;
+  for (int k = step; k >= 0 && general == nullptr; --k)
+    if (model.steps[k].contact) general = &*model.steps[k].contact;
+  std::vector<ContactPair> pairs = model.contact_pairs;
+  for (int k = 0; k <= step; ++k)
+    pairs.insert(pairs.end(), model.steps[k].contact_pairs.begin(),
+                 model.steps[k].contact_pairs.end());
+  contact.reset();
+  contact_pair_names.clear();
+  const bool has_general =
+      general != nullptr && (general->all_exterior || !general->inclusions.empty());
+  if (!has_general && pairs.empty()) return;
+
+  contact::DomainSpec spec;
+  std::vector<Index> domain_surface(model.surfaces.size(), NO_INDEX);
+  Index all_exterior = NO_INDEX;
+  auto surface = [&](Index model_surface) -> Index {
+    if (model_surface == NO_INDEX) {
+      if (all_exterior == NO_INDEX) {
+        all_exterior = static_cast<Index>(spec.surfaces.size());
+        spec.surfaces.push_back({"ALL_EXTERIOR", true, {}});
+      }
+      return all_exterior;
+    }
+    Index& k = domain_surface[model_surface];
+    if (k == NO_INDEX) {
+      k = static_cast<Index>(spec.surfaces.size());
+      contact::DomainSurface d;
+      d.name = model.surfaces[model_surface].name;
+      for (const ElementFace& f : model.surfaces[model_surface].faces)
+        d.faces.push_back({f.element, f.face});
+      spec.surfaces.push_back(std::move(d));
+    }
+    return k;
+  };
+  auto name_of = [&](Index a, Index b) {
+    return spec.surfaces[a].name + (a == b ? "" : "-" + spec.surfaces[b].name);
+  };
+  if (has_general) {
+    if (general->all_exterior) {
+      const Index k = surface(NO_INDEX);
+      spec.inclusions.push_back({k, k, false});
+      contact_pair_names.push_back(name_of(k, k));
+    }
+    for (const SurfacePair& p : general->inclusions) {
+      const Index a = surface(p.first), b = surface(p.second);
+      spec.inclusions.push_back({a, b, false});
+      contact_pair_names.push_back(name_of(a, b));
+    }
+    for (const SurfacePair& p : general->exclusions)
+      spec.exclusions.push_back({surface(p.first), surface(p.second), false});
+    for (const auto& [p, interaction] : general->properties) {
+      if (p.first == NO_INDEX && p.second == NO_INDEX)
+        spec.default_interaction = interaction;
+      else
+        spec.interactions.push_back({{surface(p.first), surface(p.second), false}, interaction});
+    }
+  }
+  for (const ContactPair& p : pairs) {
+    const Index a = surface(p.slave), b = surface(p.master);
+    spec.inclusions.push_back({a, b, true});
+    spec.interactions.push_back({{a, b, true}, p.interaction});
+    contact_pair_names.push_back(name_of(a, b));
+  }
+  spec.element_body = rigid.element_body();
+  std::vector<contact::InteractionLaw> laws;
+  for (const SurfaceInteraction& i : model.surface_interactions)
+    laws.push_back({i.friction, i.linear ? i.linear_slope : 0.0});
+  contact::ContactOptions options;
+  if (has_general) options.penalty_scale = general->penalty_scale;
+  const contact::ElementTopology topology{model.element_offsets, model.element_nodes,
+                                          element_kinds};
+  contact::ContactDomain domain(spec, topology, state.position);
+  const std::size_t n_faces = domain.faces().size();
+  const Index n_slaves = domain.slaves().size();
+  contact = std::make_unique<contact::ContactEngine>(std::move(domain), std::move(laws), options,
+                                                     state.position, node_thickness);
+  sink.message(Severity::Info, "step " + s.name + ": contact domain of " + std::to_string(n_faces) +
+                                   " faces and " + std::to_string(n_slaves) +
+                                   " slave nodes, search margin " +
+                                   format_real(contact->broad_phase().margin()) + " m");
+}
+
+void ExplicitSolver::Impl::apply_contact(Real dt_taken, Real dt_penalty) {
+  if (!contact) return;
+  const contact::ContactTotals t =
+      contact->update(state.position, state.velocity_half, dt_taken, dt_penalty, node_thickness,
+                      state.mass, inverse_mass, force_internal, timers);
+  state.energies.friction += t.friction_dissipation;
+  state.energies.contact += -t.work - t.friction_dissipation;
 }
 
 void ExplicitSolver::Impl::compute_forces(Real dt, ElementTotals& totals) {
@@ -452,10 +617,17 @@ void ExplicitSolver::Impl::update_nodes(Real dt_prev, Real dt_next, Real t_next_
 
   Real ke = free_update(translation, dt_avg, w_new, chunk_sums.data());
   if (shell) ke += free_update(rotation, dt_avg, w_new, chunk_sums.data() + n_chunks);
+  Real work = 0.0;
+  if (!rigid.empty())
+    ke += rigid.update(
+        model, boundary, state, force_internal, loaded ? &force_external : nullptr, dt_prev,
+        dt_next, w_new,
+        {state.step_time + 0.5 * dt_next, t_next_half, state.step_time + dt_next, t_next_end},
+        work);
 
   // Prescribed DOFs: velocity from the BC, reaction = m a - (f_ext - f_int).
   // External work by the trapezoidal rule over [t_{n-1}, t_n]: exact for constant forces.
-  Real ke_fix = 0.0, work = 0.0;
+  Real ke_fix = 0.0;
   const Real step_next_half = state.step_time + 0.5 * dt_next;
   const Real step_next_end = state.step_time + dt_next;
   for (std::size_t k = 0; k < prescribed.size(); ++k) {
@@ -522,8 +694,40 @@ void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
                            state.thickness);
     }
   }
+  if (what.contact_stress || what.contact_status || what.contact_force) fill_contact_output();
   sync_rotation();
   sink.write_frame(model, state, what);
+}
+
+void ExplicitSolver::Impl::fill_contact_output() {
+  const Index n = model.node_count();
+  state.contact_pressure.assign(n, 0.0);
+  state.contact_status.assign(n, 0.0);
+  state.contact_shear = NodalVectors::Zero(n, 3);
+  state.contact_normal_force = NodalVectors::Zero(n, 3);
+  state.contact_shear_force = NodalVectors::Zero(n, 3);
+  if (!contact) return;
+  const contact::SlaveNodes& slaves = contact->domain().slaves();
+  for (Index s = 0; s < slaves.size(); ++s) {
+    const contact::Vec3 f = contact->nodal_force(s);
+    if (f.dot(f) == 0.0) continue;
+    const Index i = slaves.nodes()[s];
+    const contact::Vec3 normal = slaves.normal(s);
+    const Real along = f.dot(normal);
+    const contact::Vec3 fn = along * normal, ft = f - fn;
+    const Real area = slaves.areas()[s];
+    const bool shell_node = contact->domain().slave_double_sided(s);
+    const Real pressure = shell_node ? std::abs(along) : -along;
+    if (area > 0.0) state.contact_pressure[i] = pressure / area;
+    const auto own = contact->output_status(s);
+    state.contact_status[i] =
+        own == contact::OutputStatus::Open ? 1.0 : static_cast<Real>(static_cast<int>(own));
+    for (int c = 0; c < 3; ++c) {
+      if (area > 0.0) state.contact_shear(i, c) = ft[c] / area;
+      state.contact_normal_force(i, c) = fn[c];
+      state.contact_shear_force(i, c) = ft[c];
+    }
+  }
 }
 
 void ExplicitSolver::Impl::sync_rotation() {
@@ -536,6 +740,12 @@ void ExplicitSolver::Impl::write_history() {
   ScopedTimer timer(timers, Phase::Output);
   sync_rotation();
   schedule.history_row(state, history_row);
+  if (contact) {
+    for (std::size_t k = 0; k < contact_pair_names.size(); ++k) {
+      history_row.push_back(contact->pair_normal_force()[k]);
+      history_row.push_back(contact->pair_friction_force()[k]);
+    }
+  }
   sink.append_history(state.time, history_row);
 }
 
@@ -595,6 +805,7 @@ void ExplicitSolver::Impl::run_step(int step) {
     state.energies.strain += totals.strain_energy_increment;
     apply_loads(0.0, 0.0);
     dt_half = next_increment(totals, period, step);
+    apply_contact(0.0, dt_half);
     dt_first = dt_half;
     critical_id =
         totals.critical_element != NO_INDEX ? model.element_ids[totals.critical_element] : 0;
@@ -636,6 +847,7 @@ void ExplicitSolver::Impl::run_step(int step) {
     if (totals.critical_element != NO_INDEX)
       critical_id = model.element_ids[totals.critical_element];
     apply_loads(state.step_time, state.time);
+    apply_contact(dt_prev, dt_prev);
 
     dt_half = last ? dt_prev : next_increment(totals, period - state.step_time, step);
     update_nodes(dt_prev, dt_half, state.time + 0.5 * dt_half, state.time + dt_half);
@@ -673,15 +885,32 @@ std::vector<std::string> unsupported_features(const Model& model) {
     out.push_back(where.file + ":" + std::to_string(where.line) + ": " + keyword + ": " + what +
                   " is read but not run by this version of xpl yet; expected a model without it");
   };
-  for (const RigidBody& r : model.rigid_bodies) refuse(r.where, "*RIGID BODY", "a rigid body");
-  for (const PointInertia& p : model.point_inertias)
-    refuse(p.where, "*MASS", "a point mass or rotary inertia");
-  for (const ContactPair& c : model.contact_pairs) refuse(c.where, "*CONTACT PAIR", "contact");
+  // Node-based surfaces carry no faces or areas; the engine takes element-based ones.
+  auto node_surface = [&](Index k) {
+    return k != NO_INDEX && model.surfaces[k].type == Surface::Type::Node;
+  };
+  auto check_pair = [&](Index a, Index b, const SourceLocation& where, const std::string& kw) {
+    if (node_surface(a) || node_surface(b))
+      refuse(where, kw, "contact with a node-based surface (TYPE=NODE)");
+  };
+  std::vector<bool> is_reference(static_cast<std::size_t>(model.node_count()), false);
+  for (const RigidBody& r : model.rigid_bodies)
+    if (r.reference_node != NO_INDEX) is_reference[r.reference_node] = true;
+  for (const PointInertia& p : model.point_inertias) {
+    const bool rotary = p.inertia[0] != 0.0 || p.inertia[1] != 0.0 || p.inertia[2] != 0.0 ||
+                        p.inertia[3] != 0.0 || p.inertia[4] != 0.0 || p.inertia[5] != 0.0;
+    if (rotary && !is_reference[p.node])
+      refuse(p.where, "*ROTARY INERTIA", "rotary inertia on a node that is no rigid body REF NODE");
+  }
+  for (const ContactPair& c : model.contact_pairs)
+    check_pair(c.slave, c.master, c.where, "*CONTACT PAIR");
   for (const Step& s : model.steps) {
-    if (s.contact) refuse(s.contact->where, "*CONTACT", "general contact");
-    for (const ContactPair& c : s.contact_pairs) refuse(c.where, "*CONTACT PAIR", "contact");
-    for (const OutputRequest& r : s.outputs)
-      if (!r.contact_variables.empty()) refuse(r.where, "*CONTACT OUTPUT", "contact output");
+    if (s.contact) {
+      for (const SurfacePair& p : s.contact->inclusions)
+        check_pair(p.first, p.second, p.where, "*CONTACT INCLUSIONS");
+    }
+    for (const ContactPair& c : s.contact_pairs)
+      check_pair(c.slave, c.master, c.where, "*CONTACT PAIR");
   }
   return out;
 }

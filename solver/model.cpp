@@ -32,6 +32,13 @@ Index find_by_name(const Items& items, const std::string& name) {
 }
 }  // namespace
 
+bool Model::has_contact() const {
+  if (!contact_pairs.empty()) return true;
+  for (const Step& s : steps)
+    if (s.contact || !s.contact_pairs.empty()) return true;
+  return false;
+}
+
 bool Model::has_shells() const {
   return std::any_of(element_types.begin(), element_types.end(), is_shell);
 }

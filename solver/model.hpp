@@ -369,6 +369,8 @@ struct Model {
   /// Whether any element is a shell (then nodes carry rotations; P2: otherwise nothing
   /// rotational is allocated or computed).
   bool has_shells() const;
+  /// Whether any step has general contact or the model has a contact pair.
+  bool has_contact() const;
 
   Index node_count() const { return static_cast<Index>(node_ids.size()); }
   Index element_count() const { return static_cast<Index>(element_ids.size()); }

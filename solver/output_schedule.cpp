@@ -6,8 +6,8 @@
 namespace xpl {
 
 const std::vector<std::string>& energy_names() {
-  static const std::vector<std::string> names = {"ALLKE", "ALLSE", "ALLAE", "ALLIE",
-                                                 "ALLVD", "ALLWK", "ETOTAL"};
+  static const std::vector<std::string> names = {"ALLKE", "ALLSE", "ALLAE", "ALLIE", "ALLVD",
+                                                 "ALLWK", "ETOTAL", "ALLFD", "ALLPW"};
   return names;
 }
 
@@ -25,12 +25,19 @@ Real energy_value(const Energies& e, int index) {
       return e.viscous;
     case 5:
       return e.external_work;
+    case 7:
+      return e.friction;
+    case 8:
+      return e.contact;
     default:
       return e.total();
   }
 }
 
 namespace {
+
+/// Index of the first contact energy (ALLFD, ALLPW) in energy_names().
+constexpr int CONTACT_ENERGY_FIRST = 7;
 
 Real interval_of(const OutputRequest& r, Real period, int default_count) {
   if (r.time_interval > 0.0) return r.time_interval;
@@ -76,6 +83,9 @@ void OutputSchedule::begin_step(const Model& model, int step) {
       f.what.volume = has(r.element_variables, "EVOL");
       // P2: a model without shells has no thickness to compute or write.
       f.what.thickness = shells && has(r.element_variables, "STH");
+      f.what.contact_stress = has(r.contact_variables, "CSTRESS");
+      f.what.contact_status = has(r.contact_variables, "CSTATUS");
+      f.what.contact_force = has(r.contact_variables, "CFORCE");
       m_field.push_back(f);
       continue;
     }
@@ -87,6 +97,8 @@ void OutputSchedule::begin_step(const Model& model, int step) {
       const auto& names = energy_names();
       for (int i = 0; i < static_cast<int>(names.size()); ++i) {
         if (!r.energy_variables.empty() && !has(r.energy_variables, names[i])) continue;
+        // P2: the contact energies exist only in models with contact.
+        if (i >= CONTACT_ENERGY_FIRST && !model.has_contact()) continue;
         m_series.push_back({"energy/" + names[i], 1, {}});
         m_columns.push_back({Quantity::Energy, i, NO_INDEX});
       }

@@ -17,16 +17,20 @@ namespace xpl {
 /// On models with shells, U/V/RF also write UR/VR/RM (as Abaqus does) and S also writes the
 /// shell section stresses S_SNEG and S_SPOS.
 struct FrameRequest {
-  bool displacement = false;  ///< U (+ UR)
-  bool velocity = false;      ///< V (+ VR)
-  bool acceleration = false;  ///< A
-  bool reaction = false;      ///< RF (+ RM)
-  bool stress = false;        ///< S (also writes the von Mises MISES)
-  bool volume = false;        ///< EVOL
-  bool thickness = false;     ///< STH (shells)
+  bool displacement = false;    ///< U (+ UR)
+  bool velocity = false;        ///< V (+ VR)
+  bool acceleration = false;    ///< A
+  bool reaction = false;        ///< RF (+ RM)
+  bool stress = false;          ///< S (also writes the von Mises MISES)
+  bool volume = false;          ///< EVOL
+  bool thickness = false;       ///< STH (shells)
+  bool contact_stress = false;  ///< CSTRESS: CPRESS (scalar) and CSHEAR (vector) per node
+  bool contact_status = false;  ///< CSTATUS per node: 0 open, 1 slipping, 2 sticking
+  bool contact_force = false;   ///< CFORCE: CNORMF and CSHEARF (vectors) per node
   /// Whether anything at all is requested.
   bool any() const {
-    return displacement || velocity || acceleration || reaction || stress || volume || thickness;
+    return displacement || velocity || acceleration || reaction || stress || volume || thickness ||
+           contact_stress || contact_status || contact_force;
   }
 };
 

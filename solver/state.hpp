@@ -14,10 +14,16 @@ struct Energies {
   Real artificial = 0.0;     ///< ALLAE, hourglass energy
   Real viscous = 0.0;        ///< ALLVD, bulk-viscosity dissipation
   Real external_work = 0.0;  ///< ALLWK, work of loads and of reactions at prescribed DOFs
-  /// ALLIE = ALLSE + ALLAE (+ plastic and contact energies when they exist).
+  Real friction = 0.0;       ///< ALLFD, frictional dissipation
+  /// ALLPW, energy taken up by the contact penalties: minus the work the penalty forces have
+  /// done on the nodes (the energy of the compressed springs, ≥ 0 while they are loaded, back
+  /// to ~0 after a rebound). Abaqus reports the same quantity with the opposite sign as the
+  /// work of the penalties; xpl keeps it positive so that it adds to ETOTAL like ALLIE.
+  Real contact = 0.0;
+  /// ALLIE = ALLSE + ALLAE (+ plastic energies when they exist).
   Real internal() const { return strain + artificial; }
-  /// ETOTAL = ALLKE + ALLIE + ALLVD − ALLWK; constant for a correct, stable run.
-  Real total() const { return kinetic + internal() + viscous - external_work; }
+  /// ETOTAL = ALLKE + ALLIE + ALLVD + ALLFD + ALLPW − ALLWK; constant for a correct, stable run.
+  Real total() const { return kinetic + internal() + viscous + friction + contact - external_work; }
 };
 
 /// State of a run at the end of an increment (time t_n).
@@ -51,6 +57,16 @@ struct State {
   std::vector<Real> thickness;
   /// Current element volume, filled with `stress` (n_elements), m^3.
   std::vector<Real> volume;
+
+  // Contact output per node, filled before a frame that asks for it (zero away from contact).
+  // The node's total contact force F (as slave and as face corner) split along its outward
+  // normal n: CNORMF = (F·n) n, CSHEARF = F − CNORMF; CPRESS = −F·n / A and CSHEAR =
+  // CSHEARF / A with A the tributary area (|F·n| / A on double-sided shell nodes).
+  std::vector<Real> contact_pressure;  ///< CPRESS (n_nodes), Pa
+  NodalVectors contact_shear;          ///< CSHEAR (n_nodes × 3), Pa
+  std::vector<Real> contact_status;    ///< CSTATUS (n_nodes): 0 open, 1 slipping, 2 sticking
+  NodalVectors contact_normal_force;   ///< CNORMF (n_nodes × 3), N
+  NodalVectors contact_shear_force;    ///< CSHEARF (n_nodes × 3), N
 
   Energies energies;
   Real time = 0.0;       ///< total time t_n, s

@@ -1,0 +1,140 @@
+#include "contact/contact_domain.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace xpl::contact {
+
+namespace {
+
+/// Face of a hex opposite face f (S1–S2, S3–S5, S4–S6).
+constexpr int OPPOSITE_HEX_FACE[6] = {1, 0, 4, 5, 2, 3};
+
+Vec3 face_centre(const Index* element_nodes, int f, const NodalVectors& x) {
+  Vec3 c = Vec3::Zero();
+  for (int a = 0; a < 4; ++a) {
+    const Index n = element_nodes[HEX_FACE_CORNERS[f][a]];
+    c += Vec3(x(n, 0), x(n, 1), x(n, 2));
+  }
+  return 0.25 * c;
+}
+
+/// The faces of every surface, each (element, face) once, with the mask of surfaces it is in.
+std::vector<ContactFace> collect_faces(const DomainSpec& spec, const ElementTopology& topology,
+                                       std::vector<std::uint64_t>& mask) {
+  if (spec.surfaces.size() > static_cast<std::size_t>(MAX_CONTACT_SURFACES))
+    throw std::invalid_argument("ContactDomain: more than 64 contact surfaces");
+  std::vector<ContactFace> faces;
+  std::unordered_map<std::int64_t, Index> index;
+  for (std::size_t k = 0; k < spec.surfaces.size(); ++k) {
+    const DomainSurface& surface = spec.surfaces[k];
+    const std::vector<ContactFace> mine =
+        surface.all_exterior ? exterior_faces(topology)
+                             : surface_faces(topology, surface.faces, static_cast<Index>(k));
+    for (const ContactFace& f : mine) {
+      const std::int64_t key = std::int64_t{f.element} * 8 + f.face;
+      auto [it, added] = index.try_emplace(key, static_cast<Index>(faces.size()));
+      if (added) {
+        faces.push_back(f);
+        faces.back().surface = static_cast<Index>(k);
+        mask.push_back(0);
+      }
+      mask[it->second] |= std::uint64_t{1} << k;
+    }
+  }
+  return faces;
+}
+
+bool in(std::uint64_t mask, Index surface) {
+  return (mask >> surface) & 1u;
+}
+
+}  // namespace
+
+ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topology,
+                             const NodalVectors& position)
+    : m_face_mask(),
+      m_faces(collect_faces(spec, topology, m_face_mask)),
+      m_slaves(m_faces, static_cast<Index>(position.rows())),
+      m_inclusions(spec.inclusions),
+      m_exclusions(spec.exclusions),
+      m_interactions(spec.interactions),
+      m_default_interaction(spec.default_interaction) {
+  const auto n_surfaces = static_cast<Index>(spec.surfaces.size());
+  auto check = [&](const DomainPair& p) {
+    if (p.first < 0 || p.first >= n_surfaces || p.second < 0 || p.second >= n_surfaces)
+      throw std::invalid_argument("ContactDomain: surface index out of range in a pair");
+  };
+  for (const DomainPair& p : m_inclusions) check(p);
+  for (const DomainPair& p : m_exclusions) check(p);
+  for (const auto& [p, interaction] : m_interactions) check(p);
+
+  const auto n_faces = static_cast<Index>(m_faces.size());
+  m_face_rigid.assign(m_faces.size(), 0);
+  m_face_depth.assign(m_faces.size(), 0.0);
+  for (Index f = 0; f < n_faces; ++f) {
+    const ContactFace& face = m_faces[f];
+    if (!spec.element_body.empty() && spec.element_body[face.element] != NO_INDEX)
+      m_face_rigid[f] = 1;
+    if (face.shell) continue;  // the node thickness decides, at run time
+    const Index* en = topology.nodes.data() + topology.offsets[face.element];
+    const Vec3 d = face_centre(en, face.face, position) -
+                   face_centre(en, OPPOSITE_HEX_FACE[face.face], position);
+    m_face_depth[f] = 0.5 * std::sqrt(d.dot(d));
+  }
+
+  // Slave node masks: the surfaces of the faces around the node. A node is rigid when it
+  // belongs to a rigid face, double sided when all its faces are shell sides.
+  const Index n_slave = m_slaves.size();
+  m_slave_mask.assign(static_cast<std::size_t>(n_slave), 0);
+  m_slave_rigid.assign(static_cast<std::size_t>(n_slave), 0);
+  m_slave_shell.assign(static_cast<std::size_t>(n_slave), 1);
+  for (Index f = 0; f < n_faces; ++f)
+    for (Index n : m_faces[f].nodes) {
+      const Index s = m_slaves.slot(n);
+      m_slave_mask[s] |= m_face_mask[f];
+      if (m_face_rigid[f]) m_slave_rigid[s] = 1;
+      if (!m_faces[f].shell) m_slave_shell[s] = 0;
+    }
+
+  m_everything = m_exclusions.empty() && m_inclusions.size() == 1 && n_surfaces == 1 &&
+                 spec.surfaces[0].all_exterior && !m_inclusions[0].one_sided;
+}
+
+Real ContactDomain::weight(Index s, Index f, Index& pair) const {
+  if (m_slave_rigid[s]) return 0.0;
+  const Real full = m_face_rigid[f] ? 1.0 : 0.5;
+  if (m_everything) {
+    pair = 0;
+    return full;
+  }
+  const std::uint64_t node = m_slave_mask[s], face = m_face_mask[f];
+  for (const DomainPair& p : m_exclusions)
+    if ((in(node, p.first) && in(face, p.second)) || (in(node, p.second) && in(face, p.first)))
+      return 0.0;
+  for (std::size_t i = 0; i < m_inclusions.size(); ++i) {
+    const DomainPair& p = m_inclusions[i];
+    const bool forward = in(node, p.first) && in(face, p.second);
+    if (p.one_sided) {
+      if (!forward) continue;
+      pair = static_cast<Index>(i);
+      return 1.0;
+    }
+    if (forward || (in(node, p.second) && in(face, p.first))) {
+      pair = static_cast<Index>(i);
+      return full;
+    }
+  }
+  return 0.0;
+}
+
+Index ContactDomain::interaction(Index s, Index f) const {
+  const std::uint64_t node = m_slave_mask[s], face = m_face_mask[f];
+  for (const auto& [p, interaction] : m_interactions)
+    if ((in(node, p.first) && in(face, p.second)) || (in(node, p.second) && in(face, p.first)))
+      return interaction;
+  return m_default_interaction;
+}
+
+}  // namespace xpl::contact

@@ -1,0 +1,253 @@
+#include "contact/contact_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "contact/closest_point.hpp"
+
+namespace xpl::contact {
+
+namespace {
+
+/// Fraction of the mean face size used as the default search margin.
+constexpr Real MARGIN_FRACTION = 0.3;
+
+Vec3 node_point(const NodalVectors& x, Index n) {
+  return Vec3(x(n, 0), x(n, 1), x(n, 2));
+}
+
+/// Default margin: MARGIN_FRACTION × the mean square root of the face areas.
+Real mean_face_size(const std::vector<ContactFace>& faces, const NodalVectors& position) {
+  if (faces.empty()) return 1.0;
+  Real sum = 0.0;
+  for (const ContactFace& f : faces) {
+    Vec3 corner[4];
+    face_corners(f, position, {}, corner);
+    sum += std::sqrt(quad_area(corner));
+  }
+  return sum / static_cast<Real>(faces.size());
+}
+
+Real max_thickness(std::span<const Real> thickness) {
+  Real t = 0.0;
+  for (Real v : thickness)
+    if (std::isfinite(v)) t = std::max(t, v);
+  return t;
+}
+
+/// Search margin (m) and rebuild motion (m): the motion leaves room for half a shell
+/// thickness around every slave node (BroadPhase).
+std::pair<Real, Real> search_distances(const ContactOptions& options,
+                                       const std::vector<ContactFace>& faces,
+                                       const NodalVectors& position,
+                                       std::span<const Real> node_thickness) {
+  Real base =
+      options.margin > 0.0 ? options.margin : MARGIN_FRACTION * mean_face_size(faces, position);
+  if (!(base > 0.0)) base = 1e-3;
+  const Real half_t = 0.5 * max_thickness(node_thickness);
+  return {base + half_t, 0.5 * base};
+}
+
+Real thickness_of(std::span<const Real> thickness, Index node) {
+  if (thickness.empty()) return 0.0;
+  const Real t = thickness[node];
+  return std::isfinite(t) ? t : 0.0;
+}
+
+}  // namespace
+
+ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> laws,
+                             ContactOptions options, const NodalVectors& position,
+                             std::span<const Real> node_thickness)
+    : m_domain(std::move(domain)),
+      m_laws(std::move(laws)),
+      m_options(options),
+      m_broad(search_distances(options, m_domain.faces(), position, node_thickness).first,
+              search_distances(options, m_domain.faces(), position, node_thickness).second) {
+  const auto n = static_cast<std::size_t>(m_domain.slaves().size());
+  m_constraints.assign(n, ContactConstraint{});
+  m_touch.assign(n, Touch{});
+  m_normal_force.assign(n, 0.0);
+  m_slave_force.assign(3 * n, 0.0);
+  m_force.assign(3 * n, 0.0);
+  m_previous_force.assign(3 * n, 0.0);
+  m_dissipation.assign(n, 0.0);
+  m_output_status.assign(n, OutputStatus::Open);
+  m_pair_normal.assign(static_cast<std::size_t>(m_domain.pair_count()), 0.0);
+  m_pair_friction.assign(m_pair_normal.size(), 0.0);
+}
+
+void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
+  const SlaveNodes& slaves = m_domain.slaves();
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  const Index n_slave = slaves.size();
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Index s = 0; s < n_slave; ++s) {
+    Touch best;
+    Real best_distance = std::numeric_limits<Real>::max();
+    if (!m_domain.slave_rigid(s)) {
+      const Index node = slaves.nodes()[s];
+      const Vec3 p = node_point(position, node);
+      const Vec3 n_s = slaves.normal(s);
+      const bool double_sided = m_domain.slave_double_sided(s);
+      const Real half_t = double_sided ? 0.5 * thickness_of(node_thickness, node) : 0.0;
+      for (Index f : m_broad.candidates(s)) {
+        Index pair = NO_INDEX;
+        const Real w = m_domain.weight(s, f, pair);
+        if (w == 0.0) continue;
+        Vec3 corner[4];
+        face_corners(faces[f], position, node_thickness, corner);
+        Vec3 n_f = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+        const Real n_len = std::sqrt(n_f.dot(n_f));
+        if (!(n_len > 0.0)) continue;
+        // Solid nodes only: a shell node may touch a face with its edge (a tube end on a
+        // plate), so any orientation counts; the depth test keeps neighbours out.
+        if (!double_sided && n_s.dot(n_f) > -OPPOSING_COSINE * n_len) continue;
+        const ClosestPoint cp = closest_point_on_quad(corner, p);
+        const Real gap = cp.gap - half_t;
+        Real depth = m_domain.face_depth(f);
+        if (faces[f].shell) {
+          Real t = 0.0;
+          for (Index c : faces[f].nodes) t += thickness_of(node_thickness, c);
+          depth = 0.125 * t;  // half the mean thickness
+        }
+        if (-gap > depth + half_t) continue;
+        if (cp.distance < best_distance) {
+          best_distance = cp.distance;
+          best = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
+        }
+      }
+    }
+    m_touch[s] = best;
+  }
+}
+
+ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVectors& velocity_half,
+                                    Real dt, Real dt_penalty, std::span<const Real> node_thickness,
+                                    std::span<const Real> mass, std::span<const Real> inverse_mass,
+                                    NodalVectors& force_internal, PhaseTimers& timers) {
+  ContactTotals totals;
+  SlaveNodes& slaves = m_domain.slaves();
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  const Index n_slave = slaves.size();
+  {
+    ScopedTimer timer(timers, Phase::ContactSearch);
+    if (m_broad.needs_rebuild(position)) {
+      m_broad.build(faces, slaves.nodes(), position, node_thickness);
+      totals.rebuilt = true;
+    }
+    slaves.update_areas(faces, position);
+    search(position, node_thickness);
+  }
+
+  ScopedTimer timer(timers, Phase::ContactForce);
+#pragma omp parallel for schedule(static)
+  for (Index s = 0; s < n_slave; ++s) {
+    ContactConstraint& c = m_constraints[s];
+    const Touch& t = m_touch[s];
+    m_dissipation[s] = 0.0;
+    Vec3 f = Vec3::Zero();
+    Real fn = 0.0;
+    OutputStatus status = OutputStatus::Open;
+    if (t.face == NO_INDEX) {
+      c.master_face = NO_INDEX;
+      c.status = ContactStatus::Inactive;
+      c.tangential_force = Vec3::Zero();
+    } else {
+      const Index node = slaves.nodes()[s];
+      const Index ia = m_domain.interaction(s, t.face);
+      const InteractionLaw law =
+          ia != NO_INDEX && ia < static_cast<Index>(m_laws.size()) ? m_laws[ia] : InteractionLaw{};
+      const ContactFace& face = faces[t.face];
+      Real k = 0.0;
+      if (law.pressure_slope > 0.0) {
+        k = law.pressure_slope * slaves.areas()[s];
+      } else {
+        // m_eff = 1/(1/m_s + 1/m_m); a rigid corner makes the master mass infinite.
+        Real master_mass = 0.0;
+        bool rigid = false;
+        for (int a = 0; a < 4; ++a) {
+          master_mass += t.shape[a] * mass[face.nodes[a]];
+          rigid = rigid || inverse_mass[face.nodes[a]] == 0.0;
+        }
+        const Real m_s = mass[node];
+        const Real m_eff =
+            rigid || !(master_mass > 0.0) ? m_s : m_s * master_mass / (m_s + master_mass);
+        if (dt_penalty > 0.0)
+          k = DEFAULT_PENALTY_FACTOR * m_options.penalty_scale * m_eff / (dt_penalty * dt_penalty);
+      }
+      k *= t.weight;
+      c.master_face = t.face;
+      c.xi = t.xi;
+      c.eta = t.eta;
+      fn = normal_contact_update(c, t.gap, k);
+      f = fn * t.normal;
+      if (law.friction > 0.0 && dt > 0.0) {
+        Vec3 v_rel = node_point(velocity_half, node);
+        for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
+        const FrictionUpdate fr =
+            friction_update(c.tangential_force, v_rel, t.normal, fn, law.friction, k, dt);
+        c.tangential_force = fr.force;
+        m_dissipation[s] = fr.dissipation;
+        f += fr.force;
+        if (fn > 0.0) status = fr.slipping ? OutputStatus::Slip : OutputStatus::Stick;
+      } else {
+        c.tangential_force = Vec3::Zero();
+        if (fn > 0.0) status = OutputStatus::Slip;
+      }
+    }
+    m_normal_force[s] = fn;
+    m_output_status[s] = status;
+    for (int d = 0; d < 3; ++d) m_slave_force[3 * s + d] = f[d];
+  }
+
+  // Assembly, sums and work, in slot order (independent of the thread count).
+  m_previous_force.swap(m_force);
+  std::fill(m_force.begin(), m_force.end(), 0.0);
+  std::fill(m_pair_normal.begin(), m_pair_normal.end(), 0.0);
+  std::fill(m_pair_friction.begin(), m_pair_friction.end(), 0.0);
+  for (Index s = 0; s < n_slave; ++s) {
+    const Touch& t = m_touch[s];
+    if (t.face == NO_INDEX) continue;
+    const Vec3 f(m_slave_force[3 * s], m_slave_force[3 * s + 1], m_slave_force[3 * s + 2]);
+    if (f.dot(f) == 0.0) continue;
+    const Index node = slaves.nodes()[s];
+    for (int d = 0; d < 3; ++d) {
+      m_force[3 * s + d] += f[d];
+      force_internal(node, d) -= f[d];
+    }
+    const ContactFace& face = faces[t.face];
+    for (int a = 0; a < 4; ++a) {
+      const Index corner = face.nodes[a];
+      const Index cs = slaves.slot(corner);
+      for (int d = 0; d < 3; ++d) {
+        const Real share = t.shape[a] * f[d];
+        m_force[3 * cs + d] -= share;
+        force_internal(corner, d) += share;
+      }
+    }
+    ++totals.closed;
+    if (t.pair != NO_INDEX) {
+      m_pair_normal[t.pair] += m_normal_force[s];
+      const Vec3& ft = m_constraints[s].tangential_force;
+      m_pair_friction[t.pair] += std::sqrt(ft.dot(ft));
+    }
+    totals.friction_dissipation += m_dissipation[s];
+  }
+  if (dt > 0.0) {
+    for (Index s = 0; s < n_slave; ++s) {
+      const Real* now = &m_force[3 * s];
+      const Real* before = &m_previous_force[3 * s];
+      if (now[0] == 0.0 && now[1] == 0.0 && now[2] == 0.0 && before[0] == 0.0 && before[1] == 0.0 &&
+          before[2] == 0.0)
+        continue;
+      const Index node = slaves.nodes()[s];
+      for (int d = 0; d < 3; ++d)
+        totals.work += 0.5 * (now[d] + before[d]) * velocity_half(node, d) * dt;
+    }
+  }
+  return totals;
+}
+
+}  // namespace xpl::contact

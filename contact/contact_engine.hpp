@@ -1,0 +1,136 @@
+#pragma once
+/// \file General contact, one increment at a time: search (broad phase when due, closest
+/// face of every slave node), penalty and friction forces, assembly onto the nodes, energy.
+///
+/// Each slave node keeps one constraint (ContactConstraint): the face it touches now, its
+/// offset d0 and its friction force. The face is the nearest admissible one among the broad
+/// phase candidates, where admissible means
+/// - the domain's rule allows the pair (inclusions, exclusions, rigid bodies: ContactDomain);
+/// - the face looks at the node: the slave node's normal and the face normal point against
+///   each other (cosine below −OPPOSING_COSINE). Shell nodes are exempt: they are double
+///   sided, and the free edge of a shell (a tube end) touches faces edge-on.
+///   This keeps a node on the top of a block from "touching" the side face next to it at a
+///   convex corner, and a node at the edge of a bar end from being pushed sideways by the
+///   other bar's side faces (their normals are at 90°);
+/// - the node is not deeper behind the face than half the element behind it (half the
+///   thickness of a shell), so a node on the outer skin of a thin wall never touches the inner
+///   skin of that wall.
+/// Shell sides are at ±t/2 of the mid-surface (ContactFace), and a shell slave node carries
+/// half its own thickness: its gap is the distance to the face's contact surface minus t/2.
+///
+/// Force: f = w·k·max(0, d − d0) along the contact normal with w the view weight (½ for each
+/// view of a balanced pair) and k the penalty stiffness: k = slope·A (tributary area A) for a
+/// LINEAR pressure–overclosure slope, else the default k = ½·s·m_eff/Δt² (penalty.hpp), which
+/// is tied to the current increment so that contact never lowers it. Coulomb friction by the
+/// stick-spring return map of penalty.hpp with k_t = w·k. The slave node gets f, the face
+/// nodes −N_I f.
+///
+/// Determinism: search and force loops are parallel over slave nodes and write only their own
+/// slot; assembly and every sum run over slots in order, so results do not depend on the
+/// number of threads.
+
+#include <span>
+#include <vector>
+
+#include "common/timer.hpp"
+#include "contact/broad_phase.hpp"
+#include "contact/contact_domain.hpp"
+#include "contact/penalty.hpp"
+
+namespace xpl::contact {
+
+/// Cosine below which a face counts as looking at a slave node (see the file comment).
+inline constexpr Real OPPOSING_COSINE = 0.2;
+
+/// The contact law of one surface interaction.
+struct InteractionLaw {
+  Real friction = 0.0;        ///< Coulomb coefficient μ ≥ 0
+  Real pressure_slope = 0.0;  ///< Pa/m; > 0: k = slope × tributary area, else the default
+};
+
+/// Options of the engine (defaults in parentheses).
+struct ContactOptions {
+  Real penalty_scale = 1.0;  ///< s, multiplies the default penalty stiffness (1)
+  /// Search margin, m; 0: 0.3 × the mean face edge plus the largest half shell thickness.
+  Real margin = 0.0;
+};
+
+/// What one increment of contact did.
+struct ContactTotals {
+  /// Work done on the nodes by the contact forces over the increment (trapezoidal rule), J;
+  /// negative while springs are loaded or friction dissipates.
+  Real work = 0.0;
+  Real friction_dissipation = 0.0;  ///< J, ≥ 0
+  Index closed = 0;                 ///< slave nodes with a normal force
+  bool rebuilt = false;             ///< the broad phase was rebuilt
+};
+
+/// A slave node's contact status for output (CSTATUS): open, slipping or sticking.
+enum class OutputStatus : std::uint8_t { Open = 0, Slip = 1, Stick = 2 };
+
+/// General contact of one step.
+class ContactEngine {
+ public:
+  /// `laws` is indexed by the domain's interaction numbers; NO_INDEX means frictionless
+  /// default penalty.
+  ContactEngine(ContactDomain domain, std::vector<InteractionLaw> laws, ContactOptions options,
+                const NodalVectors& position, std::span<const Real> node_thickness);
+
+  /// One increment at the new positions x_{n+1} (n_nodes × 3, m), with the velocities of the
+  /// increment just taken v_{n+1/2} (m/s) and its length dt (s; 0 at t = 0: no work, no
+  /// slip), the increment the penalty stiffness is tied to (s; the stable increment about to
+  /// be taken at t = 0), shell node thickness (n_nodes, m, or empty), nodal masses (kg) and
+  /// inverse masses (1/kg, 0 for rigid body nodes).
+  /// Subtracts the contact forces from `force_internal` (n_nodes × 3, N) and times the search
+  /// and force phases into `timers`.
+  ContactTotals update(const NodalVectors& position, const NodalVectors& velocity_half, Real dt,
+                       Real dt_penalty, std::span<const Real> node_thickness,
+                       std::span<const Real> mass, std::span<const Real> inverse_mass,
+                       NodalVectors& force_internal, PhaseTimers& timers);
+
+  const ContactDomain& domain() const { return m_domain; }
+  const std::vector<ContactConstraint>& constraints() const { return m_constraints; }
+  std::vector<ContactConstraint>& constraints() { return m_constraints; }
+  /// Normal force of the slave node's own constraint (weight included), N; per slave slot.
+  Real normal_force(Index s) const { return m_normal_force[s]; }
+  /// Total contact force on the node of slave slot s (as slave and as face corner), N.
+  Vec3 nodal_force(Index s) const {
+    return Vec3(m_force[3 * s], m_force[3 * s + 1], m_force[3 * s + 2]);
+  }
+  OutputStatus output_status(Index s) const { return m_output_status[s]; }
+  /// Per included pair: sum of normal force magnitudes (N) and of friction force magnitudes
+  /// (N) over the slave nodes touching through that pair, at the last update.
+  const std::vector<Real>& pair_normal_force() const { return m_pair_normal; }
+  const std::vector<Real>& pair_friction_force() const { return m_pair_friction; }
+  const BroadPhase& broad_phase() const { return m_broad; }
+
+ private:
+  /// Closest admissible face of every slave node (parallel over slots).
+  void search(const NodalVectors& position, std::span<const Real> node_thickness);
+
+  ContactDomain m_domain;
+  std::vector<InteractionLaw> m_laws;
+  ContactOptions m_options;
+  BroadPhase m_broad;
+  std::vector<ContactConstraint> m_constraints;
+  // Per slave slot, written by search(): the face found and the point on it.
+  struct Touch {
+    Index face = NO_INDEX;
+    Index pair = NO_INDEX;
+    Real weight = 0.0;
+    Real gap = 0.0;
+    Vec3 normal = Vec3::Zero();
+    std::array<Real, 4> shape{};
+    Real xi = 0.0, eta = 0.0;
+  };
+  std::vector<Touch> m_touch;
+  std::vector<Real> m_normal_force;    // (n_slave)
+  std::vector<Real> m_slave_force;     // (n_slave × 3): force on the slave node itself
+  std::vector<Real> m_force;           // (n_slave × 3): assembled force, this increment
+  std::vector<Real> m_previous_force;  // (n_slave × 3): assembled force, last increment
+  std::vector<Real> m_dissipation;     // (n_slave)
+  std::vector<OutputStatus> m_output_status;
+  std::vector<Real> m_pair_normal, m_pair_friction;
+};
+
+}  // namespace xpl::contact

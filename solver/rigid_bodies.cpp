@@ -1,0 +1,279 @@
+#include "solver/rigid_bodies.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "common/error.hpp"
+
+namespace xpl {
+
+namespace {
+
+using Vector6 = Eigen::Matrix<Real, 6, 1>;
+using Matrix6 = Eigen::Matrix<Real, 6, 6>;
+
+Eigen::Vector3d row(const NodalVectors& v, Index i) {
+  return {v(i, 0), v(i, 1), v(i, 2)};
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& r) {
+  Eigen::Matrix3d s;
+  s << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return s;
+}
+
+/// Inertia of a point mass m at offset r: m (|r|² I − r rᵀ).
+Eigen::Matrix3d point_inertia(Real m, const Eigen::Vector3d& r) {
+  return m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+}
+
+/// The exact rotation by the rotation vector θ as a unit quaternion.
+Eigen::Quaterniond rotation_quaternion(const Eigen::Vector3d& theta) {
+  const Real angle = theta.norm();
+  if (angle < 1e-300) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, theta / angle));
+}
+
+}  // namespace
+
+RigidBodies::RigidBodies(const Model& model) {
+  if (model.rigid_bodies.empty()) return;
+  m_element_body.assign(static_cast<std::size_t>(model.element_count()), NO_INDEX);
+  m_node_body.assign(static_cast<std::size_t>(model.node_count()), NO_INDEX);
+  for (std::size_t b = 0; b < model.rigid_bodies.size(); ++b) {
+    const RigidBody& def = model.rigid_bodies[b];
+    const auto id = static_cast<Index>(b);
+    Body body;
+    body.reference = def.reference_node;
+    std::vector<Index> nodes;
+    if (def.element_set != NO_INDEX)
+      for (Index e : model.element_sets[def.element_set].members) {
+        m_element_body[e] = id;
+        const Index* en = model.nodes_of(e);
+        nodes.insert(nodes.end(), en,
+                     en + (model.element_offsets[e + 1] - model.element_offsets[e]));
+      }
+    for (Index set : {def.pin_node_set, def.tie_node_set})
+      if (set != NO_INDEX)
+        nodes.insert(nodes.end(), model.node_sets[set].members.begin(),
+                     model.node_sets[set].members.end());
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (Index i : nodes) {
+      if (i == body.reference) continue;
+      if (m_node_body[i] != NO_INDEX && m_node_body[i] != id)
+        throw SolverError(def.where.file + ":" + std::to_string(def.where.line) +
+                              ": *RIGID BODY: node " + std::to_string(model.node_ids[i]) +
+                              " also belongs to an earlier rigid body; expected each node in one "
+                              "body at most",
+                          0, 0, 0.0);
+      m_node_body[i] = id;
+      body.members.push_back(i);
+    }
+    m_node_body[body.reference] = id;
+    m_bodies.push_back(std::move(body));
+  }
+}
+
+std::vector<std::string> RigidBodies::setup(const Model& model, const std::vector<Real>& mass,
+                                            State& state) {
+  std::vector<std::string> messages;
+  for (std::size_t b = 0; b < m_bodies.size(); ++b) {
+    Body& body = m_bodies[b];
+    const Eigen::Vector3d x_ref = row(state.reference, body.reference);
+    Real m = mass[body.reference];
+    Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+    for (Index i : body.members) {
+      m += mass[i];
+      first_moment += mass[i] * (row(state.reference, i) - x_ref);
+    }
+    body.mass = m;
+    body.centre_offset = m > 0.0 ? Eigen::Vector3d(first_moment / m) : Eigen::Vector3d::Zero();
+    Eigen::Matrix3d j = point_inertia(mass[body.reference], -body.centre_offset);
+    for (Index i : body.members)
+      j += point_inertia(mass[i], row(state.reference, i) - x_ref - body.centre_offset);
+    for (const PointInertia& p : model.point_inertias) {
+      if (p.node != body.reference) continue;
+      Eigen::Matrix3d given;
+      given << p.inertia[0], p.inertia[3], p.inertia[4], p.inertia[3], p.inertia[1], p.inertia[5],
+          p.inertia[4], p.inertia[5], p.inertia[2];
+      j += given;
+    }
+    // A body whose masses lie on a line has no inertia about it; a trace-relative floor keeps
+    // the 6×6 system regular without changing any other motion measurably.
+    j += 1e-9 * std::max(j.trace(), 0.0) * Eigen::Matrix3d::Identity();
+    body.inertia = j;
+
+    // Members start with the reference node's velocity.
+    for (Index i : body.members)
+      for (int c = 0; c < 3; ++c) {
+        state.velocity(i, c) = state.velocity(body.reference, c);
+        state.velocity_half(i, c) = state.velocity(body.reference, c);
+      }
+    std::ostringstream text;
+    text.precision(6);
+    text << "rigid body " << b + 1 << " (reference node " << model.node_ids[body.reference]
+         << "): " << body.members.size() << " member nodes, mass " << m << " kg, centre of mass "
+         << (x_ref + body.centre_offset).transpose() << ", principal inertias "
+         << Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(j).eigenvalues().transpose() << " kg·m²";
+    messages.push_back(text.str());
+  }
+  return messages;
+}
+
+Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed, const State& state) {
+  (void)state;
+  for (Body& body : m_bodies) body.prescribed.clear();
+  Index dropped = 0;
+  std::vector<PrescribedDof> kept;
+  kept.reserve(prescribed.size());
+  for (const PrescribedDof& d : prescribed) {
+    const Index b = m_node_body.empty() ? NO_INDEX : m_node_body[d.node];
+    if (b == NO_INDEX) {
+      kept.push_back(d);
+    } else if (m_bodies[b].reference == d.node) {
+      m_bodies[b].prescribed.push_back(d);
+    } else {
+      ++dropped;
+    }
+  }
+  prescribed.swap(kept);
+  for (Body& body : m_bodies) body.previous_reaction.fill(0.0);
+  return dropped;
+}
+
+Real RigidBodies::update(const Model& model, const BoundaryState& boundary, State& state,
+                         const NodalVectors& force_internal, const NodalVectors* force_external,
+                         Real dt_prev, Real dt_next, Real w_new, const std::array<Real, 4>& times,
+                         Real& work) {
+  const Real dt_avg = 0.5 * (dt_prev + dt_next);
+  const bool rotations = state.angular_velocity_half.rows() > 0;
+  Real ke_correction = 0.0;
+  for (Body& body : m_bodies) {
+    const Index r = body.reference;
+    const Eigen::Vector3d x_r = row(state.position, r);
+    // Forces on the body and their moment about the reference node; the kinetic energy the
+    // free update counted for these nodes.
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+    Real counted = 0.0;
+    auto gather = [&](Index i) {
+      Eigen::Vector3d f = -row(force_internal, i);
+      if (force_external != nullptr) f += row(*force_external, i);
+      force += f;
+      moment += (row(state.position, i) - x_r).cross(f);
+      counted += 0.5 * state.mass[i] * row(state.velocity, i).squaredNorm();
+    };
+    gather(r);
+    for (Index i : body.members) gather(i);
+
+    const Eigen::Matrix3d rot = body.orientation.toRotationMatrix();
+    const Eigen::Vector3d c = rot * body.centre_offset;
+    const Eigen::Matrix3d j_ref =
+        rot * body.inertia * rot.transpose() + point_inertia(body.mass, c);
+    const Eigen::Vector3d v_old = row(state.velocity_half, r);
+    const Eigen::Vector3d w_old = body.omega_half;
+    body.rotation += dt_prev * w_old;  // rotation vector at t_n
+    Matrix6 mass_matrix;
+    mass_matrix << body.mass * Eigen::Matrix3d::Identity(), -body.mass * skew(c),
+        body.mass * skew(c), j_ref;
+    Vector6 rhs;
+    rhs << force - body.mass * w_old.cross(w_old.cross(c)), moment - w_old.cross(j_ref * w_old);
+
+    // Prescribed DOFs: their new velocity, hence their acceleration.
+    Vector6 acc = Vector6::Zero();
+    std::array<bool, 6> fixed{};
+    std::array<Real, 6> v_target{};
+    for (const PrescribedDof& d : body.prescribed) {
+      const int k = d.component;
+      const Real old = k < 3 ? v_old[k] : w_old[k - 3];
+      Real v_new = 0.0;
+      if (d.type == BoundaryType::Velocity) {
+        v_new = boundary.target(model, d, times[0], times[1]);
+      } else if (dt_next > 0.0) {
+        const Real current = k < 3 ? state.displacement(r, k) : body.rotation[k - 3];
+        v_new = (boundary.target(model, d, times[2], times[3]) - current) / dt_next;
+      }
+      fixed[k] = true;
+      v_target[k] = v_new;
+      acc[k] = dt_avg > 0.0 ? (v_new - old) / dt_avg : 0.0;
+    }
+    // Free rows: M_FF a_F = b_F − M_FP a_P, solved with the prescribed rows made trivial.
+    Matrix6 system = mass_matrix;
+    Vector6 b = rhs - mass_matrix * acc;
+    for (int k = 0; k < 6; ++k)
+      if (fixed[k]) {
+        system.row(k).setZero();
+        system.col(k).setZero();
+        system(k, k) = 1.0;
+        b[k] = 0.0;
+      }
+    const Vector6 free_acc = system.ldlt().solve(b);
+    for (int k = 0; k < 6; ++k)
+      if (!fixed[k]) acc[k] = free_acc[k];
+    const Vector6 reaction = mass_matrix * acc - rhs;
+
+    Eigen::Vector3d v_new, w_new_half;
+    for (int k = 0; k < 3; ++k) {
+      v_new[k] = fixed[k] ? v_target[k] : v_old[k] + dt_avg * acc[k];
+      w_new_half[k] = fixed[k + 3] ? v_target[k + 3] : w_old[k] + dt_avg * acc[k + 3];
+    }
+    for (const PrescribedDof& d : body.prescribed) {
+      const int k = d.component;
+      const Real old = k < 3 ? v_old[k] : w_old[k - 3];
+      work += 0.5 * (body.previous_reaction[k] + reaction[k]) * dt_prev * old;
+      body.previous_reaction[k] = reaction[k];
+      if (k < 3)
+        state.reaction(r, k) = reaction[k];
+      else if (state.reaction_moment.rows() > 0)
+        state.reaction_moment(r, k - 3) = reaction[k];
+    }
+
+    // Whole-step velocities, kinetic energy, the reference node.
+    const Eigen::Vector3d v_whole = v_old + w_new * (v_new - v_old);
+    const Eigen::Vector3d w_whole = w_old + w_new * (w_new_half - w_old);
+    Vector6 vw;
+    vw << v_whole, w_whole;
+    ke_correction += 0.5 * vw.dot(mass_matrix * vw) - counted;
+    for (int k = 0; k < 3; ++k) {
+      state.velocity_half(r, k) = v_new[k];
+      state.velocity(r, k) = v_whole[k];
+      state.acceleration(r, k) = acc[k];
+    }
+    if (rotations) {
+      for (int k = 0; k < 3; ++k) {
+        state.angular_velocity_half(r, k) = w_new_half[k];
+        state.angular_velocity(r, k) = w_whole[k];
+        state.rotation(r, k) = body.rotation[k];
+      }
+    }
+
+    // Advance the orientation over dt_next and place every member exactly.
+    body.omega_half = w_new_half;
+    if (dt_next > 0.0) {
+      const Eigen::Quaterniond q_next =
+          (rotation_quaternion(dt_next * w_new_half) * body.orientation).normalized();
+      const Eigen::Matrix3d rot_next = q_next.toRotationMatrix();
+      const Eigen::Vector3d x_r_next = x_r + dt_next * v_new;
+      const Eigen::Vector3d x_ref0 = row(state.reference, r);
+      for (Index i : body.members) {
+        const Eigen::Vector3d target = x_r_next + rot_next * (row(state.reference, i) - x_ref0);
+        const Eigen::Vector3d v_i = (target - row(state.position, i)) / dt_next;
+        const Eigen::Vector3d arm = row(state.position, i) - x_r;
+        const Eigen::Vector3d v_i_whole = v_whole + w_whole.cross(arm);
+        for (int k = 0; k < 3; ++k) {
+          state.acceleration(i, k) =
+              dt_avg > 0.0 ? (v_i[k] - state.velocity_half(i, k)) / dt_avg : 0.0;
+          state.velocity_half(i, k) = v_i[k];
+          state.velocity(i, k) = v_i_whole[k];
+        }
+      }
+      body.orientation = q_next;
+    }
+  }
+  return ke_correction;
+}
+
+}  // namespace xpl

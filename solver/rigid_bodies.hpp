@@ -1,0 +1,89 @@
+#pragma once
+/// \file Rigid bodies (`*RIGID BODY, REF NODE=, ELSET=[, PIN NSET=][, TIE NSET=]`, S6).
+///
+/// A body's elements are taken out of the element loops; their lumped masses, the nodes' own
+/// `*MASS` and the reference node's `*MASS`/`*ROTARY INERTIA` make the body's mass, centre of
+/// mass and inertia. The body moves as six DOFs at its reference node: with r the vector from
+/// the reference node to the centre of mass, J_ref the inertia about the reference node and ω
+/// the angular velocity, Newton–Euler about the reference node reads
+///
+///   [ m I      −m [r]× ] [a]   [F − m ω × (ω × r)   ]
+///   [ m [r]×   J_ref   ] [α] = [M_ref − ω × (J_ref ω)]
+///
+/// with F and M_ref the sum of the nodal forces on the body (loads, contact, gravity) and their
+/// moment about the reference node. DOFs of the reference node with a boundary condition have
+/// known accelerations; the other rows are solved for, and the prescribed rows give the
+/// reactions (RF at the reference node, and RM in models that carry rotations). Velocities are
+/// integrated by central differences like every other DOF; the orientation is a quaternion
+/// advanced by the exact rotation of ω_{n+1/2} Δt, and every member node is placed exactly at
+/// x_ref + R (X − X_ref) by giving it the half-step velocity that lands it there, so the
+/// body never deforms. The members' inverse mass is 0 in the nodal update; the kinetic energy
+/// of a body is ½ vᵀ M v with the 6×6 matrix above.
+///
+/// PIN and TIE nodes join the body with their translations; a TIE node's rotations (shells)
+/// are not coupled yet and keep their own dynamics (said in the .msg file).
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "common/types.hpp"
+#include "solver/boundary_state.hpp"
+#include "solver/model.hpp"
+#include "solver/state.hpp"
+
+namespace xpl {
+
+/// All rigid bodies of a model.
+class RigidBodies {
+ public:
+  RigidBodies() = default;
+  /// Assigns elements and nodes to bodies (throws SolverError for a node in two bodies).
+  explicit RigidBodies(const Model& model);
+
+  bool empty() const { return m_bodies.empty(); }
+  /// Body of each element (n_elements), NO_INDEX for deformable ones; empty when no bodies.
+  const std::vector<Index>& element_body() const { return m_element_body; }
+  /// Whether node i moves with a body (member or reference node).
+  bool is_rigid_node(Index i) const { return !m_node_body.empty() && m_node_body[i] != NO_INDEX; }
+
+  /// Mass, centre of mass and inertia of every body from the nodal masses `mass` (n_nodes, kg,
+  /// rigid elements' lumped mass and `*MASS` included) and the reference nodes' rotary inertia;
+  /// sets the member nodes' initial velocity to that of the reference node. Returns one
+  /// message per body for the .msg file.
+  std::vector<std::string> setup(const Model& model, const std::vector<Real>& mass, State& state);
+
+  /// Takes the prescribed DOFs of reference nodes out of `prescribed` (they drive the bodies)
+  /// and drops those on member nodes; returns how many member-node DOFs were dropped.
+  Index begin_step(std::vector<PrescribedDof>& prescribed, const State& state);
+
+  /// One central-difference update of every body, called after the free nodal update with
+  /// the forces at t_n (internal n_nodes × 3; external may be null), the increments dt_prev
+  /// and dt_next, the whole-step weight w_new (0 at t = 0) and the times at which the BCs
+  /// are evaluated. Writes velocities (half and whole step), accelerations, reactions and the
+  /// reference node rotation into `state`; returns the kinetic-energy correction (body
+  /// energy minus what the free update counted for its nodes) and adds the reactions' work.
+  Real update(const Model& model, const BoundaryState& boundary, State& state,
+              const NodalVectors& force_internal, const NodalVectors* force_external, Real dt_prev,
+              Real dt_next, Real w_new, const std::array<Real, 4>& times, Real& work);
+
+ private:
+  struct Body {
+    Index reference = NO_INDEX;
+    std::vector<Index> members;  ///< nodes other than the reference node
+    Real mass = 0.0;
+    Eigen::Vector3d centre_offset = Eigen::Vector3d::Zero();  ///< X_c − X_ref, reference frame
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();        ///< J about the centre, ref. frame
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    Eigen::Vector3d omega_half = Eigen::Vector3d::Zero();  ///< ω_{n+1/2}, rad/s
+    Eigen::Vector3d rotation = Eigen::Vector3d::Zero();    ///< Σ ω Δt (exact about a fixed axis)
+    std::vector<PrescribedDof> prescribed;                 ///< DOFs of the reference node
+    std::array<Real, 6> previous_reaction{};               ///< for the trapezoidal work
+  };
+  std::vector<Body> m_bodies;
+  std::vector<Index> m_element_body;
+  std::vector<Index> m_node_body;
+};
+
+}  // namespace xpl
