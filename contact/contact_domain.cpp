@@ -1,6 +1,8 @@
 #include "contact/contact_domain.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -96,6 +98,25 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
       m_slave_mask[s] |= m_face_mask[f];
       if (m_face_rigid[f]) m_slave_rigid[s] = 1;
       if (!m_faces[f].shell) m_slave_shell[s] = 0;
+    }
+
+  // Free shell edges: edges of exactly one shell element (each element counted once, through
+  // its SPOS or, failing that, its SNEG side).
+  std::map<std::pair<Index, Index>, int> edge_count;
+  std::vector<char> counted(static_cast<std::size_t>(topology.element_count()), 0);
+  for (const ContactFace& face : m_faces) {
+    if (!face.shell || counted[face.element]) continue;
+    counted[face.element] = 1;
+    for (int a = 0; a < 4; ++a) {
+      const Index p = face.nodes[a], q = face.nodes[(a + 1) % 4];
+      ++edge_count[{std::min(p, q), std::max(p, q)}];
+    }
+  }
+  m_slave_free_edge.assign(static_cast<std::size_t>(n_slave), 0);
+  for (const auto& [edge, count] : edge_count)
+    if (count == 1) {
+      m_slave_free_edge[m_slaves.slot(edge.first)] = 1;
+      m_slave_free_edge[m_slaves.slot(edge.second)] = 1;
     }
 
   m_everything = m_exclusions.empty() && m_inclusions.size() == 1 && n_surfaces == 1 &&

@@ -71,6 +71,9 @@ class ContactDomain {
   bool slave_rigid(Index s) const { return m_slave_rigid[s] != 0; }
   /// Whether every face around slave slot s is a shell side (a double-sided node).
   bool slave_double_sided(Index s) const { return m_slave_shell[s] != 0; }
+  /// Whether slave slot s lies on a free edge of a shell (an edge of one shell element only):
+  /// such a node can touch a face edge-on (a tube end on a plate).
+  bool slave_on_free_edge(Index s) const { return m_slave_free_edge[s] != 0; }
   bool face_rigid(Index f) const { return m_face_rigid[f] != 0; }
   /// How deep (m) a node may be below face f and still be taken as touching it: half the
   /// element's depth behind a solid face, half the thickness of a shell (the mid-surface).
@@ -97,6 +100,7 @@ class ContactDomain {
   std::vector<std::uint64_t> m_slave_mask;
   std::vector<char> m_slave_rigid;
   std::vector<char> m_slave_shell;
+  std::vector<char> m_slave_free_edge;
   std::vector<DomainPair> m_inclusions;
   std::vector<DomainPair> m_exclusions;
   std::vector<std::pair<DomainPair, Index>> m_interactions;

@@ -91,6 +91,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
       const Vec3 p = node_point(position, node);
       const Vec3 n_s = slaves.normal(s);
       const bool double_sided = m_domain.slave_double_sided(s);
+      const bool free_edge = m_domain.slave_on_free_edge(s);
       const Real half_t = double_sided ? 0.5 * thickness_of(node_thickness, node) : 0.0;
       for (Index f : m_broad.candidates(s)) {
         Index pair = NO_INDEX;
@@ -101,9 +102,12 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         Vec3 n_f = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
         const Real n_len = std::sqrt(n_f.dot(n_f));
         if (!(n_len > 0.0)) continue;
-        // Solid nodes only: a shell node may touch a face with its edge (a tube end on a
-        // plate), so any orientation counts; the depth test keeps neighbours out.
-        if (!double_sided && n_s.dot(n_f) > -OPPOSING_COSINE * n_len) continue;
+        // A shell node is double sided (either orientation), and one on a free edge may
+        // touch a face edge-on (a tube end on a plate).
+        const Real cosine = n_s.dot(n_f) / n_len;
+        if (double_sided ? !free_edge && std::abs(cosine) < OPPOSING_COSINE
+                         : cosine > -OPPOSING_COSINE)
+          continue;
         const ClosestPoint cp = closest_point_on_quad(corner, p);
         const Real gap = cp.gap - half_t;
         Real depth = m_domain.face_depth(f);

@@ -7,8 +7,8 @@
 /// phase candidates, where admissible means
 /// - the domain's rule allows the pair (inclusions, exclusions, rigid bodies: ContactDomain);
 /// - the face looks at the node: the slave node's normal and the face normal point against
-///   each other (cosine below −OPPOSING_COSINE). Shell nodes are exempt: they are double
-///   sided, and the free edge of a shell (a tube end) touches faces edge-on.
+///   each other (cosine below −OPPOSING_COSINE; for a double-sided shell node either way, and
+///   a node on a free shell edge, such as a tube end, may touch a face edge-on).
 ///   This keeps a node on the top of a block from "touching" the side face next to it at a
 ///   convex corner, and a node at the edge of a bar end from being pushed sideways by the
 ///   other bar's side faces (their normals are at 90°);
