@@ -92,8 +92,18 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
       const Vec3 n_s = slaves.normal(s);
       const bool double_sided = m_domain.slave_double_sided(s);
       const bool free_edge = m_domain.slave_on_free_edge(s);
+      // Side memory: a node pressed onto one side of a shell last increment may not be taken
+      // by the other side of that shell, however deep it has gone (no pass-through).
+      const ContactConstraint& before = m_constraints[s];
+      const ContactFace* held = before.status == ContactStatus::Closed && before.master_face >= 0 &&
+                                        faces[before.master_face].shell
+                                    ? &faces[before.master_face]
+                                    : nullptr;
       const Real half_t = double_sided ? 0.5 * thickness_of(node_thickness, node) : 0.0;
       for (Index f : m_broad.candidates(s)) {
+        if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
+            faces[f].face != held->face)
+          continue;
         Index pair = NO_INDEX;
         const Real w = m_domain.weight(s, f, pair);
         if (w == 0.0) continue;
@@ -116,7 +126,9 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
           for (Index c : faces[f].nodes) t += thickness_of(node_thickness, c);
           depth = 0.125 * t;  // half the mean thickness
         }
-        if (-gap > depth + half_t) continue;
+        const bool kept_side =
+            held != nullptr && faces[f].shell && faces[f].element == held->element;
+        if (!kept_side && -gap > depth + half_t) continue;
         if (cp.distance < best_distance) {
           best_distance = cp.distance;
           best = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};

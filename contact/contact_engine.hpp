@@ -15,6 +15,9 @@
 /// - the node is not deeper behind the face than half the element behind it (half the
 ///   thickness of a shell), so a node on the outer skin of a thin wall never touches the inner
 ///   skin of that wall.
+/// A node pressed onto one side of a shell stays with that side: the other side of the same
+/// element is not admissible while the constraint is closed, so a deep penetration is pushed
+/// back rather than through.
 /// Shell sides are at ±t/2 of the mid-surface (ContactFace), and a shell slave node carries
 /// half its own thickness: its gap is the distance to the face's contact surface minus t/2.
 ///

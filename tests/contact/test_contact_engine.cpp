@@ -1,0 +1,138 @@
+#include <catch2/catch.hpp>
+
+#include <omp.h>
+
+#include <cmath>
+#include <vector>
+
+#include "contact/contact_domain.hpp"
+#include "contact/contact_engine.hpp"
+#include "contact_fixtures.hpp"
+
+using namespace xpl;
+using contact::ContactDomain;
+using contact::DomainSpec;
+using contact::Vec3;
+
+namespace {
+
+/// Block A (2×2×1, h = 1) under block B (2×2×1), B's bottom at z = 1 + gap.
+struct TwoBlocks {
+  test::ContactMesh mesh;
+  Index a_elements = 0;
+  explicit TwoBlocks(Real gap) {
+    test::add_hex_block(mesh, 2, 2, 1, 1.0);
+    a_elements = static_cast<Index>(mesh.kinds.size());
+    test::add_hex_block(mesh, 2, 2, 1, 1.0, Vec3(0.0, 0.0, 1.0 + gap));
+  }
+  Index top_centre_of_a() const { return 4 + 9; }  // node (1, 1, 1) of block A
+};
+
+DomainSpec all_exterior() {
+  DomainSpec spec;
+  spec.surfaces.push_back({"ALL_EXTERIOR", true, {}});
+  spec.inclusions.push_back({0, 0, false});
+  return spec;
+}
+
+/// Index of the face of `domain` whose corners are all nodes of elements >= first_element and
+/// whose normal points along `direction`.
+Index face_of(const ContactDomain& domain, const NodalVectors& x, Index first_element,
+              const Vec3& direction) {
+  for (Index f = 0; f < static_cast<Index>(domain.faces().size()); ++f) {
+    const auto& face = domain.faces()[f];
+    if (face.element < first_element) continue;
+    if (test::face_normal(face, x).dot(direction) > 0.99) return f;
+  }
+  return NO_INDEX;
+}
+
+}  // namespace
+
+TEST_CASE("the pair rule weighs balanced, one-sided, excluded and rigid pairs",
+          "[contact][domain]") {
+  TwoBlocks blocks(0.0);
+  const auto topology = blocks.mesh.topology();
+  const NodalVectors& x = blocks.mesh.coordinates;
+  const Index node = blocks.top_centre_of_a();
+
+  SECTION("ALL EXTERIOR: both views, weight 1/2 each") {
+    const ContactDomain domain(all_exterior(), topology, x);
+    const Index s = domain.slaves().slot(node);
+    const Index bottom_of_b = face_of(domain, x, blocks.a_elements, Vec3(0, 0, -1));
+    REQUIRE(bottom_of_b != NO_INDEX);
+    Index pair = NO_INDEX;
+    CHECK(domain.weight(s, bottom_of_b, pair) == 0.5);
+    CHECK(pair == 0);
+  }
+  SECTION("a rigid master takes the whole force and its nodes are never slaves") {
+    DomainSpec spec = all_exterior();
+    spec.element_body.assign(blocks.mesh.kinds.size(), NO_INDEX);
+    for (Index e = blocks.a_elements; e < static_cast<Index>(spec.element_body.size()); ++e)
+      spec.element_body[e] = 0;
+    const ContactDomain domain(spec, topology, x);
+    const Index bottom_of_b = face_of(domain, x, blocks.a_elements, Vec3(0, 0, -1));
+    const Index top_of_a = face_of(domain, x, 0, Vec3(0, 0, 1));
+    Index pair = NO_INDEX;
+    CHECK(domain.weight(domain.slaves().slot(node), bottom_of_b, pair) == 1.0);
+    const Index b_node = 18 + 4;  // node (1, 1, 0) of block B
+    CHECK(domain.slave_rigid(domain.slaves().slot(b_node)));
+    CHECK(domain.weight(domain.slaves().slot(b_node), top_of_a, pair) == 0.0);
+  }
+  SECTION("a one-sided pair has one view; an exclusion removes a pair") {
+    DomainSpec spec;
+    spec.surfaces.push_back({"A", false, {}});
+    spec.surfaces.push_back({"B", false, {}});
+    for (Index e = 0; e < blocks.a_elements; ++e) spec.surfaces[0].faces.push_back({e, 1});
+    for (Index e = blocks.a_elements; e < static_cast<Index>(blocks.mesh.kinds.size()); ++e)
+      spec.surfaces[1].faces.push_back({e, 0});
+    spec.inclusions.push_back({0, 1, true});
+    const ContactDomain one_sided(spec, topology, x);
+    const Index face_b = face_of(one_sided, x, blocks.a_elements, Vec3(0, 0, -1));
+    const Index face_a = face_of(one_sided, x, 0, Vec3(0, 0, 1));
+    Index pair = NO_INDEX;
+    CHECK(one_sided.weight(one_sided.slaves().slot(node), face_b, pair) == 1.0);
+    CHECK(one_sided.weight(one_sided.slaves().slot(18 + 4), face_a, pair) == 0.0);
+    spec.exclusions.push_back({1, 0, false});
+    const ContactDomain excluded(spec, topology, x);
+    CHECK(excluded.weight(excluded.slaves().slot(node), face_b, pair) == 0.0);
+  }
+}
+
+TEST_CASE(
+    "penetrating blocks are pushed apart by equal and opposite forces, the same with any "
+    "thread count",
+    "[contact][engine]") {
+  const Real depth = 1e-4;
+  TwoBlocks blocks(-depth);  // B's bottom 0.1 mm below A's top
+  const NodalVectors& x = blocks.mesh.coordinates;
+  const Index n = blocks.mesh.node_count();
+  const NodalVectors velocity = NodalVectors::Zero(n, 3);
+  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  const Real dt = 1e-3;
+
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    contact::ContactEngine engine(ContactDomain(all_exterior(), blocks.mesh.topology(), x), {}, {},
+                                  x, {});
+    NodalVectors force = NodalVectors::Zero(n, 3);
+    PhaseTimers timers;
+    engine.update(x, velocity, 0.0, dt, {}, mass, inverse_mass, force, timers);
+    return force;
+  };
+  const NodalVectors one = run(1);
+  const NodalVectors two = run(2);
+  CHECK((one - two).cwiseAbs().maxCoeff() == 0.0);
+
+  // force_internal holds minus the contact force: block A's top nodes are pushed down (−z),
+  // B's bottom up, the sum is zero, and each interface node carries its own spring k·d with
+  // k = 0.5 m/Δt² (two views of 1/2 each on a node and its mirror).
+  const Real k = contact::DEFAULT_PENALTY_FACTOR * 0.5 / (dt * dt);  // m_eff = 1/2
+  const Index a_top = blocks.top_centre_of_a();
+  const Index b_bottom = 18 + 4;
+  CHECK(-one(a_top, 2) == Approx(-k * depth).epsilon(1e-6));
+  CHECK(-one(b_bottom, 2) == Approx(k * depth).epsilon(1e-6));
+  CHECK(std::abs(one.col(2).sum()) < 1e-9 * k * depth);
+  CHECK(one.col(0).cwiseAbs().maxCoeff() < 1e-9 * k * depth);
+  omp_set_num_threads(2);
+}
