@@ -36,17 +36,15 @@ Real max_thickness(std::span<const Real> thickness) {
   return t;
 }
 
-/// Search margin (m) and rebuild motion (m): the motion leaves room for half a shell
-/// thickness around every slave node (BroadPhase).
-std::pair<Real, Real> search_distances(const ContactOptions& options,
-                                       const std::vector<ContactFace>& faces,
-                                       const NodalVectors& position,
-                                       std::span<const Real> node_thickness) {
+/// The broad phase with its search margin (m) and rebuild motion (m): the motion leaves room
+/// for half a shell thickness around every slave node.
+BroadPhase make_broad_phase(const ContactOptions& options, const std::vector<ContactFace>& faces,
+                            const NodalVectors& position, std::span<const Real> node_thickness) {
   Real base =
       options.margin > 0.0 ? options.margin : MARGIN_FRACTION * mean_face_size(faces, position);
   if (!(base > 0.0)) base = 1e-3;
   const Real half_t = 0.5 * max_thickness(node_thickness);
-  return {base + half_t, 0.5 * base};
+  return BroadPhase(base + half_t, 0.5 * base);
 }
 
 Real thickness_of(std::span<const Real> thickness, Index node) {
@@ -63,8 +61,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
     : m_domain(std::move(domain)),
       m_laws(std::move(laws)),
       m_options(options),
-      m_broad(search_distances(options, m_domain.faces(), position, node_thickness).first,
-              search_distances(options, m_domain.faces(), position, node_thickness).second) {
+      m_broad(make_broad_phase(options, m_domain.faces(), position, node_thickness)) {
   const auto n = static_cast<std::size_t>(m_domain.slaves().size());
   m_constraints.assign(n, ContactConstraint{});
   m_touch.assign(n, Touch{});

@@ -326,7 +326,7 @@ void ExplicitSolver::Impl::begin_step(int step) {
   if (shell) state.reaction_moment.setZero();
   // Reference nodes of rigid bodies drive their body; members cannot be prescribed.
   std::vector<PrescribedDof> active = boundary.prescribed();
-  const Index dropped_members = rigid.empty() ? 0 : rigid.begin_step(active, state);
+  const Index dropped_members = rigid.empty() ? 0 : rigid.begin_step(active);
   // Rotations prescribed on nodes that belong to no shell have nothing to act on.
   prescribed.clear();
   bool dropped_rotations = boundary.has_rotational_dofs();
@@ -896,6 +896,24 @@ std::vector<std::string> unsupported_features(const Model& model) {
   std::vector<bool> is_reference(static_cast<std::size_t>(model.node_count()), false);
   for (const RigidBody& r : model.rigid_bodies)
     if (r.reference_node != NO_INDEX) is_reference[r.reference_node] = true;
+  // A node shared by two rigid bodies would weld them into one: an input error.
+  std::vector<Index> body_of(model.rigid_bodies.empty() ? 0 : model.node_count(), NO_INDEX);
+  for (std::size_t b = 0; b < model.rigid_bodies.size(); ++b) {
+    const RigidBody& r = model.rigid_bodies[b];
+    if (r.element_set == NO_INDEX) continue;
+    for (Index e : model.element_sets[r.element_set].members) {
+      const Index* en = model.nodes_of(e);
+      for (Index k = 0; k < model.element_offsets[e + 1] - model.element_offsets[e]; ++k) {
+        Index& owner = body_of[en[k]];
+        if (owner != NO_INDEX && owner != static_cast<Index>(b))
+          out.push_back(r.where.file + ":" + std::to_string(r.where.line) + ": *RIGID BODY: node " +
+                        std::to_string(model.node_ids[en[k]]) +
+                        " also belongs to an earlier rigid body; expected each node in one "
+                        "rigid body at most");
+        owner = static_cast<Index>(b);
+      }
+    }
+  }
   for (const PointInertia& p : model.point_inertias) {
     const bool rotary = p.inertia[0] != 0.0 || p.inertia[1] != 0.0 || p.inertia[2] != 0.0 ||
                         p.inertia[3] != 0.0 || p.inertia[4] != 0.0 || p.inertia[5] != 0.0;

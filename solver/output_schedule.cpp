@@ -6,7 +6,7 @@
 namespace xpl {
 
 const std::vector<std::string>& energy_names() {
-  static const std::vector<std::string> names = {"ALLKE", "ALLSE", "ALLAE", "ALLIE", "ALLVD",
+  static const std::vector<std::string> names = {"ALLKE", "ALLSE",  "ALLAE", "ALLIE", "ALLVD",
                                                  "ALLWK", "ETOTAL", "ALLFD", "ALLPW"};
   return names;
 }

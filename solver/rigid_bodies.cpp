@@ -124,8 +124,7 @@ std::vector<std::string> RigidBodies::setup(const Model& model, const std::vecto
   return messages;
 }
 
-Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed, const State& state) {
-  (void)state;
+Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed) {
   for (Body& body : m_bodies) body.prescribed.clear();
   Index dropped = 0;
   std::vector<PrescribedDof> kept;

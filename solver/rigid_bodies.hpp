@@ -39,7 +39,8 @@ namespace xpl {
 class RigidBodies {
  public:
   RigidBodies() = default;
-  /// Assigns elements and nodes to bodies (throws SolverError for a node in two bodies).
+  /// Assigns elements and nodes to bodies. A node in two bodies is an input error that
+  /// unsupported_features() reports before anything is written; here it throws SolverError.
   explicit RigidBodies(const Model& model);
 
   bool empty() const { return m_bodies.empty(); }
@@ -56,7 +57,7 @@ class RigidBodies {
 
   /// Takes the prescribed DOFs of reference nodes out of `prescribed` (they drive the bodies)
   /// and drops those on member nodes; returns how many member-node DOFs were dropped.
-  Index begin_step(std::vector<PrescribedDof>& prescribed, const State& state);
+  Index begin_step(std::vector<PrescribedDof>& prescribed);
 
   /// One central-difference update of every body, called after the free nodal update with
   /// the forces at t_n (internal n_nodes × 3; external may be null), the increments dt_prev

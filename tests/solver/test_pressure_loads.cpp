@@ -174,3 +174,16 @@ TEST_CASE("features read but not run yet are refused with their deck line", "[so
   CHECK(refused[1].rfind("box.inp:31: *CONTACT INCLUSIONS: contact with a node-based surface", 0) ==
         0);
 }
+
+TEST_CASE("a node shared by two rigid bodies is refused with the deck line", "[solver]") {
+  BoxSpec spec;
+  spec.nx = spec.ny = spec.nz = 1;
+  Model m = make_box(spec);
+  m.rigid_bodies.push_back({0, 0, NO_INDEX, NO_INDEX, {"box.inp", 12}});
+  CHECK(unsupported_features(m).empty());
+  m.rigid_bodies.push_back({1, 0, NO_INDEX, NO_INDEX, {"box.inp", 13}});
+  const auto refused = unsupported_features(m);
+  REQUIRE(refused.size() == 8);  // the 8 nodes of the one element
+  CHECK(refused[0].rfind("box.inp:13: *RIGID BODY: node ", 0) == 0);
+  CHECK(refused[0].find("also belongs to an earlier rigid body") != std::string::npos);
+}
