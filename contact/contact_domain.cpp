@@ -64,6 +64,7 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
       m_interactions(spec.interactions),
       m_default_interaction(spec.default_interaction) {
   const auto n_surfaces = static_cast<Index>(spec.surfaces.size());
+  for (const DomainSurface& surface : spec.surfaces) m_surface_names.push_back(surface.name);
   auto check = [&](const DomainPair& p) {
     if (p.first < 0 || p.first >= n_surfaces || p.second < 0 || p.second >= n_surfaces)
       throw std::invalid_argument("ContactDomain: surface index out of range in a pair");
@@ -148,6 +149,19 @@ Real ContactDomain::weight(Index s, Index f, Index& pair) const {
     }
   }
   return 0.0;
+}
+
+Index ContactDomain::slave_surface(Index s, Index f, Index pair) const {
+  if (pair < 0 || pair >= static_cast<Index>(m_inclusions.size())) return NO_INDEX;
+  const DomainPair& p = m_inclusions[pair];
+  const bool forward = in(m_slave_mask[s], p.first) && in(m_face_mask[f], p.second);
+  return forward || p.one_sided ? p.first : p.second;
+}
+
+Index ContactDomain::master_surface(Index s, Index f, Index pair) const {
+  if (pair < 0 || pair >= static_cast<Index>(m_inclusions.size())) return NO_INDEX;
+  const DomainPair& p = m_inclusions[pair];
+  return slave_surface(s, f, pair) == p.first ? p.second : p.first;
 }
 
 Index ContactDomain::interaction(Index s, Index f) const {

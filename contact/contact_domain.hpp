@@ -86,6 +86,15 @@ class ContactDomain {
   /// Interaction of slave slot s touching face f (DomainSpec::interactions rule).
   Index interaction(Index s, Index f) const;
 
+  /// Name of domain surface k (DomainSpec::surfaces).
+  const std::string& surface_name(Index k) const { return m_surface_names[k]; }
+  Index surface_count() const { return static_cast<Index>(m_surface_names.size()); }
+  /// The surface slave slot s acts for when it touches face f through included pair `pair`
+  /// (the pair's slave side in that view).
+  Index slave_surface(Index s, Index f, Index pair) const;
+  /// The surface of face f named first in `pair` (its master side in that view).
+  Index master_surface(Index s, Index f, Index pair) const;
+
   /// Number of included pairs (history output per pair).
   Index pair_count() const { return static_cast<Index>(m_inclusions.size()); }
   /// Whether the domain is empty (no face, or no slave node that may touch anything).
@@ -101,6 +110,7 @@ class ContactDomain {
   std::vector<char> m_slave_rigid;
   std::vector<char> m_slave_shell;
   std::vector<char> m_slave_free_edge;
+  std::vector<std::string> m_surface_names;
   std::vector<DomainPair> m_inclusions;
   std::vector<DomainPair> m_exclusions;
   std::vector<std::pair<DomainPair, Index>> m_interactions;

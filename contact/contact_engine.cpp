@@ -64,7 +64,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
       m_broad(make_broad_phase(options, m_domain.faces(), position, node_thickness)) {
   const auto n = static_cast<std::size_t>(m_domain.slaves().size());
   m_constraints.assign(n, ContactConstraint{});
-  m_touch.assign(n, Touch{});
+  m_touch.assign(n, SlaveTouch{});
   m_normal_force.assign(n, 0.0);
   m_slave_force.assign(3 * n, 0.0);
   m_force.assign(3 * n, 0.0);
@@ -75,65 +75,99 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_pair_friction.assign(m_pair_normal.size(), 0.0);
 }
 
-void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
+bool ContactEngine::admissible(Index s, Index f, const NodalVectors& position,
+                               std::span<const Real> node_thickness, SlaveTouch& out,
+                               Real& distance) const {
   const SlaveNodes& slaves = m_domain.slaves();
   const std::vector<ContactFace>& faces = m_domain.faces();
-  const Index n_slave = slaves.size();
+  const Index node = slaves.nodes()[s];
+  const bool double_sided = m_domain.slave_double_sided(s);
+  // Side memory: a node pressed onto one side of a shell last increment may not be taken by
+  // the other side of that shell, however deep it has gone (no pass-through).
+  const ContactConstraint& before = m_constraints[s];
+  const ContactFace* held = before.status == ContactStatus::Closed && before.master_face >= 0 &&
+                                    faces[before.master_face].shell
+                                ? &faces[before.master_face]
+                                : nullptr;
+  if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
+      faces[f].face != held->face)
+    return false;
+  Index pair = NO_INDEX;
+  const Real w = m_domain.weight(s, f, pair);
+  if (w == 0.0) return false;
+  Vec3 corner[4];
+  face_corners(faces[f], position, node_thickness, corner);
+  const Vec3 n_f = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+  const Real n_len = std::sqrt(n_f.dot(n_f));
+  if (!(n_len > 0.0)) return false;
+  // A shell node is double sided (either orientation), and one on a free edge may touch a
+  // face edge-on (a tube end on a plate).
+  const Real cosine = slaves.normal(s).dot(n_f) / n_len;
+  if (double_sided ? !m_domain.slave_on_free_edge(s) && std::abs(cosine) < OPPOSING_COSINE
+                   : cosine > -OPPOSING_COSINE)
+    return false;
+  const ClosestPoint cp = closest_point_on_quad(corner, node_point(position, node));
+  const Real half_t = double_sided ? 0.5 * thickness_of(node_thickness, node) : 0.0;
+  const Real gap = cp.gap - half_t;
+  Real depth = m_domain.face_depth(f);
+  if (faces[f].shell) {
+    Real t = 0.0;
+    for (Index c : faces[f].nodes) t += thickness_of(node_thickness, c);
+    depth = 0.125 * t;  // half the mean thickness
+  }
+  const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
+  if (!kept_side && -gap > depth + half_t) return false;
+  out = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
+  distance = cp.distance;
+  return true;
+}
+
+void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
+  const Index n_slave = m_domain.slaves().size();
 #pragma omp parallel for schedule(dynamic, 256)
   for (Index s = 0; s < n_slave; ++s) {
-    Touch best;
-    Real best_distance = std::numeric_limits<Real>::max();
+    SlaveTouch best;
     if (!m_domain.slave_rigid(s)) {
-      const Index node = slaves.nodes()[s];
-      const Vec3 p = node_point(position, node);
-      const Vec3 n_s = slaves.normal(s);
-      const bool double_sided = m_domain.slave_double_sided(s);
-      const bool free_edge = m_domain.slave_on_free_edge(s);
-      // Side memory: a node pressed onto one side of a shell last increment may not be taken
-      // by the other side of that shell, however deep it has gone (no pass-through).
-      const ContactConstraint& before = m_constraints[s];
-      const ContactFace* held = before.status == ContactStatus::Closed && before.master_face >= 0 &&
-                                        faces[before.master_face].shell
-                                    ? &faces[before.master_face]
-                                    : nullptr;
-      const Real half_t = double_sided ? 0.5 * thickness_of(node_thickness, node) : 0.0;
-      for (Index f : m_broad.candidates(s)) {
-        if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
-            faces[f].face != held->face)
-          continue;
-        Index pair = NO_INDEX;
-        const Real w = m_domain.weight(s, f, pair);
-        if (w == 0.0) continue;
-        Vec3 corner[4];
-        face_corners(faces[f], position, node_thickness, corner);
-        Vec3 n_f = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
-        const Real n_len = std::sqrt(n_f.dot(n_f));
-        if (!(n_len > 0.0)) continue;
-        // A shell node is double sided (either orientation), and one on a free edge may
-        // touch a face edge-on (a tube end on a plate).
-        const Real cosine = n_s.dot(n_f) / n_len;
-        if (double_sided ? !free_edge && std::abs(cosine) < OPPOSING_COSINE
-                         : cosine > -OPPOSING_COSINE)
-          continue;
-        const ClosestPoint cp = closest_point_on_quad(corner, p);
-        const Real gap = cp.gap - half_t;
-        Real depth = m_domain.face_depth(f);
-        if (faces[f].shell) {
-          Real t = 0.0;
-          for (Index c : faces[f].nodes) t += thickness_of(node_thickness, c);
-          depth = 0.125 * t;  // half the mean thickness
+      Real best_distance = std::numeric_limits<Real>::max();
+      SlaveTouch candidate;
+      Real distance = 0.0;
+      for (Index f : m_broad.candidates(s))
+        if (admissible(s, f, position, node_thickness, candidate, distance) &&
+            distance < best_distance) {
+          best_distance = distance;
+          best = candidate;
         }
-        const bool kept_side =
-            held != nullptr && faces[f].shell && faces[f].element == held->element;
-        if (!kept_side && -gap > depth + half_t) continue;
-        if (cp.distance < best_distance) {
-          best_distance = cp.distance;
-          best = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
-        }
-      }
     }
     m_touch[s] = best;
   }
+}
+
+bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {
+  SlaveNodes& slaves = m_domain.slaves();
+  const bool rebuild = m_broad.needs_rebuild(position);
+  if (rebuild) m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness);
+  slaves.update_areas(m_domain.faces(), position);
+  search(position, node_thickness);
+  return rebuild;
+}
+
+std::vector<SlaveTouch> ContactEngine::penetrated_faces(Index s, const NodalVectors& position,
+                                                        std::span<const Real> node_thickness,
+                                                        Real tolerance) const {
+  std::vector<std::pair<Real, SlaveTouch>> found;
+  if (!m_domain.slave_rigid(s)) {
+    SlaveTouch candidate;
+    Real distance = 0.0;
+    for (Index f : m_broad.candidates(s))
+      if (admissible(s, f, position, node_thickness, candidate, distance) &&
+          candidate.gap < -tolerance)
+        found.emplace_back(distance, candidate);
+  }
+  std::stable_sort(found.begin(), found.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<SlaveTouch> out;
+  for (const auto& [d, t] : found) out.push_back(t);
+  return out;
 }
 
 ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVectors& velocity_half,
@@ -146,19 +180,14 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   const Index n_slave = slaves.size();
   {
     ScopedTimer timer(timers, Phase::ContactSearch);
-    if (m_broad.needs_rebuild(position)) {
-      m_broad.build(faces, slaves.nodes(), position, node_thickness);
-      totals.rebuilt = true;
-    }
-    slaves.update_areas(faces, position);
-    search(position, node_thickness);
+    totals.rebuilt = probe(position, node_thickness);
   }
 
   ScopedTimer timer(timers, Phase::ContactForce);
 #pragma omp parallel for schedule(static)
   for (Index s = 0; s < n_slave; ++s) {
     ContactConstraint& c = m_constraints[s];
-    const Touch& t = m_touch[s];
+    const SlaveTouch& t = m_touch[s];
     m_dissipation[s] = 0.0;
     Vec3 f = Vec3::Zero();
     Real fn = 0.0;
@@ -221,7 +250,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   std::fill(m_pair_normal.begin(), m_pair_normal.end(), 0.0);
   std::fill(m_pair_friction.begin(), m_pair_friction.end(), 0.0);
   for (Index s = 0; s < n_slave; ++s) {
-    const Touch& t = m_touch[s];
+    const SlaveTouch& t = m_touch[s];
     if (t.face == NO_INDEX) continue;
     const Vec3 f(m_slave_force[3 * s], m_slave_force[3 * s + 1], m_slave_force[3 * s + 2]);
     if (f.dot(f) == 0.0) continue;

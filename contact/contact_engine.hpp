@@ -68,6 +68,17 @@ struct ContactTotals {
   bool rebuilt = false;             ///< the broad phase was rebuilt
 };
 
+/// What the search found for one slave node: the nearest admissible face and the point on it.
+struct SlaveTouch {
+  Index face = NO_INDEX;        ///< contact face, NO_INDEX when none is admissible
+  Index pair = NO_INDEX;        ///< included pair that allows the touch (per-pair output)
+  Real weight = 0.0;            ///< view weight w (½ balanced, 1 one-sided or rigid master)
+  Real gap = 0.0;               ///< signed gap, m (negative: penetration); shell nodes less t/2
+  Vec3 normal = Vec3::Zero();   ///< unit contact normal, from the face towards the node
+  std::array<Real, 4> shape{};  ///< weights N_I of the face corners at the closest point
+  Real xi = 0.0, eta = 0.0;     ///< face coordinates of the closest point
+};
+
 /// A slave node's contact status for output (CSTATUS): open, slipping or sticking.
 enum class OutputStatus : std::uint8_t { Open = 0, Slip = 1, Stick = 2 };
 
@@ -91,6 +102,20 @@ class ContactEngine {
                        std::span<const Real> mass, std::span<const Real> inverse_mass,
                        NodalVectors& force_internal, PhaseTimers& timers);
 
+  /// Search only (no forces, no state change besides the broad phase and the node areas and
+  /// normals): the nearest admissible face of every slave node at `position`, then in touch().
+  /// The initial-overclosure pass uses it on the configuration it is adjusting. Returns
+  /// whether the broad phase was rebuilt.
+  bool probe(const NodalVectors& position, std::span<const Real> node_thickness);
+  /// Every admissible face of slave slot s whose contact surface the node penetrates (gap
+  /// below −tolerance, m), nearest first; for the pinched-node test. Uses the broad-phase
+  /// lists of the last probe() or update().
+  std::vector<SlaveTouch> penetrated_faces(Index s, const NodalVectors& position,
+                                           std::span<const Real> node_thickness,
+                                           Real tolerance) const;
+  /// The result of the last search for slave slot s.
+  const SlaveTouch& touch(Index s) const { return m_touch[s]; }
+
   const ContactDomain& domain() const { return m_domain; }
   const std::vector<ContactConstraint>& constraints() const { return m_constraints; }
   std::vector<ContactConstraint>& constraints() { return m_constraints; }
@@ -110,23 +135,17 @@ class ContactEngine {
  private:
   /// Closest admissible face of every slave node (parallel over slots).
   void search(const NodalVectors& position, std::span<const Real> node_thickness);
+  /// Whether face f is admissible for slave slot s at `position` (file comment); if so, the
+  /// touch is written to `out` and its distance to the closest point to `distance`.
+  bool admissible(Index s, Index f, const NodalVectors& position,
+                  std::span<const Real> node_thickness, SlaveTouch& out, Real& distance) const;
 
   ContactDomain m_domain;
   std::vector<InteractionLaw> m_laws;
   ContactOptions m_options;
   BroadPhase m_broad;
   std::vector<ContactConstraint> m_constraints;
-  // Per slave slot, written by search(): the face found and the point on it.
-  struct Touch {
-    Index face = NO_INDEX;
-    Index pair = NO_INDEX;
-    Real weight = 0.0;
-    Real gap = 0.0;
-    Vec3 normal = Vec3::Zero();
-    std::array<Real, 4> shape{};
-    Real xi = 0.0, eta = 0.0;
-  };
-  std::vector<Touch> m_touch;
+  std::vector<SlaveTouch> m_touch;     // per slave slot, written by search()
   std::vector<Real> m_normal_force;    // (n_slave)
   std::vector<Real> m_slave_force;     // (n_slave × 3): force on the slave node itself
   std::vector<Real> m_force;           // (n_slave × 3): assembled force, this increment

@@ -108,6 +108,11 @@ class SlaveNodes {
   Vec3 normal(Index s) const {
     return Vec3(m_normals[3 * s], m_normals[3 * s + 1], m_normals[3 * s + 2]);
   }
+  /// Faces around slave slot s (one side per shell element).
+  std::span<const Index> faces_of(Index s) const {
+    return {m_node_faces.data() + m_face_offsets[s],
+            static_cast<std::size_t>(m_face_offsets[s + 1] - m_face_offsets[s])};
+  }
   /// Slot of `node` in nodes(), or NO_INDEX when it is no slave node.
   Index slot(Index node) const { return m_slot[node]; }
   Index size() const { return static_cast<Index>(m_nodes.size()); }

@@ -23,7 +23,7 @@ constexpr const char* SUPPORTED_KEYWORDS =
     "*CONTACT, *CONTACT INCLUSIONS, *CONTACT EXCLUSIONS, *CONTACT PROPERTY ASSIGNMENT, "
     "*CONTACT CONTROLS ASSIGNMENT, *OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, *ENERGY OUTPUT, "
     "*CONTACT OUTPUT, *NODE FILE, *EL FILE, *NODE PRINT, *EL PRINT, *CONTACT FILE, "
-    "*CONTACT PRINT, *END STEP, *PREPRINT";
+    "*CONTACT PRINT, *END STEP, *PREPRINT, *DIAGNOSTICS";
 
 /// General contact and its options: step data (as in Abaqus/Explicit).
 bool is_general_contact(const std::string& name) {
@@ -110,6 +110,7 @@ void DeckBuilder::read_block(const DeckBlock& block) {
       {"CONTACT PRINT", Context::Step, nullptr},
       // Only echo control of the Abaqus pre-processor: nothing to do, safe to ignore.
       {"PREPRINT", Context::Anywhere, nullptr},
+      {"DIAGNOSTICS", Context::Anywhere, &DeckBuilder::read_diagnostics},
   };
   const DeckKeyword& keyword = block.keyword;
   const std::string& name = keyword.name;

@@ -180,6 +180,7 @@ class DeckBuilder {
   void read_friction(const DeckBlock& block);
   void read_surface_behavior(const DeckBlock& block);
   void read_contact(const DeckBlock& block);
+  void read_diagnostics(const DeckBlock& block);
   /// *CONTACT INCLUSIONS (`inclusions`) or *CONTACT EXCLUSIONS.
   void read_contact_inclusions(const DeckBlock& block, bool inclusions);
   void read_contact_property_assignment(const DeckBlock& block);

@@ -91,6 +91,38 @@ void DeckBuilder::read_contact(const DeckBlock& block) {
   steps.back().contact = std::move(contact);
 }
 
+void DeckBuilder::read_diagnostics(const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(keyword, {{"CONTACT INITIAL OVERCLOSURE"}, {"DETECT CROSSED SURFACES"}});
+  expect_no_data(block);
+  // Model data sets the defaults of every step; a step's own setting holds from it on.
+  Diagnostics diagnostics = m_in_step && !m_model.steps.empty()
+                                ? m_model.diagnostics_of(static_cast<int>(m_model.steps.size()) - 1)
+                                : m_model.diagnostics;
+  diagnostics.where = keyword.where;
+  const std::string level = optional_name(keyword, "CONTACT INITIAL OVERCLOSURE");
+  if (level == "DETAIL")
+    diagnostics.overclosure_detail = true;
+  else if (level == "SUMMARY")
+    diagnostics.overclosure_detail = false;
+  else if (!level.empty())
+    error(keyword.where, keyword, "bad CONTACT INITIAL OVERCLOSURE=" + level,
+          "expected CONTACT INITIAL OVERCLOSURE=DETAIL (every adjusted node and offset in the "
+          ".msg file) or SUMMARY (counts in the .sta file)");
+  const std::string crossed = optional_name(keyword, "DETECT CROSSED SURFACES");
+  if (crossed == "ON" || crossed == "YES")
+    diagnostics.detect_crossed_surfaces = true;
+  else if (crossed == "OFF" || crossed == "NO")
+    diagnostics.detect_crossed_surfaces = false;
+  else if (!crossed.empty())
+    error(keyword.where, keyword, "bad DETECT CROSSED SURFACES=" + crossed,
+          "expected DETECT CROSSED SURFACES=ON or OFF");
+  if (m_in_step)
+    m_model.steps.back().diagnostics = diagnostics;
+  else
+    m_model.diagnostics = diagnostics;
+}
+
 GeneralContact* DeckBuilder::open_contact(const DeckKeyword& keyword) {
   Step& step = m_model.steps.back();
   if (!step.contact) {

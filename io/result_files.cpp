@@ -153,6 +153,14 @@ void ResultFiles::message(Severity severity, const std::string& text) {
   m_impl->msg_file.message(severity, text);
 }
 
+void ResultFiles::status_note(const std::string& text) {
+  m_impl->sta_file.note(text);
+}
+
+void ResultFiles::write_table(const ResultTable& table) {
+  m_impl->h5_file.write_table(table);
+}
+
 void ResultFiles::end_run(RunStatus status, const std::string& error, const PhaseTimers& timers,
                           double element_cycles_per_second) {
   Impl& impl = *m_impl;

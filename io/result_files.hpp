@@ -31,6 +31,8 @@ class ResultFiles final : public OutputSink {
   void append_history(Real time, std::span<const Real> values) override;
   void status(const StatusLine& line) override;
   void message(Severity severity, const std::string& text) override;
+  void status_note(const std::string& text) override;
+  void write_table(const ResultTable& table) override;
   void end_run(RunStatus status, const std::string& error, const PhaseTimers& timers,
                double element_cycles_per_second) override;
 

@@ -185,6 +185,32 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
   return name;
 }
 
+void ResultsH5::write_table(const ResultTable& table) {
+  const h5::Handle group = h5::require_group(m_file.get(), table.path);
+  if (!table.description.empty())
+    h5::set_string_attribute(group.get(), "description", table.description);
+  h5::set_int64_attribute(group.get(), "rows", table.rows);
+  for (const auto& [name, value] : table.attributes)
+    h5::set_string_attribute(group.get(), name, value);
+  for (const TableColumn& c : table.columns) {
+    const std::vector<hsize_t> dims =
+        c.width == 1
+            ? std::vector<hsize_t>{static_cast<hsize_t>(table.rows)}
+            : std::vector<hsize_t>{static_cast<hsize_t>(table.rows), static_cast<hsize_t>(c.width)};
+    if (c.integer)
+      h5::write_int64(group.get(), c.name, c.ids, dims);
+    else
+      h5::write_real(group.get(), c.name, c.values, dims);
+    if (!c.description.empty()) {
+      const h5::Handle data = h5::Handle(
+          h5::check_id(H5Dopen2(group.get(), c.name.c_str(), H5P_DEFAULT), "cannot open " + c.name),
+          H5Dclose);
+      h5::set_string_attribute(data.get(), "description", c.description);
+    }
+  }
+  flush();
+}
+
 void ResultsH5::finish(const std::string& status, const std::string& error) {
   m_history.end();
   h5::set_string_attribute(m_file.get(), "status", status);

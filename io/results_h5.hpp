@@ -35,6 +35,8 @@ class ResultsH5 {
   /// Writes /frames/NNNNNN and returns its name ("000000"). On shell models U, V, RF, S come
   /// with UR, VR, RM, S_SNEG + S_SPOS; STH is written only on shell models.
   std::string write_frame(const Model& model, const State& state, const FrameRequest& what);
+  /// Writes a setup table as a group of column datasets (OutputSink::write_table).
+  void write_table(const ResultTable& table);
   /// Writes pending history rows, the final status and error text, and flushes.
   void finish(const std::string& status, const std::string& error);
   /// Flushes the file to disk.

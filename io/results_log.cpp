@@ -83,6 +83,11 @@ void StaFile::begin_step(int step, const std::string& name) {
   m_out.flush();
 }
 
+void StaFile::note(const std::string& text) {
+  m_out << " " << text << "\n";
+  m_out.flush();
+}
+
 void StaFile::line(int step, const StatusLine& line) {
   m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12lld %12.4E %12.4E\n", step, line.increment,
                   line.total_time, line.step_time, line.dt,

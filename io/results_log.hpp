@@ -19,6 +19,8 @@ class StaFile {
   void begin_step(int step, const std::string& name);
   /// One status line of step `step` (1-based).
   void line(int step, const StatusLine& line);
+  /// A free text line (a summary between status lines), indented by one blank.
+  void note(const std::string& text);
   /// The completion line, the error text if any, the phase timings and the speed.
   void finish(RunStatus status, const std::string& error, const PhaseTimers& timers,
               double element_cycles_per_second);

@@ -14,8 +14,23 @@
 namespace xpl {
 
 /// Run options that do not come from the deck.
+/// A state to start from (`xpl run --import`, SPEC S7): the last frame of an earlier run of
+/// the same mesh. Rows follow the model's node and element indices.
+struct InitialState {
+  std::string source;                           ///< where it came from, for messages
+  NodalVectors displacement;                    ///< U (n_nodes × 3), m
+  NodalVectors velocity;                        ///< V (n_nodes × 3), m/s
+  NodalVectors rotation;                        ///< UR (n_nodes × 3) or 0 rows
+  NodalVectors angular_velocity;                ///< VR (n_nodes × 3) or 0 rows
+  std::vector<Real> stress;                     ///< S (n_elements × 6) or empty
+  std::vector<Real> stress_bottom, stress_top;  ///< shell S_SNEG / S_SPOS or empty
+};
+
 struct SolverOptions {
   int threads = 0;  ///< OpenMP threads, 0 = the OpenMP default
+  /// Start from this state instead of the deck's initial conditions (not owned; must outlive
+  /// the solver). Penetrations found then become offsets (C6).
+  const InitialState* initial_state = nullptr;
   /// Safety factor applied on top of the deck's scale factor. The one-point hex estimate
   /// L_e/c_d is not conservative on every mesh (at ν = 0.45 the true limit is ~10 % below
   /// it), so xpl keeps a margin; tests/solver/test_stability.cpp measures it.

@@ -61,6 +61,12 @@ Index Model::find_node_set(const std::string& name) const {
 Index Model::find_element_set(const std::string& name) const {
   return find_by_name(element_sets, name);
 }
+const Diagnostics& Model::diagnostics_of(int step) const {
+  for (int k = std::min(step, static_cast<int>(steps.size()) - 1); k >= 0; --k)
+    if (steps[k].diagnostics) return *steps[k].diagnostics;
+  return diagnostics;
+}
+
 Index Model::find_surface(const std::string& name) const {
   return find_by_name(surfaces, name);
 }

@@ -279,6 +279,17 @@ struct OutputRequest {
   SourceLocation where;
 };
 
+/// `*DIAGNOSTICS`: how much the initial-overclosure pass reports (SPEC C5, C11).
+struct Diagnostics {
+  /// `CONTACT INITIAL OVERCLOSURE=DETAIL` (default): every adjusted node and every offset in
+  /// the .msg file; SUMMARY: only the counts and the largest overclosure, in the .sta file.
+  bool overclosure_detail = true;
+  /// `DETECT CROSSED SURFACES=ON` (default): warn about slave facet edges that cross a master
+  /// surface at the start of a contact step.
+  bool detect_crossed_surfaces = true;
+  SourceLocation where;
+};
+
 /// One `*STEP ... *END STEP` block with `*DYNAMIC, EXPLICIT`.
 struct Step {
   std::string name;
@@ -312,6 +323,9 @@ struct Step {
   /// over, as Abaqus does).
   std::optional<GeneralContact> contact;
   std::vector<ContactPair> contact_pairs;  ///< `*CONTACT PAIR` given in this step
+  /// `*DIAGNOSTICS` given in this step; those of earlier steps (or the model data) apply
+  /// otherwise (Model::diagnostics_of).
+  std::optional<Diagnostics> diagnostics;
   std::vector<OutputRequest> outputs;
 };
 
@@ -359,6 +373,7 @@ struct Model {
   // --- contact, rigid bodies, point inertia --------------------------------------------------
   std::vector<SurfaceInteraction> surface_interactions;
   std::vector<ContactPair> contact_pairs;  ///< model-level `*CONTACT PAIR` (CalculiX style)
+  Diagnostics diagnostics;                 ///< model-level `*DIAGNOSTICS` (or the defaults)
   std::vector<RigidBody> rigid_bodies;
   std::vector<PointInertia> point_inertias;
 
@@ -388,6 +403,9 @@ struct Model {
   Index find_surface(const std::string& name) const;
   Index find_amplitude(const std::string& name) const;
   Index find_material(const std::string& name) const;
+  /// The `*DIAGNOSTICS` settings in effect in step `step`: the latest given in that step or an
+  /// earlier one, else the model data's.
+  const Diagnostics& diagnostics_of(int step) const;
 };
 
 /// Upper-case copy of an ASCII string (names and keywords are case-insensitive).

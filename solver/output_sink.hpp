@@ -2,8 +2,10 @@
 /// \file What the solver tells the outside world: frames, history, status lines, messages.
 /// `io` implements it (HDF5 + XDMF + .sta + .msg); tests implement it to capture data.
 
+#include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/timer.hpp"
@@ -53,6 +55,26 @@ struct StatusLine {
   Energies energies;
 };
 
+/// One column of a ResultTable: integers (deck ids, codes) or reals, `width` values per row.
+struct TableColumn {
+  std::string name;
+  Index width = 1;
+  bool integer = false;           ///< `ids` holds the data, else `values`
+  std::vector<std::int64_t> ids;  ///< integer column (rows × width)
+  std::vector<Real> values;       ///< real column (rows × width)
+  std::string description;        ///< units or the meaning of codes (an attribute)
+};
+
+/// A table of per-node results of the setup (initial overclosures): written to the results
+/// file as a group of column datasets at `path` (below the file root).
+struct ResultTable {
+  std::string path;  ///< e.g. "overclosure/step_1/adjusted"
+  Index rows = 0;
+  std::vector<TableColumn> columns;
+  std::string description;
+  std::vector<std::pair<std::string, std::string>> attributes;  ///< more string attributes
+};
+
 /// Severity of a .msg entry.
 enum class Severity { Info, Note, Warning, Error };
 
@@ -80,6 +102,10 @@ class OutputSink {
   virtual void status(const StatusLine& line) = 0;
   /// One .msg entry.
   virtual void message(Severity severity, const std::string& text) = 0;
+  /// A summary line in the .sta file between status lines (initial overclosures).
+  virtual void status_note(const std::string& text) { (void)text; }
+  /// A table of setup results (written once; sinks that keep no files ignore it).
+  virtual void write_table(const ResultTable& table) { (void)table; }
   /// Called when the run ends, also after an error (`error` then says what happened),
   /// with the per-phase timers and the element-cycles per second of the time loop.
   virtual void end_run(RunStatus status, const std::string& error, const PhaseTimers& timers,

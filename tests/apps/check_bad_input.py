@@ -78,6 +78,13 @@ CASES = {
         [("2, 1.0x, 0, 0", "*NODE"),
          ("*SOLID SECTION, ELSET=CUBE, MATERIAL=IRON", "*SOLID SECTION"),
          ("TOP, 1, 3", "*BOUNDARY")]),
+    # *DIAGNOSTICS (issue 5): a bad level, a bad switch and an unknown parameter, all reported.
+    "h_bad_diagnostics": (
+        {"BOTTOM, 1, 3": "BOTTOM, 1, 3\n*DIAGNOSTICS, CONTACT INITIAL OVERCLOSURE=FULL\n"
+                         "*DIAGNOSTICS, DETECT CROSSED SURFACES=MAYBE\n*DIAGNOSTICS, WARNING POINT=3"},
+        [("*DIAGNOSTICS, CONTACT INITIAL OVERCLOSURE=FULL", "*DIAGNOSTICS"),
+         ("*DIAGNOSTICS, DETECT CROSSED SURFACES=MAYBE", "*DIAGNOSTICS"),
+         ("*DIAGNOSTICS, WARNING POINT=3", "*DIAGNOSTICS")]),
 }
 
 failures = []

@@ -1,0 +1,256 @@
+#include "solver/overclosure_report.hpp"
+
+#include <cstdio>
+
+namespace xpl {
+
+namespace {
+
+/// Face codes of the tables: hex S1..S6 = 1..6, shell SPOS = 7, SNEG = 8.
+constexpr const char* FACE_CODES = "1..6: S1..S6 of a C3D8R; 7: SPOS, 8: SNEG of an S4R";
+
+std::string real_text(Real v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4e", v);
+  return buffer;
+}
+
+std::string vector_text(const contact::Vec3& v) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "(%.4f, %.4f, %.4f)", v[0], v[1], v[2]);
+  return buffer;
+}
+
+std::int64_t face_code(const contact::ContactFace& face) {
+  if (!face.shell) return face.face + 1;
+  return face.face == contact::SHELL_SPOS ? 7 : 8;
+}
+
+/// Writes the pass's records as tables of the results file.
+class Tables {
+ public:
+  Tables(const contact::ContactEngine& engine, const Model& model, int step)
+      : m_engine(engine),
+        m_model(model),
+        m_prefix("overclosure/step_" + std::to_string(step + 1)) {}
+
+  ResultTable table(const std::string& name, Index rows, const std::string& description) const {
+    ResultTable t;
+    t.path = m_prefix + "/" + name;
+    t.rows = rows;
+    t.description = description;
+    std::string names;
+    const contact::ContactDomain& domain = m_engine.domain();
+    for (Index k = 0; k < domain.surface_count(); ++k)
+      names += (k > 0 ? "," : "") + domain.surface_name(k);
+    t.attributes.emplace_back("surface_names", names);
+    return t;
+  }
+  static TableColumn ids(const std::string& name, const std::string& description) {
+    TableColumn c;
+    c.name = name;
+    c.integer = true;
+    c.description = description;
+    return c;
+  }
+  static TableColumn reals(const std::string& name, const std::string& description,
+                           Index width = 1) {
+    TableColumn c;
+    c.name = name;
+    c.width = width;
+    c.description = description;
+    return c;
+  }
+  /// Appends the master element id and face code of contact face f to two columns.
+  void add_face(Index f, TableColumn& element, TableColumn& face) const {
+    const contact::ContactFace& cf = m_engine.domain().faces()[f];
+    element.ids.push_back(m_model.element_ids[cf.element]);
+    face.ids.push_back(face_code(cf));
+  }
+  std::int64_t node_id(Index node) const { return m_model.node_ids[node]; }
+
+ private:
+  const contact::ContactEngine& m_engine;
+  const Model& m_model;
+  std::string m_prefix;
+};
+
+std::string surface_text(const contact::ContactDomain& domain, Index surface) {
+  return surface == NO_INDEX ? std::string("?") : domain.surface_name(surface);
+}
+
+}  // namespace
+
+std::string face_label(contact::ElementKind kind, int face) {
+  if (kind == contact::ElementKind::Shell) return face == contact::SHELL_SPOS ? "SPOS" : "SNEG";
+  std::string label(1, 'S');  // (not "S" + …: GCC 12 warns falsely on that, -Wrestrict)
+  label += std::to_string(face + 1);
+  return label;
+}
+
+void report_overclosures(const contact::OverclosureReport& report,
+                         const contact::ContactEngine& engine, const Model& model, int step,
+                         const Diagnostics& diagnostics, const AdjustmentEffect& effect,
+                         OutputSink& sink) {
+  const contact::ContactDomain& domain = engine.domain();
+  const std::string step_name = model.steps[step].name;
+  auto face_text = [&](Index f) {
+    const contact::ContactFace& cf = domain.faces()[f];
+    return "face " +
+           face_label(cf.shell ? contact::ElementKind::Shell : contact::ElementKind::Hex, cf.face) +
+           " of element " + std::to_string(model.element_ids[cf.element]);
+  };
+  auto node_text = [&](Index node) { return "node " + std::to_string(model.node_ids[node]); };
+
+  if (diagnostics.overclosure_detail) {
+    for (const contact::AdjustedNode& a : report.adjusted)
+      sink.message(Severity::Info, "initial overclosure: " + node_text(a.node) +
+                                       " (slave surface " + surface_text(domain, a.slave_surface) +
+                                       ") adjusted by " + real_text(a.distance) + " m along " +
+                                       vector_text(a.direction) + "; it penetrated " +
+                                       face_text(a.face) + " (master surface " +
+                                       surface_text(domain, a.master_surface) + ") by " +
+                                       real_text(a.penetration) + " m");
+    for (const contact::OffsetNode& o : report.offsets)
+      sink.message(Severity::Info, "initial overclosure: " + node_text(o.node) +
+                                       " (slave surface " + surface_text(domain, o.slave_surface) +
+                                       ") keeps a temporary contact offset d0 = " +
+                                       real_text(o.offset) + " m against " + face_text(o.face) +
+                                       " (reason: " + contact::offset_reason_name(o.reason) +
+                                       "); no force until it penetrates further, and d0 "
+                                       "shrinks as the surfaces separate");
+    for (const contact::IgnoredNode& g : report.ignored)
+      sink.message(Severity::Warning,
+                   "initial overclosure: " + node_text(g.node) + " (slave surface " +
+                       surface_text(domain, g.slave_surface) + ") penetrates " + face_text(g.face) +
+                       " by " + real_text(g.depth) + " m, deeper than the automatic limit " +
+                       real_text(g.limit) +
+                       " m (15 % of the facet size): not adjusted; the penalty will push it "
+                       "out from the first increment. Fix the mesh or use *CONTACT CLEARANCE");
+  } else if (!report.ignored.empty()) {
+    sink.message(Severity::Warning,
+                 std::to_string(report.ignored.size()) +
+                     " slave node(s) penetrate deeper than the automatic limit and are not "
+                     "adjusted (CONTACT INITIAL OVERCLOSURE=SUMMARY: see the results file, "
+                     "/overclosure, for the list)");
+  }
+  // Crossed surfaces are warnings at both levels (C5): they point at modelling errors.
+  constexpr std::size_t MAX_CROSSED_LISTED = 100;
+  for (std::size_t k = 0; k < report.crossed.size() && k < MAX_CROSSED_LISTED; ++k) {
+    const contact::CrossedEdge& c = report.crossed[k];
+    sink.message(Severity::Warning,
+                 "crossed surfaces: slave nodes " + std::to_string(model.node_ids[c.node_a]) +
+                     " and " + std::to_string(model.node_ids[c.node_b]) +
+                     " (joined by a facet edge) lie on opposite sides of " + face_text(c.face) +
+                     "; contact may hold them on the wrong sides");
+  }
+  if (report.crossed.size() > MAX_CROSSED_LISTED)
+    sink.message(Severity::Warning, std::to_string(report.crossed.size()) +
+                                        " facet edges cross a master surface; the first " +
+                                        std::to_string(MAX_CROSSED_LISTED) + " are listed above");
+  for (Index e : report.refused_elements)
+    sink.message(Severity::Warning,
+                 "initial overclosure: moving the nodes of element " +
+                     std::to_string(model.element_ids[e]) +
+                     " would invert it or halve a corner volume: not adjusted, its nodes keep "
+                     "offsets (reason: distortion)");
+
+  std::string summary = "initial overclosures, step " + std::to_string(step + 1) + " (" +
+                        step_name + "): largest " + real_text(report.max_overclosure) + " m; " +
+                        std::to_string(report.adjusted.size()) + " node(s) adjusted, " +
+                        std::to_string(report.offsets.size()) + " offset(s), " +
+                        std::to_string(report.ignored.size()) + " ignored, " +
+                        std::to_string(report.crossed.size()) + " crossed edge(s)";
+  summary += diagnostics.detect_crossed_surfaces
+                 ? " (crossed-surface check " + real_text(report.crossed_seconds) + " s)"
+                 : " (crossed-surface check off)";
+  summary += "; pass " + real_text(report.seconds) + " s";
+  sink.status_note(summary);
+  sink.message(Severity::Info, summary);
+  if (!report.adjusted.empty())
+    sink.message(Severity::Info, "adjusted elements: smallest scaled corner Jacobian " +
+                                     real_text(report.quality_before) + " before, " +
+                                     real_text(report.quality_after) + " after; stable increment " +
+                                     real_text(effect.dt_before) + " s before, " +
+                                     real_text(effect.dt_after) + " s after (" +
+                                     std::to_string(report.passes) + " adjustment pass(es))");
+
+  // Tables.
+  Tables tables(engine, model, step);
+  {
+    ResultTable t = tables.table("adjusted", static_cast<Index>(report.adjusted.size()),
+                                 "slave nodes moved onto the master surface (strain free)");
+    TableColumn node = Tables::ids("node", "deck id of the slave node");
+    TableColumn element = Tables::ids("master_element", "deck id of the master element");
+    TableColumn face = Tables::ids("master_face", FACE_CODES);
+    TableColumn slave = Tables::ids("slave_surface", "index into attribute surface_names");
+    TableColumn penetration = Tables::reals("penetration", "m, as read");
+    TableColumn distance = Tables::reals("distance", "m, length of the move");
+    TableColumn direction = Tables::reals("direction", "unit vector of the move", 3);
+    for (const contact::AdjustedNode& a : report.adjusted) {
+      node.ids.push_back(tables.node_id(a.node));
+      tables.add_face(a.face, element, face);
+      slave.ids.push_back(a.slave_surface);
+      penetration.values.push_back(a.penetration);
+      distance.values.push_back(a.distance);
+      for (int d = 0; d < 3; ++d) direction.values.push_back(a.direction[d]);
+    }
+    t.columns = {node, element, face, slave, penetration, distance, direction};
+    sink.write_table(t);
+  }
+  {
+    ResultTable t = tables.table("offsets", static_cast<Index>(report.offsets.size()),
+                                 "temporary contact offsets d0 (unresolved penetrations)");
+    TableColumn node = Tables::ids("node", "deck id of the slave node");
+    TableColumn element = Tables::ids("master_element", "deck id of the master element");
+    TableColumn face = Tables::ids("master_face", FACE_CODES);
+    TableColumn slave = Tables::ids("slave_surface", "index into attribute surface_names");
+    TableColumn offset = Tables::reals("offset", "d0, m");
+    TableColumn reason = Tables::ids(
+        "reason", "0 BC, 1 rigid, 2 pinched, 3 distortion, 4 conflict, 5 later step, 6 import");
+    for (const contact::OffsetNode& o : report.offsets) {
+      node.ids.push_back(tables.node_id(o.node));
+      tables.add_face(o.face, element, face);
+      slave.ids.push_back(o.slave_surface);
+      offset.values.push_back(o.offset);
+      reason.ids.push_back(static_cast<std::int64_t>(o.reason));
+    }
+    t.columns = {node, element, face, slave, offset, reason};
+    sink.write_table(t);
+  }
+  {
+    ResultTable t = tables.table("ignored", static_cast<Index>(report.ignored.size()),
+                                 "penetrations deeper than the automatic limit (not adjusted)");
+    TableColumn node = Tables::ids("node", "deck id of the slave node");
+    TableColumn element = Tables::ids("master_element", "deck id of the master element");
+    TableColumn face = Tables::ids("master_face", FACE_CODES);
+    TableColumn depth = Tables::reals("depth", "m");
+    TableColumn limit = Tables::reals("limit", "m");
+    for (const contact::IgnoredNode& g : report.ignored) {
+      node.ids.push_back(tables.node_id(g.node));
+      tables.add_face(g.face, element, face);
+      depth.values.push_back(g.depth);
+      limit.values.push_back(g.limit);
+    }
+    t.columns = {node, element, face, depth, limit};
+    sink.write_table(t);
+  }
+  {
+    ResultTable t = tables.table("crossed", static_cast<Index>(report.crossed.size()),
+                                 "slave facet edges whose nodes lie on opposite sides of a "
+                                 "master face");
+    TableColumn a = Tables::ids("node_a", "deck id");
+    TableColumn b = Tables::ids("node_b", "deck id");
+    TableColumn element = Tables::ids("master_element", "deck id of the master element");
+    TableColumn face = Tables::ids("master_face", FACE_CODES);
+    for (const contact::CrossedEdge& c : report.crossed) {
+      a.ids.push_back(tables.node_id(c.node_a));
+      b.ids.push_back(tables.node_id(c.node_b));
+      tables.add_face(c.face, element, face);
+    }
+    t.columns = {a, b, element, face};
+    sink.write_table(t);
+  }
+}
+
+}  // namespace xpl
