@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "elements/element_coloring.hpp"
 #include "elements/hex8_geometry.hpp"
@@ -296,6 +298,29 @@ void Hex8rBlock::gather_output(std::vector<Real>& stress, std::vector<Real>& vol
     for (int c = 0; c < 6; ++c) stress[e * 6 + c] = m_stress[(b * 6 + c) * W + l];
     volume[e] = m_volume[b * W + l];
   }
+}
+
+void Hex8rBlock::set_stress(std::span<const Real> stress) {
+  for (Index e : m_element_index) {
+    if (static_cast<std::size_t>(e) * 6 + 6 > stress.size()) {
+      throw std::invalid_argument("Hex8rBlock::set_stress: " + std::to_string(stress.size()) +
+                                  " values do not reach the row of element " + std::to_string(e) +
+                                  "; expected n_elements × 6");
+    }
+  }
+  for (Index i = 0; i < size(); ++i) {
+    const Index slot = m_slot[i];
+    const Index b = slot / W, l = slot % W;
+    const std::size_t e = static_cast<std::size_t>(m_element_index[i]);
+    for (int c = 0; c < 6; ++c) m_stress[(b * 6 + c) * W + l] = stress[e * 6 + c];
+  }
+  // Padding lanes compute a copy of lane 0 of their batch: give them its stress as well.
+  const Index n_batches = m_color_batches.back();
+  for (Index b = 0; b < n_batches; ++b)
+    for (int l = 1; l < W; ++l) {
+      if (m_lane_owner[b * W + l] != NO_INDEX) continue;
+      for (int c = 0; c < 6; ++c) m_stress[(b * 6 + c) * W + l] = m_stress[(b * 6 + c) * W];
+    }
 }
 
 std::array<Real, 6> Hex8rBlock::stress(Index i) const {

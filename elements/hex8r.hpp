@@ -9,6 +9,7 @@
 
 #include <array>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "common/types.hpp"
@@ -79,6 +80,15 @@ class Hex8rBlock {
   /// Writes stress (row e·6.., S11 S22 S33 S12 S13 S23) and current volume of every element
   /// of the block at its model index into model-sized arrays.
   void gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const;
+
+  /// Sets the stress of every element of the block from model-sized rows (n_elements × 6,
+  /// row e·6.., S11 S22 S33 S12 S13 S23, global axes, Pa): the inverse of gather_output's
+  /// stress part, for a run that starts from an imported state. Rows of elements outside the
+  /// block are not read. The accumulated hourglass forces are left as they are (zero on a new
+  /// block: result files do not hold them, so an imported state starts without hourglass
+  /// resistance), and so is the volume that gather_output reports (set by the next
+  /// internal-force pass).
+  void set_stress(std::span<const Real> stress);
 
   /// Stress of block element i (constructor order), for tests.
   std::array<Real, 6> stress(Index i) const;

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "common/types.hpp"
@@ -102,6 +103,28 @@ class Shell4rBlock {
                      std::vector<Real>& bottom, std::vector<Real>& top,
                      std::vector<Real>& thickness) const;
 
+  /// Sets the stresses of every block element from model-sized rows (n_elements × 6, row
+  /// e·6.., S11 S22 S33 S12 S13 S23, Pa) at the middle, bottom (SNEG) and top (SPOS) section
+  /// points, given in the output local axes of gather_output in the configuration `position`
+  /// (n_nodes × 3, m): the inverse of gather_output's stresses, for a run that starts from an
+  /// imported state. Rows of elements outside the block are not read.
+  ///
+  /// In-plane stresses (S11 S22 S12) are rotated into the element's corotational frame at
+  /// `position` and interpolated linearly in ζ between the bottom and middle values (ζ ≤ 0)
+  /// and between the middle and top values (ζ ≥ 0), ζ ∈ [−1, 1] being the through-thickness
+  /// coordinate of an integration point: exact for membrane + bending (stresses linear
+  /// through the thickness, the only distribution an elastic section holds), and the three
+  /// section points, which are integration points (ζ = −1, 0, 1), get exactly the given
+  /// values. A membrane-only element (one point) takes the middle values. The transverse
+  /// shear is one value per element, constant through the thickness (κ G γ as the element
+  /// computes it): it is taken from S13 S23 of the middle rows; S33 and the transverse shear
+  /// of the bottom and top rows are not read (gather_output writes S33 = 0 and the same
+  /// shear at all three points). Thickness and hourglass resultants are left as they are
+  /// (the section thickness and zero on a new block: result files do not hold the hourglass
+  /// resultants).
+  void set_output_stress(const NodalVectors& position, std::span<const Real> middle,
+                         std::span<const Real> bottom, std::span<const Real> top);
+
  private:
   static constexpr int W = simd::W;
   enum Constant {
@@ -123,6 +146,8 @@ class Shell4rBlock {
   void compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
                      const Real* const w[3], Real dt, Real* const f[3], Real* const m[3]);
   std::size_t slot_of(Index i) const { return static_cast<std::size_t>(m_slot[i]); }
+  /// Number of through-thickness points of the element in batch b, lane l.
+  int points_of(std::size_t b, std::size_t l) const;
 
   std::vector<Index> m_element_index;
   int m_points = 1;  ///< integration points of the block (max over elements)

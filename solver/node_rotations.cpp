@@ -1,6 +1,8 @@
 #include "solver/node_rotations.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace xpl {
 
@@ -41,6 +43,24 @@ void NodeRotations::rotation_vectors(NodalVectors& rotation) const {
     rotation(i, 0) = factor * x;
     rotation(i, 1) = factor * y;
     rotation(i, 2) = factor * z;
+  }
+}
+
+void NodeRotations::set(const NodalVectors& rotation_vectors) {
+  const auto n = static_cast<Index>(m_w.size());
+  if (rotation_vectors.rows() != n) {
+    throw std::invalid_argument("NodeRotations::set: " + std::to_string(rotation_vectors.rows()) +
+                                " rotation vectors for " + std::to_string(n) + " nodes");
+  }
+  for (Index i = 0; i < n; ++i) {
+    const Real x = rotation_vectors(i, 0), y = rotation_vectors(i, 1), z = rotation_vectors(i, 2);
+    const Real angle = std::sqrt(x * x + y * y + z * z);
+    // q = (cos θ/2, sin(θ/2) θ̂); sin(θ/2)/θ → 1/2 as θ → 0.
+    const Real s = angle > 0.0 ? std::sin(0.5 * angle) / angle : 0.5;
+    m_w[i] = std::cos(0.5 * angle);
+    m_x[i] = s * x;
+    m_y[i] = s * y;
+    m_z[i] = s * z;
   }
 }
 

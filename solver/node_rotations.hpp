@@ -20,6 +20,12 @@ class NodeRotations {
   /// Rotation vectors (axis × angle, |angle| ≤ π) into `rotation` (n_nodes × 3).
   void rotation_vectors(NodalVectors& rotation) const;
 
+  /// Sets every node's rotation from rotation vectors (axis × angle, rad; n_nodes × 3), e.g.
+  /// UR of an imported state: the inverse of rotation_vectors (a vector of angle > π gives
+  /// the same rotation, which rotation_vectors returns with the angle 2π − |θ|). Throws
+  /// std::invalid_argument if the number of rows is not the node count.
+  void set(const NodalVectors& rotation_vectors);
+
  private:
   std::vector<Real> m_w, m_x, m_y, m_z;
 };

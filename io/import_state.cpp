@@ -1,0 +1,457 @@
+#include "io/import_state.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <type_traits>
+#include <unordered_map>
+
+#include "io/h5_handles.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+/// What every mesh mismatch expects.
+const char* const SAME_MESH =
+    "expected the result file of a run on the same mesh (the same node and element ids, "
+    "element types, connectivity and reference coordinates)";
+/// What every defect of the file's structure expects.
+const char* const XPL_FILE = "expected the .h5 result file of an earlier xpl run";
+
+/// Relative tolerance on the reference coordinates, times the model size.
+constexpr Real COORDINATE_TOLERANCE = 1e-9;
+
+/// Element types a result file can hold, as /mesh/TYPE groups.
+constexpr ElementType ELEMENT_TYPES[] = {ElementType::C3D8R, ElementType::S4R};
+
+/// Thrown inside the reader; read_imported_state adds the file name.
+class Refusal : public std::runtime_error {
+ public:
+  Refusal(const std::string& problem, std::string expected)
+      : std::runtime_error(problem), m_expected(std::move(expected)) {}
+  const std::string& expected() const { return m_expected; }
+
+ private:
+  std::string m_expected;
+};
+
+[[noreturn]] void refuse(const std::string& problem, std::string expected) {
+  throw Refusal(problem, std::move(expected));
+}
+
+std::string format_reals(const Real* values, int count) {
+  std::string out = "(";
+  for (int i = 0; i < count; ++i) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", values[i]);
+    out += (i > 0 ? ", " : "") + std::string(text);
+  }
+  return out + ")";
+}
+
+std::string format_ids(const std::vector<ExternalId>& ids) {
+  std::string out;
+  for (ExternalId id : ids) out += (out.empty() ? "" : ", ") + std::to_string(id);
+  return out;
+}
+
+/// Whether the link `path` (absolute) exists, every intermediate group included.
+bool has_link(hid_t file, const std::string& path) {
+  std::string prefix;
+  std::stringstream parts(path);
+  for (std::string part; std::getline(parts, part, '/');) {
+    if (part.empty()) continue;
+    prefix += "/" + part;
+    const htri_t exists = H5Lexists(file, prefix.c_str(), H5P_DEFAULT);
+    if (exists < 0) h5::fail("cannot look up " + prefix);
+    if (exists == 0) return false;
+  }
+  return true;
+}
+
+/// The values (row-major) of the dataset `path`: one-dimensional when `width` is 0, else
+/// rows × width; `rows` empty accepts any number of rows. Ids are read as integers, fields as
+/// floats; a missing dataset or another shape is refused.
+template <class T>
+std::vector<T> read_array(hid_t file, const std::string& path, std::optional<hsize_t> rows,
+                          hsize_t width) {
+  if (!has_link(file, path)) refuse("the file has no " + path, XPL_FILE);
+  const h5::Handle dataset{h5::check_id(H5Dopen2(file, path.c_str(), H5P_DEFAULT), path), H5Dclose};
+  const h5::Handle type{h5::check_id(H5Dget_type(dataset.get()), path), H5Tclose};
+  constexpr bool integer = std::is_integral_v<T>;
+  const H5T_class_t type_class = H5Tget_class(type.get());
+  if (type_class != (integer ? H5T_INTEGER : H5T_FLOAT)) {
+    refuse(path + " is not " + (integer ? "an integer" : "a floating-point") + " dataset",
+           XPL_FILE);
+  }
+  const h5::Handle space{h5::check_id(H5Dget_space(dataset.get()), path), H5Sclose};
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank < 0 || H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0) {
+    h5::fail("cannot read the shape of " + path);
+  }
+  const bool shape_ok =
+      (width == 0 ? rank == 1 : rank == 2 && dims[1] == width) && (!rows || dims[0] == *rows);
+  if (!shape_ok) {
+    std::string shape, want = rows ? std::to_string(*rows) : "n";
+    for (hsize_t d : dims) shape += (shape.empty() ? "" : " × ") + std::to_string(d);
+    if (width > 0) want += " × " + std::to_string(width);
+    refuse(path + " has shape (" + shape + ")", "expected (" + want + ") " + "for this model");
+  }
+  std::vector<T> values(static_cast<std::size_t>(dims.empty() ? 0 : dims[0]) *
+                        static_cast<std::size_t>(std::max<hsize_t>(width, 1)));
+  if (!values.empty()) {
+    const hid_t memory_type = integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
+    h5::check(H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+              "cannot read " + path);
+  }
+  return values;
+}
+
+/// Rows of the file mapped onto model indices, for nodes or elements ("node", "element").
+/// Refuses ids that appear twice, model ids missing from the file (first in model order)
+/// and file ids missing from the model.
+std::vector<Index> map_rows(const std::vector<std::int64_t>& file_ids,
+                            const std::vector<ExternalId>& model_ids, const std::string& what,
+                            const std::string& path) {
+  std::unordered_map<ExternalId, Index> file_row;
+  file_row.reserve(file_ids.size());
+  for (std::size_t r = 0; r < file_ids.size(); ++r) {
+    if (!file_row.emplace(file_ids[r], static_cast<Index>(r)).second) {
+      refuse(what + " " + std::to_string(file_ids[r]) + " appears twice in " + path, XPL_FILE);
+    }
+  }
+  std::vector<Index> model_index(file_ids.size(), NO_INDEX);
+  for (std::size_t i = 0; i < model_ids.size(); ++i) {
+    const auto found = file_row.find(model_ids[i]);
+    if (found == file_row.end()) {
+      refuse(what + " " + std::to_string(model_ids[i]) + " of the model is not in the file (" +
+                 path + ")",
+             SAME_MESH);
+    }
+    model_index[static_cast<std::size_t>(found->second)] = static_cast<Index>(i);
+  }
+  for (std::size_t r = 0; r < file_ids.size(); ++r) {
+    if (model_index[r] == NO_INDEX) {
+      refuse(what + " " + std::to_string(file_ids[r]) + " of the file (" + path +
+                 ") is not in the model",
+             SAME_MESH);
+    }
+  }
+  return model_index;
+}
+
+/// Model size for the coordinate tolerance: the bounding-box diagonal (the largest
+/// coordinate magnitude for a single point). Plain loops: GCC 12 warns inside its own
+/// AVX-512 header on Eigen's vectorised reductions (GCC bug 105593).
+Real model_size(const NodalVectors& x) {
+  Real diagonal_squared = 0.0, largest = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    Real low = 0.0, high = 0.0;
+    for (Eigen::Index n = 0; n < x.rows(); ++n) {
+      low = n == 0 ? x(n, c) : std::min(low, x(n, c));
+      high = n == 0 ? x(n, c) : std::max(high, x(n, c));
+    }
+    diagonal_squared += (high - low) * (high - low);
+    largest = std::max({largest, std::abs(low), std::abs(high)});
+  }
+  return diagonal_squared > 0.0 ? std::sqrt(diagonal_squared) : largest;
+}
+
+void check_coordinates(const std::vector<Real>& file_xyz, const std::vector<Index>& node_of_row,
+                       const Model& model) {
+  const Real size = model_size(model.coordinates);
+  const Real tolerance = COORDINATE_TOLERANCE * size;
+  // Reported in model order: the first mismatching node of the deck.
+  std::vector<std::size_t> row_of(node_of_row.size());
+  for (std::size_t r = 0; r < node_of_row.size(); ++r) {
+    row_of[static_cast<std::size_t>(node_of_row[r])] = r;
+  }
+  for (Index n = 0; n < model.node_count(); ++n) {
+    const Real* in_file = &file_xyz[row_of[static_cast<std::size_t>(n)] * 3];
+    const Real in_model[3] = {model.coordinates(n, 0), model.coordinates(n, 1),
+                              model.coordinates(n, 2)};
+    for (int c = 0; c < 3; ++c) {
+      if (std::abs(in_file[c] - in_model[c]) <= tolerance) continue;
+      char limit[64];
+      std::snprintf(limit, sizeof limit, "%.3g m", tolerance);
+      refuse("node " + std::to_string(model.node_ids[static_cast<std::size_t>(n)]) + " is at " +
+                 format_reals(in_model, 3) + " in the model but at " + format_reals(in_file, 3) +
+                 " in the file (/mesh/coordinates)",
+             std::string(SAME_MESH) + "; coordinates may differ by " + limit +
+                 " (1e-9 of the model size)");
+    }
+  }
+}
+
+/// Checks /mesh/TYPE/element_ids and connectivity of every type group against the model.
+void check_element_types(hid_t file, const Model& model, const std::vector<std::int64_t>& node_ids,
+                         const std::unordered_map<ExternalId, Index>& element_of_id) {
+  std::vector<bool> typed(static_cast<std::size_t>(model.element_count()), false);
+  for (ElementType type : ELEMENT_TYPES) {
+    const std::string group = std::string("/mesh/") + element_type_name(type);
+    if (!has_link(file, group)) continue;
+    const auto ids = read_array<std::int64_t>(file, group + "/element_ids", std::nullopt, 0);
+    const auto corners = static_cast<hsize_t>(nodes_per_element(type));
+    const auto connectivity =
+        read_array<std::int64_t>(file, group + "/connectivity", ids.size(), corners);
+    for (std::size_t j = 0; j < ids.size(); ++j) {
+      const auto found = element_of_id.find(ids[j]);
+      if (found == element_of_id.end()) {
+        refuse(group + "/element_ids lists element " + std::to_string(ids[j]) +
+                   ", which is not in /mesh/element_ids",
+               XPL_FILE);
+      }
+      const Index e = found->second;
+      const ElementType model_type = model.element_types[static_cast<std::size_t>(e)];
+      if (model_type != type) {
+        refuse("element " + std::to_string(ids[j]) + " is " + element_type_name(type) +
+                   " in the file but " + element_type_name(model_type) + " in the model",
+               SAME_MESH);
+      }
+      typed[static_cast<std::size_t>(e)] = true;
+      std::vector<ExternalId> in_file, in_model;
+      for (hsize_t a = 0; a < corners; ++a) {
+        const std::int64_t row = connectivity[j * corners + a];
+        if (row < 0 || static_cast<std::size_t>(row) >= node_ids.size()) {
+          refuse(group + "/connectivity of element " + std::to_string(ids[j]) + " names node row " +
+                     std::to_string(row) + ", outside /mesh/node_ids",
+                 XPL_FILE);
+        }
+        in_file.push_back(node_ids[static_cast<std::size_t>(row)]);
+        in_model.push_back(model.node_ids[static_cast<std::size_t>(model.nodes_of(e)[a])]);
+      }
+      if (in_file != in_model) {
+        refuse("element " + std::to_string(ids[j]) + " has nodes " + format_ids(in_file) +
+                   " in the file but " + format_ids(in_model) + " in the model",
+               SAME_MESH);
+      }
+    }
+  }
+  for (Index e = 0; e < model.element_count(); ++e) {
+    if (typed[static_cast<std::size_t>(e)]) continue;
+    refuse("element " + std::to_string(model.element_ids[static_cast<std::size_t>(e)]) +
+               " has no element type in the file (no /mesh/C3D8R or /mesh/S4R lists it)",
+           XPL_FILE);
+  }
+}
+
+/// Name of the last frame: the highest all-digit name below /frames.
+std::string last_frame(hid_t file) {
+  const char* const no_frames = "expected a result file with at least one field output frame";
+  if (!has_link(file, "/frames")) refuse("the file has no frames (/frames)", no_frames);
+  const h5::Handle group{h5::check_id(H5Gopen2(file, "/frames", H5P_DEFAULT), "/frames"), H5Gclose};
+  H5G_info_t info;
+  h5::check(H5Gget_info(group.get(), &info), "cannot list /frames");
+  std::string best;
+  long long best_number = -1;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t length = H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                              nullptr, 0, H5P_DEFAULT);
+    if (length < 0) h5::fail("cannot list /frames");
+    std::string name(static_cast<std::size_t>(length) + 1, '\0');
+    H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
+                       H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(length));
+    if (name.empty() || name.size() > 15 ||
+        name.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    const long long number = std::stoll(name);
+    if (number > best_number) {
+      best_number = number;
+      best = name;
+    }
+  }
+  if (best.empty()) refuse("the file has no frames (/frames is empty)", no_frames);
+  return best;
+}
+
+/// A scalar numeric attribute of the object at `path`, converted to T (double or int64).
+template <class T>
+T numeric_attribute(hid_t file, const std::string& path, const char* name) {
+  const htri_t exists = H5Aexists_by_name(file, path.c_str(), name, H5P_DEFAULT);
+  if (exists < 0) h5::fail("cannot look up attribute " + std::string(name) + " of " + path);
+  if (exists == 0) refuse(path + " has no attribute " + name, XPL_FILE);
+  const h5::Handle attribute{
+      h5::check_id(H5Aopen_by_name(file, path.c_str(), name, H5P_DEFAULT, H5P_DEFAULT), name),
+      H5Aclose};
+  const h5::Handle space{h5::check_id(H5Aget_space(attribute.get()), name), H5Sclose};
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) {
+    refuse("attribute " + std::string(name) + " of " + path + " is not a single value", XPL_FILE);
+  }
+  T value{};
+  const hid_t type = std::is_integral_v<T> ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
+  h5::check(H5Aread(attribute.get(), type, &value),
+            "cannot read attribute " + std::string(name) + " of " + path);
+  return value;
+}
+
+/// The root attribute "status" (running, completed, checked, failed), or "" if unreadable.
+std::string run_status(hid_t file) {
+  if (H5Aexists(file, "status") <= 0) return "";
+  const h5::Handle attribute{h5::check_id(H5Aopen(file, "status", H5P_DEFAULT), "status"),
+                             H5Aclose};
+  const h5::Handle type{h5::check_id(H5Tcopy(H5T_C_S1), "status"), H5Tclose};
+  h5::check(H5Tset_size(type.get(), H5T_VARIABLE), "status");
+  h5::check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "status");  // as the writer stores it
+  char* text = nullptr;
+  if (H5Aread(attribute.get(), type.get(), static_cast<void*>(&text)) < 0) {
+    H5Eclear2(H5E_DEFAULT);
+    return "";
+  }
+  std::string status = text != nullptr ? text : "";
+  H5free_memory(text);
+  return status;
+}
+
+/// A nodal field of the frame (file rows → model rows); refuses non-finite values.
+NodalVectors read_nodal(hid_t file, const std::string& frame, const char* name,
+                        const std::vector<Index>& node_of_row, const Model& model) {
+  const std::string path = frame + "/" + name;
+  const auto values = read_array<Real>(file, path, node_of_row.size(), 3);
+  NodalVectors field(model.node_count(), 3);
+  for (std::size_t r = 0; r < node_of_row.size(); ++r) {
+    const Index n = node_of_row[r];
+    for (int c = 0; c < 3; ++c) {
+      const Real v = values[r * 3 + c];
+      if (!std::isfinite(v)) {
+        refuse(path + " is not finite at node " +
+                   std::to_string(model.node_ids[static_cast<std::size_t>(n)]),
+               "expected the state of a run that did not go unstable");
+      }
+      field(n, c) = v;
+    }
+  }
+  return field;
+}
+
+/// An element field of the frame (n_elements × 6, file rows → model rows); refuses
+/// non-finite values in the rows of the elements `check_row` accepts.
+template <class CheckRow>
+std::vector<Real> read_cells(hid_t file, const std::string& path,
+                             const std::vector<Index>& element_of_row, const Model& model,
+                             CheckRow check_row) {
+  const auto values = read_array<Real>(file, path, element_of_row.size(), 6);
+  std::vector<Real> field(values.size());
+  for (std::size_t r = 0; r < element_of_row.size(); ++r) {
+    const auto e = static_cast<std::size_t>(element_of_row[r]);
+    for (int c = 0; c < 6; ++c) {
+      const Real v = values[r * 6 + c];
+      if (check_row(e) && !std::isfinite(v)) {
+        refuse(path + " is not finite at element " + std::to_string(model.element_ids[e]),
+               "expected the state of a run that did not go unstable");
+      }
+      field[e * 6 + c] = v;
+    }
+  }
+  return field;
+}
+
+ImportedState read_file(hid_t file, const Model& model) {
+  ImportedState state;
+  // Mesh: ids, coordinates, element types and connectivity.
+  const auto node_ids = read_array<std::int64_t>(file, "/mesh/node_ids", std::nullopt, 0);
+  const std::vector<Index> node_of_row =
+      map_rows(node_ids, model.node_ids, "node", "/mesh/node_ids");
+  const auto file_xyz = read_array<Real>(file, "/mesh/coordinates", node_ids.size(), 3);
+  check_coordinates(file_xyz, node_of_row, model);
+  const auto element_ids = read_array<std::int64_t>(file, "/mesh/element_ids", std::nullopt, 0);
+  const std::vector<Index> element_of_row =
+      map_rows(element_ids, model.element_ids, "element", "/mesh/element_ids");
+  std::unordered_map<ExternalId, Index> element_of_id;
+  for (Index e = 0; e < model.element_count(); ++e) {
+    element_of_id.emplace(model.element_ids[static_cast<std::size_t>(e)], e);
+  }
+  check_element_types(file, model, node_ids, element_of_id);
+
+  // The last frame.
+  const std::string frame = "/frames/" + last_frame(file);
+  state.time = numeric_attribute<double>(file, frame, "time");
+  state.increment = static_cast<long>(numeric_attribute<std::int64_t>(file, frame, "increment"));
+  const auto has = [&](const char* name) { return has_link(file, frame + "/" + name); };
+  for (const char* name : {"U", "V"}) {
+    if (has(name)) continue;
+    char when[48];
+    std::snprintf(when, sizeof when, "%.9g s", state.time);
+    refuse("the last frame (" + frame + ", t = " + when + ") has no " + name,
+           "expected a last frame with U and V (*NODE OUTPUT U, V in the earlier run's field "
+           "output)");
+  }
+  state.displacement = read_nodal(file, frame, "U", node_of_row, model);
+  // Current positions of the file, relative to the model's (equal within the tolerance)
+  // reference coordinates: x = X_file + U_file = X_model + U.
+  for (std::size_t r = 0; r < node_of_row.size(); ++r) {
+    const Index n = node_of_row[r];
+    for (int c = 0; c < 3; ++c) {
+      state.displacement(n, c) += file_xyz[r * 3 + c] - model.coordinates(n, c);
+    }
+  }
+  state.velocity = read_nodal(file, frame, "V", node_of_row, model);
+  if (has("UR")) state.rotation = read_nodal(file, frame, "UR", node_of_row, model);
+  if (has("VR")) state.angular_velocity = read_nodal(file, frame, "VR", node_of_row, model);
+  const bool shells = model.has_shells();
+  if (shells && !has("UR")) state.notes.push_back("no UR in the last frame: rotations start at 0");
+  if (shells && !has("VR")) {
+    state.notes.push_back("no VR in the last frame: angular velocities start at 0");
+  }
+
+  const auto all_rows = [](std::size_t) { return true; };
+  const auto shell_rows = [&](std::size_t e) { return is_shell(model.element_types[e]); };
+  if (has("S")) {
+    state.stress = read_cells(file, frame + "/S", element_of_row, model, all_rows);
+  } else if (model.element_count() > 0) {
+    state.notes.push_back("no S in the last frame: the elements start unstressed");
+  }
+  if (has("S_SNEG") && has("S_SPOS")) {
+    state.stress_bottom = read_cells(file, frame + "/S_SNEG", element_of_row, model, shell_rows);
+    state.stress_top = read_cells(file, frame + "/S_SPOS", element_of_row, model, shell_rows);
+  } else if (shells && has("S")) {
+    state.notes.push_back(
+        "no S_SNEG/S_SPOS in the last frame: the shells take the middle stress S through the "
+        "whole thickness (no bending stress)");
+  }
+  const std::string status = run_status(file);
+  if (!status.empty() && status != "completed" && status != "checked") {
+    state.notes.push_back("the earlier run's status is '" + status +
+                          "', not 'completed': its last frame is imported as it is");
+  }
+  return state;
+}
+
+}  // namespace
+
+ImportedState read_imported_state(const std::filesystem::path& h5, const Model& model) {
+  const std::string source = h5.string();
+  const auto refused = [&](const std::string& problem, const std::string& expected) {
+    return InputError({source + ": --import: " + problem + "; " + expected});
+  };
+  std::error_code error;
+  if (!std::filesystem::exists(h5, error)) throw refused("the file does not exist", XPL_FILE);
+  if (!std::filesystem::is_regular_file(h5, error)) throw refused("not a file", XPL_FILE);
+  h5::silence_errors();
+  if (H5Fis_hdf5(source.c_str()) <= 0) {
+    H5Eclear2(H5E_DEFAULT);
+    throw refused("not an HDF5 file", std::string(XPL_FILE) + " (JOB.h5, not JOB.xdmf)");
+  }
+  try {
+    const h5::Handle file{
+        h5::check_id(H5Fopen(source.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open the file"),
+        H5Fclose};
+    ImportedState state = read_file(file.get(), model);
+    state.source = source;
+    return state;
+  } catch (const Refusal& refusal) {
+    throw refused(refusal.what(), refusal.expected());
+  } catch (const h5::Error& failure) {
+    throw refused(failure.what(), XPL_FILE);
+  }
+}
+
+}  // namespace xpl::io
