@@ -230,16 +230,29 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   const Vec kxy = grad_y(fm, ty) - grad_x(fm, tx);
   const Vec gxz = grad_x(fm, vz) + tby, gyz = grad_y(fm, vz) - tbx;
 
+  // Plane stress: the thickness follows the in-plane dilatation of the reference surface,
+  // ε̇_zz = −ν/(1−ν)(d_xx + d_yy + z_ref(κ_xx + κ_yy)). It is advanced before the resultants:
+  // the strain increments see the mid-increment thickness (as the rates see the mid-increment
+  // geometry) and the resultants at t_{n+1} the end thickness, so N and M are functions of the
+  // state at t_{n+1}. Resultants taken with the thickness of t_n lag the stresses by one
+  // increment; in compressed walls (tr N < 0) that lag does negative work on every membrane
+  // vibration, ∝ ν/(1−ν)·|σ|/E·ωΔt per cycle, and a crushed tube gains energy until it fails.
+  const Vec q11 = constant(Q11), q12 = constant(Q12), g = constant(SHEAR);
+  const Vec offset = constant(OFFSET);
+  const Vec t_old = simd::load(&m_thickness[b * W]);
+  const Vec t = t_old * (1.0 - constant(NU_RATIO) * dt *
+                                   (dxx + dyy - offset * t_old * (kxx + kyy)));
+  simd::store(&m_thickness[b * W], t);
+  const Vec t_mid = 0.5 * (t_old + t);
   // Through-thickness integration (z from the reference surface, which is OFFSET·t above
   // the mid-surface), plane stress.
-  const Vec q11 = constant(Q11), q12 = constant(Q12), g = constant(SHEAR);
-  const Vec t = simd::load(&m_thickness[b * W]);
-  const Vec offset = constant(OFFSET);
   Vec nxx = simd::splat(0.0), nyy = nxx, nxy = nxx, mxx = nxx, myy = nxx, mxy = nxx;
   Vec work = simd::splat(0.0);  // strain energy increment per unit area
   for (int k = 0; k < m_points; ++k) {
-    const Vec zk = t * (0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset);
-    const Vec tw = t * simd::load(&m_weight[(b * m_points + k) * W]);
+    const Vec zeta = 0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset;
+    const Vec weight = simd::load(&m_weight[(b * m_points + k) * W]);
+    const Vec zk = t_mid * zeta, tw = t_mid * weight;  // mid-increment: strain and work
+    const Vec zk_n = t * zeta, tw_n = t * weight;       // end of increment: resultants
     const Vec exx = dt * (dxx + zk * kxx), eyy = dt * (dyy + zk * kyy);
     const Vec exy = dt * (gxy + zk * kxy);
     Real* s = &m_stress[(b * m_points + k) * 3 * W];
@@ -250,12 +263,12 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
     simd::store(s + 2 * W, sxy_n);
-    nxx += tw * sxx_n;
-    nyy += tw * syy_n;
-    nxy += tw * sxy_n;
-    mxx += (tw * zk) * sxx_n;
-    myy += (tw * zk) * syy_n;
-    mxy += (tw * zk) * sxy_n;
+    nxx += tw_n * sxx_n;
+    nyy += tw_n * syy_n;
+    nxy += tw_n * sxy_n;
+    mxx += (tw_n * zk_n) * sxx_n;
+    myy += (tw_n * zk_n) * syy_n;
+    mxy += (tw_n * zk_n) * sxy_n;
     work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
   }
   Real* shear = &m_shear[b * 2 * W];
@@ -264,12 +277,8 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   const Vec txz_n = txz + (kg * dt) * gxz, tyz_n = tyz + (kg * dt) * gyz;
   simd::store(shear, txz_n);
   simd::store(shear + W, tyz_n);
-  work += (0.5 * dt) * t * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
+  work += (0.5 * dt) * t_mid * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
   const Vec qx = t * txz_n, qy = t * tyz_n;
-  // Plane stress: the thickness follows the mid-surface in-plane dilatation.
-  const Vec z_mid = -offset * t;
-  simd::store(&m_thickness[b * W],
-              t * (1.0 - constant(NU_RATIO) * dt * (dxx + dyy + z_mid * (kxx + kyy))));
 
   // Hourglass resultants (stiffness form, accumulated in the corotational frame).
   const Vec bb = 2.0 * (fm.b1a * fm.b1a + fm.b1b * fm.b1b + fm.b2a * fm.b2a + fm.b2b * fm.b2b);
