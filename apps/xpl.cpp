@@ -1,4 +1,5 @@
-// xpl command line: `xpl run DECK.inp [-o DIR] [--threads N] [--quiet]`, `xpl check DECK.inp`.
+// xpl command line: `xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]`,
+// `xpl check DECK.inp`.
 
 #include <omp.h>
 
@@ -11,13 +12,14 @@
 
 #include "common/error.hpp"
 #include "io/deck_reader.hpp"
+#include "io/import_state.hpp"
 #include "io/result_files.hpp"
 #include "solver/explicit_solver.hpp"
 
 namespace {
 
 constexpr const char* USAGE =
-    "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet]\n"
+    "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]\n"
     "       xpl check DECK.inp [-o DIR]\n"
     "       xpl --help | --version\n"
     "\n"
@@ -27,6 +29,9 @@ constexpr const char* USAGE =
     "  -o DIR  directory for the result files (default: the current directory)\n"
     "  --threads N  OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
     "  --quiet      no progress line and no summary on the terminal\n"
+    "  --import PREV.h5  start from the last frame of an earlier result of the same mesh\n"
+    "               (positions, velocities, stresses); penetrations there become contact\n"
+    "               offsets without force\n"
     "The job name is the deck's file name without its extension.\n";
 
 struct Arguments {
@@ -35,6 +40,7 @@ struct Arguments {
   std::filesystem::path out_dir = ".";
   int threads = 0;
   bool quiet = false;
+  std::filesystem::path import;  ///< --import: a result file to start from
 };
 
 /// Parses argv; returns false (after printing why) on a usage error.
@@ -69,6 +75,10 @@ bool parse(int argc, char** argv, Arguments& args) {
         std::cerr << "xpl: --threads: '" << *v << "' is not a positive whole number\n";
         return false;
       }
+    } else if (w == "--import") {
+      const std::string* v = value("a result file (.h5)");
+      if (!v) return false;
+      args.import = *v;
     } else if (w == "--quiet" || w == "-q") {
       args.quiet = true;
     } else if (!w.empty() && w[0] == '-') {
@@ -148,12 +158,43 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  // --import: read and check the earlier result before anything is written.
+  xpl::InitialState initial;
+  if (!args.import.empty()) {
+    if (!model.rigid_bodies.empty()) {
+      std::cerr << args.import.string()
+                << ": --import: the model has rigid bodies, whose orientation a result file "
+                   "does not hold; expected a model without *RIGID BODY\n"
+                << "xpl: 1 error(s); nothing was written\n";
+      return 1;
+    }
+    try {
+      xpl::io::ImportedState imported = xpl::io::read_imported_state(args.import, model);
+      for (const std::string& note : imported.notes)
+        model.deck_messages.push_back({false, args.import.string() + ": --import: " + note});
+      initial.source = imported.source;
+      initial.displacement = std::move(imported.displacement);
+      initial.velocity = std::move(imported.velocity);
+      initial.rotation = std::move(imported.rotation);
+      initial.angular_velocity = std::move(imported.angular_velocity);
+      initial.stress = std::move(imported.stress);
+      initial.stress_bottom = std::move(imported.stress_bottom);
+      initial.stress_top = std::move(imported.stress_top);
+    } catch (const xpl::InputError& e) {
+      for (const auto& m : e.messages()) std::cerr << m << "\n";
+      std::cerr << "xpl: " << e.messages().size() << " error(s) in " << args.import.string()
+                << "; nothing was written\n";
+      return 1;
+    }
+  }
+
   try {
     xpl::io::ResultOptions ropts;
     ropts.progress = !args.quiet;
     xpl::io::ResultFiles files(args.out_dir, model.job_name, ropts);
     xpl::SolverOptions sopts;
     sopts.threads = args.threads;
+    if (!args.import.empty()) sopts.initial_state = &initial;
     xpl::ExplicitSolver solver(model, files, sopts);
     const int threads = args.threads > 0 ? args.threads : omp_get_max_threads();
     if (args.command == "check") {

@@ -137,6 +137,8 @@ struct ExplicitSolver::Impl {
   Impl(const Model& m, OutputSink& s, SolverOptions o) : model(m), sink(s), options(o) {}
 
   void setup();
+  /// Puts an imported state (positions, velocities, rotations, stresses) into place.
+  void apply_initial_state(const InitialState& imported);
   void report_warped_shells();
   void begin_step(int step);
   /// Builds (or keeps) the contact engine of `step`.
@@ -270,7 +272,16 @@ void ExplicitSolver::Impl::setup() {
   }
   chunk_sums.assign(static_cast<std::size_t>((n + NODE_CHUNK - 1) / NODE_CHUNK) * 2, 0.0);
 
+  if (options.initial_state != nullptr) apply_initial_state(*options.initial_state);
+
   sink.begin_run(model);
+  if (options.initial_state != nullptr)
+    sink.message(Severity::Info,
+                 "the run starts from the imported state of " + options.initial_state->source +
+                     " (positions, velocities" +
+                     (options.initial_state->stress.empty() ? "" : ", element stresses") +
+                     "); time starts at 0. Hourglass forces and contact state start at zero; "
+                     "ALLSE counts the strain energy from here on");
   for (const DeckMessage& m : model.deck_messages)
     sink.message(m.warning ? Severity::Warning : Severity::Note, m.text);
   for (const SectionControls& c : model.section_controls)
@@ -299,6 +310,32 @@ void ExplicitSolver::Impl::setup() {
         sink.message(Severity::Note, "section controls " + c.name +
                                          ": S4R elements use the stiffness hourglass form "
                                          "(HOURGLASS=VISCOUS applies to C3D8R only)");
+  }
+}
+
+void ExplicitSolver::Impl::apply_initial_state(const InitialState& imported) {
+  const Index n = model.node_count();
+  if (imported.displacement.rows() != n || imported.velocity.rows() != n)
+    throw std::invalid_argument("imported state: U and V must have one row per node");
+  state.position = state.reference + imported.displacement;
+  state.velocity = imported.velocity;
+  state.velocity_half = imported.velocity;
+  if (shell && imported.rotation.rows() == n) {
+    rotations.set(imported.rotation);
+    state.rotation = imported.rotation;
+    rotation_synced = true;
+    if (imported.angular_velocity.rows() == n) {
+      state.angular_velocity = imported.angular_velocity;
+      state.angular_velocity_half = imported.angular_velocity;
+    }
+  }
+  if (!imported.stress.empty()) {
+    if (hex) hex->set_stress(imported.stress);
+    if (shell)
+      shell->set_output_stress(
+          state.position, imported.stress,
+          imported.stress_bottom.empty() ? imported.stress : imported.stress_bottom,
+          imported.stress_top.empty() ? imported.stress : imported.stress_top);
   }
 }
 

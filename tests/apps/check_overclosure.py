@@ -206,6 +206,48 @@ def data_check(d):
     check("18 node(s) adjusted" in sta, "the summary line is in the .sta file")
 
 
+def lumped_masses(f):
+    """Nodal masses of the C3D8R mesh (rho V / 8 per element corner), by row."""
+    x = f["mesh/coordinates"][:]
+    m = np.zeros(len(x))
+    for conn in f["mesh/C3D8R/connectivity"][:]:
+        p = x[conn]
+        d = p[6] - p[0]  # the blocks are axis-aligned boxes
+        m[conn] += RHO * abs(d[0] * d[1] * d[2]) / 8
+    return m
+
+
+def import_target(d):
+    f = h5py.File(d / "import_target.h5", "r")
+    t = f["overclosure/step_1/offsets"]
+    check(rows(f, 1, "offsets") == 18 and set(t["reason"][:]) == {6} and rows(f, 1, "adjusted") == 0,
+          "imported penetrations: 18 offsets with reason 'import', no node moves")
+    check(np.allclose(t["offset"][:], 0.05e-3, rtol=1e-6), "d0 = the 0.05 mm penetration of the last frame")
+    # The force a plain penalty would give at t = 0: sum over both views of w k d0 with the
+    # default stiffness k = 0.5 m_eff / dt^2 (README, C1), m_eff of the slave node and the
+    # coincident node of the other block.
+    sta = (d / "import_target.sta").read_text()
+    dt = float(next(line.split()[4] for line in sta.splitlines()
+                    if re.match(r"^\s+1\s+0\s", line)))
+    ids, row = node_rows(f)
+    x = f["mesh/coordinates"][:] + frames(f)[0]["U"][:]
+    m = lumped_masses(f)
+    plain = 0.0
+    for n, d0 in zip(t["node"][:], t["offset"][:]):
+        i = row[int(n)]
+        other = np.where(ids // BODY != ids[i] // BODY)[0]
+        j = other[np.argmin(np.linalg.norm(x[other] - x[i], axis=1))]
+        m_eff = m[i] * m[j] / (m[i] + m[j])
+        plain += 0.5 * 0.5 * m_eff / dt**2 * d0
+    h = f["history/step_1"]
+    cfn = h["contact/ALL_EXTERIOR/CFN"][:]
+    check(cfn[0] == 0.0, "no contact force at the start of the imported run")
+    check(cfn.max() < 0.05 * plain,
+          f"no force spike: contact force stays <= {cfn.max():.1f} N, under 5 % of the "
+          f"plain-penalty force {plain:.3e} N on the imported penetration")
+    check(cfn[1:].max() > 0.0, "the force grows from zero as B keeps moving into A")
+
+
 CASES = {
     "blocks_adjust": blocks_adjust,
     "blocks_summary": lambda d: blocks_adjust(d, "blocks_summary", detail=False),
@@ -217,6 +259,7 @@ CASES = {
     "crossed_off": lambda d: crossed(d, off=True),
     "later_step": later_step,
     "check": data_check,
+    "import_target": import_target,
 }
 
 
