@@ -240,8 +240,8 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   const Vec q11 = constant(Q11), q12 = constant(Q12), g = constant(SHEAR);
   const Vec offset = constant(OFFSET);
   const Vec t_old = simd::load(&m_thickness[b * W]);
-  const Vec t = t_old * (1.0 - constant(NU_RATIO) * dt *
-                                   (dxx + dyy - offset * t_old * (kxx + kyy)));
+  const Vec t =
+      t_old * (1.0 - constant(NU_RATIO) * dt * (dxx + dyy - offset * t_old * (kxx + kyy)));
   simd::store(&m_thickness[b * W], t);
   const Vec t_mid = 0.5 * (t_old + t);
   // Through-thickness integration (z from the reference surface, which is OFFSET·t above
@@ -252,7 +252,7 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     const Vec zeta = 0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset;
     const Vec weight = simd::load(&m_weight[(b * m_points + k) * W]);
     const Vec zk = t_mid * zeta, tw = t_mid * weight;  // mid-increment: strain and work
-    const Vec zk_n = t * zeta, tw_n = t * weight;       // end of increment: resultants
+    const Vec zk_n = t * zeta, tw_n = t * weight;      // end of increment: resultants
     const Vec exx = dt * (dxx + zk * kxx), eyy = dt * (dyy + zk * kyy);
     const Vec exy = dt * (gxy + zk * kxy);
     Real* s = &m_stress[(b * m_points + k) * 3 * W];
