@@ -115,6 +115,17 @@ bool ContactEngine::admissible(Index s, Index f, const NodalVectors& position,
     for (Index c : faces[f].nodes) t += thickness_of(node_thickness, c);
     depth = 0.125 * t;  // half the mean thickness
   }
+  // Behind the face's plane but beside its edge or corner, the node penetrates the face only
+  // while its offset beyond the edge is smaller than its penetration (it is nearer to the
+  // face than to clearing it sideways). Farther out the gap "along the face normal" measures
+  // nothing real: at a fold it makes a node touch the face of the element next to its own
+  // (suddenly, a shell thickness deep), and its force, not the gradient of that gap, turns
+  // with the face and does work (energy injection). A node pushed into a concave corner is
+  // still caught: for one of the two faces its offset is below its penetration.
+  if (cp.region != QuadRegion::Interior && gap < 0.0) {
+    const Real lateral_sq = cp.distance * cp.distance - cp.gap * cp.gap;
+    if (lateral_sq > gap * gap) return false;
+  }
   const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
   if (!kept_side && -gap > depth + half_t) return false;
   out = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};

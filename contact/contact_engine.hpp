@@ -14,7 +14,12 @@
 ///   other bar's side faces (their normals are at 90°);
 /// - the node is not deeper behind the face than half the element behind it (half the
 ///   thickness of a shell), so a node on the outer skin of a thin wall never touches the inner
-///   skin of that wall.
+///   skin of that wall;
+/// - a node behind the face's plane whose closest point is on an edge or corner is offset
+///   sideways from the face by less than its penetration. Otherwise it lies beside the face,
+///   not in it: at a fold of a shell wall a node would touch the face of the element next
+///   to its own along the normal of that face, a shell thickness deep the moment the fold turns
+///   it admissible, and the force would turn with the face — both put energy into the model.
 /// A node pressed onto one side of a shell stays with that side: the other side of the same
 /// element is not admissible while the constraint is closed, so a deep penetration is pushed
 /// back rather than through.

@@ -136,3 +136,46 @@ TEST_CASE(
   CHECK(one.col(0).cwiseAbs().maxCoeff() < 1e-9 * k * depth);
   omp_set_num_threads(2);
 }
+
+TEST_CASE(
+    "a node beside a face's edge and behind its plane touches it only when nearer to it "
+    "than to clearing it sideways",
+    "[contact][engine]") {
+  // Shell strip folded along x = 0: element A (x in [−w, 0], flat, normal +z) and element B
+  // (from x = 0, turned up by 20°), t = 0.2. Node 0 of A, at (−w, 0, 0), is behind the plane of
+  // B's SPOS surface (t/2 above B) by 0.03, but 0.19 beside B's edge: it must not touch B.
+  // A plate P (x, y in [0, 1], z = 0.6) and a flat shell C (x in [−2, −0.02], z = 0.55): C's
+  // node Q = (−0.02, 0.5, 0.55) is behind P's SNEG surface (z = 0.5) by 0.05 and only 0.02
+  // beside P's edge: Q touches P.
+  const Real w = 0.2, t = 0.2, angle = 20.0 * std::acos(-1.0) / 180.0;
+  test::ContactMesh mesh;
+  const Real c = std::cos(angle), s = std::sin(angle);
+  const Index a0 = mesh.add_node(-w, 0, 0), a1 = mesh.add_node(0, 0, 0),
+              a2 = mesh.add_node(0, 1, 0), a3 = mesh.add_node(-w, 1, 0);
+  const Index b1 = mesh.add_node(c, 0, s), b2 = mesh.add_node(c, 1, s);
+  mesh.add_element(contact::ElementKind::Shell, {a0, a1, a2, a3});
+  mesh.add_element(contact::ElementKind::Shell, {a1, b1, b2, a2});
+  const Index p0 = mesh.add_node(0, 0, 0.6), p1 = mesh.add_node(1, 0, 0.6),
+              p2 = mesh.add_node(1, 1, 0.6), p3 = mesh.add_node(0, 1, 0.6);
+  mesh.add_element(contact::ElementKind::Shell, {p0, p1, p2, p3});  // element 2: the plate P
+  const Index q = mesh.add_node(-0.02, 0.5, 0.55), q1 = mesh.add_node(-2, 0.5, 0.55),
+              q2 = mesh.add_node(-2, 1.5, 0.55), q3 = mesh.add_node(-0.02, 1.5, 0.55);
+  mesh.add_element(contact::ElementKind::Shell, {q, q3, q2, q1});
+  const NodalVectors& x = mesh.coordinates;
+  const std::vector<Real> thickness(static_cast<std::size_t>(mesh.node_count()), t);
+  contact::ContactOptions options;
+  options.margin = 0.35;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, options, x,
+                                thickness);
+  engine.probe(x, thickness);
+  const ContactDomain& domain = engine.domain();
+
+  // The old rule (gap along B's normal) took node 0 as 0.13 deep in B.
+  const contact::SlaveTouch& folded = engine.touch(domain.slaves().slot(a0));
+  CHECK((folded.face == NO_INDEX || domain.faces()[folded.face].element != 1));
+  // Q is inside P's slab by 0.05 (plus its own half thickness 0.1): gap −0.15.
+  const contact::SlaveTouch& corner = engine.touch(domain.slaves().slot(q));
+  REQUIRE(corner.face != NO_INDEX);
+  CHECK(domain.faces()[corner.face].element == 2);
+  CHECK(corner.gap == Approx(-0.15).margin(1e-12));
+}
