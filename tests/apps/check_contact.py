@@ -15,6 +15,9 @@ Each case compares with an analytic answer and states its tolerance:
   shell_block* a block pushes a shell plate from above or below: the plate moves with the
               block, momentum is conserved, no node passes through the plate
   friction_block  deceleration mu g within 3 %, ALLFD = mu m g x within 3 %
+  tube_crush  S4R tube crushed by a rigid plate (self contact): ETOTAL drift under 2 % of the
+              work, ALLPW never negative, no node deeper than 10 % of the element size in
+              another wall's contact layer
 Exits non-zero with a message on the first failed check.
 """
 
@@ -155,6 +158,60 @@ def friction_block(f, h):
     check(drift < 0.01 * ke0, f"ETOTAL drift {drift:.3g} J < 1 % of ALLKE(0)")
 
 
+def tube_crush(f, h):
+    """Self contact of a crushed S4R tube (t = 0.5 mm, 2.5 mm elements): energy balance, no node
+    through a plate, and in every frame no tube node deeper than 10 % of the element size in
+    the contact layer of a wall it does not belong to."""
+    e = h["energy"]
+    wk = e["ALLWK"][-1]
+    drift = np.abs(e["ETOTAL"][:] - e["ETOTAL"][0]).max()
+    check(wk > 100.0 and drift < 0.02 * wk,
+          f"ETOTAL drift {drift:.2f} J under 2 % of the crushing work ALLWK = {wk:.1f} J")
+    pw = e["ALLPW"][:]
+    check(pw.min() > -1e-3 * wk, f"contact stores, never creates, energy (ALLPW >= {pw.min():.3f} J)")
+    ids = f["mesh/node_ids"][:]
+    x0 = f["mesh/coordinates"][:]
+    tube = (ids >= 100000) & (ids < 200000)
+    conn = f["mesh/S4R/connectivity"][:]
+    t, h_e = 0.5e-3, 2.5e-3
+    worst = 0.0
+    for name in sorted(f["frames"].keys()):
+        x = x0 + f["frames"][name]["U"][:]
+        z = x[tube, 2]
+        check(z.min() > -0.25e-3 - 0.1 * h_e, f"frame {name}: no tube node below the base plate") \
+            if name == sorted(f["frames"].keys())[-1] else None
+        # Node-to-wall penetration: nodes whose projection falls inside a triangle of a shell
+        # they are not a corner of, closer than t (the two half thicknesses) to its mid-surface.
+        nodes = np.where(tube)[0]
+        for quad in conn:
+            p = x[quad]
+            for tri in ((0, 1, 2), (0, 2, 3)):
+                a, b, c = p[tri[0]], p[tri[1]], p[tri[2]]
+                n = np.cross(b - a, c - a)
+                area2 = np.linalg.norm(n)
+                n = n / area2
+                rel = x[nodes] - a
+                d = rel @ n
+                near = np.abs(d) < t
+                if not near.any():
+                    continue
+                q = rel[near] - np.outer(d[near], n)
+                v0, v1 = b - a, c - a
+                d00, d01, d11 = v0 @ v0, v0 @ v1, v1 @ v1
+                den = d00 * d11 - d01 * d01
+                d20, d21 = q @ v0, q @ v1
+                v = (d11 * d20 - d01 * d21) / den
+                w = (d00 * d21 - d01 * d20) / den
+                inside = (v >= 0) & (w >= 0) & (v + w <= 1)
+                cand = nodes[near][inside]
+                own = np.isin(cand, quad)
+                if (~own).any():
+                    worst = max(worst, (t - np.abs(d[near][inside][~own])).max())
+    check(worst <= 0.1 * h_e,
+          f"no tube node more than 10 % of the element size ({0.1 * h_e * 1e3:.2f} mm) inside another "
+          f"wall's contact layer in any frame (deepest {worst * 1e6:.1f} um)")
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -177,6 +234,8 @@ def main():
             shell_block(f, h, +1)
         elif case == "friction_block":
             friction_block(f, h)
+        elif case == "tube_crush":
+            tube_crush(f, h)
         else:
             sys.exit(f"check_contact.py: unknown case {case}")
 
