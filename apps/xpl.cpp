@@ -165,21 +165,14 @@ int main(int argc, char** argv) {
       std::cerr << args.import.string()
                 << ": --import: the model has rigid bodies, whose orientation a result file "
                    "does not hold; expected a model without *RIGID BODY\n"
-                << "xpl: 1 error(s); nothing was written\n";
+                << "xpl: 1 error(s) in " << args.import.string() << "; nothing was written\n";
       return 1;
     }
     try {
       xpl::io::ImportedState imported = xpl::io::read_imported_state(args.import, model);
       for (const std::string& note : imported.notes)
         model.deck_messages.push_back({false, args.import.string() + ": --import: " + note});
-      initial.source = imported.source;
-      initial.displacement = std::move(imported.displacement);
-      initial.velocity = std::move(imported.velocity);
-      initial.rotation = std::move(imported.rotation);
-      initial.angular_velocity = std::move(imported.angular_velocity);
-      initial.stress = std::move(imported.stress);
-      initial.stress_bottom = std::move(imported.stress_bottom);
-      initial.stress_top = std::move(imported.stress_top);
+      initial = std::move(static_cast<xpl::InitialState&>(imported));
     } catch (const xpl::InputError& e) {
       for (const auto& m : e.messages()) std::cerr << m << "\n";
       std::cerr << "xpl: " << e.messages().size() << " error(s) in " << args.import.string()

@@ -75,20 +75,33 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_pair_friction.assign(m_pair_normal.size(), 0.0);
 }
 
-bool ContactEngine::admissible(Index s, Index f, const NodalVectors& position,
-                               std::span<const Real> node_thickness, SlaveTouch& out,
-                               Real& distance) const {
-  const SlaveNodes& slaves = m_domain.slaves();
+ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
+                                                   std::span<const Real> node_thickness) const {
   const std::vector<ContactFace>& faces = m_domain.faces();
-  const Index node = slaves.nodes()[s];
-  const bool double_sided = m_domain.slave_double_sided(s);
+  SlaveView v;
+  v.slot = s;
+  const Index node = m_domain.slaves().nodes()[s];
+  v.point = node_point(position, node);
+  v.normal = m_domain.slaves().normal(s);
+  v.double_sided = m_domain.slave_double_sided(s);
+  v.free_edge = m_domain.slave_on_free_edge(s);
+  v.half_t = v.double_sided ? 0.5 * thickness_of(node_thickness, node) : 0.0;
   // Side memory: a node pressed onto one side of a shell last increment may not be taken by
   // the other side of that shell, however deep it has gone (no pass-through).
   const ContactConstraint& before = m_constraints[s];
-  const ContactFace* held = before.status == ContactStatus::Closed && before.master_face >= 0 &&
-                                    faces[before.master_face].shell
-                                ? &faces[before.master_face]
-                                : nullptr;
+  if (before.status == ContactStatus::Closed && before.master_face >= 0 &&
+      faces[before.master_face].shell)
+    v.held = &faces[before.master_face];
+  return v;
+}
+
+bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& position,
+                               std::span<const Real> node_thickness, SlaveTouch& out,
+                               Real& distance) const {
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  const Index s = v.slot;
+  const ContactFace* held = v.held;
+  const bool double_sided = v.double_sided;
   if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
       faces[f].face != held->face)
     return false;
@@ -102,12 +115,11 @@ bool ContactEngine::admissible(Index s, Index f, const NodalVectors& position,
   if (!(n_len > 0.0)) return false;
   // A shell node is double sided (either orientation), and one on a free edge may touch a
   // face edge-on (a tube end on a plate).
-  const Real cosine = slaves.normal(s).dot(n_f) / n_len;
-  if (double_sided ? !m_domain.slave_on_free_edge(s) && std::abs(cosine) < OPPOSING_COSINE
-                   : cosine > -OPPOSING_COSINE)
+  const Real cosine = v.normal.dot(n_f) / n_len;
+  if (double_sided ? !v.free_edge && std::abs(cosine) < OPPOSING_COSINE : cosine > -OPPOSING_COSINE)
     return false;
-  const ClosestPoint cp = closest_point_on_quad(corner, node_point(position, node));
-  const Real half_t = double_sided ? 0.5 * thickness_of(node_thickness, node) : 0.0;
+  const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+  const Real half_t = v.half_t;
   const Real gap = cp.gap - half_t;
   Real depth = m_domain.face_depth(f);
   if (faces[f].shell) {
@@ -142,8 +154,9 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
       Real best_distance = std::numeric_limits<Real>::max();
       SlaveTouch candidate;
       Real distance = 0.0;
+      const SlaveView view = slave_view(s, position, node_thickness);
       for (Index f : m_broad.candidates(s))
-        if (admissible(s, f, position, node_thickness, candidate, distance) &&
+        if (admissible(view, f, position, node_thickness, candidate, distance) &&
             distance < best_distance) {
           best_distance = distance;
           best = candidate;
@@ -169,8 +182,9 @@ std::vector<SlaveTouch> ContactEngine::penetrated_faces(Index s, const NodalVect
   if (!m_domain.slave_rigid(s)) {
     SlaveTouch candidate;
     Real distance = 0.0;
+    const SlaveView view = slave_view(s, position, node_thickness);
     for (Index f : m_broad.candidates(s))
-      if (admissible(s, f, position, node_thickness, candidate, distance) &&
+      if (admissible(view, f, position, node_thickness, candidate, distance) &&
           candidate.gap < -tolerance)
         found.emplace_back(distance, candidate);
   }

@@ -140,9 +140,23 @@ class ContactEngine {
  private:
   /// Closest admissible face of every slave node (parallel over slots).
   void search(const NodalVectors& position, std::span<const Real> node_thickness);
-  /// Whether face f is admissible for slave slot s at `position` (file comment); if so, the
-  /// touch is written to `out` and its distance to the closest point to `distance`.
-  bool admissible(Index s, Index f, const NodalVectors& position,
+  /// What the admissibility test needs of a slave node, gathered once per node and search
+  /// (not once per candidate face): position, normal, sidedness, half thickness, and the shell
+  /// face it is held on (side memory) or null.
+  struct SlaveView {
+    Index slot = NO_INDEX;
+    Vec3 point = Vec3::Zero();
+    Vec3 normal = Vec3::Zero();
+    bool double_sided = false;
+    bool free_edge = false;
+    Real half_t = 0.0;
+    const ContactFace* held = nullptr;
+  };
+  SlaveView slave_view(Index s, const NodalVectors& position,
+                       std::span<const Real> node_thickness) const;
+  /// Whether face f is admissible for the slave node `v` at `position` (file comment); if so,
+  /// the touch is written to `out` and its distance to the closest point to `distance`.
+  bool admissible(const SlaveView& v, Index f, const NodalVectors& position,
                   std::span<const Real> node_thickness, SlaveTouch& out, Real& distance) const;
 
   ContactDomain m_domain;

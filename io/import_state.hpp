@@ -7,29 +7,20 @@
 #include <string>
 #include <vector>
 
+#include "solver/explicit_solver.hpp"
 #include "solver/model.hpp"
 
 namespace xpl::io {
 
 /// The state of the last frame of an earlier xpl result file, mapped onto `model`'s internal
 /// indices (row i is node or element i of the model, whatever the row order of the file).
-struct ImportedState {
-  std::string source;  ///< the file path, as given
+struct ImportedState : InitialState {
+  // InitialState: source (the file path, as given), U relative to the model's reference
+  // coordinates (the file's current positions minus the model's coordinates, which match the
+  // file's within the tolerance), V, UR/VR (0 rows when the frame has none), S and the shell
+  // S_SNEG/S_SPOS (empty when the frame has none).
   Real time = 0.0;     ///< total time of the frame, s
   long increment = 0;  ///< total increment count of the frame
-  /// U (n_nodes × 3) relative to the model's reference coordinates, m: the file's current
-  /// positions minus the model's coordinates (which match the file's within the tolerance).
-  NodalVectors displacement;
-  NodalVectors velocity;          ///< V (n_nodes × 3), m/s
-  NodalVectors rotation;          ///< UR (n_nodes × 3), rad; 0 rows when the frame has none
-  NodalVectors angular_velocity;  ///< VR (n_nodes × 3), rad/s; 0 rows when the frame has none
-  /// S (n_elements × 6, row-major, S11 S22 S33 S12 S13 S23), Pa; solids in global axes,
-  /// shells at the middle section point in the output local axes. Empty when the frame has
-  /// no S.
-  std::vector<Real> stress;
-  /// S_SNEG / S_SPOS (n_elements × 6), Pa: shell bottom / top section points, NaN rows for
-  /// solids. Empty when the frame has none.
-  std::vector<Real> stress_bottom, stress_top;
   /// What was missing or assumed, one sentence each, for the .msg file.
   std::vector<std::string> notes;
 };
