@@ -209,6 +209,40 @@ struct SurfacePair {
   SourceLocation where;
 };
 
+/// `*DISTRIBUTION, NAME=, LOCATION=NODE`: one scalar per node (SPEC C8: a clearance per slave
+/// node). A first data line with a blank node field gives the default of every node not listed.
+struct NodalDistribution {
+  std::string name;          ///< upper-case name
+  std::vector<Real> values;  ///< (n_nodes), NaN where the deck gives no value
+  SourceLocation where;
+};
+
+/// `*CONTACT CLEARANCE, NAME=, ADJUST=, CLEARANCE=, SEARCH ABOVE=, SEARCH BELOW=` (SPEC C7–C9).
+struct ContactClearance {
+  std::string name;  ///< upper-case name
+  /// ADJUST=YES (default): nodes move, strain free, in the first step only; ADJUST=NO:
+  /// permanent contact offsets, never ramped away.
+  bool adjust = true;
+  Real value = 0.0;               ///< CLEARANCE=value, m (default 0) when no distribution
+  Index distribution = NO_INDEX;  ///< CLEARANCE=distribution name: into Model::distributions
+  /// Search zone above / below the master surface, m; empty: the default of SPEC C9 (a tenth
+  /// of the facet size at a solid slave node, the thickness at a shell slave node).
+  std::optional<Real> search_above, search_below;
+  SourceLocation where;
+};
+
+/// A `*CONTACT CLEARANCE ASSIGNMENT` data line: `surf1, surf2, name[, MASTER|SLAVE]`.
+struct ClearanceAssignment {
+  /// Both: the nodes of each surface against the faces of the other (balanced, default);
+  /// Master: surf1 is the master, only the nodes of surf2 move; Slave: surf1 is the slave.
+  enum class View { Both, Master, Slave };
+  Index first = NO_INDEX;      ///< into Model::surfaces (element based, single sided)
+  Index second = NO_INDEX;     ///< into Model::surfaces, != first
+  Index clearance = NO_INDEX;  ///< into Model::contact_clearances
+  View view = View::Both;
+  SourceLocation where;
+};
+
 /// `*CONTACT` (general contact) in a step, with its sub-options.
 struct GeneralContact {
   /// `*CONTACT INCLUSIONS, ALL EXTERIOR`: every exterior solid face and both sides of every
@@ -222,6 +256,9 @@ struct GeneralContact {
   /// `*CONTACT CONTROLS ASSIGNMENT` penalty scale factor (`*CONTACT CONTROLS, NAME=,
   /// PENALTY SCALE FACTOR=`... or the data-line form), multiplies the default penalty.
   Real penalty_scale = 1.0;
+  /// `*CONTACT CLEARANCE ASSIGNMENT` lines of this step only (a later step's *CONTACT starts
+  /// without them): they act when the step's contact domain is built new (SPEC C7, C10).
+  std::vector<ClearanceAssignment> clearances;
   SourceLocation where;
 };
 
@@ -374,6 +411,8 @@ struct Model {
   std::vector<SurfaceInteraction> surface_interactions;
   std::vector<ContactPair> contact_pairs;  ///< model-level `*CONTACT PAIR` (CalculiX style)
   Diagnostics diagnostics;                 ///< model-level `*DIAGNOSTICS` (or the defaults)
+  std::vector<ContactClearance> contact_clearances;  ///< `*CONTACT CLEARANCE`
+  std::vector<NodalDistribution> distributions;      ///< `*DISTRIBUTION, LOCATION=NODE`
   std::vector<RigidBody> rigid_bodies;
   std::vector<PointInertia> point_inertias;
 
