@@ -49,6 +49,7 @@ class BroadPhase {
   /// Candidate face indices, ascending within each slave node.
   const std::vector<Index>& candidate_faces() const { return m_candidates; }
   Real margin() const { return m_margin; }
+  Real rebuild_motion() const { return m_rebuild_motion; }
   /// Number of builds so far.
   long build_count() const { return m_builds; }
   /// Buckets per direction of the last build.

@@ -89,6 +89,7 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   // Side memory: a node pressed onto one side of a shell last increment may not be taken by
   // the other side of that shell, however deep it has gone (no pass-through).
   const ContactConstraint& before = m_constraints[s];
+  if (before.offset_permanent) v.allowance = std::max(before.offset, 0.0);
   if (before.status == ContactStatus::Closed && before.master_face >= 0 &&
       faces[before.master_face].shell)
     v.held = &faces[before.master_face];
@@ -139,7 +140,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
     if (lateral_sq > gap * gap) return false;
   }
   const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
-  if (!kept_side && -gap > depth + half_t) return false;
+  if (!kept_side && -gap > depth + half_t + v.allowance) return false;
   out = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
   distance = cp.distance;
   return true;
@@ -164,6 +165,11 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
     }
     m_touch[s] = best;
   }
+}
+
+void ContactEngine::widen_search(Real extra) {
+  if (!(extra > 0.0)) return;
+  m_broad = BroadPhase(m_broad.margin() + extra, m_broad.rebuild_motion());
 }
 
 bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {

@@ -136,6 +136,9 @@ class ContactEngine {
   const std::vector<Real>& pair_normal_force() const { return m_pair_normal; }
   const std::vector<Real>& pair_friction_force() const { return m_pair_friction; }
   const BroadPhase& broad_phase() const { return m_broad; }
+  /// Widens the search margin by `extra` (m, > 0) for contact surfaces moved out towards the
+  /// slave nodes by negative permanent offsets (clearances); the next search rebuilds the lists.
+  void widen_search(Real extra);
 
  private:
   /// Closest admissible face of every slave node (parallel over slots).
@@ -150,6 +153,8 @@ class ContactEngine {
     bool double_sided = false;
     bool free_edge = false;
     Real half_t = 0.0;
+    /// A positive permanent offset (a clearance) lets the node that much deeper.
+    Real allowance = 0.0;
     const ContactFace* held = nullptr;
   };
   SlaveView slave_view(Index s, const NodalVectors& position,

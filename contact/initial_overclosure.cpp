@@ -93,6 +93,53 @@ bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
 
 }  // namespace
 
+std::vector<Real> slave_facet_sizes(const ContactEngine& engine, const NodalVectors& position) {
+  const SlaveNodes& slaves = engine.domain().slaves();
+  const std::vector<ContactFace>& faces = engine.domain().faces();
+  std::vector<Real> size(static_cast<std::size_t>(slaves.size()), 0.0);
+  for (Index s = 0; s < slaves.size(); ++s) {
+    Real sum = 0.0;
+    int count = 0;
+    for (Index f : slaves.faces_of(s)) {
+      Vec3 corner[4];
+      face_corners(faces[f], position, {}, corner);
+      sum += std::sqrt(quad_area(corner));
+      ++count;
+    }
+    size[s] = count > 0 ? sum / count : 0.0;
+  }
+  return size;
+}
+
+std::vector<Index> distorted_elements(const ElementTopology& topology, const NodalVectors& original,
+                                      const NodalVectors& position,
+                                      std::span<const char> node_moved, Real& quality_before,
+                                      Real& quality_after) {
+  std::vector<Index> refused;
+  quality_before = quality_after = 1.0;
+  for (Index e = 0; e < topology.element_count(); ++e) {
+    const Index* en = topology.nodes.data() + topology.offsets[e];
+    const Index count = topology.offsets[e + 1] - topology.offsets[e];
+    bool touched = false;
+    for (Index k = 0; k < count && !touched; ++k) touched = node_moved[en[k]] != 0;
+    if (!touched) continue;
+    const Vec3 normal = topology.kinds[e] == ElementKind::Shell
+                            ? shell_normal(topology, e, original)
+                            : Vec3::Zero();
+    Real before[8], after[8], scaled_before[8], scaled_after[8];
+    const int corners = corner_measures(topology, e, original, normal, before, scaled_before);
+    corner_measures(topology, e, position, normal, after, scaled_after);
+    bool refuse = false;
+    for (int a = 0; a < corners; ++a) {
+      quality_before = std::min(quality_before, scaled_before[a]);
+      quality_after = std::min(quality_after, scaled_after[a]);
+      refuse = refuse || after[a] < MIN_CORNER_RATIO * before[a];
+    }
+    if (refuse) refused.push_back(e);
+  }
+  return refused;
+}
+
 const char* offset_reason_name(OffsetReason reason) {
   switch (reason) {
     case OffsetReason::Boundary:
@@ -127,24 +174,13 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
   const Index n_slave = slaves.size();
   const auto n = static_cast<std::size_t>(n_slave);
 
-  // Facet size around each slave node: the mean square root of the areas of its faces.
-  std::vector<Real> size(n, 0.0);
-  for (Index s = 0; s < n_slave; ++s) {
-    Real sum = 0.0;
-    int count = 0;
-    for (Index f : slaves.faces_of(s)) {
-      Vec3 corner[4];
-      face_corners(faces[f], position, {}, corner);
-      sum += std::sqrt(quad_area(corner));
-      ++count;
-    }
-    size[s] = count > 0 ? sum / count : 0.0;
-  }
+  const std::vector<Real> size = slave_facet_sizes(engine, position);
   auto tolerance = [&](Index s) { return OVERCLOSURE_TOLERANCE * size[s]; };
   auto limit = [&](Index s, Index f) {
     return faces[f].shell ? std::numeric_limits<Real>::max() : settings.depth_fraction * size[s];
   };
   auto penetrates = [&](Index s) {
+    if (!settings.exclude.empty() && settings.exclude[s] != 0) return false;
     const SlaveTouch& t = engine.touch(s);
     return t.face != NO_INDEX && t.gap < -tolerance(s);
   };
@@ -252,28 +288,8 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
           moved_any = true;
         }
       }
-      std::vector<Index> refused;
-      report.quality_before = report.quality_after = 1.0;
-      for (Index e = 0; e < topology.element_count(); ++e) {
-        const Index* en = topology.nodes.data() + topology.offsets[e];
-        const Index count = topology.offsets[e + 1] - topology.offsets[e];
-        bool touched = false;
-        for (Index k = 0; k < count && !touched; ++k) touched = node_moved[en[k]] != 0;
-        if (!touched) continue;
-        const Vec3 normal = topology.kinds[e] == ElementKind::Shell
-                                ? shell_normal(topology, e, original)
-                                : Vec3::Zero();
-        Real before[8], after[8], scaled_before[8], scaled_after[8];
-        const int corners = corner_measures(topology, e, original, normal, before, scaled_before);
-        corner_measures(topology, e, position, normal, after, scaled_after);
-        bool refuse = false;
-        for (int a = 0; a < corners; ++a) {
-          report.quality_before = std::min(report.quality_before, scaled_before[a]);
-          report.quality_after = std::min(report.quality_after, scaled_after[a]);
-          refuse = refuse || after[a] < MIN_CORNER_RATIO * before[a];
-        }
-        if (refuse) refused.push_back(e);
-      }
+      const std::vector<Index> refused = distorted_elements(
+          topology, original, position, node_moved, report.quality_before, report.quality_after);
       if (refused.empty() || round + 1 == MAX_ROUNDS) break;
       for (Index e : refused) {
         report.refused_elements.push_back(e);

@@ -78,6 +78,9 @@ struct OverclosureSettings {
   /// around the slave node (mean square root of the face areas).
   Real depth_fraction = 0.15;
   int max_passes = 60;
+  /// Per slave slot: 1 for a node the pass leaves alone (it has a contact clearance); empty:
+  /// none.
+  std::span<const char> exclude;
 };
 
 /// Relative tolerance (of the facet size) under which a node counts as on the surface.
@@ -144,6 +147,19 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
                                                std::span<const Real> node_thickness,
                                                std::span<const std::uint8_t> node_lock,
                                                const OverclosureSettings& settings);
+
+/// Facet size around each slave slot of `engine` on `position`: the mean square root of the
+/// areas of the faces around the node, m.
+std::vector<Real> slave_facet_sizes(const ContactEngine& engine, const NodalVectors& position);
+
+/// Elements with a node marked in `node_moved` (n_nodes) one of whose corner volumes (hex) or
+/// corner areas (shell) at `position` falls below half its value at `original`, or inverts;
+/// also the smallest scaled corner measure of the elements with a moved node, before and
+/// after (1 for a perfect element; 1 when there are none).
+std::vector<Index> distorted_elements(const ElementTopology& topology, const NodalVectors& original,
+                                      const NodalVectors& position,
+                                      std::span<const char> node_moved, Real& quality_before,
+                                      Real& quality_after);
 
 /// Carries offsets from the engine of an earlier step to a rebuilt one (a contact domain
 /// changed after step 1, C6): a slave node of both keeps its offset; new slave nodes start

@@ -147,6 +147,10 @@ struct ExplicitSolver::Impl {
   /// stores offsets (later step, import); with an engine of an earlier step, carries its
   /// offsets over instead.
   void resolve_overclosures(int step, const contact::ContactEngine* previous);
+  /// The clearance views of the assignments given with the step's *CONTACT (and their names
+  /// for the reports); empty when there are none.
+  std::vector<contact::ClearanceView> clearance_views(int step,
+                                                      std::vector<ClearanceViewNames>& names) const;
   /// Stable increment of the elements at the current positions (no state change), s.
   Real stable_increment(int step);
   /// Contact forces at the current positions into force_internal, energies into the state.
@@ -557,14 +561,26 @@ void ExplicitSolver::Impl::resolve_overclosures(int step, const contact::Contact
   if (settings.adjust) as_read = state.position;
   const contact::ElementTopology topology{model.element_offsets, model.element_nodes,
                                           element_kinds};
+  // Clearances first (C7–C10); the automatic pass then leaves their nodes alone.
+  std::vector<ClearanceViewNames> view_names;
+  const std::vector<contact::ClearanceView> views = clearance_views(step, view_names);
+  contact::ClearanceReport clearances;
   contact::OverclosureReport report;
   {
     ScopedTimer timer(timers, Phase::ContactSearch);
+    if (!views.empty()) {
+      clearances = contact::apply_clearances(*contact, topology, state.position, node_thickness,
+                                             lock, views, settings.adjust);
+      settings.exclude = clearances.handled;
+    }
     report = contact::resolve_initial_overclosures(*contact, topology, state.position,
                                                    node_thickness, lock, settings);
   }
+  const bool clearance_moved =
+      std::any_of(clearances.nodes.begin(), clearances.nodes.end(),
+                  [](const contact::ClearedNode& c) { return c.distance > 0.0; });
   AdjustmentEffect effect;
-  if (!report.adjusted.empty()) {
+  if (!report.adjusted.empty() || clearance_moved) {
     effect.dt_after = stable_increment(step);
     state.position.swap(as_read);
     effect.dt_before = stable_increment(step);
@@ -577,7 +593,49 @@ void ExplicitSolver::Impl::resolve_overclosures(int step, const contact::Contact
                                 : ": contact is first defined in this step") +
                      ": initial penetrations become temporary offsets without force; no node "
                      "moves (C6)");
+  if (!views.empty())
+    report_clearances(clearances, view_names, *contact, model, step, diagnostics, sink);
   report_overclosures(report, *contact, model, step, diagnostics, effect, sink);
+}
+
+std::vector<contact::ClearanceView> ExplicitSolver::Impl::clearance_views(
+    int step, std::vector<ClearanceViewNames>& names) const {
+  std::vector<contact::ClearanceView> views;
+  const Step& s = model.steps[step];
+  if (!s.contact) return views;
+  auto faces_of = [&](Index surface) {
+    std::vector<contact::FaceRef> refs;
+    for (const ElementFace& f : model.surfaces[surface].faces) refs.push_back({f.element, f.face});
+    return refs;
+  };
+  const std::vector<ClearanceAssignment>& assignments = s.contact->clearances;
+  for (std::size_t a = 0; a < assignments.size(); ++a) {
+    const ClearanceAssignment& assignment = assignments[a];
+    const ContactClearance& definition = model.contact_clearances[assignment.clearance];
+    contact::ClearanceView view;
+    view.assignment = static_cast<Index>(a);
+    view.adjust = definition.adjust;
+    view.value = definition.value;
+    if (definition.distribution != NO_INDEX)
+      view.nodal_values = model.distributions[definition.distribution].values;
+    if (definition.search_above) view.search_above = *definition.search_above;
+    if (definition.search_below) view.search_below = *definition.search_below;
+    auto add = [&](Index slave, Index master) {
+      contact::ClearanceView v = view;
+      v.slave_surface = slave;
+      v.master_surface = master;
+      v.slave_faces = faces_of(slave);
+      v.master_faces = faces_of(master);
+      views.push_back(std::move(v));
+      names.push_back({definition.name, model.surfaces[slave].name, model.surfaces[master].name});
+    };
+    // MASTER: surf1 is the master (only surf2's nodes move); SLAVE: surf1 is the slave.
+    if (assignment.view != ClearanceAssignment::View::Master)
+      add(assignment.first, assignment.second);
+    if (assignment.view != ClearanceAssignment::View::Slave)
+      add(assignment.second, assignment.first);
+  }
+  return views;
 }
 
 Real ExplicitSolver::Impl::stable_increment(int step) {

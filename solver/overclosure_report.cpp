@@ -253,4 +253,145 @@ void report_overclosures(const contact::OverclosureReport& report,
   }
 }
 
+void report_clearances(const contact::ClearanceReport& report,
+                       const std::vector<ClearanceViewNames>& views,
+                       const contact::ContactEngine& engine, const Model& model, int step,
+                       const Diagnostics& diagnostics, OutputSink& sink) {
+  const contact::ContactDomain& domain = engine.domain();
+  auto face_text = [&](Index f) {
+    const contact::ContactFace& cf = domain.faces()[f];
+    return "face " +
+           face_label(cf.shell ? contact::ElementKind::Shell : contact::ElementKind::Hex, cf.face) +
+           " of element " + std::to_string(model.element_ids[cf.element]);
+  };
+  auto view_text = [&](Index v) { return "contact clearance " + views[v].clearance + ": node "; };
+  std::size_t adjusted = 0, offsets = 0;
+  for (const contact::ClearedNode& c : report.nodes) {
+    adjusted += c.distance > 0.0 ? 1 : 0;
+    offsets += c.offset != 0.0 ? 1 : 0;
+    if (!diagnostics.overclosure_detail) continue;
+    std::string text = view_text(c.view) + std::to_string(model.node_ids[c.node]) +
+                       " (slave surface " + views[c.view].slave + ", master surface " +
+                       views[c.view].master + ", " + face_text(c.face) + "): gap " +
+                       real_text(c.gap_before) + " m as read, clearance " + real_text(c.clearance) +
+                       " m";
+    if (c.distance > 0.0)
+      text += "; adjusted by " + real_text(c.distance) + " m along " + vector_text(c.direction);
+    if (c.offset != 0.0)
+      text += "; permanent contact offset d0 = " + real_text(c.offset) + " m" +
+              (c.distance > 0.0 || c.reason != contact::OffsetReason::Conflict
+                   ? std::string(" (reason: ") + contact::offset_reason_name(c.reason) + ")"
+                   : std::string());
+    sink.message(Severity::Info, text);
+  }
+  for (const contact::SkippedNode& k : report.skipped)
+    if (diagnostics.overclosure_detail)
+      sink.message(Severity::Note, view_text(k.view) + std::to_string(model.node_ids[k.node]) +
+                                       " (slave surface " + views[k.view].slave +
+                                       ") is skipped: " + contact::clearance_skip_name(k.why));
+  std::vector<char> warned(views.size(), 0);
+  for (Index v : report.faces_outside_domain)
+    if (!warned[v]) {
+      warned[v] = 1;
+      sink.message(Severity::Warning,
+                   "contact clearance " + views[v].clearance + ": faces of master surface " +
+                       views[v].master +
+                       " are not in the contact domain of the step (include the surfaces in "
+                       "*CONTACT INCLUSIONS); the clearance does not apply to them");
+    }
+  for (Index e : report.refused_elements)
+    sink.message(Severity::Warning,
+                 "contact clearance: moving the nodes of element " +
+                     std::to_string(model.element_ids[e]) +
+                     " would invert it or halve a corner volume: not adjusted, its nodes keep "
+                     "permanent offsets (reason: distortion)");
+  const std::string summary =
+      "contact clearances, step " + std::to_string(step + 1) + " (" + model.steps[step].name +
+      "): " + std::to_string(report.nodes.size()) + " slave node(s) in search zones, " +
+      std::to_string(adjusted) + " adjusted, " + std::to_string(offsets) +
+      " permanent offset(s), " + std::to_string(report.skipped.size()) + " skipped (" +
+      std::to_string(report.passes) + " adjustment pass(es), smallest scaled corner Jacobian " +
+      real_text(report.quality_before) + " before, " + real_text(report.quality_after) +
+      " after); pass " + real_text(report.seconds) + " s";
+  sink.status_note(summary);
+  sink.message(Severity::Info, summary);
+
+  const std::string prefix = "overclosure/step_" + std::to_string(step + 1) + "/";
+  auto table = [&](const std::string& name, Index rows, const std::string& description) {
+    ResultTable t;
+    t.path = prefix + name;
+    t.rows = rows;
+    t.description = description;
+    std::string clearances, slaves, masters;
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      clearances += (v > 0 ? "," : "") + views[v].clearance;
+      slaves += (v > 0 ? "," : "") + views[v].slave;
+      masters += (v > 0 ? "," : "") + views[v].master;
+    }
+    t.attributes = {{"view_clearance", clearances},
+                    {"view_slave_surface", slaves},
+                    {"view_master_surface", masters}};
+    return t;
+  };
+  auto ids = [](const std::string& name, const std::string& description) {
+    TableColumn c;
+    c.name = name;
+    c.integer = true;
+    c.description = description;
+    return c;
+  };
+  auto reals = [](const std::string& name, const std::string& description, Index width = 1) {
+    TableColumn c;
+    c.name = name;
+    c.width = width;
+    c.description = description;
+    return c;
+  };
+  {
+    ResultTable t = table("clearances", static_cast<Index>(report.nodes.size()),
+                          "slave nodes given a contact clearance (C7-C10)");
+    TableColumn node = ids("node", "deck id of the slave node");
+    TableColumn view = ids("view",
+                           "index into the attributes view_clearance, "
+                           "view_slave_surface, view_master_surface");
+    TableColumn element = ids("master_element", "deck id of the nearest master element as read");
+    TableColumn face = ids("master_face", FACE_CODES);
+    TableColumn clearance = reals("clearance", "m, positive above the master surface");
+    TableColumn gap = reals("gap_before", "m, as read (negative: below the surface)");
+    TableColumn distance = reals("distance", "m, length of the move");
+    TableColumn direction = reals("direction", "unit vector of the move", 3);
+    TableColumn offset = reals("offset", "permanent contact offset d0, m (0: none)");
+    for (const contact::ClearedNode& c : report.nodes) {
+      node.ids.push_back(model.node_ids[c.node]);
+      view.ids.push_back(c.view);
+      const contact::ContactFace& cf = domain.faces()[c.face];
+      element.ids.push_back(model.element_ids[cf.element]);
+      face.ids.push_back(face_code(cf));
+      clearance.values.push_back(c.clearance);
+      gap.values.push_back(c.gap_before);
+      distance.values.push_back(c.distance);
+      for (int d = 0; d < 3; ++d) direction.values.push_back(c.direction[d]);
+      offset.values.push_back(c.offset);
+    }
+    t.columns = {node, view, element, face, clearance, gap, distance, direction, offset};
+    sink.write_table(t);
+  }
+  {
+    ResultTable t = table("clearance_skipped", static_cast<Index>(report.skipped.size()),
+                          "slave nodes in a search zone that got no clearance");
+    TableColumn node = ids("node", "deck id of the slave node");
+    TableColumn view = ids("view", "index into the attribute view_clearance");
+    TableColumn why = ids("reason",
+                          "0 no value, 1 perimeter edge, 2 wrong side, 3 not in the contact "
+                          "domain, 4 repeated");
+    for (const contact::SkippedNode& k : report.skipped) {
+      node.ids.push_back(model.node_ids[k.node]);
+      view.ids.push_back(k.view);
+      why.ids.push_back(static_cast<std::int64_t>(k.why));
+    }
+    t.columns = {node, view, why};
+    sink.write_table(t);
+  }
+}
+
 }  // namespace xpl

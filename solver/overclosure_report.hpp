@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "contact/contact_clearance.hpp"
 #include "contact/initial_overclosure.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
@@ -25,6 +26,21 @@ void report_overclosures(const contact::OverclosureReport& report,
                          const contact::ContactEngine& engine, const Model& model, int step,
                          const Diagnostics& diagnostics, const AdjustmentEffect& effect,
                          OutputSink& sink);
+
+/// Names of one clearance view for the reports: the clearance and the slave and master
+/// surfaces.
+struct ClearanceViewNames {
+  std::string clearance, slave, master;
+};
+
+/// Writes the reports of the clearance pass of step `step` (SPEC C7–C11): with DETAIL one .msg
+/// line per node (clearance name, surfaces, gap as read, the move or the permanent offset) and
+/// per skipped node; at both levels a summary line (.sta and .msg) and the tables
+/// /overclosure/step_N/{clearances, clearance_skipped}.
+void report_clearances(const contact::ClearanceReport& report,
+                       const std::vector<ClearanceViewNames>& views,
+                       const contact::ContactEngine& engine, const Model& model, int step,
+                       const Diagnostics& diagnostics, OutputSink& sink);
 
 /// Abaqus name of contact face `face` of element kind `kind` ("S3", "SPOS").
 std::string face_label(contact::ElementKind kind, int face);
