@@ -18,17 +18,19 @@ using Handler = void (*)(DeckBuilder&, const DeckBlock&);
 constexpr const char* SUPPORTED_KEYWORDS =
     "*HEADING, *INCLUDE, *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE, *MATERIAL, *DENSITY, "
     "*ELASTIC, *SOLID SECTION, *SHELL SECTION, *SECTION CONTROLS, *MASS, *ROTARY INERTIA, "
-    "*RIGID BODY, *SURFACE INTERACTION, *FRICTION, *SURFACE BEHAVIOR, *CONTACT PAIR, *AMPLITUDE, "
-    "*INITIAL CONDITIONS, *BOUNDARY, *STEP, *DYNAMIC, *BULK VISCOSITY, *CLOAD, *DLOAD, *DSLOAD, "
-    "*CONTACT, *CONTACT INCLUSIONS, *CONTACT EXCLUSIONS, *CONTACT PROPERTY ASSIGNMENT, "
-    "*CONTACT CONTROLS ASSIGNMENT, *OUTPUT, *NODE OUTPUT, *ELEMENT OUTPUT, *ENERGY OUTPUT, "
-    "*CONTACT OUTPUT, *NODE FILE, *EL FILE, *NODE PRINT, *EL PRINT, *CONTACT FILE, "
-    "*CONTACT PRINT, *END STEP, *PREPRINT, *DIAGNOSTICS";
+    "*RIGID BODY, *SURFACE INTERACTION, *FRICTION, *SURFACE BEHAVIOR, *CONTACT PAIR, "
+    "*CONTACT CLEARANCE, *DISTRIBUTION, *DISTRIBUTION TABLE, *AMPLITUDE, *INITIAL CONDITIONS, "
+    "*BOUNDARY, *STEP, *DYNAMIC, *BULK VISCOSITY, *CLOAD, *DLOAD, *DSLOAD, *CONTACT, "
+    "*CONTACT INCLUSIONS, *CONTACT EXCLUSIONS, *CONTACT PROPERTY ASSIGNMENT, "
+    "*CONTACT CONTROLS ASSIGNMENT, *CONTACT CLEARANCE ASSIGNMENT, *OUTPUT, *NODE OUTPUT, "
+    "*ELEMENT OUTPUT, *ENERGY OUTPUT, *CONTACT OUTPUT, *NODE FILE, *EL FILE, *NODE PRINT, "
+    "*EL PRINT, *CONTACT FILE, *CONTACT PRINT, *END STEP, *PREPRINT, *DIAGNOSTICS";
 
 /// General contact and its options: step data (as in Abaqus/Explicit).
 bool is_general_contact(const std::string& name) {
   return name == "CONTACT" || name == "CONTACT INCLUSIONS" || name == "CONTACT EXCLUSIONS" ||
-         name == "CONTACT PROPERTY ASSIGNMENT" || name == "CONTACT CONTROLS ASSIGNMENT";
+         name == "CONTACT PROPERTY ASSIGNMENT" || name == "CONTACT CONTROLS ASSIGNMENT" ||
+         name == "CONTACT CLEARANCE ASSIGNMENT";
 }
 
 }  // namespace
@@ -79,6 +81,9 @@ void DeckBuilder::read_block(const DeckBlock& block) {
       {"FRICTION", Context::Model, &DeckBuilder::read_friction},
       {"SURFACE BEHAVIOR", Context::Model, &DeckBuilder::read_surface_behavior},
       {"CONTACT PAIR", Context::Anywhere, &DeckBuilder::read_contact_pair},
+      {"CONTACT CLEARANCE", Context::Anywhere, &DeckBuilder::read_contact_clearance},
+      {"DISTRIBUTION", Context::Model, &DeckBuilder::read_distribution},
+      {"DISTRIBUTION TABLE", Context::Model, &DeckBuilder::read_distribution_table},
       {"AMPLITUDE", Context::Model, &DeckBuilder::read_amplitude},
       {"INITIAL CONDITIONS", Context::Model, &DeckBuilder::read_initial_conditions},
       {"BOUNDARY", Context::Anywhere, &DeckBuilder::read_boundary},
@@ -96,6 +101,7 @@ void DeckBuilder::read_block(const DeckBlock& block) {
        &DeckBuilder::read_contact_property_assignment},
       {"CONTACT CONTROLS ASSIGNMENT", Context::Step,
        &DeckBuilder::read_contact_controls_assignment},
+      {"CONTACT CLEARANCE ASSIGNMENT", Context::Step, &DeckBuilder::read_clearance_assignment},
       {"OUTPUT", Context::Step, &DeckBuilder::read_output},
       {"NODE OUTPUT", Context::Step, &DeckBuilder::read_node_output},
       {"ELEMENT OUTPUT", Context::Step, &DeckBuilder::read_element_output},
@@ -136,7 +142,8 @@ void DeckBuilder::read_block(const DeckBlock& block) {
           "expected it before the first *STEP");
     return;
   }
-  if ((entry->context == Context::Model || name == "BOUNDARY" || name == "CONTACT PAIR") &&
+  if ((entry->context == Context::Model || name == "BOUNDARY" || name == "CONTACT PAIR" ||
+       name == "CONTACT CLEARANCE") &&
       !m_in_step && !m_model.steps.empty()) {
     error(keyword.where, keyword, "model data after the first step",
           "expected all model data before the first *STEP");

@@ -4,12 +4,14 @@
 /// reading and resolved once the whole deck is known, so definition order does not matter
 /// within the model data.
 
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "io/deck_lines.hpp"
@@ -126,6 +128,24 @@ class DeckBuilder {
     DeckReference reference_node;
     std::string element_set, pin_node_set, tie_node_set;
   };
+  /// `*DISTRIBUTION, LOCATION=NODE` (parallel to Model::distributions): its data lines.
+  struct PendingDistribution {
+    std::optional<Real> default_value;                   ///< first line with a blank node field
+    std::vector<std::pair<DeckReference, Real>> values;  ///< node or node set, value
+    std::string table;                                   ///< TABLE=, upper case; empty if none
+  };
+  /// `*DISTRIBUTION TABLE, NAME=`: only a single scalar column is accepted.
+  struct DistributionTable {
+    std::string name;  ///< upper case
+    SourceLocation where;
+  };
+  /// A `*CONTACT CLEARANCE ASSIGNMENT` line: surfaces resolved while reading, the clearance
+  /// (which may be defined later) and the checks that need the whole deck in finish().
+  struct PendingClearanceAssignment {
+    Index step = NO_INDEX;
+    std::string clearance;  ///< upper case
+    ClearanceAssignment assignment;
+  };
   /// A `*ELEMENT, TYPE=MASS|ROTARYI` element: the solver has no point elements, so it stays
   /// out of the Model's element arrays; `*MASS`/`*ROTARY INERTIA` make it a PointInertia.
   struct PointElement {
@@ -186,6 +206,11 @@ class DeckBuilder {
   void read_contact_property_assignment(const DeckBlock& block);
   void read_contact_controls_assignment(const DeckBlock& block);
   void read_contact_pair(const DeckBlock& block);
+  // --- clearances (deck_clearance.cpp, deck_clearance_checks.cpp, deck_distribution.cpp) ------
+  void read_contact_clearance(const DeckBlock& block);
+  void read_clearance_assignment(const DeckBlock& block);
+  void read_distribution(const DeckBlock& block);
+  void read_distribution_table(const DeckBlock& block);
   /// The general contact of the open step; nullptr (reported) if the step has no *CONTACT.
   GeneralContact* open_contact(const DeckKeyword& keyword);
   /// Surfaces 1 and 2 of a contact data line (blank: all exterior; surface 2 blank: self
@@ -272,6 +297,20 @@ class DeckBuilder {
   void resolve_contact_pairs();
   void resolve_rigid_bodies();
   void resolve_point_inertias();
+  void resolve_distributions();
+  /// Distribution names of the clearances, then the assignments: clearance names, surfaces,
+  /// signs of the values and the step rules (SPEC C7–C10).
+  void resolve_clearances();
+  /// Whether assignment `pending` may act in its step (SPEC C7): reported if not.
+  bool check_clearance_step(const PendingClearanceAssignment& pending);
+  /// Whether a negative value of the assignment's clearance meets a solid surface (SPEC C8):
+  /// reported if so.
+  bool check_clearance_sign(const PendingClearanceAssignment& pending);
+  /// Whether the assignment has slave nodes off rigid bodies: reported if not.
+  bool check_clearance_slaves(const PendingClearanceAssignment& pending);
+  /// Whether surface `surface` suits a clearance (SPEC C10): element based, single sided, each
+  /// edge on at most two faces, consistent normals. Reported (once per surface) if not.
+  bool check_clearance_surface(Index surface, const SourceLocation& where);
   /// Faces of the C3D8R elements of `elements` (unique) that no other C3D8R element shares,
   /// ordered by element and face.
   std::vector<ElementFace> exposed_hex_faces(const std::vector<Index>& elements);
@@ -311,6 +350,14 @@ class DeckBuilder {
   std::vector<PointElement> m_point_elements;
   std::unordered_map<ExternalId, Index> m_point_element_index;  ///< into m_point_elements
   std::vector<PointProperty> m_point_properties;
+  std::vector<PendingDistribution> m_distributions;  ///< parallel to Model::distributions
+  std::vector<DistributionTable> m_distribution_tables;
+  /// CLEARANCE=name of each clearance (parallel to Model::contact_clearances), upper case;
+  /// empty for a value.
+  std::vector<std::string> m_clearance_distributions;
+  std::vector<PendingClearanceAssignment> m_clearance_assignments;
+  /// check_clearance_surface verdict per surface: 0 not checked, 1 fit, 2 reported.
+  std::vector<std::uint8_t> m_clearance_surface_state;
 
   // --- position in the deck ------------------------------------------------------------------
   Index m_material = NO_INDEX;     ///< the *MATERIAL that *DENSITY/*ELASTIC attach to

@@ -87,6 +87,8 @@ void DeckBuilder::read_contact(const DeckBlock& block) {
       }
     }
   }
+  // Clearance assignments act only in the step that gives them (SPEC C7, C10).
+  contact.clearances.clear();
   contact.where = keyword.where;
   steps.back().contact = std::move(contact);
 }

@@ -133,20 +133,8 @@ DeckKeyword parse_keyword(std::string_view line, const SourceLocation& where, In
   keyword.name = normalize_name(fields.front());
   if (unterminated)
     errors.add(where, keyword.label(), "unterminated quote", "expected a closing \"");
-  for (std::size_t i = 1; i < fields.size(); ++i) {
-    const std::string_view field = fields[i];
-    if (field.empty()) continue;
-    DeckParameter parameter;
-    const std::size_t eq = field.find('=');
-    if (eq == std::string_view::npos) {
-      parameter.name = normalize_name(field);
-    } else {
-      parameter.name = normalize_name(field.substr(0, eq));
-      parameter.value = unquote(trim(field.substr(eq + 1)));
-      parameter.has_value = true;
-    }
-    keyword.parameters.push_back(std::move(parameter));
-  }
+  for (std::size_t i = 1; i < fields.size(); ++i)
+    if (!fields[i].empty()) keyword.parameters.push_back(parse_parameter(fields[i]));
   return keyword;
 }
 
@@ -250,6 +238,19 @@ void DeckData::load(std::size_t i, DeckDataLine& line) const {
   line.text = record.text;
   line.file = &m_storage->file(record.file);
   line.line = record.line;
+}
+
+DeckParameter parse_parameter(std::string_view field) {
+  DeckParameter parameter;
+  const std::size_t eq = field.find('=');
+  if (eq == std::string_view::npos) {
+    parameter.name = normalize_name(field);
+  } else {
+    parameter.name = normalize_name(field.substr(0, eq));
+    parameter.value = unquote(trim(field.substr(eq + 1)));
+    parameter.has_value = true;
+  }
+  return parameter;
 }
 
 std::string normalize_name(std::string_view text) {

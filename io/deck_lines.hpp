@@ -131,6 +131,10 @@ std::vector<DeckBlock> read_deck_blocks(std::string_view text, const std::string
 /// seeked); false if it cannot be opened.
 bool read_text_file(const std::filesystem::path& path, std::string& content);
 
+/// One `NAME=value` or flag field of a keyword line (quotes removed, value trimmed). Also used
+/// for data lines that a keyword reads as more parameters (*CONTACT CLEARANCE).
+DeckParameter parse_parameter(std::string_view field);
+
 /// Upper case with runs of blanks collapsed to one and ends trimmed ("step  time" → "STEP TIME").
 std::string normalize_name(std::string_view text);
 

@@ -2,7 +2,8 @@
 /// conditions, boundary conditions, loads and output sets. Sections are resolved in
 /// deck_sections.cpp, surfaces in deck_surfaces.cpp, pressures and gravity in
 /// deck_pressure.cpp, contact pairs in deck_contact.cpp, rigid bodies in deck_rigid.cpp, point
-/// masses in deck_point_mass.cpp, element shapes checked in deck_geometry.cpp.
+/// masses in deck_point_mass.cpp, distributions in deck_distribution.cpp, clearances in
+/// deck_clearance.cpp, element shapes checked in deck_geometry.cpp.
 
 #include <algorithm>
 
@@ -49,6 +50,8 @@ Model DeckBuilder::finish() {
   resolve_contact_pairs();
   resolve_rigid_bodies();
   resolve_point_inertias();
+  resolve_distributions();
+  resolve_clearances();  // after surfaces, contact pairs, rigid bodies and distributions
   check_element_geometry();
 
   const char* categories[ERROR_CATEGORIES] = {"elements with undefined nodes",
