@@ -161,11 +161,28 @@ int main(int argc, char** argv) {
   // --import: read and check the earlier result before anything is written.
   xpl::InitialState initial;
   if (!args.import.empty()) {
-    if (!model.rigid_bodies.empty()) {
-      std::cerr << args.import.string()
-                << ": --import: the model has rigid bodies, whose orientation a result file "
-                   "does not hold; expected a model without *RIGID BODY\n"
-                << "xpl: 1 error(s) in " << args.import.string() << "; nothing was written\n";
+    std::vector<std::string> refusals;
+    if (!model.rigid_bodies.empty())
+      refusals.push_back(args.import.string() +
+                         ": --import: the model has rigid bodies, whose orientation a result "
+                         "file does not hold; expected a model without *RIGID BODY");
+    // Clearances by adjustment move nodes strain free, which only the first step of a new
+    // analysis may do (C7); an imported state takes them as permanent offsets.
+    if (const auto& first = model.steps.front().contact; first)
+      for (const xpl::ClearanceAssignment& a : first->clearances) {
+        const xpl::ContactClearance& c = model.contact_clearances[a.clearance];
+        if (c.adjust)
+          refusals.push_back(a.where.file + ":" + std::to_string(a.where.line) +
+                             ": *CONTACT CLEARANCE ASSIGNMENT: clearance " + c.name +
+                             " has ADJUST=YES, but the run starts from --import " +
+                             args.import.string() +
+                             " (no node may move in an imported state); expected ADJUST=NO "
+                             "(permanent contact offsets)");
+      }
+    if (!refusals.empty()) {
+      for (const std::string& m : refusals) std::cerr << m << "\n";
+      std::cerr << "xpl: " << refusals.size() << " error(s) in " << args.import.string()
+                << "; nothing was written\n";
       return 1;
     }
     try {

@@ -16,9 +16,14 @@ using Clock = std::chrono::steady_clock;
 
 /// Share of the facet size at a solid slave node used as the default search zone (C9).
 constexpr Real DEFAULT_ZONE_FRACTION = 0.1;
-/// Jacobi passes before what remains becomes an offset. Balanced clearances on curved
-/// surfaces converge linearly (both surfaces give way); flat ones in one or two passes.
-constexpr int MAX_PASSES = 400;
+/// Jacobi passes before what remains becomes an offset. Consistent clearances converge fast:
+/// flat surfaces in one pass, tilted or non-matching ones by a large factor per pass.
+/// Balanced clearances between curved surfaces are inconsistent (the seed's curvature change):
+/// for two concentric polygons with different chord sags the only state meeting every
+/// clearance has both surfaces shrunk to a fraction of their radius, and further passes would
+/// creep towards it. So the passes stop as soon as one pass fails to halve the largest
+/// residual, and what remains becomes permanent offsets (reason: conflict).
+constexpr int MAX_PASSES = 60;
 constexpr int MAX_ROUNDS = 5;
 /// A node farther than this share of its facet size beside a perimeter edge of the master
 /// surface lies outside the surface (C9); closer, it is taken as right above the edge.
@@ -312,9 +317,11 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
     for (int round = 0; round < MAX_ROUNDS; ++round) {
       if (round > 0) position = original;
       report.passes = 0;
+      std::vector<Real> worst_of_pass;
       for (int pass = 0; pass < MAX_PASSES; ++pass) {
         bool any = false;
-#pragma omp parallel for schedule(static) reduction(|| : any)
+        Real worst = 0.0;
+#pragma omp parallel for schedule(static) reduction(|| : any) reduction(max : worst)
         for (Index k = 0; k < n_records; ++k) {
           const Record& r = records[k];
           moving[k] = 0;
@@ -324,9 +331,12 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
           if (std::abs(delta) <= r.tolerance) continue;
           moving[k] = 1;
           any = true;
+          worst = std::max(worst, std::abs(delta));
           for (int d = 0; d < 3; ++d) move[3 * k + d] = delta * normal[d];
         }
         if (!any) break;
+        worst_of_pass.push_back(worst);
+        if (pass >= 1 && worst > 0.5 * worst_of_pass[pass - 1]) break;
         ++report.passes;
         for (Index k = 0; k < n_records; ++k) {
           if (!moving[k]) continue;

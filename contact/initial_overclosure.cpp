@@ -30,7 +30,7 @@ Vec3 point(const NodalVectors& x, Index n) {
 enum class Role : std::uint8_t { Free, Ignored, Held };
 
 /// Corner measures of element e: hex: the 8 corner Jacobians det[e1 e2 e3] and their scaled
-/// values; shell: the 4 corner area vectors along the reference normal `normal`. Returns the
+/// values; shell: the 4 corner area vectors along the element normal `normal`. Returns the
 /// number of corners (0 for other elements).
 int corner_measures(const ElementTopology& topology, Index e, const NodalVectors& x,
                     const Vec3& normal, Real* measure, Real* scaled) {
@@ -123,12 +123,16 @@ std::vector<Index> distorted_elements(const ElementTopology& topology, const Nod
     bool touched = false;
     for (Index k = 0; k < count && !touched; ++k) touched = node_moved[en[k]] != 0;
     if (!touched) continue;
-    const Vec3 normal = topology.kinds[e] == ElementKind::Shell
-                            ? shell_normal(topology, e, original)
-                            : Vec3::Zero();
+    // A shell's corner areas are measured along its own mean normal in each configuration:
+    // rotating a shell element is strain free (an adjustment may tilt it a lot), while a corner
+    // folding over its mean plane turns negative.
+    const bool shell = topology.kinds[e] == ElementKind::Shell;
+    const Vec3 normal_before = shell ? shell_normal(topology, e, original) : Vec3::Zero();
+    const Vec3 normal_after = shell ? shell_normal(topology, e, position) : Vec3::Zero();
     Real before[8], after[8], scaled_before[8], scaled_after[8];
-    const int corners = corner_measures(topology, e, original, normal, before, scaled_before);
-    corner_measures(topology, e, position, normal, after, scaled_after);
+    const int corners =
+        corner_measures(topology, e, original, normal_before, before, scaled_before);
+    corner_measures(topology, e, position, normal_after, after, scaled_after);
     bool refuse = false;
     for (int a = 0; a < corners; ++a) {
       quality_before = std::min(quality_before, scaled_before[a]);
