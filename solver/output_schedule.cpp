@@ -53,6 +53,9 @@ void merge(FrameRequest& into, const FrameRequest& what) {
   into.stress |= what.stress;
   into.volume |= what.volume;
   into.thickness |= what.thickness;
+  into.contact_stress |= what.contact_stress;
+  into.contact_status |= what.contact_status;
+  into.contact_force |= what.contact_force;
 }
 
 bool has(const std::vector<std::string>& names, const std::string& name) {
