@@ -47,6 +47,16 @@ BroadPhase make_broad_phase(const ContactOptions& options, const std::vector<Con
   return BroadPhase(base + half_t, 0.5 * base);
 }
 
+/// Whether `face` shares a corner with one of the faces around slave slot s.
+bool next_to_own(const SlaveNodes& slaves, const std::vector<ContactFace>& faces, Index s,
+                 const ContactFace& face) {
+  for (Index g : slaves.faces_of(s))
+    for (Index a : faces[g].nodes)
+      for (Index b : face.nodes)
+        if (a == b) return true;
+  return false;
+}
+
 Real thickness_of(std::span<const Real> thickness, Index node) {
   if (thickness.empty()) return 0.0;
   const Real t = thickness[node];
@@ -105,6 +115,9 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   const bool double_sided = v.double_sided;
   if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
       faces[f].face != held->face)
+    return false;
+  // A shell face next to the shell node's own elements continues its own shell (file comment).
+  if (double_sided && faces[f].shell && next_to_own(m_domain.slaves(), faces, s, faces[f]))
     return false;
   Index pair = NO_INDEX;
   const Real w = m_domain.weight(s, f, pair);

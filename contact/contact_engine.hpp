@@ -19,7 +19,11 @@
 ///   sideways from the face by less than its penetration. Otherwise it lies beside the face,
 ///   not in it: at a fold of a shell wall a node would touch the face of the element next
 ///   to its own along the normal of that face, a shell thickness deep the moment the fold turns
-///   it admissible, and the force would turn with the face — both put energy into the model.
+///   it admissible, and the force would turn with the face — both put energy into the model;
+/// - for a shell node, the face is not a shell face next to its own elements (sharing a node
+///   with one of them): that face continues the node's own shell. Where an element is
+///   narrower than the thickness, the node lies within t of it, beside its edge by less than
+///   its penetration, and would touch it a thickness deep.
 /// A node pressed onto one side of a shell stays with that side: the other side of the same
 /// element is not admissible while the constraint is closed, so a deep penetration is pushed
 /// back rather than through.

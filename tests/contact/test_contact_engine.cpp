@@ -179,3 +179,32 @@ TEST_CASE(
   CHECK(domain.faces()[corner.face].element == 2);
   CHECK(corner.gap == Approx(-0.15).margin(1e-12));
 }
+
+TEST_CASE(
+    "a shell node does not touch the shell faces next to its own elements, even where an "
+    "element is narrower than the thickness",
+    "[contact][engine]") {
+  // Flat strip of three S4R, 0.125 wide along x, 1 across, t = 0.25. Node 1 (x = 0.125) lies
+  // in the plane of element 2 (x in [0.25, 0.375]), 0.125 beside its edge: less than its
+  // penetration t (its half thickness and the face's), so the lateral rule alone took it as
+  // touching element 2 a thickness deep; element 2 continues the node's own shell.
+  const Real w = 0.125, t = 0.25;
+  test::ContactMesh mesh;
+  std::vector<Index> low, high;
+  for (int i = 0; i <= 3; ++i) {
+    low.push_back(mesh.add_node(w * i, 0, 0));
+    high.push_back(mesh.add_node(w * i, 1, 0));
+  }
+  for (int i = 0; i < 3; ++i)
+    mesh.add_element(contact::ElementKind::Shell, {low[i], low[i + 1], high[i + 1], high[i]});
+  const NodalVectors& x = mesh.coordinates;
+  const std::vector<Real> thickness(static_cast<std::size_t>(mesh.node_count()), t);
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, options, x,
+                                thickness);
+  engine.probe(x, thickness);
+  const ContactDomain& domain = engine.domain();
+  for (Index node : {low[1], high[1], low[2], high[2]})
+    CHECK(engine.touch(domain.slaves().slot(node)).face == NO_INDEX);
+}
