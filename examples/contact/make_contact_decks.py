@@ -14,6 +14,8 @@ header comments:
   shell_block_below  in the contact domain) or from below
   tube_crush       S4R square tube crushed between rigid plates (self contact of the walls)
   friction_block   block sliding on a rigid plate under gravity, friction 0.3: deceleration mu*g
+  shell_slide      puck sliding frictionless over a fixed S4R strip with a convex and a concave
+                   fold: momentum along each straight part as for frictionless sliding
 
 Units m, kg, s, N, Pa. Every body has its own sparse id range (offsets of 100000), so the
 solver has to map ids to rows. Rigid bodies are ordinary C3D8R elements with a section
@@ -82,6 +84,24 @@ SLIDE_SPEED = 1.0
 SLIDE_BLOCK = (0.010, 0.010, 0.005)
 SLIDE_ELEMENTS = (2, 2, 1)
 FRICTION_PERIOD = 0.020
+
+# Puck sliding over a folded S4R strip (shell_slide)
+FOLD_ANGLE = 15.0  # degrees: the strip turns down by this at the convex fold, back at the concave
+FOLD_PARTS = ((0.012, 9), (0.006, 5), (0.008, 6))  # (length, S4R) of flat A, slope, flat B
+FOLD_SPACING = 0.35  # element lengths vary by +-35 % along each part
+FOLD_SKEW = 0.15  # edges across the path lean by up to atan(0.15) = 8.5 deg, none at the folds
+FOLD_WIDTH = 0.012
+FOLD_WIDTH_ELEMENTS = 6  # edges along the path at y = 0, +-2, +-4 mm
+FOLD_THICKNESS = 0.5e-3  # below every element length: see the note in shell_slide()
+PUCK_RADIUS = 0.004  # the puck's bottom: facets inscribed in a cylinder (axis y) of this radius
+PUCK_ELEMENTS = (5, 2, 2)  # facets of FOLD_ANGLE each; odd: it rests on a facet, not on a node
+PUCK_WIDTH = 0.006  # its nodes at y = 0 slide along an edge of the strip, the others do not
+PUCK_HEIGHT = 0.0078  # puts its centre of mass close to the cylinder's axis
+PUCK_START = -0.008  # x of its lowest facet's centre at t = 0 (convex fold at x = 0)
+PUCK_SPEED = 5.0
+PUCK_GRAVITY = 1.0e5  # m/s^2 in -z, ramped in over PUCK_RAMP
+PUCK_RAMP = 20e-6  # s
+PUCK_PAST = 0.0045  # the step ends when the puck is about this far past the concave fold, m
 
 
 # ---------------------------------------------------------------------------------------------
@@ -318,14 +338,19 @@ CORNER_SIGNS = ((-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
                 (-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1))
 
 
-def hex_volume(points):
-    """Exact volume of a trilinear hex (2x2x2 Gauss: det J has degree 2 in each variable)."""
+def hex_volume(points, weight=None):
+    """Exact volume of a trilinear hex (2x2x2 Gauss: det J has degree 2 in each variable), or
+    the integral over it of `weight`, a function of the point at most linear in each of x, y, z
+    (degree 3 in each variable with det J: still exact)."""
     volume = 0.0
     for xi in GAUSS:
         for eta in GAUSS:
             for zeta in GAUSS:
                 jac = [[0.0] * 3 for _ in range(3)]
+                at = [0.0, 0.0, 0.0]
                 for (sx, sy, sz), p in zip(CORNER_SIGNS, points):
+                    n = (1 + sx * xi) * (1 + sy * eta) * (1 + sz * zeta) / 8
+                    at = [a + n * q for a, q in zip(at, p)]
                     d = (sx * (1 + sy * eta) * (1 + sz * zeta) / 8,
                          sy * (1 + sx * xi) * (1 + sz * zeta) / 8,
                          sz * (1 + sx * xi) * (1 + sy * eta) / 8)
@@ -336,7 +361,7 @@ def hex_volume(points):
                        - jac[0][1] * (jac[1][0] * jac[2][2] - jac[1][2] * jac[2][0])
                        + jac[0][2] * (jac[1][0] * jac[2][1] - jac[1][1] * jac[2][0]))
                 assert det > 0.0, "negative Jacobian at a Gauss point"
-                volume += det
+                volume += det if weight is None else det * weight(at)
     return volume
 
 
@@ -921,6 +946,172 @@ def friction_block():
                   "C3D8R": block.count() + plate.count(), "rigid": plate.count()}
 
 
+def fold_point(s, y):
+    """Point of the folded strip's mid-surface at path length s (convex fold at s = 0, concave
+    fold at s = the slope's length) and width coordinate y."""
+    c, sn = math.cos(math.radians(FOLD_ANGLE)), math.sin(math.radians(FOLD_ANGLE))
+    slope = FOLD_PARTS[1][0]
+    if s <= 0.0:
+        return (s, y, 0.0)
+    if s <= slope:
+        return (s * c, y, -s * sn)
+    return (slope * c + s - slope, y, -slope * sn)
+
+
+class Puck(HexGrid):
+    """A HexGrid block whose bottom face is a polygon inscribed in a cylinder of radius
+    PUCK_RADIUS (axis along y): node columns at x = R sin(phi), phi = (ix - nx/2) FOLD_ANGLE, so
+    its facets lie at multiples of FOLD_ANGLE and it rests on a whole facet on each straight
+    part of the strip. The lift fades out linearly towards the flat top; the central facet
+    lies on the block's bottom face."""
+
+    def __init__(self, base, centre, bottom):
+        nx = PUCK_ELEMENTS[0]
+        length = 2 * PUCK_RADIUS * math.sin(math.radians(FOLD_ANGLE) * nx / 2)
+        super().__init__(base, (centre - length / 2, -PUCK_WIDTH / 2, bottom),
+                         (length, PUCK_WIDTH, PUCK_HEIGHT), PUCK_ELEMENTS)
+
+    def point(self, ix, iy, iz):
+        _, y, z = super().point(ix, iy, iz)
+        phi = math.radians(FOLD_ANGLE) * (ix - self.nx / 2)
+        lowest = math.cos(math.radians(FOLD_ANGLE) / 2)
+        lift = PUCK_RADIUS * (lowest - math.cos(phi))
+        return (self.origin[0] + self.size[0] / 2 + PUCK_RADIUS * math.sin(phi), y,
+                z + (1 - iz / self.nz) * lift)
+
+    def mass_centre_height(self):
+        """Mass (kg) and height (m) of the centre of mass above the central facet."""
+        mass = moment = 0.0
+        for _, nodes in self.element_items():
+            points = [self.point(*self.indices(n)) for n in nodes]
+            volume = hex_volume(points)
+            mass += DENSITY * volume
+            moment += DENSITY * hex_volume(points, weight=lambda p: p[2] - self.origin[2])
+        return mass, moment / mass
+
+    def indices(self, node):
+        rest = node - self.base
+        return rest % self.sy, (rest % self.sz) // self.sy, rest // self.sz
+
+
+def shell_slide_numbers():
+    """Puck mass (kg), height of its centre of mass above its lowest facet (m), along-slope
+    acceleration (m/s^2), speed at the concave fold (m/s) and step time (s)."""
+    mass, height = Puck(2 * BODY, 0.0, 0.0).mass_centre_height()
+    theta = math.radians(FOLD_ANGLE)
+    accel = PUCK_GRAVITY * math.sin(theta)
+    v_c = math.sqrt(PUCK_SPEED ** 2 + 2 * accel * FOLD_PARTS[1][0])
+    # To the convex fold at v0, down the slope accelerating, then PUCK_PAST at v_c; rounded up.
+    period = -PUCK_START / PUCK_SPEED + (v_c - PUCK_SPEED) / accel + PUCK_PAST / v_c
+    return mass, height, accel, v_c, math.ceil(period * 1e4) / 1e4
+
+
+def shell_slide():
+    nw = FOLD_WIDTH_ELEMENTS
+    mass, height, accel, v_c, period = shell_slide_numbers()
+    theta = math.radians(FOLD_ANGLE)
+    axis = PUCK_RADIUS * math.cos(theta / 2)
+    (a_len, a_n), (s_len, s_n), (b_len, b_n) = FOLD_PARTS
+    # Path coordinates of the strip's node columns: u + a sin(4 pi u)/(4 pi) on each part, so
+    # element lengths vary by +-a and the columns at the folds stay where they are.
+    columns, start = [], -a_len
+    for part, (length, count) in enumerate(FOLD_PARTS):
+        for k in range(0 if part == 0 else 1, count + 1):
+            u = k / count
+            g = u + FOLD_SPACING * math.sin(4 * math.pi * u) / (4 * math.pi)
+            columns.append((start + length * g, math.sin(math.pi * u)))
+        start += length
+    nodes = []
+    for j in range(nw + 1):
+        y = FOLD_WIDTH * (j / nw - 0.5)
+        for i, (s, lean) in enumerate(columns):
+            nodes.append((BODY + 1 + i + 100 * j, fold_point(s + FOLD_SKEW * lean * y, y)))
+    strip = [(BODY + 1 + i + 100 * j,
+              [BODY + 1 + i + 100 * j, BODY + 2 + i + 100 * j, BODY + 102 + i + 100 * j,
+               BODY + 101 + i + 100 * j]) for j in range(nw) for i in range(len(columns) - 1)]
+    where = dict(nodes)
+    edges = [math.dist(where[q[k]], where[q[k - 1]]) for _, q in strip for k in range(4)]
+
+    def to_line(p, a, b):  # distance from p to the line through a and b
+        ab = [v - u for u, v in zip(a, b)]
+        ap = [v - u for u, v in zip(a, p)]
+        along = sum(u * v for u, v in zip(ab, ap)) / sum(u * u for u in ab)
+        return math.dist(p, [u + along * v for u, v in zip(a, ab)])
+
+    # Each node's distance to the far side of its elements: xpl takes a shell node closer than
+    # t to the face beyond its neighbour as touching that face a thickness deep (a node offset
+    # sideways by less than its penetration is admissible), so keep it above t.
+    across = min(to_line(where[q[k]], where[q[(k + 1) % 4]], where[q[(k + 2) % 4]])
+                 for _, q in strip for k in range(4))
+    assert across > 1.2 * FOLD_THICKNESS, "strip elements too narrow for the thickness"
+    deck = Deck("shell_slide")
+    header(deck,
+           "A node sliding over a folded shell does not snag on its edges: C3D8R puck sliding "
+           f"at {PUCK_SPEED:g} m/s over a fixed S4R strip with a convex and a concave fold, "
+           "frictionless, ALL EXTERIOR general contact",
+           f"Strip: S4R, t = {FOLD_THICKNESS * 1e3:g} mm, {FOLD_WIDTH * 1e3:g} mm wide, every "
+           f"node fixed (*BOUNDARY 1-6). Flat A: x in [{-a_len * 1e3:g}, 0], z = 0; convex fold "
+           f"at x = 0, down by {FOLD_ANGLE:g} deg;",
+           f"slope of {s_len * 1e3:g} mm; concave fold at x = {s_len * math.cos(theta) * 1e3:.4f}"
+           f" mm, z = {-s_len * math.sin(theta) * 1e3:.4f} mm, back to horizontal; flat B of "
+           f"{b_len * 1e3:g} mm.",
+           f"{a_n}, {s_n} and {b_n} x {nw} elements, edges {min(edges) * 1e3:.2f} to "
+           f"{max(edges) * 1e3:.2f} mm (every node at least {across * 1e3:.2f} mm from the far "
+           "side of its elements); the edges across the path lean by up to "
+           f"{math.degrees(math.atan(FOLD_SKEW)):.1f} deg (none at the folds).",
+           f"Puck: {PUCK_WIDTH * 1e3:g} mm wide (y), {PUCK_HEIGHT * 1e3:g} mm high, "
+           f"{'x'.join(map(str, PUCK_ELEMENTS))} C3D8R, steel; its bottom: facets of "
+           f"{FOLD_ANGLE:g} deg inscribed in a cylinder of radius R = {PUCK_RADIUS * 1e3:g} mm "
+           "(axis y),",
+           f"so that a whole facet lies on each straight part of the strip. Its central facet "
+           f"lies on the strip's upper face, centred at x = {PUCK_START * 1e3:g} mm (zero gap). "
+           f"m = {mass * 1e3:.4f} g;",
+           f"centre of mass {height * 1e3:.4f} mm above the facet, {(height - axis) * 1e6:.0f} "
+           f"um from the cylinder's axis: the normal forces pass close to it, the puck hardly "
+           "rocks.",
+           f"Velocity {PUCK_SPEED:g} m/s in x; gravity {PUCK_GRAVITY:g} m/s^2 in -z (*DLOAD GRAV,"
+           f" ramped in over {PUCK_RAMP * 1e6:g} us): m g = {mass * PUCK_GRAVITY:.3f} N.",
+           "Over the convex fold the puck pivots on the fold line, its axis on a circle of radius"
+           f" R: v^2/R = {PUCK_SPEED ** 2 / PUCK_RADIUS:.0f} m/s^2 < g cos(theta), it stays on "
+           "the strip.",
+           "Frictionless: on flat A the horizontal momentum is conserved; on the slope the "
+           f"speed along it grows at g sin(theta) = {accel:.1f} m/s^2 and CFN = m g cos(theta);",
+           f"at the concave fold (v = {v_c:.3f} m/s) the puck meets flat B at v sin(theta) = "
+           f"{v_c * math.sin(theta):.3f} m/s and bounces (elastic penalty); on flat B the "
+           "horizontal momentum is conserved again.",
+           f"The step ({period * 1e3:g} ms) ends about {PUCK_PAST * 1e3:g} mm past the concave "
+           "fold.",
+           "Ids: strip nodes 100000 + 1 + i + 100 j (i along the path, j across), elements the "
+           "same; puck 200000 + ix + 10 iy + 100 iz.")
+    deck.nodes(nodes, "The strip.")
+    deck.elements("S4R", "STRIP", strip)
+    puck = Puck(2 * BODY, PUCK_START, FOLD_THICKNESS / 2)
+    puck.write(deck, "PUCK", "The puck.")
+    deck.nset("STRIP_NODES", [node for node, _ in nodes])
+    deck.add("*NSET, NSET=PUCK_NODES, ELSET=PUCK")
+    deck.nset("PUCK_BOTTOM", puck.nodes_where(iz=0))
+    # Mid-height nodes of the two central columns: their mean lies on the puck's axis.
+    deck.nset("PUCK_AXIS", puck.nodes_where(ix=puck.nx // 2, iz=puck.nz // 2)
+              + puck.nodes_where(ix=puck.nx // 2 + 1, iz=puck.nz // 2))
+    materials(deck)
+    deck.add("*SHELL SECTION, ELSET=STRIP, MATERIAL=STEEL", f"{num(FOLD_THICKNESS)}, 5",
+             "*SOLID SECTION, ELSET=PUCK, MATERIAL=STEEL")
+    deck.add("*AMPLITUDE, NAME=RAMP_IN, DEFINITION=TABULAR",
+             f"0., 0., {num(PUCK_RAMP)}, 1., {num(period)}, 1.")
+    deck.add("*INITIAL CONDITIONS, TYPE=VELOCITY", f"PUCK_NODES, 1, {num(PUCK_SPEED)}")
+    deck.add("*STEP, NAME=SLIDE", "*DYNAMIC, EXPLICIT", f", {num(period)}",
+             "*BOUNDARY", "STRIP_NODES, 1, 6",
+             "*DLOAD, AMPLITUDE=RAMP_IN", f"PUCK, GRAV, {num(PUCK_GRAVITY)}, 0., 0., -1.")
+    general_contact(deck)
+    # History every microsecond (about 8 increments): the puck's momentum (V of all its nodes),
+    # the positions of its bottom nodes and of its axis, CFN and the energies.
+    output_requests(deck, period, 24, [("PUCK_NODES", "V1, V3"), ("PUCK_BOTTOM", "U1, U3"),
+                                       ("PUCK_AXIS", "U1, U3")],
+                    history_rows=round(period / 1e-6))
+    deck.add("*END STEP")
+    return deck, {"elements": len(strip) + puck.count(), "S4R": len(strip),
+                  "C3D8R": puck.count()}
+
 DECKS = {
     "bar_bar": lambda: bar_bar("general"),
     "bar_bar_pair": lambda: bar_bar("pair"),
@@ -931,6 +1122,7 @@ DECKS = {
     "shell_block_below": lambda: shell_block(True),
     "tube_crush": tube_crush,
     "friction_block": friction_block,
+    "shell_slide": shell_slide,
 }
 
 
