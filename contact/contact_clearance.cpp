@@ -31,16 +31,6 @@ constexpr Real PERIMETER_TOLERANCE = 1e-6;
 /// A boundary condition on DOF c holds a node when |n_c| of the move direction exceeds this.
 constexpr Real LOCK_COMPONENT = 1e-6;
 
-Vec3 point(const NodalVectors& x, Index n) {
-  return Vec3(x(n, 0), x(n, 1), x(n, 2));
-}
-
-Real thickness_at(std::span<const Real> thickness, Index node) {
-  if (thickness.empty()) return 0.0;
-  const Real t = thickness[node];
-  return std::isfinite(t) ? t : 0.0;
-}
-
 std::uint64_t edge_key(Index a, Index b) {
   const auto lo = static_cast<std::uint64_t>(std::min(a, b));
   const auto hi = static_cast<std::uint64_t>(std::max(a, b));
@@ -82,7 +72,7 @@ Height height_above(const ContactFace& face, const NodalVectors& position,
   out.normal = out.cp.normal;
   if (face.shell)
     for (int a = 0; a < 4; ++a)
-      out.master_half += 0.5 * out.cp.weights[a] * thickness_at(thickness, face.nodes[a]);
+      out.master_half += 0.5 * out.cp.weights[a] * node_thickness_of(thickness, face.nodes[a]);
   return out;
 }
 
@@ -157,8 +147,9 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
     // mid-surface is farther away cannot put the node in its zone).
     auto zone = [&](Index node, Real& above, Real& below) {
       const Index s = slaves.slot(node);
-      const Real zone_default = domain.slave_double_sided(s) ? thickness_at(node_thickness, node)
-                                                             : DEFAULT_ZONE_FRACTION * size[s];
+      const Real zone_default = domain.slave_double_sided(s)
+                                    ? node_thickness_of(node_thickness, node)
+                                    : DEFAULT_ZONE_FRACTION * size[s];
       above = std::isnan(view.search_above) ? zone_default : view.search_above;
       below = std::isnan(view.search_below) ? zone_default : view.search_below;
     };
@@ -174,12 +165,13 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
       Real above = 0.0, below = 0.0;
       zone(node, above, below);
       reach = std::max({reach, above, below});
-      thickest = std::max(thickest, thickness_at(node_thickness, node));
+      thickest = std::max(thickest, node_thickness_of(node_thickness, node));
     }
     std::vector<ContactFace> master_faces;
     for (Index f : master) {
       master_faces.push_back(faces[f]);
-      for (Index c : faces[f].nodes) thickest = std::max(thickest, thickness_at(node_thickness, c));
+      for (Index c : faces[f].nodes)
+        thickest = std::max(thickest, node_thickness_of(node_thickness, c));
     }
     const Real margin = reach + thickest;
     BroadPhase near(margin > 0.0 ? margin : 1e-300);
@@ -188,9 +180,9 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
     for (Index k = 0; k < static_cast<Index>(slave_nodes.size()); ++k) {
       const Index node = slave_nodes[k];
       const Index s = slaves.slot(node);
-      const Vec3 p = point(position, node);
+      const Vec3 p = node_point(position, node);
       const Real slave_half =
-          domain.slave_double_sided(s) ? 0.5 * thickness_at(node_thickness, node) : 0.0;
+          domain.slave_double_sided(s) ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
       Real above = 0.0, below = 0.0;
       zone(node, above, below);
       // Nearest master face (its contact surface: solid face or shell mid-surface).
@@ -301,7 +293,7 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
   // Remaining move h* − h of record k at `position`, with the normal it acts along.
   auto residual = [&](const Record& r, Vec3& normal) {
     const Height hf =
-        height_above(faces[r.face], position, node_thickness, point(position, r.node));
+        height_above(faces[r.face], position, node_thickness, node_point(position, r.node));
     normal = hf.normal;
     const Real target = r.sigma * (std::abs(r.clearance) + hf.master_half + r.slave_half);
     return target - hf.h;
@@ -373,7 +365,7 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
     }
     for (Index k = 0; k < n_records; ++k) {
       const Record& r = records[k];
-      const Vec3 delta = point(position, r.node) - point(original, r.node);
+      const Vec3 delta = node_point(position, r.node) - node_point(original, r.node);
       const Real distance = delta.norm();
       ClearedNode out{r.node,
                       r.view,

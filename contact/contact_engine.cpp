@@ -13,10 +13,6 @@ namespace {
 /// Fraction of the mean face size used as the default search margin.
 constexpr Real MARGIN_FRACTION = 0.3;
 
-Vec3 node_point(const NodalVectors& x, Index n) {
-  return Vec3(x(n, 0), x(n, 1), x(n, 2));
-}
-
 /// Default margin: MARGIN_FRACTION × the mean square root of the face areas.
 Real mean_face_size(const std::vector<ContactFace>& faces, const NodalVectors& position) {
   if (faces.empty()) return 1.0;
@@ -57,12 +53,6 @@ bool next_to_own(const SlaveNodes& slaves, const std::vector<ContactFace>& faces
   return false;
 }
 
-Real thickness_of(std::span<const Real> thickness, Index node) {
-  if (thickness.empty()) return 0.0;
-  const Real t = thickness[node];
-  return std::isfinite(t) ? t : 0.0;
-}
-
 }  // namespace
 
 ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> laws,
@@ -95,7 +85,7 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   v.normal = m_domain.slaves().normal(s);
   v.double_sided = m_domain.slave_double_sided(s);
   v.free_edge = m_domain.slave_on_free_edge(s);
-  v.half_t = v.double_sided ? 0.5 * thickness_of(node_thickness, node) : 0.0;
+  v.half_t = v.double_sided ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
   // Side memory: a node pressed onto one side of a shell last increment may not be taken by
   // the other side of that shell, however deep it has gone (no pass-through).
   const ContactConstraint& before = m_constraints[s];
@@ -138,7 +128,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   Real depth = m_domain.face_depth(f);
   if (faces[f].shell) {
     Real t = 0.0;
-    for (Index c : faces[f].nodes) t += thickness_of(node_thickness, c);
+    for (Index c : faces[f].nodes) t += node_thickness_of(node_thickness, c);
     depth = 0.125 * t;  // half the mean thickness
   }
   // Behind the face's plane but beside its edge or corner, the node penetrates the face only

@@ -11,6 +11,7 @@
 /// flag (`shell`) suffices.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -74,6 +75,19 @@ std::vector<ContactFace> exterior_faces(const ElementTopology& topology, Index s
 /// of range for its kind (the deck reader has checked both already).
 std::vector<ContactFace> surface_faces(const ElementTopology& topology,
                                        std::span<const FaceRef> refs, Index surface);
+
+/// Position of node n: row n of a (n_nodes × 3) array, m.
+inline Vec3 node_point(const NodalVectors& x, Index n) {
+  return Vec3(x(n, 0), x(n, 1), x(n, 2));
+}
+
+/// Shell thickness of node n (m); 0 when `thickness` is empty or has no finite value there
+/// (a node of no shell).
+inline Real node_thickness_of(std::span<const Real> thickness, Index n) {
+  if (thickness.empty()) return 0.0;
+  const Real t = thickness[n];
+  return std::isfinite(t) ? t : 0.0;
+}
 
 /// Corner positions of the contact surface of `face`, m: node positions (n_nodes × 3, m),
 /// moved for shell faces by t_I/2 along the unit face normal at the centre, with t_I the node

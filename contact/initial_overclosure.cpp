@@ -23,10 +23,6 @@ constexpr int MAX_ROUNDS = 5;
 /// A boundary condition on DOF c holds a node when |n_c| of the move direction exceeds this.
 constexpr Real LOCK_COMPONENT = 1e-6;
 
-Vec3 point(const NodalVectors& x, Index n) {
-  return Vec3(x(n, 0), x(n, 1), x(n, 2));
-}
-
 enum class Role : std::uint8_t { Free, Ignored, Held };
 
 /// Corner measures of element e: hex: the 8 corner Jacobians det[e1 e2 e3] and their scaled
@@ -44,9 +40,9 @@ int corner_measures(const ElementTopology& topology, Index e, const NodalVectors
       const int first = ring + (a < 4 ? (local + 1) % 4 : (local + 3) % 4);
       const int second = ring + (a < 4 ? (local + 3) % 4 : (local + 1) % 4);
       const int third = a < 4 ? a + 4 : a - 4;
-      const Vec3 p = point(x, en[a]);
-      const Vec3 e1 = point(x, en[first]) - p, e2 = point(x, en[second]) - p,
-                 e3 = point(x, en[third]) - p;
+      const Vec3 p = node_point(x, en[a]);
+      const Vec3 e1 = node_point(x, en[first]) - p, e2 = node_point(x, en[second]) - p,
+                 e3 = node_point(x, en[third]) - p;
       measure[a] = e1.dot(e2.cross(e3));
       const Real lengths = std::sqrt(e1.dot(e1) * e2.dot(e2) * e3.dot(e3));
       scaled[a] = lengths > 0.0 ? measure[a] / lengths : -1.0;
@@ -55,8 +51,8 @@ int corner_measures(const ElementTopology& topology, Index e, const NodalVectors
   }
   if (topology.kinds[e] == ElementKind::Shell) {
     for (int a = 0; a < 4; ++a) {
-      const Vec3 p = point(x, en[a]);
-      const Vec3 e1 = point(x, en[(a + 1) % 4]) - p, e2 = point(x, en[(a + 3) % 4]) - p;
+      const Vec3 p = node_point(x, en[a]);
+      const Vec3 e1 = node_point(x, en[(a + 1) % 4]) - p, e2 = node_point(x, en[(a + 3) % 4]) - p;
       measure[a] = normal.dot(e1.cross(e2));
       const Real lengths = std::sqrt(e1.dot(e1) * e2.dot(e2));
       scaled[a] = lengths > 0.0 ? measure[a] / lengths : -1.0;
@@ -68,7 +64,8 @@ int corner_measures(const ElementTopology& topology, Index e, const NodalVectors
 
 Vec3 shell_normal(const ElementTopology& topology, Index e, const NodalVectors& x) {
   const Index* en = topology.nodes.data() + topology.offsets[e];
-  const Vec3 n = (point(x, en[2]) - point(x, en[0])).cross(point(x, en[3]) - point(x, en[1]));
+  const Vec3 n = (node_point(x, en[2]) - node_point(x, en[0]))
+                     .cross(node_point(x, en[3]) - node_point(x, en[1]));
   const Real length = std::sqrt(n.dot(n));
   return length > 0.0 ? Vec3(n / length) : Vec3::Zero();
 }
@@ -309,7 +306,7 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
     if (moved_any) engine.probe(position, node_thickness);
     for (Index s = 0; s < n_slave; ++s) {
       const Index node = slaves.nodes()[s];
-      const Vec3 delta = point(position, node) - point(original, node);
+      const Vec3 delta = node_point(position, node) - node_point(original, node);
       const Real distance = std::sqrt(delta.dot(delta));
       if (!(distance > 0.0)) continue;
       const Index f = first_face[s];
@@ -345,7 +342,7 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     Real longest = 0.0;
     for (const auto& [p, q] : edges)
-      longest = std::max(longest, (point(position, p) - point(position, q)).norm());
+      longest = std::max(longest, (node_point(position, p) - node_point(position, q)).norm());
     if (!edges.empty() && longest > 0.0) {
       BroadPhase reach(1.001 * longest);
       reach.build(faces, slaves.nodes(), position, node_thickness);
@@ -355,7 +352,7 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
       for (Index k = 0; k < n_edges; ++k) {
         const auto [p, q] = edges[k];
         const Index sp = slaves.slot(p), sq = slaves.slot(q);
-        const Vec3 xp = point(position, p), xq = point(position, q);
+        const Vec3 xp = node_point(position, p), xq = node_point(position, q);
         const Real tol = OVERCLOSURE_TOLERANCE * (xq - xp).norm();
         for (Index f : reach.candidates(sp)) {
           const ContactFace& face = faces[f];

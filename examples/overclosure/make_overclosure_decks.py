@@ -305,12 +305,14 @@ DECKS = {
 }
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out", nargs="?", default=str(DEFAULT_OUT))
-    parser.add_argument("--only", choices=sorted(DECKS))
+def write_decks(decks, description, default_out):
+    """Command line of a deck generator: writes OUT_DIR/<name>/<name>.inp for every deck (or
+    the one of --only)."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("out", nargs="?", default=str(default_out))
+    parser.add_argument("--only", choices=sorted(decks))
     args = parser.parse_args()
-    for name, make in DECKS.items():
+    for name, make in decks.items():
         if args.only and name != args.only:
             continue
         folder = pathlib.Path(args.out) / name
@@ -320,4 +322,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    write_decks(DECKS, __doc__.splitlines()[0], DEFAULT_OUT)
