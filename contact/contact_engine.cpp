@@ -43,16 +43,6 @@ BroadPhase make_broad_phase(const ContactOptions& options, const std::vector<Con
   return BroadPhase(base + half_t, 0.5 * base);
 }
 
-/// Whether `face` shares a corner with one of the faces around slave slot s.
-bool next_to_own(const SlaveNodes& slaves, const std::vector<ContactFace>& faces, Index s,
-                 const ContactFace& face) {
-  for (Index g : slaves.faces_of(s))
-    for (Index a : faces[g].nodes)
-      for (Index b : face.nodes)
-        if (a == b) return true;
-  return false;
-}
-
 }  // namespace
 
 ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> laws,
@@ -86,10 +76,24 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   v.double_sided = m_domain.slave_double_sided(s);
   v.free_edge = m_domain.slave_on_free_edge(s);
   v.half_t = v.double_sided ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
-  // Side memory: a node pressed onto one side of a shell last increment may not be taken by
-  // the other side of that shell, however deep it has gone (no pass-through).
+  if (v.double_sided) {
+    // The nodes of its own elements, once per node rather than once per candidate face.
+    for (Index g : m_domain.slaves().faces_of(s))
+      for (Index a : faces[g].nodes) {
+        if (v.own_count < 0) break;
+        bool seen = false;
+        for (int k = 0; k < v.own_count; ++k) seen = seen || v.own[k] == a;
+        if (seen) continue;
+        if (v.own_count == static_cast<int>(v.own.size()))
+          v.own_count = -1;  // more than fit: admissible() walks the faces instead
+        else
+          v.own[v.own_count++] = a;
+      }
+  }
   const ContactConstraint& before = m_constraints[s];
   if (before.offset_permanent) v.allowance = std::max(before.offset, 0.0);
+  // Side memory: a node pressed onto one side of a shell last increment may not be taken by
+  // the other side of that shell, however deep it has gone (no pass-through).
   if (before.status == ContactStatus::Closed && before.master_face >= 0 &&
       faces[before.master_face].shell)
     v.held = &faces[before.master_face];
@@ -107,8 +111,18 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
       faces[f].face != held->face)
     return false;
   // A shell face next to the shell node's own elements continues its own shell (file comment).
-  if (double_sided && faces[f].shell && next_to_own(m_domain.slaves(), faces, s, faces[f]))
-    return false;
+  if (double_sided && faces[f].shell) {
+    bool own = false;
+    if (v.own_count >= 0) {
+      for (Index b : faces[f].nodes)
+        for (int k = 0; k < v.own_count; ++k) own = own || v.own[k] == b;
+    } else {
+      for (Index g : m_domain.slaves().faces_of(s))
+        for (Index a : faces[g].nodes)
+          for (Index b : faces[f].nodes) own = own || a == b;
+    }
+    if (own) return false;
+  }
   Index pair = NO_INDEX;
   const Real w = m_domain.weight(s, f, pair);
   if (w == 0.0) return false;

@@ -159,6 +159,10 @@ class ContactEngine {
     Real half_t = 0.0;
     /// A positive permanent offset (a clearance) lets the node that much deeper.
     Real allowance = 0.0;
+    /// Shell nodes: the distinct nodes of the faces around the node (its own elements), for
+    /// the "next to its own shell" test; `own_count` < 0 when there are more than fit.
+    std::array<Index, 16> own{};
+    int own_count = 0;
     const ContactFace* held = nullptr;
   };
   SlaveView slave_view(Index s, const NodalVectors& position,
