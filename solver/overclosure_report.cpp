@@ -333,34 +333,21 @@ void report_clearances(const contact::ClearanceReport& report,
                     {"view_master_surface", masters}};
     return t;
   };
-  auto ids = [](const std::string& name, const std::string& description) {
-    TableColumn c;
-    c.name = name;
-    c.integer = true;
-    c.description = description;
-    return c;
-  };
-  auto reals = [](const std::string& name, const std::string& description, Index width = 1) {
-    TableColumn c;
-    c.name = name;
-    c.width = width;
-    c.description = description;
-    return c;
-  };
   {
     ResultTable t = table("clearances", static_cast<Index>(report.nodes.size()),
                           "slave nodes given a contact clearance (C7-C10)");
-    TableColumn node = ids("node", "deck id of the slave node");
-    TableColumn view = ids("view",
-                           "index into the attributes view_clearance, "
-                           "view_slave_surface, view_master_surface");
-    TableColumn element = ids("master_element", "deck id of the nearest master element as read");
-    TableColumn face = ids("master_face", FACE_CODES);
-    TableColumn clearance = reals("clearance", "m, positive above the master surface");
-    TableColumn gap = reals("gap_before", "m, as read (negative: below the surface)");
-    TableColumn distance = reals("distance", "m, length of the move");
-    TableColumn direction = reals("direction", "unit vector of the move", 3);
-    TableColumn offset = reals("offset", "permanent contact offset d0, m (0: none)");
+    TableColumn node = Tables::ids("node", "deck id of the slave node");
+    TableColumn view = Tables::ids("view",
+                                   "index into the attributes view_clearance, "
+                                   "view_slave_surface, view_master_surface");
+    TableColumn element =
+        Tables::ids("master_element", "deck id of the nearest master element as read");
+    TableColumn face = Tables::ids("master_face", FACE_CODES);
+    TableColumn clearance = Tables::reals("clearance", "m, positive above the master surface");
+    TableColumn gap = Tables::reals("gap_before", "m, as read (negative: below the surface)");
+    TableColumn distance = Tables::reals("distance", "m, length of the move");
+    TableColumn direction = Tables::reals("direction", "unit vector of the move", 3);
+    TableColumn offset = Tables::reals("offset", "permanent contact offset d0, m (0: none)");
     for (const contact::ClearedNode& c : report.nodes) {
       node.ids.push_back(model.node_ids[c.node]);
       view.ids.push_back(c.view);
@@ -379,11 +366,12 @@ void report_clearances(const contact::ClearanceReport& report,
   {
     ResultTable t = table("clearance_skipped", static_cast<Index>(report.skipped.size()),
                           "slave nodes in a search zone that got no clearance");
-    TableColumn node = ids("node", "deck id of the slave node");
-    TableColumn view = ids("view", "index into the attribute view_clearance");
-    TableColumn why = ids("reason",
-                          "0 no value, 1 perimeter edge, 2 wrong side, 3 not in the contact "
-                          "domain, 4 repeated");
+    TableColumn node = Tables::ids("node", "deck id of the slave node");
+    TableColumn view = Tables::ids("view", "index into the attribute view_clearance");
+    TableColumn why =
+        Tables::ids("reason",
+                    "0 no value, 1 perimeter edge, 2 wrong side, 3 not in the contact "
+                    "domain, 4 repeated");
     for (const contact::SkippedNode& k : report.skipped) {
       node.ids.push_back(model.node_ids[k.node]);
       view.ids.push_back(k.view);
