@@ -41,15 +41,19 @@ struct ExplicitSolver::Impl {
   /// The setup messages after begin_run, in their fixed order.
   void report_setup(const std::vector<std::string>& rigid_messages);
 
+  /// BCs, loads, output requests and contact of `step`, in the order the sink expects.
   void begin_step(int step);
   /// t = 0: forces on the initial geometry, the first increment, v_{1/2}, frame 0.
-  void start(int step, Real period);
+  void start_run(int step, Real period);
   /// Advances the clock by the increment `dt` just taken; returns whether it ends the step.
   bool advance_clock(Real dt, Real step_start, Real period);
   /// Element forces over the increment `dt` just taken; their energies into the state.
   void element_forces(Real dt, ElementTotals& totals);
+  /// Keeps the element that limits the increment of `totals`, when there is one.
   void note_critical(const ElementTotals& totals);
+  /// The time loop of one step: increments until the step time reaches its period.
   void run_step(int step);
+  /// Output through the driver, with the parts that fill the state for it.
   void write_frame(const FrameRequest& what);
   void write_history();
   void write_status();
@@ -167,7 +171,7 @@ void ExplicitSolver::Impl::begin_step(int step) {
   m_output.declare_history(m_contact);
 }
 
-void ExplicitSolver::Impl::start(int step, Real period) {
+void ExplicitSolver::Impl::start_run(int step, Real period) {
   ElementTotals totals;
   m_elements.compute_forces(m_state, 0.0, totals);
   m_state.energies.strain += totals.strain_energy_increment;
@@ -214,7 +218,7 @@ void ExplicitSolver::Impl::run_step(int step) {
   const Real period = m_model.steps[step].time_period;
   const Real step_start = m_state.time;
   if (!m_started)
-    start(step, period);
+    start_run(step, period);
   else
     m_dt_half = std::min(m_dt_half, period);
   if (m_output.has_history()) write_history();
