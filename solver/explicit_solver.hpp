@@ -70,19 +70,6 @@ class ExplicitSolver {
 
   const State& state() const;
 
-  /// Pointers to one kind of nodal DOF (translations or rotations), n_nodes × 3 each, for
-  /// the nodal update.
-  struct DofPointers {
-    Real* velocity_half;
-    Real* velocity;
-    Real* acceleration;  ///< nullptr: not kept
-    const Real* force_internal;
-    const Real* force_external;
-    Real external_scale;  ///< 0 when there is no external force array
-    const Real* inverse_mass;
-    const Real* mass;
-  };
-
  private:
   struct Impl;
   std::unique_ptr<Impl> m_impl;

@@ -1,0 +1,302 @@
+#include "solver/central_difference.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace xpl {
+
+namespace {
+
+/// Nodes per chunk of the nodal loops; partial sums per chunk are added in chunk order so
+/// that energies do not depend on the thread count.
+constexpr Index NODE_CHUNK = 2048;
+
+}  // namespace
+
+struct CentralDifference::Field {
+  Real* velocity_half;
+  Real* velocity;
+  Real* acceleration;  ///< nullptr: not kept
+  const Real* force_internal;
+  const Real* force_external;
+  Real external_scale;  ///< 0 when there is no external force array
+  const Real* inverse_mass;
+  const Real* mass;
+};
+
+CentralDifference::CentralDifference(const Model& model, PhaseTimers& timers, bool shells)
+    : m_model(model), m_timers(timers), m_shells(shells) {
+  const Index n = model.node_count();
+  if (shells) m_rotations = NodeRotations(n);
+  m_chunk_sums.assign(static_cast<std::size_t>((n + NODE_CHUNK - 1) / NODE_CHUNK) * 2, 0.0);
+}
+
+void CentralDifference::import_rotation(const NodalVectors& rotation, State& state) {
+  m_rotations.set(rotation);
+  state.rotation = rotation;
+  m_rotation_synced = true;
+}
+
+void CentralDifference::begin_step(int step, State& state, RigidBodies& rigid) {
+  const NodalVectors displacement = state.position - state.reference;
+  sync_rotation(state);
+  m_boundary.begin_step(m_model, step, displacement, state.velocity, state.rotation,
+                        state.angular_velocity);
+  m_pressures.begin_step(m_model, step);
+  m_gravity.begin_step(m_model, step, state.reference, state.mass);
+  state.reaction.setZero();
+  if (m_shells) state.reaction_moment.setZero();
+  // Reference nodes of rigid bodies drive their body; members cannot be prescribed.
+  std::vector<PrescribedDof> active = m_boundary.prescribed();
+  m_dropped_members = rigid.empty() ? 0 : rigid.begin_step(active);
+  select_prescribed(active, state);
+  collect_loads();
+  if (m_previous_force.rows() == 0 && (!m_prescribed.empty() || !m_free_loads.empty()))
+    m_previous_force = NodalVectors::Zero(m_model.node_count(), 3);
+  if (m_shells && m_previous_moment.rows() == 0 && !m_prescribed.empty())
+    m_previous_moment = NodalVectors::Zero(m_model.node_count(), 3);
+}
+
+void CentralDifference::select_prescribed(const std::vector<PrescribedDof>& active,
+                                          const State& state) {
+  // Rotations prescribed on nodes that belong to no shell have nothing to act on.
+  m_prescribed.clear();
+  m_dropped_rotations = m_boundary.has_rotational_dofs();
+  for (const PrescribedDof& d : active) {
+    if (d.component >= 3 && (state.rotary_inertia.empty() || state.rotary_inertia[d.node] <= 0.0)) {
+      m_dropped_rotations = true;
+      continue;
+    }
+    m_prescribed.push_back(d);
+  }
+  m_v_old_prescribed.assign(m_prescribed.size(), 0.0);
+  m_prescribed_value.resize(m_prescribed.size());
+  for (std::size_t k = 0; k < m_prescribed.size(); ++k)
+    m_prescribed_value[k] =
+        m_prescribed[k].component >= 3
+            ? state.rotation(m_prescribed[k].node, m_prescribed[k].component - 3)
+            : 0.0;
+}
+
+void CentralDifference::collect_loads() {
+  const auto n = static_cast<std::size_t>(m_model.node_count());
+  std::vector<char> is_prescribed(n * 6, 0);
+  for (const PrescribedDof& d : m_prescribed) is_prescribed[d.component * n + d.node] = 1;
+  m_loaded_dofs = m_boundary.loads();
+  std::vector<char> is_loaded(n * 3, 0);
+  for (const LoadedDof& l : m_loaded_dofs) is_loaded[l.component * n + l.node] = 1;
+  for (const std::vector<Index>* nodes : {&m_pressures.nodes(), &m_gravity.nodes()})
+    for (Index node : *nodes)
+      for (int c = 0; c < 3; ++c)
+        if (!is_loaded[c * n + node]) {
+          is_loaded[c * n + node] = 1;
+          m_loaded_dofs.push_back({node, c, 0.0, NO_INDEX});
+        }
+  m_free_loads.clear();
+  for (const LoadedDof& l : m_loaded_dofs)
+    if (!is_prescribed[l.component * n + l.node]) m_free_loads.push_back(l);
+  m_v_old_loaded.assign(m_free_loads.size(), 0.0);
+}
+
+void CentralDifference::report_step(int step, OutputSink& sink) const {
+  if (m_dropped_rotations)
+    sink.message(Severity::Note, "step " + m_model.steps[step].name +
+                                     ": boundary conditions on DOFs 4-6 of nodes that belong "
+                                     "to no shell are ignored (solid element nodes have no "
+                                     "rotations)");
+  if (m_dropped_members > 0)
+    sink.message(Severity::Warning,
+                 "step " + m_model.steps[step].name + ": " + std::to_string(m_dropped_members) +
+                     " boundary condition(s) on member nodes of rigid bodies are ignored; "
+                     "prescribe the motion on the REF NODE");
+}
+
+void CentralDifference::apply_loads(const State& state, Real step_time, Real total_time) {
+  if (m_loaded_dofs.empty()) return;
+  // External forces are part of the nodal update: timed with it, so the phases add up.
+  ScopedTimer timer(m_timers, Phase::Integration);
+  if (m_force_external.rows() == 0) m_force_external = NodalVectors::Zero(m_model.node_count(), 3);
+  for (const LoadedDof& l : m_loaded_dofs) m_force_external(l.node, l.component) = 0.0;
+  for (const LoadedDof& l : m_boundary.loads())
+    m_force_external(l.node, l.component) +=
+        l.value * m_boundary.factor(m_model, l.amplitude, step_time, total_time);
+  if (!m_pressures.empty())
+    m_pressures.add_forces(m_model, m_boundary, state.position, step_time, total_time,
+                           m_force_external);
+  if (!m_gravity.empty())
+    m_gravity.add_forces(m_model, m_boundary, step_time, total_time, m_force_external);
+}
+
+void CentralDifference::advance_positions(State& state, Real dt) {
+  ScopedTimer timer(m_timers, Phase::Integration);
+  state.position += dt * state.velocity_half;
+  if (m_shells) {
+    m_rotations.advance(state.angular_velocity_half, dt);
+    m_rotation_synced = false;
+  }
+}
+
+void CentralDifference::sync_rotation(State& state) {
+  if (!m_shells || m_rotation_synced) return;
+  m_rotations.rotation_vectors(state.rotation);
+  m_rotation_synced = true;
+}
+
+namespace {
+
+/// The free central-difference update of nodes [first, last) of one field component block;
+/// returns Σ m v². Accelerations are stored only where the field keeps them.
+template <bool STORE_ACCELERATION, class Field>
+Real update_range(const Field& d, Index off, Index first, Index last, Real dt_avg, Real w_new) {
+  Real* v = d.velocity_half + off;
+  Real* vw = d.velocity + off;
+  Real* a = STORE_ACCELERATION ? d.acceleration + off : nullptr;
+  const Real* fi = d.force_internal + off;
+  const Real* fe = d.force_external + off;
+  const Real scale = d.external_scale;
+  Real ke = 0.0;
+#pragma omp simd reduction(+ : ke)
+  for (Index i = first; i < last; ++i) {
+    const Real acc = (scale * fe[i] - fi[i]) * d.inverse_mass[i];
+    const Real v_new = v[i] + dt_avg * acc;
+    const Real v_whole = v[i] + w_new * (v_new - v[i]);
+    ke += d.mass[i] * v_whole * v_whole;
+    if constexpr (STORE_ACCELERATION) a[i] = acc;
+    v[i] = v_new;
+    vw[i] = v_whole;
+  }
+  return ke;
+}
+
+}  // namespace
+
+Real CentralDifference::free_update(const Field& d, Real dt_avg, Real w_new, Real* sums) const {
+  const Index n = m_model.node_count();
+  const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
+#pragma omp parallel for schedule(static) if (n_chunks > 1)
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) {
+    const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
+    Real ke = 0.0;
+    for (int c = 0; c < 3; ++c)
+      ke += d.acceleration ? update_range<true>(d, c * n, first, last, dt_avg, w_new)
+                           : update_range<false>(d, c * n, first, last, dt_avg, w_new);
+    sums[chunk] = 0.5 * ke;
+  }
+  Real ke = 0.0;
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) ke += sums[chunk];
+  return ke;
+}
+
+void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBodies& rigid,
+                                     Real dt_prev, Real dt_next, Real t_next_half,
+                                     Real t_next_end) {
+  ScopedTimer timer(m_timers, Phase::Integration);
+  const Index n = m_model.node_count();
+  Increment inc;
+  inc.dt_prev = dt_prev;
+  inc.dt_next = dt_next;
+  inc.dt_avg = 0.5 * (dt_prev + dt_next);
+  // At t = 0 the whole-step velocity is the initial velocity itself.
+  inc.w_new = dt_prev > 0.0 ? 0.5 : 0.0;
+  inc.t_next_half = t_next_half;
+  inc.t_next_end = t_next_end;
+  const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
+  // No loads in the model: the external force array does not exist and is not read.
+  const bool loaded = m_force_external.rows() > 0;
+  const Field translation{state.velocity_half.data(),
+                          state.velocity.data(),
+                          state.acceleration.data(),
+                          elements.force_internal().data(),
+                          loaded ? m_force_external.data() : elements.force_internal().data(),
+                          loaded ? 1.0 : 0.0,
+                          elements.inverse_mass().data(),
+                          state.mass.data()};
+  // Rotations carry no external moments.
+  Field rotation{};
+  if (m_shells)
+    rotation = {state.angular_velocity_half.data(), state.angular_velocity.data(),     nullptr,
+                elements.moment_internal().data(),  elements.moment_internal().data(), 0.0,
+                elements.inverse_inertia().data(),  state.rotary_inertia.data()};
+
+  // Prescribed and loaded DOFs keep their velocity at n-1/2 for the work and reaction terms.
+  for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
+    const PrescribedDof& d = m_prescribed[k];
+    const Field& field = d.component < 3 ? translation : rotation;
+    m_v_old_prescribed[k] = field.velocity_half[(d.component % 3) * n + d.node];
+  }
+  for (std::size_t k = 0; k < m_free_loads.size(); ++k)
+    m_v_old_loaded[k] = state.velocity_half(m_free_loads[k].node, m_free_loads[k].component);
+
+  Real ke = free_update(translation, inc.dt_avg, inc.w_new, m_chunk_sums.data());
+  if (m_shells) ke += free_update(rotation, inc.dt_avg, inc.w_new, m_chunk_sums.data() + n_chunks);
+  Real work = 0.0;
+  if (!rigid.empty())
+    ke += rigid.update(
+        m_model, m_boundary, state, elements.force_internal(), loaded ? &m_force_external : nullptr,
+        dt_prev, dt_next, inc.w_new,
+        {state.step_time + 0.5 * dt_next, t_next_half, state.step_time + dt_next, t_next_end},
+        work);
+  const Real ke_fix = update_prescribed(state, translation, rotation, inc, work);
+  add_load_work(dt_prev, work);
+  state.energies.kinetic = ke + ke_fix;
+  state.energies.external_work += work;
+  elements.clear_forces();
+}
+
+Real CentralDifference::update_prescribed(State& state, const Field& translation,
+                                          const Field& rotation, const Increment& inc, Real& work) {
+  // Prescribed DOFs: velocity from the BC, reaction = m a - (f_ext - f_int).
+  // External work by the trapezoidal rule over [t_{n-1}, t_n]: exact for constant forces.
+  const Index n = m_model.node_count();
+  Real ke_fix = 0.0;
+  const Real step_next_half = state.step_time + 0.5 * inc.dt_next;
+  const Real step_next_end = state.step_time + inc.dt_next;
+  for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
+    const PrescribedDof& d = m_prescribed[k];
+    const bool turn = d.component >= 3;
+    const int c = d.component % 3;
+    const Field& field = turn ? rotation : translation;
+    const Index i = d.node, at = c * n + i;
+    const Real v_old = m_v_old_prescribed[k];
+    Real v_new = 0.0;
+    if (d.type == BoundaryType::Velocity) {
+      v_new = m_boundary.target(m_model, d, step_next_half, inc.t_next_half);
+    } else {
+      // Translations correct against the actual position; rotations against the prescribed
+      // value carried along (components of the rotation vector, exact about a fixed axis).
+      Real& current = m_prescribed_value[k];
+      current = turn ? current + inc.dt_prev * v_old : state.displacement(i, c);
+      if (inc.dt_next > 0.0)
+        v_new =
+            (m_boundary.target(m_model, d, step_next_end, inc.t_next_end) - current) / inc.dt_next;
+    }
+    const Real m = field.mass[i];
+    const Real wrong = field.velocity[at];  // what the free update counted
+    const Real right = v_old + inc.w_new * (v_new - v_old);
+    ke_fix += 0.5 * m * (right * right - wrong * wrong);
+    const Real acc = inc.dt_avg > 0.0 ? (v_new - v_old) / inc.dt_avg : 0.0;
+    const Real f_ext = field.external_scale * field.force_external[at];
+    const Real r = m * acc - (f_ext - field.force_internal[at]);
+    (turn ? state.reaction_moment : state.reaction)(i, c) = r;
+    if (field.acceleration) field.acceleration[at] = acc;
+    field.velocity_half[at] = v_new;
+    field.velocity[at] = right;
+    const Real f_now = f_ext + r;
+    Real& f_before = (turn ? m_previous_moment : m_previous_force)(i, c);
+    work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
+    f_before = f_now;
+  }
+  return ke_fix;
+}
+
+void CentralDifference::add_load_work(Real dt_prev, Real& work) {
+  for (std::size_t k = 0; k < m_free_loads.size(); ++k) {
+    const Index i = m_free_loads[k].node;
+    const int c = m_free_loads[k].component;
+    const Real f_now = m_force_external(i, c);
+    work += 0.5 * (m_previous_force(i, c) + f_now) * dt_prev * m_v_old_loaded[k];
+    m_previous_force(i, c) = f_now;
+  }
+}
+
+}  // namespace xpl

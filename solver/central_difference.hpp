@@ -1,0 +1,103 @@
+#pragma once
+/// \file The central-difference update of the nodes (S2): half-step velocities of the free
+/// DOFs, prescribed DOFs and their reactions, rigid bodies, the external loads of the step
+/// and the work they do, and the finite rotations of shell nodes.
+
+#include <vector>
+
+#include "common/timer.hpp"
+#include "solver/boundary_state.hpp"
+#include "solver/element_set.hpp"
+#include "solver/gravity_loads.hpp"
+#include "solver/model.hpp"
+#include "solver/node_rotations.hpp"
+#include "solver/output_sink.hpp"
+#include "solver/pressure_loads.hpp"
+#include "solver/rigid_bodies.hpp"
+#include "solver/state.hpp"
+
+namespace xpl {
+
+/// The nodal half of the time loop: what moves the nodes once the forces are known.
+class CentralDifference {
+ public:
+  /// `model` and `timers` must outlive the update; `shells`: the model has S4R elements, so
+  /// nodes carry rotational DOFs (updated here, their finite rotations tracked for UR).
+  CentralDifference(const Model& model, PhaseTimers& timers, bool shells);
+
+  /// Sets the finite rotations of an imported state (rotation vectors, n_nodes × 3, rad) on
+  /// shell models; state.rotation takes them too.
+  void import_rotation(const NodalVectors& rotation, State& state);
+
+  /// Takes in the BCs and loads of `step`: the prescribed DOFs that act on something (rigid
+  /// bodies take those of their reference nodes), the loaded DOFs, zero reactions in `state`.
+  void begin_step(int step, State& state, RigidBodies& rigid);
+  /// Notes on the BCs of the step that begin_step() dropped, to the sink.
+  void report_step(int step, OutputSink& sink) const;
+  /// The prescribed DOFs of the step (those the nodal update drives).
+  const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
+
+  /// External forces (CLOAD, pressure, gravity) at step time `step_time` / total time
+  /// `total_time`, on the state's positions; nothing when the step has no loads.
+  void apply_loads(const State& state, Real step_time, Real total_time);
+  /// x_{n+1} = x_n + Δt v_{n+1/2}; shell node rotations advance by ω_{n+1/2} Δt.
+  void advance_positions(State& state, Real dt);
+  /// One velocity update with the forces of `elements` (which it then clears) and the loads:
+  /// dt_prev = Δt_{n-1/2} (0 at t = 0), dt_next = Δt_{n+1/2}; t_next_half and t_next_end are
+  /// the total times at which velocity and displacement BCs are evaluated. Writes the
+  /// velocities, accelerations, reactions, kinetic energy and external work into `state`.
+  void update_nodes(State& state, ElementSet& elements, RigidBodies& rigid, Real dt_prev,
+                    Real dt_next, Real t_next_half, Real t_next_end);
+  /// Brings state.rotation up to date with the tracked rotations (before output).
+  void sync_rotation(State& state);
+
+ private:
+  /// Pointers to one kind of nodal DOF (translations or rotations), defined in the .cpp.
+  struct Field;
+  /// The times and weights of one update.
+  struct Increment {
+    Real dt_prev, dt_next;
+    Real dt_avg;  ///< (dt_prev + dt_next) / 2
+    Real w_new;   ///< weight of v_{n+1/2} in the whole-step velocity (0 at t = 0)
+    Real t_next_half, t_next_end;
+  };
+  /// Keeps only the prescribed DOFs of `active` that act on something (rotations need
+  /// rotary inertia); sets their current values.
+  void select_prescribed(const std::vector<PrescribedDof>& active, const State& state);
+  /// Loaded DOFs: CLOADs and the three components of every node under pressure or gravity;
+  /// free_loads are those that are not prescribed.
+  void collect_loads();
+  /// Central-difference update of the free DOFs of a field; returns its kinetic energy
+  /// (summed per chunk in chunk order: independent of the thread count).
+  Real free_update(const Field& d, Real dt_avg, Real w_new, Real* sums) const;
+  /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
+  /// `work`); returns the kinetic-energy correction to what the free update counted.
+  Real update_prescribed(State& state, const Field& translation, const Field& rotation,
+                         const Increment& inc, Real& work);
+  /// Work of the loads on the free loaded DOFs over the increment just taken, into `work`.
+  void add_load_work(Real dt_prev, Real& work);
+
+  const Model& m_model;
+  PhaseTimers& m_timers;
+  bool m_shells;
+  BoundaryState m_boundary;
+  PressureLoads m_pressures;
+  GravityLoads m_gravity;
+  NodeRotations m_rotations;
+  bool m_rotation_synced = true;  ///< state.rotation matches m_rotations
+  /// (n_nodes × 3), non-zero only on loaded DOFs; allocated only when a step has loads (P2).
+  NodalVectors m_force_external;
+  std::vector<Real> m_chunk_sums;
+  NodalVectors m_previous_force;            ///< f_ext + reaction at the previous increment
+  NodalVectors m_previous_moment;           ///< moment at prescribed rotations, previous inc.
+  std::vector<LoadedDof> m_free_loads;      ///< loaded DOFs that are not prescribed
+  std::vector<LoadedDof> m_loaded_dofs;     ///< every DOF with a load (CLOAD or pressure)
+  std::vector<PrescribedDof> m_prescribed;  ///< the step's prescribed DOFs that exist
+  std::vector<Real> m_prescribed_value;     ///< current value of each prescribed DOF
+  std::vector<Real> m_v_old_prescribed;     ///< v_{n-1/2} at each prescribed DOF
+  std::vector<Real> m_v_old_loaded;         ///< v_{n-1/2} at each free loaded DOF
+  bool m_dropped_rotations = false;         ///< begin_step dropped BCs on DOFs 4-6
+  Index m_dropped_members = 0;              ///< BCs on rigid member nodes dropped
+};
+
+}  // namespace xpl

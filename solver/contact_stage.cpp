@@ -1,0 +1,278 @@
+#include "solver/contact_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "contact/initial_overclosure.hpp"
+#include "solver/message_text.hpp"
+
+namespace xpl {
+
+ContactStage::ContactStage(const Model& model, OutputSink& sink, PhaseTimers& timers,
+                           bool imported_start)
+    : m_model(model), m_sink(sink), m_timers(timers), m_imported_start(imported_start) {}
+
+void ContactStage::begin_step(int step, State& state, ElementSet& elements,
+                              const RigidBodies& rigid,
+                              const std::vector<PrescribedDof>& prescribed) {
+  // The definition in force: the latest *CONTACT up to this step, and every *CONTACT PAIR.
+  const Step& s = m_model.steps[step];
+  const bool changed = step == 0 || s.contact || !s.contact_pairs.empty();
+  if (!changed) return;
+  const GeneralContact* general = nullptr;
+  for (int k = step; k >= 0 && general == nullptr; --k)
+    if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
+  std::vector<ContactPair> pairs = m_model.contact_pairs;
+  for (int k = 0; k <= step; ++k)
+    pairs.insert(pairs.end(), m_model.steps[k].contact_pairs.begin(),
+                 m_model.steps[k].contact_pairs.end());
+  std::unique_ptr<contact::ContactEngine> previous = std::move(m_engine);
+  m_pair_names.clear();
+  const bool has_general =
+      general != nullptr && (general->all_exterior || !general->inclusions.empty());
+  if (!has_general && pairs.empty()) return;
+
+  contact::DomainSpec spec = domain_spec(has_general ? general : nullptr, pairs);
+  spec.element_body = rigid.element_body();
+  std::vector<contact::InteractionLaw> laws;
+  for (const SurfaceInteraction& i : m_model.surface_interactions)
+    laws.push_back({i.friction, i.linear ? i.linear_slope : 0.0});
+  contact::ContactOptions options;
+  if (has_general) options.penalty_scale = general->penalty_scale;
+  const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes,
+                                          elements.element_kinds()};
+  contact::ContactDomain domain(spec, topology, state.position);
+  const std::size_t n_faces = domain.faces().size();
+  const Index n_slaves = domain.slaves().size();
+  m_engine = std::make_unique<contact::ContactEngine>(std::move(domain), std::move(laws), options,
+                                                      state.position, elements.node_thickness());
+  m_sink.message(Severity::Info, "step " + s.name + ": contact domain of " +
+                                     std::to_string(n_faces) + " faces and " +
+                                     std::to_string(n_slaves) + " slave nodes, search margin " +
+                                     format_real(m_engine->broad_phase().margin()) + " m");
+  resolve_overclosures(step, previous.get(), state, elements, rigid, prescribed);
+}
+
+contact::DomainSpec ContactStage::domain_spec(const GeneralContact* general,
+                                              const std::vector<ContactPair>& pairs) {
+  contact::DomainSpec spec;
+  std::vector<Index> domain_surface(m_model.surfaces.size(), NO_INDEX);
+  Index all_exterior = NO_INDEX;
+  auto surface = [&](Index model_surface) -> Index {
+    if (model_surface == NO_INDEX) {
+      if (all_exterior == NO_INDEX) {
+        all_exterior = static_cast<Index>(spec.surfaces.size());
+        spec.surfaces.push_back({"ALL_EXTERIOR", true, {}});
+      }
+      return all_exterior;
+    }
+    Index& k = domain_surface[model_surface];
+    if (k == NO_INDEX) {
+      k = static_cast<Index>(spec.surfaces.size());
+      contact::DomainSurface d;
+      d.name = m_model.surfaces[model_surface].name;
+      for (const ElementFace& f : m_model.surfaces[model_surface].faces)
+        d.faces.push_back({f.element, f.face});
+      spec.surfaces.push_back(std::move(d));
+    }
+    return k;
+  };
+  auto name_of = [&](Index a, Index b) {
+    return spec.surfaces[a].name + (a == b ? "" : "-" + spec.surfaces[b].name);
+  };
+  if (general != nullptr) {
+    if (general->all_exterior) {
+      const Index k = surface(NO_INDEX);
+      spec.inclusions.push_back({k, k, false});
+      m_pair_names.push_back(name_of(k, k));
+    }
+    for (const SurfacePair& p : general->inclusions) {
+      const Index a = surface(p.first), b = surface(p.second);
+      spec.inclusions.push_back({a, b, false});
+      m_pair_names.push_back(name_of(a, b));
+    }
+    for (const SurfacePair& p : general->exclusions)
+      spec.exclusions.push_back({surface(p.first), surface(p.second), false});
+    for (const auto& [p, interaction] : general->properties) {
+      if (p.first == NO_INDEX && p.second == NO_INDEX)
+        spec.default_interaction = interaction;
+      else
+        spec.interactions.push_back({{surface(p.first), surface(p.second), false}, interaction});
+    }
+  }
+  for (const ContactPair& p : pairs) {
+    const Index a = surface(p.slave), b = surface(p.master);
+    spec.inclusions.push_back({a, b, true});
+    spec.interactions.push_back({{a, b, true}, p.interaction});
+    m_pair_names.push_back(name_of(a, b));
+  }
+  return spec;
+}
+
+void ContactStage::resolve_overclosures(int step, const contact::ContactEngine* previous,
+                                        State& state, ElementSet& elements,
+                                        const RigidBodies& rigid,
+                                        const std::vector<PrescribedDof>& prescribed) {
+  const Step& s = m_model.steps[step];
+  if (previous != nullptr) {
+    contact::carry_offsets(*previous, *m_engine);
+    m_sink.message(Severity::Note,
+                   "step " + s.name +
+                       ": the contact domain changes; slave nodes of the earlier domain keep "
+                       "their contact offsets, new interactions get plain penalty forces from the "
+                       "first increment (no adjustment, no overclosure or crossed-surface "
+                       "diagnostics for them, as Abaqus/Explicit)");
+    return;
+  }
+  const Diagnostics& diagnostics = m_model.diagnostics_of(step);
+  contact::OverclosureSettings settings;
+  settings.adjust = step == 0 && !m_imported_start;
+  settings.offset_reason =
+      step == 0 ? contact::OffsetReason::Import : contact::OffsetReason::LaterStep;
+  settings.detect_crossed = diagnostics.detect_crossed_surfaces;
+  const Index n = m_model.node_count();
+  std::vector<std::uint8_t> lock(static_cast<std::size_t>(n), 0);
+  for (const PrescribedDof& d : prescribed)
+    if (d.component < 3) lock[d.node] |= static_cast<std::uint8_t>(1u << d.component);
+  for (Index i = 0; i < n; ++i)
+    if (rigid.is_rigid_node(i)) lock[i] |= contact::LOCK_RIGID;
+  NodalVectors as_read;
+  if (settings.adjust) as_read = state.position;
+  const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes,
+                                          elements.element_kinds()};
+  // Clearances first (C7–C10); the automatic pass then leaves their nodes alone.
+  std::vector<ClearanceViewNames> view_names;
+  const std::vector<contact::ClearanceView> views = clearance_views(step, view_names);
+  contact::ClearanceReport clearances;
+  contact::OverclosureReport report;
+  {
+    ScopedTimer timer(m_timers, Phase::ContactSearch);
+    if (!views.empty()) {
+      clearances =
+          contact::apply_clearances(*m_engine, topology, state.position, elements.node_thickness(),
+                                    lock, views, settings.adjust);
+      settings.exclude = clearances.handled;
+    }
+    report = contact::resolve_initial_overclosures(*m_engine, topology, state.position,
+                                                   elements.node_thickness(), lock, settings);
+  }
+  const bool clearance_moved =
+      std::any_of(clearances.nodes.begin(), clearances.nodes.end(),
+                  [](const contact::ClearedNode& c) { return c.distance > 0.0; });
+  AdjustmentEffect effect;
+  if (!report.adjusted.empty() || clearance_moved) {
+    effect.dt_after = elements.stable_increment(state, step);
+    state.position.swap(as_read);
+    effect.dt_before = elements.stable_increment(state, step);
+    state.position.swap(as_read);
+  }
+  if (!settings.adjust)
+    m_sink.message(Severity::Info,
+                   "step " + s.name +
+                       (step == 0 ? ": the run starts from an imported state"
+                                  : ": contact is first defined in this step") +
+                       ": initial penetrations become temporary offsets without force; no node "
+                       "moves (C6)");
+  if (!views.empty())
+    report_clearances(clearances, view_names, *m_engine, m_model, step, diagnostics, m_sink);
+  report_overclosures(report, *m_engine, m_model, step, diagnostics, effect, m_sink);
+}
+
+std::vector<contact::ClearanceView> ContactStage::clearance_views(
+    int step, std::vector<ClearanceViewNames>& names) const {
+  std::vector<contact::ClearanceView> views;
+  const Step& s = m_model.steps[step];
+  if (!s.contact) return views;
+  auto faces_of = [&](Index surface) {
+    std::vector<contact::FaceRef> refs;
+    for (const ElementFace& f : m_model.surfaces[surface].faces)
+      refs.push_back({f.element, f.face});
+    return refs;
+  };
+  const std::vector<ClearanceAssignment>& assignments = s.contact->clearances;
+  for (std::size_t a = 0; a < assignments.size(); ++a) {
+    const ClearanceAssignment& assignment = assignments[a];
+    const ContactClearance& definition = m_model.contact_clearances[assignment.clearance];
+    contact::ClearanceView view;
+    view.assignment = static_cast<Index>(a);
+    view.adjust = definition.adjust;
+    view.value = definition.value;
+    if (definition.distribution != NO_INDEX)
+      view.nodal_values = m_model.distributions[definition.distribution].values;
+    if (definition.search_above) view.search_above = *definition.search_above;
+    if (definition.search_below) view.search_below = *definition.search_below;
+    auto add = [&](Index slave, Index master) {
+      contact::ClearanceView v = view;
+      v.slave_surface = slave;
+      v.master_surface = master;
+      v.slave_faces = faces_of(slave);
+      v.master_faces = faces_of(master);
+      views.push_back(std::move(v));
+      names.push_back(
+          {definition.name, m_model.surfaces[slave].name, m_model.surfaces[master].name});
+    };
+    // MASTER: surf1 is the master (only surf2's nodes move); SLAVE: surf1 is the slave.
+    if (assignment.view != ClearanceAssignment::View::Master)
+      add(assignment.first, assignment.second);
+    if (assignment.view != ClearanceAssignment::View::Slave)
+      add(assignment.second, assignment.first);
+  }
+  return views;
+}
+
+void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty) {
+  if (!m_engine) return;
+  const contact::ContactTotals t = m_engine->update(
+      state.position, state.velocity_half, dt_taken, dt_penalty, elements.node_thickness(),
+      state.mass, elements.inverse_mass(), elements.force_internal(), m_timers);
+  state.energies.friction += t.friction_dissipation;
+  state.energies.contact += -t.work - t.friction_dissipation;
+}
+
+void ContactStage::fill_output(State& state) const {
+  const Index n = m_model.node_count();
+  state.contact_pressure.assign(n, 0.0);
+  state.contact_status.assign(n, 0.0);
+  state.contact_shear = NodalVectors::Zero(n, 3);
+  state.contact_normal_force = NodalVectors::Zero(n, 3);
+  state.contact_shear_force = NodalVectors::Zero(n, 3);
+  if (!m_engine) return;
+  const contact::SlaveNodes& slaves = m_engine->domain().slaves();
+  for (Index s = 0; s < slaves.size(); ++s) {
+    const contact::Vec3 f = m_engine->nodal_force(s);
+    if (f.dot(f) == 0.0) continue;
+    const Index i = slaves.nodes()[s];
+    const contact::Vec3 normal = slaves.normal(s);
+    const Real along = f.dot(normal);
+    const contact::Vec3 fn = along * normal, ft = f - fn;
+    const Real area = slaves.areas()[s];
+    const bool shell_node = m_engine->domain().slave_double_sided(s);
+    const Real pressure = shell_node ? std::abs(along) : -along;
+    if (area > 0.0) state.contact_pressure[i] = pressure / area;
+    const auto own = m_engine->output_status(s);
+    state.contact_status[i] =
+        own == contact::OutputStatus::Open ? 1.0 : static_cast<Real>(static_cast<int>(own));
+    for (int c = 0; c < 3; ++c) {
+      if (area > 0.0) state.contact_shear(i, c) = ft[c] / area;
+      state.contact_normal_force(i, c) = fn[c];
+      state.contact_shear_force(i, c) = ft[c];
+    }
+  }
+}
+
+void ContactStage::add_history_series(std::vector<HistorySeries>& series) const {
+  if (!m_engine) return;
+  for (const std::string& name : m_pair_names)
+    for (const char* v : {"CFN", "CFS"}) series.push_back({"contact/" + name + "/" + v, 1, {}});
+}
+
+void ContactStage::add_history_values(std::vector<Real>& row) const {
+  if (!m_engine) return;
+  for (std::size_t k = 0; k < m_pair_names.size(); ++k) {
+    row.push_back(m_engine->pair_normal_force()[k]);
+    row.push_back(m_engine->pair_friction_force()[k]);
+  }
+}
+
+}  // namespace xpl

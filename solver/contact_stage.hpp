@@ -1,0 +1,76 @@
+#pragma once
+/// \file The contact stage of the time loop: builds the contact engine of each step from the
+/// deck's `*CONTACT` / `*CONTACT PAIR` definitions, treats the initial overclosures and
+/// clearances, adds the penalty forces every increment and gathers the contact output.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/timer.hpp"
+#include "contact/contact_clearance.hpp"
+#include "contact/contact_engine.hpp"
+#include "solver/boundary_state.hpp"
+#include "solver/element_set.hpp"
+#include "solver/model.hpp"
+#include "solver/output_sink.hpp"
+#include "solver/overclosure_report.hpp"
+#include "solver/rigid_bodies.hpp"
+#include "solver/state.hpp"
+
+namespace xpl {
+
+/// General contact and contact pairs of the current step; nothing to do when it has none (P2).
+class ContactStage {
+ public:
+  /// `model`, `sink` and `timers` must outlive the stage; `imported_start`: the run starts
+  /// from an imported state (penetrations of step 1 then become offsets, C6).
+  ContactStage(const Model& model, OutputSink& sink, PhaseTimers& timers, bool imported_start);
+
+  /// Builds the engine of `step` when the step changes the contact definition (the latest
+  /// `*CONTACT` up to it and every `*CONTACT PAIR`), else keeps the engine in force. A new
+  /// engine resolves the initial overclosures and clearances on `state` (it may move nodes
+  /// at step 1; `prescribed` DOFs and rigid-body nodes stay), or carries the offsets of the
+  /// engine it replaces; it reports to the sink.
+  void begin_step(int step, State& state, ElementSet& elements, const RigidBodies& rigid,
+                  const std::vector<PrescribedDof>& prescribed);
+  /// Whether contact is active in the current step.
+  bool active() const { return m_engine != nullptr; }
+
+  /// Contact forces at the state's positions subtracted from elements.force_internal();
+  /// friction and penalty energies into state.energies. `dt_taken` is the increment just
+  /// taken (0 at t = 0), `dt_penalty` the increment the penalty stiffness is tied to, s.
+  void apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty);
+
+  /// Per-node contact pressure, status and forces into `state` (zero without contact).
+  void fill_output(State& state) const;
+  /// Appends the history columns of the contact pairs (CFN, CFS per pair) to `series`.
+  void add_history_series(std::vector<HistorySeries>& series) const;
+  /// Appends the current values of those columns to `row`, N.
+  void add_history_values(std::vector<Real>& row) const;
+
+ private:
+  /// Domain of the general contact `general` (may be null) and the pairs `pairs`; fills
+  /// m_pair_names in the engine's pair order.
+  contact::DomainSpec domain_spec(const GeneralContact* general,
+                                  const std::vector<ContactPair>& pairs);
+  /// Initial overclosures of a newly built engine (SPEC C2–C6): adjusts (step 1) or stores
+  /// offsets (later step, import); with an engine of an earlier step, carries its offsets
+  /// over instead.
+  void resolve_overclosures(int step, const contact::ContactEngine* previous, State& state,
+                            ElementSet& elements, const RigidBodies& rigid,
+                            const std::vector<PrescribedDof>& prescribed);
+  /// The clearance views of the assignments given with the step's *CONTACT (and their names
+  /// for the reports); empty when there are none.
+  std::vector<contact::ClearanceView> clearance_views(int step,
+                                                      std::vector<ClearanceViewNames>& names) const;
+
+  const Model& m_model;
+  OutputSink& m_sink;
+  PhaseTimers& m_timers;
+  bool m_imported_start;
+  std::unique_ptr<contact::ContactEngine> m_engine;  ///< null when the step has no contact
+  std::vector<std::string> m_pair_names;  ///< in the engine's pair order (history output)
+};
+
+}  // namespace xpl

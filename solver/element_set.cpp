@@ -1,0 +1,270 @@
+#include "solver/element_set.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "solver/gravity_loads.hpp"
+#include "solver/message_text.hpp"
+
+namespace xpl {
+
+namespace {
+
+elements::HexMaterial hex_material(const Model& model, Index element) {
+  const SolidSection& section = model.solid_sections[model.element_section[element]];
+  const Material& m = model.materials[section.material];
+  elements::HexMaterial h;
+  h.density = m.density;
+  h.young = m.young;
+  h.poisson = m.poisson;
+  if (section.controls != NO_INDEX) {
+    const SectionControls& c = model.section_controls[section.controls];
+    h.hourglass = c.hourglass == HourglassType::Viscous ? elements::HourglassForm::Viscous
+                                                        : elements::HourglassForm::Stiffness;
+    h.hourglass_scale =
+        h.hourglass == elements::HourglassForm::Viscous ? c.viscous_scale : c.stiffness_scale;
+  }
+  return h;
+}
+
+elements::ShellProperties shell_properties(const Model& model, Index element) {
+  const ShellSection& section = model.shell_sections[model.element_section[element]];
+  const Material& m = model.materials[section.material];
+  elements::ShellProperties p;
+  p.density = m.density;
+  p.young = m.young;
+  p.poisson = m.poisson;
+  p.thickness = section.thickness;
+  p.integration_points = section.integration_points;
+  p.offset = section.offset;
+  if (section.controls != NO_INDEX)
+    p.hourglass_scale = model.section_controls[section.controls].stiffness_scale;
+  return p;
+}
+
+bool deformable(const RigidBodies& rigid, Index e) {
+  return rigid.element_body().empty() || rigid.element_body()[e] == NO_INDEX;
+}
+
+}  // namespace
+
+ElementSet::ElementSet(const Model& model, const RigidBodies& rigid, State& state,
+                       PhaseTimers& timers, Real dt_safety)
+    : m_model(model), m_timers(timers), m_dt_safety(dt_safety) {
+  m_force_internal = NodalVectors::Zero(model.node_count(), 3);
+  build_hex_block(rigid, state);
+  build_shell_block(rigid, state);
+  add_other_masses(rigid, state);
+  m_element_kinds.resize(static_cast<std::size_t>(model.element_count()));
+  for (Index e = 0; e < model.element_count(); ++e)
+    m_element_kinds[e] = model.element_types[e] == ElementType::C3D8R ? contact::ElementKind::Hex
+                         : is_shell(model.element_types[e])           ? contact::ElementKind::Shell
+                                                                      : contact::ElementKind::Other;
+  set_node_thickness(rigid, state.reference);
+  set_inverse_mass(rigid, state.mass);
+}
+
+void ElementSet::build_hex_block(const RigidBodies& rigid, State& state) {
+  std::vector<Index> hex_elements;
+  std::vector<Index> connectivity;
+  std::vector<elements::HexMaterial> materials;
+  for (Index e = 0; e < m_model.element_count(); ++e) {
+    if (m_model.element_types[e] != ElementType::C3D8R || !deformable(rigid, e)) continue;
+    hex_elements.push_back(e);
+    const Index* nodes = m_model.nodes_of(e);
+    connectivity.insert(connectivity.end(), nodes, nodes + 8);
+    materials.push_back(hex_material(m_model, e));
+  }
+  if (hex_elements.empty()) return;
+  m_hex = std::make_unique<elements::Hex8rBlock>(hex_elements, connectivity, materials,
+                                                 m_model.node_count());
+  m_hex->add_lumped_mass(state.reference, state.mass);
+}
+
+void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
+  const Index n = m_model.node_count();
+  std::vector<Index> shell_elements;
+  std::vector<elements::ShellProperties> shell_props;
+  std::vector<Index> connectivity;
+  for (Index e = 0; e < m_model.element_count(); ++e) {
+    if (!is_shell(m_model.element_types[e]) || !deformable(rigid, e)) continue;
+    shell_elements.push_back(e);
+    const Index* nodes = m_model.nodes_of(e);
+    connectivity.insert(connectivity.end(), nodes, nodes + 4);
+    shell_props.push_back(shell_properties(m_model, e));
+  }
+  if (shell_elements.empty()) return;
+  // Rotational DOFs exist only in shell models (P2).
+  m_shell = std::make_unique<elements::Shell4rBlock>(shell_elements, connectivity, shell_props, n);
+  state.rotation = NodalVectors::Zero(n, 3);
+  state.angular_velocity = NodalVectors::Zero(n, 3);
+  state.angular_velocity_half = NodalVectors::Zero(n, 3);
+  state.reaction_moment = NodalVectors::Zero(n, 3);
+  state.rotary_inertia.assign(n, 0.0);
+  m_moment_internal = NodalVectors::Zero(n, 3);
+  m_shell->add_lumped_mass(state.reference, state.mass, state.rotary_inertia);
+  m_inverse_inertia.assign(n, 0.0);
+  for (Index i = 0; i < n; ++i)
+    if (state.rotary_inertia[i] > 0.0) m_inverse_inertia[i] = 1.0 / state.rotary_inertia[i];
+}
+
+void ElementSet::add_other_masses(const RigidBodies& rigid, State& state) const {
+  // Rigid elements: their lumped mass joins the body; point masses join their node.
+  for (Index e = 0; e < m_model.element_count(); ++e) {
+    if (deformable(rigid, e)) continue;
+    const Real m = element_node_mass(m_model, e, state.reference);
+    const Index* nodes = m_model.nodes_of(e);
+    for (int a = 0; a < nodes_per_element(m_model.element_types[e]); ++a) state.mass[nodes[a]] += m;
+  }
+  for (const PointInertia& p : m_model.point_inertias) state.mass[p.node] += p.mass;
+}
+
+void ElementSet::set_node_thickness(const RigidBodies& rigid, const NodalVectors& reference) {
+  const Index n = m_model.node_count();
+  if (m_shell) m_node_thickness = m_shell->node_thickness(reference, n);
+  for (Index e = 0; e < m_model.element_count(); ++e) {
+    if (deformable(rigid, e) || !is_shell(m_model.element_types[e])) continue;
+    if (m_node_thickness.empty()) m_node_thickness.assign(n, 0.0);
+    const Real t = m_model.shell_sections[m_model.element_section[e]].thickness;
+    const Index* nodes = m_model.nodes_of(e);
+    for (int a = 0; a < 4; ++a)
+      m_node_thickness[nodes[a]] = std::max(m_node_thickness[nodes[a]], t);
+  }
+}
+
+void ElementSet::set_inverse_mass(const RigidBodies& rigid, const std::vector<Real>& mass) {
+  const Index n = m_model.node_count();
+  m_inverse_mass.assign(n, 0.0);
+  for (Index i = 0; i < n; ++i) {
+    if (rigid.is_rigid_node(i)) continue;  // moved by its body
+    if (mass[i] > 0.0)
+      m_inverse_mass[i] = 1.0 / mass[i];
+    else
+      ++m_massless;
+  }
+}
+
+Index ElementSet::size() const {
+  return (m_hex ? m_hex->size() : 0) + (m_shell ? m_shell->size() : 0);
+}
+
+void ElementSet::report_setup(const NodalVectors& reference, OutputSink& sink) const {
+  if (m_massless > 0)
+    sink.message(Severity::Warning, std::to_string(m_massless) +
+                                        " node(s) belong to no element and have no mass; "
+                                        "they keep their initial velocity");
+  if (m_hex)
+    sink.message(Severity::Info, "C3D8R elements: " + std::to_string(m_hex->size()) + " in " +
+                                     std::to_string(m_hex->color_count()) +
+                                     " colours (race-free parallel assembly)");
+  if (!m_shell) return;
+  sink.message(Severity::Info,
+               "S4R elements: " + std::to_string(m_shell->size()) + " in " +
+                   std::to_string(m_shell->color_count()) +
+                   " colours; rotary inertia scaled to (m/4)·max(t²/12, A/8) per node so "
+                   "that the membrane wave sets the stable increment");
+  report_warped_shells(reference, sink);
+  for (const SectionControls& c : m_model.section_controls)
+    if (c.hourglass == HourglassType::Viscous)
+      sink.message(Severity::Note, "section controls " + c.name +
+                                       ": S4R elements use the stiffness hourglass form "
+                                       "(HOURGLASS=VISCOUS applies to C3D8R only)");
+}
+
+void ElementSet::report_warped_shells(const NodalVectors& reference, OutputSink& sink) const {
+  // Warped elements are evaluated on their projected plane with rigid links to the nodes
+  // (accurate for moderate warping); strongly warped ones deserve the user's attention.
+  constexpr Real WARN_DEGREES = 10.0;
+  constexpr int MAX_LISTED = 20;
+  int warped = 0;
+  Real worst = 0.0;
+  for (Index i = 0; i < m_shell->size(); ++i) {
+    const Real angle = m_shell->warp_angle(reference, i);
+    worst = std::max(worst, angle);
+    if (angle <= WARN_DEGREES) continue;
+    if (++warped > MAX_LISTED) continue;
+    const Index e = m_shell->element_index(i);
+    const SourceLocation where = m_model.element_where(e);
+    sink.message(Severity::Warning,
+                 where.file + ":" + std::to_string(where.line) + ": *ELEMENT: S4R element " +
+                     std::to_string(m_model.element_ids[e]) + " is warped by " +
+                     format_real(angle) + " degrees (more than " + format_real(WARN_DEGREES) +
+                     "); refine the mesh where the surface is curved");
+  }
+  if (warped > MAX_LISTED)
+    sink.message(Severity::Warning,
+                 std::to_string(warped) + " S4R elements are warped by more than " +
+                     format_real(WARN_DEGREES) + " degrees (worst " + format_real(worst) +
+                     "); the first " + std::to_string(MAX_LISTED) + " are listed above");
+}
+
+void ElementSet::set_stress(const NodalVectors& position, std::span<const Real> middle,
+                            std::span<const Real> bottom, std::span<const Real> top) {
+  if (m_hex) m_hex->set_stress(middle);
+  if (m_shell) m_shell->set_output_stress(position, middle, bottom, top);
+}
+
+void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& totals) {
+  ScopedTimer timer(m_timers, Phase::InternalForce);
+  const Step& s = m_model.steps[state.step];
+  if (m_hex) {
+    elements::HexStepTotals t;
+    m_hex->internal_forces(state.position, state.velocity_half, dt, s.bulk_linear, s.bulk_quadratic,
+                           m_force_internal, t);
+    totals.add(t);
+    totals.viscous_energy_increment += t.viscous_energy_increment;
+  }
+  if (m_shell) {
+    elements::ShellStepTotals t;
+    m_shell->internal_forces(state.position, state.velocity_half, state.angular_velocity_half, dt,
+                             m_force_internal, m_moment_internal, t);
+    totals.add(t);
+  }
+}
+
+Real ElementSet::stable_increment(const State& state, int step) {
+  ElementTotals totals;
+  compute_forces(state, 0.0, totals);
+  clear_forces();
+  return stable_step(totals, step);
+}
+
+Real ElementSet::stable_step(const ElementTotals& totals, int step) const {
+  const Step& s = m_model.steps[step];
+  return s.fixed_increment ? *s.fixed_increment
+                           : totals.stable_dt * s.time_scale_factor * m_dt_safety;
+}
+
+Real ElementSet::next_increment(const ElementTotals& totals, Real remaining, int step) const {
+  Real dt = stable_step(totals, step);
+  if (!std::isfinite(dt)) dt = remaining;  // no elements: one increment to the end
+  // Land exactly on the end of the step; avoid a sliver increment just before it.
+  if (dt >= remaining || remaining - dt < 1e-3 * dt) dt = remaining;
+  return dt;
+}
+
+void ElementSet::gather_output(State& state, const FrameRequest& what) const {
+  if (!what.stress && !what.volume && !what.thickness) return;
+  // Element output arrays exist only in runs that write element output (P2).
+  const auto n_elements = static_cast<std::size_t>(m_model.element_count());
+  state.stress.resize(n_elements * 6, 0.0);
+  state.volume.resize(n_elements, 0.0);
+  if (m_hex) m_hex->gather_output(state.stress, state.volume);
+  if (m_shell) {
+    const Real nan = std::numeric_limits<Real>::quiet_NaN();
+    state.stress_bottom.resize(n_elements * 6, nan);
+    state.stress_top.resize(n_elements * 6, nan);
+    state.thickness.resize(n_elements, nan);
+    m_shell->gather_output(state.position, state.stress, state.stress_bottom, state.stress_top,
+                           state.thickness);
+  }
+}
+
+void ElementSet::clear_forces() {
+  m_force_internal.setZero();
+  if (m_shell) m_moment_internal.setZero();
+}
+
+}  // namespace xpl

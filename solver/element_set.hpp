@@ -1,0 +1,124 @@
+#pragma once
+/// \file The deformable elements of a model as one set: the C3D8R and S4R blocks, the lumped
+/// nodal masses and rotary inertias they make, their internal forces and the stable
+/// increment they allow.
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "common/timer.hpp"
+#include "contact/contact_faces.hpp"
+#include "elements/hex8r.hpp"
+#include "elements/increment_limit.hpp"
+#include "elements/shell4r.hpp"
+#include "solver/model.hpp"
+#include "solver/output_sink.hpp"
+#include "solver/rigid_bodies.hpp"
+#include "solver/state.hpp"
+
+namespace xpl {
+
+/// Element totals of one internal-force pass over all blocks (energy increments in J, the
+/// stable increment and the critical and failed elements).
+struct ElementTotals : elements::IncrementLimit {
+  Real strain_energy_increment = 0.0;
+  Real hourglass_energy_increment = 0.0;
+  Real viscous_energy_increment = 0.0;
+
+  /// Adds one block's totals (strain and hourglass energy, increment limit; the caller adds
+  /// the viscous energy of the blocks that have it).
+  template <class BlockTotals>
+  void add(const BlockTotals& t) {
+    strain_energy_increment += t.strain_energy_increment;
+    hourglass_energy_increment += t.hourglass_energy_increment;
+    merge(t);
+  }
+};
+
+/// The deformable elements (those of no rigid body), their nodal forces and masses.
+/// The nodal force arrays accumulate over one increment (elements, then contact) and are
+/// zeroed by clear_forces() once the nodal update has used them.
+class ElementSet {
+ public:
+  /// Builds the blocks and lumps the masses into `state` (state.reference set, state.mass zero,
+  /// n_nodes): state.mass gets the element masses, the rigid elements' masses and the `*MASS`
+  /// point masses; on shell models the rotational fields of `state` (n_nodes × 3) are
+  /// allocated at zero and state.rotary_inertia is filled. `model` and `timers` must outlive
+  /// the set; `dt_safety` is SolverOptions::dt_safety.
+  ElementSet(const Model& model, const RigidBodies& rigid, State& state, PhaseTimers& timers,
+             Real dt_safety);
+
+  /// Whether the model has S4R elements (and so nodes with rotational DOFs).
+  bool has_shells() const { return m_shell != nullptr; }
+  /// Number of deformable elements (the element cycles of the run summary).
+  Index size() const;
+
+  /// The setup messages, in this order: nodes without mass, the C3D8R block, the S4R block,
+  /// its warped elements (measured on `reference`, n_nodes × 3) and section-control notes.
+  void report_setup(const NodalVectors& reference, OutputSink& sink) const;
+
+  /// Sets imported element stresses (n_elements × 6 each, Pa): the solids' stress, the
+  /// shells' middle, bottom and top section stresses in the output axes on `position`.
+  void set_stress(const NodalVectors& position, std::span<const Real> middle,
+                  std::span<const Real> bottom, std::span<const Real> top);
+
+  /// Internal forces of every block at the state's positions and half-step velocities over
+  /// the increment `dt` (s; 0: no rate terms), added to force_internal() and
+  /// moment_internal(); energies and the increment limit go into `totals`.
+  void compute_forces(const State& state, Real dt, ElementTotals& totals);
+  /// Stable increment of the elements at the state's positions (no lasting change), s.
+  Real stable_increment(const State& state, int step);
+  /// The increment the elements allow in `step` (deck scale factor and safety applied, or the
+  /// fixed increment), before it is shortened to land on the end of the step; +inf without
+  /// elements.
+  Real stable_step(const ElementTotals& totals, int step) const;
+  /// The next increment: stable_step(), or what `remaining` (s) of the step is left when it
+  /// lies closer than a sliver.
+  Real next_increment(const ElementTotals& totals, Real remaining, int step) const;
+
+  /// Element output requested by `what` (stress, section stresses, volume, thickness) into
+  /// `state`; the arrays are allocated on first use (n_elements rows).
+  void gather_output(State& state, const FrameRequest& what) const;
+
+  /// Internal nodal forces of the increment (n_nodes × 3), N; contact adds its forces here.
+  NodalVectors& force_internal() { return m_force_internal; }
+  const NodalVectors& force_internal() const { return m_force_internal; }
+  /// Internal nodal moments (n_nodes × 3), N·m; 0 rows without shells.
+  const NodalVectors& moment_internal() const { return m_moment_internal; }
+  /// Zeroes the nodal forces and moments once they have been used.
+  void clear_forces();
+
+  /// Inverse lumped mass (n_nodes), 1/kg; 0 for nodes without mass and rigid-body nodes.
+  const std::vector<Real>& inverse_mass() const { return m_inverse_mass; }
+  /// Inverse rotary inertia (n_nodes), 1/(kg·m²); empty without shells.
+  const std::vector<Real>& inverse_inertia() const { return m_inverse_inertia; }
+  /// Shell thickness at each node for contact (n_nodes, m), or empty without shells.
+  const std::vector<Real>& node_thickness() const { return m_node_thickness; }
+  /// Kind of each element for the contact domain (n_elements).
+  const std::vector<contact::ElementKind>& element_kinds() const { return m_element_kinds; }
+
+ private:
+  void build_hex_block(const RigidBodies& rigid, State& state);
+  void build_shell_block(const RigidBodies& rigid, State& state);
+  /// Masses of the rigid elements and point masses into state.mass.
+  void add_other_masses(const RigidBodies& rigid, State& state) const;
+  void set_node_thickness(const RigidBodies& rigid, const NodalVectors& reference);
+  void set_inverse_mass(const RigidBodies& rigid, const std::vector<Real>& mass);
+  void report_warped_shells(const NodalVectors& reference, OutputSink& sink) const;
+
+  const Model& m_model;
+  PhaseTimers& m_timers;
+  Real m_dt_safety;
+  std::unique_ptr<elements::Hex8rBlock> m_hex;
+  std::unique_ptr<elements::Shell4rBlock> m_shell;
+  NodalVectors m_force_internal;   ///< (n_nodes × 3), zeroed after each use
+  NodalVectors m_moment_internal;  ///< (n_nodes × 3) on shell models, else 0 rows
+  std::vector<Real> m_inverse_mass;
+  std::vector<Real> m_inverse_inertia;
+  std::vector<Real> m_node_thickness;
+  std::vector<contact::ElementKind> m_element_kinds;
+  Index m_massless = 0;  ///< nodes that belong to no element and have no mass
+};
+
+}  // namespace xpl

@@ -1,0 +1,66 @@
+#include "solver/output_driver.hpp"
+
+namespace xpl {
+
+OutputDriver::OutputDriver(const Model& model, OutputSink& sink, PhaseTimers& timers)
+    : m_model(model), m_sink(sink), m_timers(timers) {}
+
+void OutputDriver::begin_step(int step) {
+  m_schedule.begin_step(m_model, step);
+}
+
+void OutputDriver::declare_history(const ContactStage& contact) {
+  if (!m_schedule.has_history()) return;
+  std::vector<HistorySeries> series = m_schedule.series();
+  contact.add_history_series(series);
+  m_sink.declare_history(series);
+}
+
+bool OutputDriver::history_due(Real step_time, bool last) {
+  return m_schedule.has_history() && m_schedule.history_due(step_time, last);
+}
+
+void OutputDriver::write_frame(State& state, const FrameRequest& what, const ElementSet& elements,
+                               const ContactStage& contact, CentralDifference& nodes) {
+  ScopedTimer timer(m_timers, Phase::Output);
+  elements.gather_output(state, what);
+  if (what.contact_stress || what.contact_status || what.contact_force) contact.fill_output(state);
+  nodes.sync_rotation(state);
+  m_sink.write_frame(m_model, state, what);
+}
+
+void OutputDriver::write_history(State& state, const ContactStage& contact,
+                                 CentralDifference& nodes) {
+  ScopedTimer timer(m_timers, Phase::Output);
+  nodes.sync_rotation(state);
+  m_schedule.history_row(state, m_history_row);
+  contact.add_history_values(m_history_row);
+  m_sink.append_history(state.time, m_history_row);
+}
+
+void OutputDriver::write_status(const State& state, Real dt_next, ExternalId critical_id) {
+  ScopedTimer timer(m_timers, Phase::Output);
+  StatusLine line;
+  line.increment = state.increment;
+  line.step_time = state.step_time;
+  line.total_time = state.time;
+  line.dt = dt_next;
+  line.critical_element = critical_id;
+  line.energies = state.energies;
+  m_sink.status(line);
+}
+
+RunSummary OutputDriver::summary(const State& state, Index element_count,
+                                 double loop_seconds) const {
+  RunSummary s;
+  s.increments = state.increment;
+  s.final_time = state.time;
+  const double elements = element_count;
+  const double cycles = elements * state.increment;
+  s.element_cycles_per_second = loop_seconds > 0.0 ? cycles / loop_seconds : 0.0;
+  s.timers = m_timers;
+  s.energies = state.energies;
+  return s;
+}
+
+}  // namespace xpl

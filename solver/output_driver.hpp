@@ -1,0 +1,65 @@
+#pragma once
+/// \file What the time loop hands to the output sink and when: field frames and history rows
+/// as the step's output requests fall due, .sta status lines, and the run summary.
+
+#include <vector>
+
+#include "common/timer.hpp"
+#include "solver/central_difference.hpp"
+#include "solver/contact_stage.hpp"
+#include "solver/element_set.hpp"
+#include "solver/explicit_solver.hpp"
+#include "solver/model.hpp"
+#include "solver/output_schedule.hpp"
+#include "solver/output_sink.hpp"
+#include "solver/state.hpp"
+
+namespace xpl {
+
+/// The output requests of the current step and the writing of frames, rows and lines.
+class OutputDriver {
+ public:
+  /// `model`, `sink` and `timers` must outlive the driver.
+  OutputDriver(const Model& model, OutputSink& sink, PhaseTimers& timers);
+
+  /// Prepares the output requests of `step`.
+  void begin_step(int step);
+  /// Declares the history columns of the step (requests, then the contact pairs' forces);
+  /// nothing when the step has no history output.
+  void declare_history(const ContactStage& contact);
+
+  /// Whether the step has field / history output at all.
+  bool has_field() const { return m_schedule.has_field(); }
+  bool has_history() const { return m_schedule.has_history(); }
+  /// Frame 0: every field variable any request of the step asks for.
+  FrameRequest field_all() const { return m_schedule.field_all(); }
+  /// The field variables due at `step_time` (none set: no frame); `last` forces all.
+  FrameRequest field_due(Real step_time, bool last) {
+    return m_schedule.field_due(step_time, last);
+  }
+  /// Whether a history row is due at `step_time` (and the step has history output).
+  bool history_due(Real step_time, bool last);
+
+  /// One field frame of `what`: element output, contact output and rotations gathered into
+  /// `state` first.
+  void write_frame(State& state, const FrameRequest& what, const ElementSet& elements,
+                   const ContactStage& contact, CentralDifference& nodes);
+  /// One history row (requests, then contact pair forces) at state.time.
+  void write_history(State& state, const ContactStage& contact, CentralDifference& nodes);
+  /// One .sta line: the increment `dt_next` (s) about to be taken and the element
+  /// `critical_id` (deck id) that limits it.
+  void write_status(const State& state, Real dt_next, ExternalId critical_id);
+
+  /// The run summary of `state`: `element_count` elements cycled over the increments in
+  /// `loop_seconds` of time-loop wall time.
+  RunSummary summary(const State& state, Index element_count, double loop_seconds) const;
+
+ private:
+  const Model& m_model;
+  OutputSink& m_sink;
+  PhaseTimers& m_timers;
+  OutputSchedule m_schedule;
+  std::vector<Real> m_history_row;
+};
+
+}  // namespace xpl
