@@ -250,23 +250,9 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       const InteractionLaw law =
           ia != NO_INDEX && ia < static_cast<Index>(m_laws.size()) ? m_laws[ia] : InteractionLaw{};
       const ContactFace& face = faces[t.face];
-      Real k = 0.0;
-      if (law.pressure_slope > 0.0) {
-        k = law.pressure_slope * slaves.areas()[s];
-      } else {
-        // m_eff = 1/(1/m_s + 1/m_m); a rigid corner makes the master mass infinite.
-        Real master_mass = 0.0;
-        bool rigid = false;
-        for (int a = 0; a < 4; ++a) {
-          master_mass += t.shape[a] * mass[face.nodes[a]];
-          rigid = rigid || inverse_mass[face.nodes[a]] == 0.0;
-        }
-        const Real m_s = mass[node];
-        const Real m_eff =
-            rigid || !(master_mass > 0.0) ? m_s : m_s * master_mass / (m_s + master_mass);
-        if (dt_penalty > 0.0)
-          k = DEFAULT_PENALTY_FACTOR * m_options.penalty_scale * m_eff / (dt_penalty * dt_penalty);
-      }
+      const Real master_mass = master_mass_at_point(t.shape, face.nodes, mass, inverse_mass);
+      Real k = penalty_stiffness(law, slaves.areas()[s], mass[node], master_mass, dt_penalty,
+                                 m_options.penalty_scale);
       k *= t.weight;
       c.master_face = t.face;
       c.xi = t.xi;

@@ -54,12 +54,6 @@ namespace xpl::contact {
 /// Cosine below which a face counts as looking at a slave node (see the file comment).
 inline constexpr Real OPPOSING_COSINE = 0.2;
 
-/// The contact law of one surface interaction.
-struct InteractionLaw {
-  Real friction = 0.0;        ///< Coulomb coefficient μ ≥ 0
-  Real pressure_slope = 0.0;  ///< Pa/m; > 0: k = slope × tributary area, else the default
-};
-
 /// Options of the engine (defaults in parentheses).
 struct ContactOptions {
   Real penalty_scale = 1.0;  ///< s, multiplies the default penalty stiffness (1)
