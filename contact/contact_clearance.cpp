@@ -14,23 +14,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Share of the facet size at a solid slave node used as the default search zone (C9).
-constexpr Real DEFAULT_ZONE_FRACTION = 0.1;
-/// Jacobi passes before what remains becomes an offset. Consistent clearances converge fast:
-/// flat surfaces in one pass, tilted or non-matching ones by a large factor per pass.
-/// Balanced clearances between curved surfaces are inconsistent (the seed's curvature change):
-/// for two concentric polygons with different chord sags the only state meeting every
-/// clearance has both surfaces shrunk to a fraction of their radius, and further passes would
-/// creep towards it. So the passes stop as soon as one pass fails to halve the largest
-/// residual, and what remains becomes permanent offsets (reason: conflict).
-constexpr int MAX_PASSES = 60;
-constexpr int MAX_ROUNDS = 5;
-/// A node farther than this share of its facet size beside a perimeter edge of the master
-/// surface lies outside the surface (C9); closer, it is taken as right above the edge.
-constexpr Real PERIMETER_TOLERANCE = 1e-6;
-/// A boundary condition on DOF c holds a node when |n_c| of the move direction exceeds this.
-constexpr Real LOCK_COMPONENT = 1e-6;
-
 std::uint64_t edge_key(Index a, Index b) {
   const auto lo = static_cast<std::uint64_t>(std::min(a, b));
   const auto hi = static_cast<std::uint64_t>(std::max(a, b));
@@ -306,11 +289,11 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
     const NodalVectors original = position;
     std::vector<char> moving(records.size(), 0);
     std::vector<Real> move(3 * records.size(), 0.0);
-    for (int round = 0; round < MAX_ROUNDS; ++round) {
+    for (int round = 0; round < MAX_ADJUSTMENT_ROUNDS; ++round) {
       if (round > 0) position = original;
       report.passes = 0;
       std::vector<Real> worst_of_pass;
-      for (int pass = 0; pass < MAX_PASSES; ++pass) {
+      for (int pass = 0; pass < MAX_ADJUSTMENT_PASSES; ++pass) {
         bool any = false;
         Real worst = 0.0;
 #pragma omp parallel for schedule(static) reduction(|| : any) reduction(max : worst)
@@ -328,7 +311,7 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
         }
         if (!any) break;
         worst_of_pass.push_back(worst);
-        if (pass >= 1 && worst > 0.5 * worst_of_pass[pass - 1]) break;
+        if (pass >= 1 && worst > CLEARANCE_CONVERGENCE_RATIO * worst_of_pass[pass - 1]) break;
         ++report.passes;
         for (Index k = 0; k < n_records; ++k) {
           if (!moving[k]) continue;
@@ -349,7 +332,7 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
           node_moved[r.node] = 1;
       const std::vector<Index> refused = distorted_elements(
           topology, original, position, node_moved, report.quality_before, report.quality_after);
-      if (refused.empty() || round + 1 == MAX_ROUNDS) break;
+      if (refused.empty() || round + 1 == MAX_ADJUSTMENT_ROUNDS) break;
       for (Index e : refused) {
         report.refused_elements.push_back(e);
         for (Index k = topology.offsets[e]; k < topology.offsets[e + 1]; ++k) {

@@ -10,9 +10,6 @@ namespace xpl::contact {
 
 namespace {
 
-/// Fraction of the mean face size used as the default search margin.
-constexpr Real MARGIN_FRACTION = 0.3;
-
 /// Default margin: MARGIN_FRACTION × the mean square root of the face areas.
 Real mean_face_size(const std::vector<ContactFace>& faces, const NodalVectors& position) {
   if (faces.empty()) return 1.0;
@@ -38,7 +35,7 @@ BroadPhase make_broad_phase(const ContactOptions& options, const std::vector<Con
                             const NodalVectors& position, std::span<const Real> node_thickness) {
   Real base =
       options.margin > 0.0 ? options.margin : MARGIN_FRACTION * mean_face_size(faces, position);
-  if (!(base > 0.0)) base = 1e-3;
+  if (!(base > 0.0)) base = FALLBACK_MARGIN;
   const Real half_t = 0.5 * max_thickness(node_thickness);
   return BroadPhase(base + half_t, 0.5 * base);
 }
@@ -143,7 +140,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   if (faces[f].shell) {
     Real t = 0.0;
     for (Index c : faces[f].nodes) t += node_thickness_of(node_thickness, c);
-    depth = 0.125 * t;  // half the mean thickness
+    depth = DEPTH_LIMIT_FRACTION * 0.25 * t;  // of the mean thickness
   }
   // Behind the face's plane but beside its edge or corner, the node penetrates the face only
   // while its offset beyond the edge is smaller than its penetration (it is nearer to the

@@ -47,19 +47,10 @@
 #include "common/timer.hpp"
 #include "contact/broad_phase.hpp"
 #include "contact/contact_domain.hpp"
+#include "contact/contact_options.hpp"
 #include "contact/penalty.hpp"
 
 namespace xpl::contact {
-
-/// Cosine below which a face counts as looking at a slave node (see the file comment).
-inline constexpr Real OPPOSING_COSINE = 0.2;
-
-/// Options of the engine (defaults in parentheses).
-struct ContactOptions {
-  Real penalty_scale = 1.0;  ///< s, multiplies the default penalty stiffness (1)
-  /// Search margin, m; 0: 0.3 × the mean face edge plus the largest half shell thickness.
-  Real margin = 0.0;
-};
 
 /// What one increment of contact did.
 struct ContactTotals {

@@ -13,16 +13,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Two penetrated faces whose normals are more than 120° apart pinch the node.
-constexpr Real PINCH_COSINE = -0.5;
-/// A move is refused when an element corner keeps less than this share of its volume (hex)
-/// or area (shell) as read.
-constexpr Real MIN_CORNER_RATIO = 0.5;
-/// Rounds of "adjust, then refuse distorting moves" before giving up on further refusals.
-constexpr int MAX_ROUNDS = 5;
-/// A boundary condition on DOF c holds a node when |n_c| of the move direction exceeds this.
-constexpr Real LOCK_COMPONENT = 1e-6;
-
 enum class Role : std::uint8_t { Free, Ignored, Held };
 
 /// Corner measures of element e: hex: the 8 corner Jacobians det[e1 e2 e3] and their scaled
@@ -233,7 +223,7 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
     const NodalVectors original = position;
     std::vector<char> moving(n, 0);
     std::vector<Real> move(3 * n, 0.0);
-    for (int round = 0; round < MAX_ROUNDS; ++round) {
+    for (int round = 0; round < MAX_ADJUSTMENT_ROUNDS; ++round) {
       if (round > 0) {
         position = original;
         engine.probe(position, node_thickness);
@@ -291,7 +281,7 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
       }
       const std::vector<Index> refused = distorted_elements(
           topology, original, position, node_moved, report.quality_before, report.quality_after);
-      if (refused.empty() || round + 1 == MAX_ROUNDS) break;
+      if (refused.empty() || round + 1 == MAX_ADJUSTMENT_ROUNDS) break;
       for (Index e : refused) {
         report.refused_elements.push_back(e);
         const Index* en = topology.nodes.data() + topology.offsets[e];

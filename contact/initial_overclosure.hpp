@@ -76,15 +76,12 @@ struct OverclosureSettings {
   bool detect_crossed = true;                            ///< crossed-surface check (C5)
   /// Deepest penetration below a solid face that is adjusted, as a fraction of the facet size
   /// around the slave node (mean square root of the face areas).
-  Real depth_fraction = 0.15;
-  int max_passes = 60;
+  Real depth_fraction = IGNORED_DEPTH_FRACTION;
+  int max_passes = MAX_ADJUSTMENT_PASSES;  ///< Jacobi passes per round
   /// Per slave slot: 1 for a node the pass leaves alone (it has a contact clearance); empty:
   /// none.
   std::span<const char> exclude;
 };
-
-/// Relative tolerance (of the facet size) under which a node counts as on the surface.
-inline constexpr Real OVERCLOSURE_TOLERANCE = 1e-10;
 
 /// A slave node moved onto the surface.
 struct AdjustedNode {

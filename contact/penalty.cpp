@@ -18,17 +18,6 @@ Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>
   return m;
 }
 
-Real master_mass_at_point(const std::array<Real, 4>& weights, const std::array<Index, 4>& corners,
-                          std::span<const Real> mass, std::span<const Real> inverse_mass) {
-  std::array<Real, 4> corner_mass{};
-  bool rigid = false;
-  for (int a = 0; a < 4; ++a) {
-    corner_mass[a] = mass[corners[a]];
-    rigid = rigid || inverse_mass[corners[a]] == 0.0;
-  }
-  return rigid ? RIGID_MASTER_MASS : mass_at_point(weights, corner_mass);
-}
-
 Real default_penalty_stiffness(Real slave_mass, Real master_mass, Real dt, Real scale) {
   if (!(dt > 0.0)) return 0.0;
   // m_eff = 1/(1/m_s + 1/m_m); a rigid corner makes the master mass infinite.

@@ -13,6 +13,7 @@
 #include <span>
 
 #include "contact/contact_faces.hpp"
+#include "contact/contact_options.hpp"
 
 namespace xpl::contact {
 
@@ -66,9 +67,6 @@ inline Real updated_offset(Real penetration, Real offset) {
 /// force (N) and sets the status to Closed or Open.
 Real normal_contact_update(ContactConstraint& constraint, Real gap, Real stiffness);
 
-/// Default α of the penalty stiffness (see default_penalty_stiffness).
-inline constexpr Real DEFAULT_PENALTY_FACTOR = 0.5;
-
 /// The master mass of a face with a rigid corner (a corner of zero inverse mass): infinite, so
 /// that m_eff is the slave node's own mass.
 inline constexpr Real RIGID_MASTER_MASS = std::numeric_limits<Real>::infinity();
@@ -87,8 +85,21 @@ Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>
 /// weights `weights`, nodal masses `mass` (kg) and inverse masses `inverse_mass` (1/kg, 0 for
 /// a rigid body node): mass_at_point of the corner masses, or RIGID_MASTER_MASS when a corner
 /// is rigid (its mass does not move with the contact force); kg.
-Real master_mass_at_point(const std::array<Real, 4>& weights, const std::array<Index, 4>& corners,
-                          std::span<const Real> mass, std::span<const Real> inverse_mass);
+///
+/// Inline, and summed straight from the nodal masses: the engine's force loop has always
+/// summed it in place, and the compiler contracts that sum (fused multiply–adds) where it sees
+/// it; an out-of-line copy through a corner array rounds differently.
+inline Real master_mass_at_point(const std::array<Real, 4>& weights,
+                                 const std::array<Index, 4>& corners, std::span<const Real> mass,
+                                 std::span<const Real> inverse_mass) {
+  Real master_mass = 0.0;
+  bool rigid = false;
+  for (int a = 0; a < 4; ++a) {
+    master_mass += weights[a] * mass[corners[a]];
+    rigid = rigid || inverse_mass[corners[a]] == 0.0;
+  }
+  return rigid ? RIGID_MASTER_MASS : master_mass;
+}
 
 /// Default penalty stiffness k = α·s·m_eff/Δt², N/m, with α = DEFAULT_PENALTY_FACTOR, s the
 /// user's penalty scale factor, Δt the stable time increment (s) and m_eff = m_s m_m /
