@@ -54,12 +54,9 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_touch.assign(n, SlaveTouch{});
   m_normal_force.assign(n, 0.0);
   m_slave_force.assign(3 * n, 0.0);
-  m_force.assign(3 * n, 0.0);
-  m_previous_force.assign(3 * n, 0.0);
   m_dissipation.assign(n, 0.0);
   m_output_status.assign(n, OutputStatus::Open);
-  m_pair_normal.assign(static_cast<std::size_t>(m_domain.pair_count()), 0.0);
-  m_pair_friction.assign(m_pair_normal.size(), 0.0);
+  m_assembly = ForceAssembly(m_domain.slaves().size(), m_domain.pair_count());
 }
 
 ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
@@ -276,50 +273,8 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   }
 
   // Assembly, sums and work, in slot order (independent of the thread count).
-  m_previous_force.swap(m_force);
-  std::fill(m_force.begin(), m_force.end(), 0.0);
-  std::fill(m_pair_normal.begin(), m_pair_normal.end(), 0.0);
-  std::fill(m_pair_friction.begin(), m_pair_friction.end(), 0.0);
-  for (Index s = 0; s < n_slave; ++s) {
-    const SlaveTouch& t = m_touch[s];
-    if (t.face == NO_INDEX) continue;
-    const Vec3 f(m_slave_force[3 * s], m_slave_force[3 * s + 1], m_slave_force[3 * s + 2]);
-    if (f.dot(f) == 0.0) continue;
-    const Index node = slaves.nodes()[s];
-    for (int d = 0; d < 3; ++d) {
-      m_force[3 * s + d] += f[d];
-      force_internal(node, d) -= f[d];
-    }
-    const ContactFace& face = faces[t.face];
-    for (int a = 0; a < 4; ++a) {
-      const Index corner = face.nodes[a];
-      const Index cs = slaves.slot(corner);
-      for (int d = 0; d < 3; ++d) {
-        const Real share = t.shape[a] * f[d];
-        m_force[3 * cs + d] -= share;
-        force_internal(corner, d) += share;
-      }
-    }
-    ++totals.closed;
-    if (t.pair != NO_INDEX) {
-      m_pair_normal[t.pair] += m_normal_force[s];
-      const Vec3& ft = m_constraints[s].tangential_force;
-      m_pair_friction[t.pair] += std::sqrt(ft.dot(ft));
-    }
-    totals.friction_dissipation += m_dissipation[s];
-  }
-  if (dt > 0.0) {
-    for (Index s = 0; s < n_slave; ++s) {
-      const Real* now = &m_force[3 * s];
-      const Real* before = &m_previous_force[3 * s];
-      if (now[0] == 0.0 && now[1] == 0.0 && now[2] == 0.0 && before[0] == 0.0 && before[1] == 0.0 &&
-          before[2] == 0.0)
-        continue;
-      const Index node = slaves.nodes()[s];
-      for (int d = 0; d < 3; ++d)
-        totals.work += 0.5 * (now[d] + before[d]) * velocity_half(node, d) * dt;
-    }
-  }
+  m_assembly.assemble(slaves, faces, m_touch, m_slave_force, m_normal_force, m_constraints,
+                      m_dissipation, velocity_half, dt, force_internal, totals);
   return totals;
 }
 
