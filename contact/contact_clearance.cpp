@@ -288,17 +288,7 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
   const bool adjust = view.adjust && adjust_allowed;
   if (!adjust && bf.shell && sigma * best_height.h < 0.0) return skip(ClearanceSkip::WrongSide);
   if (record_of[s] != NO_INDEX) return skip(ClearanceSkip::Repeated);
-  Record r;
-  r.slot = s;
-  r.node = node;
-  r.view = v;
-  r.face = best;
-  r.clearance = c;
-  r.sigma = sigma;
-  r.slave_half = slave_half;
-  r.tolerance = OVERCLOSURE_TOLERANCE * size[s];
-  r.gap_before = gap;
-  r.adjust = adjust;
+  Record r{s, node, v, best, c, sigma, slave_half, OVERCLOSURE_TOLERANCE * size[s], gap, adjust};
   const std::uint8_t lock = node_lock.empty() ? 0 : node_lock[node];
   if (const std::optional<OffsetReason> locked = lock_reason(lock, best_height.normal)) {
     r.held = true;
@@ -392,16 +382,9 @@ void Clearance::adjust(const ElementTopology& topology, ClearanceReport& report)
   for (const Record& r : records) {
     const Vec3 delta = node_point(position, r.node) - node_point(original, r.node);
     const Real distance = delta.norm();
-    ClearedNode out{r.node,
-                    r.view,
-                    r.face,
-                    r.clearance,
-                    r.gap_before,
-                    distance,
-                    distance > 0.0 ? Vec3(delta / distance) : Vec3::Zero(),
-                    0.0,
-                    r.reason};
-    report.nodes.push_back(out);
+    const Vec3 direction = distance > 0.0 ? Vec3(delta / distance) : Vec3::Zero();
+    report.nodes.push_back(
+        {r.node, r.view, r.face, r.clearance, r.gap_before, distance, direction, 0.0, r.reason});
   }
 }
 
