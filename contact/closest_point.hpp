@@ -65,4 +65,16 @@ Vec3 quad_normal(const Vec3 corner[4], Real xi, Real eta);
 /// answer. No allocation; safe to call from any number of threads.
 ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p);
 
+/// What the contact search found for one slave node: the nearest admissible face and the
+/// closest point on it (ContactEngine).
+struct SlaveTouch {
+  Index face = NO_INDEX;        ///< contact face, NO_INDEX when none is admissible
+  Index pair = NO_INDEX;        ///< included pair that allows the touch (per-pair output)
+  Real weight = 0.0;            ///< view weight w (½ balanced, 1 one-sided or rigid master)
+  Real gap = 0.0;               ///< signed gap, m (negative: penetration); shell nodes less t/2
+  Vec3 normal = Vec3::Zero();   ///< unit contact normal, from the face towards the node
+  std::array<Real, 4> shape{};  ///< weights N_I of the face corners at the closest point
+  Real xi = 0.0, eta = 0.0;     ///< face coordinates of the closest point
+};
+
 }  // namespace xpl::contact

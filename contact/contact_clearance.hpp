@@ -29,9 +29,10 @@
 /// w·(h* − h), on its nearest face of the configuration as read (recomputed at the moved
 /// positions), w = ½ when a corner of that face is moving in the same pass (the other view of
 /// a balanced assignment closes the other half), 1 otherwise, until every node is within
-/// TOLERANCE × its facet size of its target. Nodes held by a boundary condition along the
-/// normal or by a rigid body do not move; element distortion is refused as in the
-/// initial-overclosure pass. What remains becomes a permanent offset (below).
+/// OVERCLOSURE_TOLERANCE × its facet size of its target. Nodes held by a boundary condition along
+/// the normal or by a rigid body do not move; element distortion is refused as in the
+/// initial-overclosure pass (the shared loop of adjustment_pass.hpp). What remains becomes a
+/// permanent offset (below).
 ///
 /// Offsets (ADJUST=NO, and what ADJUST=YES could not resolve): d0 = σ(h* − h), the clearance
 /// violation along the side the node belongs to, kept for the whole analysis

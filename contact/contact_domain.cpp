@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "contact/contact_options.hpp"
+
 namespace xpl::contact {
 
 namespace {
@@ -84,7 +86,7 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
     const Index* en = topology.nodes.data() + topology.offsets[face.element];
     const Vec3 d = face_centre(en, face.face, position) -
                    face_centre(en, OPPOSITE_HEX_FACE[face.face], position);
-    m_face_depth[f] = 0.5 * std::sqrt(d.dot(d));
+    m_face_depth[f] = DEPTH_LIMIT_FRACTION * std::sqrt(d.dot(d));
   }
 
   // Slave node masks: the surfaces of the faces around the node. A node is rigid when it

@@ -10,9 +10,6 @@ namespace xpl::contact {
 
 namespace {
 
-/// Fraction of the mean face size used as the default search margin.
-constexpr Real MARGIN_FRACTION = 0.3;
-
 /// Default margin: MARGIN_FRACTION × the mean square root of the face areas.
 Real mean_face_size(const std::vector<ContactFace>& faces, const NodalVectors& position) {
   if (faces.empty()) return 1.0;
@@ -38,7 +35,7 @@ BroadPhase make_broad_phase(const ContactOptions& options, const std::vector<Con
                             const NodalVectors& position, std::span<const Real> node_thickness) {
   Real base =
       options.margin > 0.0 ? options.margin : MARGIN_FRACTION * mean_face_size(faces, position);
-  if (!(base > 0.0)) base = 1e-3;
+  if (!(base > 0.0)) base = FALLBACK_MARGIN;
   const Real half_t = 0.5 * max_thickness(node_thickness);
   return BroadPhase(base + half_t, 0.5 * base);
 }
@@ -57,12 +54,9 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_touch.assign(n, SlaveTouch{});
   m_normal_force.assign(n, 0.0);
   m_slave_force.assign(3 * n, 0.0);
-  m_force.assign(3 * n, 0.0);
-  m_previous_force.assign(3 * n, 0.0);
   m_dissipation.assign(n, 0.0);
   m_output_status.assign(n, OutputStatus::Open);
-  m_pair_normal.assign(static_cast<std::size_t>(m_domain.pair_count()), 0.0);
-  m_pair_friction.assign(m_pair_normal.size(), 0.0);
+  m_assembly = ForceAssembly(m_domain.slaves().size(), m_domain.pair_count());
 }
 
 ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
@@ -143,7 +137,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   if (faces[f].shell) {
     Real t = 0.0;
     for (Index c : faces[f].nodes) t += node_thickness_of(node_thickness, c);
-    depth = 0.125 * t;  // half the mean thickness
+    depth = DEPTH_LIMIT_FRACTION * 0.25 * t;  // of the mean thickness
   }
   // Behind the face's plane but beside its edge or corner, the node penetrates the face only
   // while its offset beyond the edge is smaller than its penetration (it is nearer to the
@@ -250,23 +244,9 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       const InteractionLaw law =
           ia != NO_INDEX && ia < static_cast<Index>(m_laws.size()) ? m_laws[ia] : InteractionLaw{};
       const ContactFace& face = faces[t.face];
-      Real k = 0.0;
-      if (law.pressure_slope > 0.0) {
-        k = law.pressure_slope * slaves.areas()[s];
-      } else {
-        // m_eff = 1/(1/m_s + 1/m_m); a rigid corner makes the master mass infinite.
-        Real master_mass = 0.0;
-        bool rigid = false;
-        for (int a = 0; a < 4; ++a) {
-          master_mass += t.shape[a] * mass[face.nodes[a]];
-          rigid = rigid || inverse_mass[face.nodes[a]] == 0.0;
-        }
-        const Real m_s = mass[node];
-        const Real m_eff =
-            rigid || !(master_mass > 0.0) ? m_s : m_s * master_mass / (m_s + master_mass);
-        if (dt_penalty > 0.0)
-          k = DEFAULT_PENALTY_FACTOR * m_options.penalty_scale * m_eff / (dt_penalty * dt_penalty);
-      }
+      const Real master_mass = master_mass_at_point(t.shape, face.nodes, mass, inverse_mass);
+      Real k = penalty_stiffness(law, slaves.areas()[s], mass[node], master_mass, dt_penalty,
+                                 m_options.penalty_scale);
       k *= t.weight;
       c.master_face = t.face;
       c.xi = t.xi;
@@ -293,50 +273,8 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   }
 
   // Assembly, sums and work, in slot order (independent of the thread count).
-  m_previous_force.swap(m_force);
-  std::fill(m_force.begin(), m_force.end(), 0.0);
-  std::fill(m_pair_normal.begin(), m_pair_normal.end(), 0.0);
-  std::fill(m_pair_friction.begin(), m_pair_friction.end(), 0.0);
-  for (Index s = 0; s < n_slave; ++s) {
-    const SlaveTouch& t = m_touch[s];
-    if (t.face == NO_INDEX) continue;
-    const Vec3 f(m_slave_force[3 * s], m_slave_force[3 * s + 1], m_slave_force[3 * s + 2]);
-    if (f.dot(f) == 0.0) continue;
-    const Index node = slaves.nodes()[s];
-    for (int d = 0; d < 3; ++d) {
-      m_force[3 * s + d] += f[d];
-      force_internal(node, d) -= f[d];
-    }
-    const ContactFace& face = faces[t.face];
-    for (int a = 0; a < 4; ++a) {
-      const Index corner = face.nodes[a];
-      const Index cs = slaves.slot(corner);
-      for (int d = 0; d < 3; ++d) {
-        const Real share = t.shape[a] * f[d];
-        m_force[3 * cs + d] -= share;
-        force_internal(corner, d) += share;
-      }
-    }
-    ++totals.closed;
-    if (t.pair != NO_INDEX) {
-      m_pair_normal[t.pair] += m_normal_force[s];
-      const Vec3& ft = m_constraints[s].tangential_force;
-      m_pair_friction[t.pair] += std::sqrt(ft.dot(ft));
-    }
-    totals.friction_dissipation += m_dissipation[s];
-  }
-  if (dt > 0.0) {
-    for (Index s = 0; s < n_slave; ++s) {
-      const Real* now = &m_force[3 * s];
-      const Real* before = &m_previous_force[3 * s];
-      if (now[0] == 0.0 && now[1] == 0.0 && now[2] == 0.0 && before[0] == 0.0 && before[1] == 0.0 &&
-          before[2] == 0.0)
-        continue;
-      const Index node = slaves.nodes()[s];
-      for (int d = 0; d < 3; ++d)
-        totals.work += 0.5 * (now[d] + before[d]) * velocity_half(node, d) * dt;
-    }
-  }
+  m_assembly.assemble(slaves, faces, m_touch, m_slave_force, m_normal_force, m_constraints,
+                      m_dissipation, velocity_half, dt, force_internal, totals);
   return totals;
 }
 

@@ -35,7 +35,7 @@
 /// LINEAR pressure–overclosure slope, else the default k = ½·s·m_eff/Δt² (penalty.hpp), which
 /// is tied to the current increment so that contact never lowers it. Coulomb friction by the
 /// stick-spring return map of penalty.hpp with k_t = w·k. The slave node gets f, the face
-/// nodes −N_I f.
+/// nodes −N_I f (force_assembly.hpp).
 ///
 /// Determinism: search and force loops are parallel over slave nodes and write only their own
 /// slot; assembly and every sum run over slots in order, so results do not depend on the
@@ -47,46 +47,11 @@
 #include "common/timer.hpp"
 #include "contact/broad_phase.hpp"
 #include "contact/contact_domain.hpp"
+#include "contact/contact_options.hpp"
+#include "contact/force_assembly.hpp"
 #include "contact/penalty.hpp"
 
 namespace xpl::contact {
-
-/// Cosine below which a face counts as looking at a slave node (see the file comment).
-inline constexpr Real OPPOSING_COSINE = 0.2;
-
-/// The contact law of one surface interaction.
-struct InteractionLaw {
-  Real friction = 0.0;        ///< Coulomb coefficient μ ≥ 0
-  Real pressure_slope = 0.0;  ///< Pa/m; > 0: k = slope × tributary area, else the default
-};
-
-/// Options of the engine (defaults in parentheses).
-struct ContactOptions {
-  Real penalty_scale = 1.0;  ///< s, multiplies the default penalty stiffness (1)
-  /// Search margin, m; 0: 0.3 × the mean face edge plus the largest half shell thickness.
-  Real margin = 0.0;
-};
-
-/// What one increment of contact did.
-struct ContactTotals {
-  /// Work done on the nodes by the contact forces over the increment (trapezoidal rule), J;
-  /// negative while springs are loaded or friction dissipates.
-  Real work = 0.0;
-  Real friction_dissipation = 0.0;  ///< J, ≥ 0
-  Index closed = 0;                 ///< slave nodes with a normal force
-  bool rebuilt = false;             ///< the broad phase was rebuilt
-};
-
-/// What the search found for one slave node: the nearest admissible face and the point on it.
-struct SlaveTouch {
-  Index face = NO_INDEX;        ///< contact face, NO_INDEX when none is admissible
-  Index pair = NO_INDEX;        ///< included pair that allows the touch (per-pair output)
-  Real weight = 0.0;            ///< view weight w (½ balanced, 1 one-sided or rigid master)
-  Real gap = 0.0;               ///< signed gap, m (negative: penetration); shell nodes less t/2
-  Vec3 normal = Vec3::Zero();   ///< unit contact normal, from the face towards the node
-  std::array<Real, 4> shape{};  ///< weights N_I of the face corners at the closest point
-  Real xi = 0.0, eta = 0.0;     ///< face coordinates of the closest point
-};
 
 /// A slave node's contact status for output (CSTATUS): open, slipping or sticking.
 enum class OutputStatus : std::uint8_t { Open = 0, Slip = 1, Stick = 2 };
@@ -131,14 +96,12 @@ class ContactEngine {
   /// Normal force of the slave node's own constraint (weight included), N; per slave slot.
   Real normal_force(Index s) const { return m_normal_force[s]; }
   /// Total contact force on the node of slave slot s (as slave and as face corner), N.
-  Vec3 nodal_force(Index s) const {
-    return Vec3(m_force[3 * s], m_force[3 * s + 1], m_force[3 * s + 2]);
-  }
+  Vec3 nodal_force(Index s) const { return m_assembly.nodal_force(s); }
   OutputStatus output_status(Index s) const { return m_output_status[s]; }
   /// Per included pair: sum of normal force magnitudes (N) and of friction force magnitudes
   /// (N) over the slave nodes touching through that pair, at the last update.
-  const std::vector<Real>& pair_normal_force() const { return m_pair_normal; }
-  const std::vector<Real>& pair_friction_force() const { return m_pair_friction; }
+  const std::vector<Real>& pair_normal_force() const { return m_assembly.pair_normal_force(); }
+  const std::vector<Real>& pair_friction_force() const { return m_assembly.pair_friction_force(); }
   const BroadPhase& broad_phase() const { return m_broad; }
   /// Widens the search margin by `extra` (m, > 0) for contact surfaces moved out towards the
   /// slave nodes by negative permanent offsets (clearances); the next search rebuilds the lists.
@@ -177,14 +140,12 @@ class ContactEngine {
   ContactOptions m_options;
   BroadPhase m_broad;
   std::vector<ContactConstraint> m_constraints;
-  std::vector<SlaveTouch> m_touch;     // per slave slot, written by search()
-  std::vector<Real> m_normal_force;    // (n_slave)
-  std::vector<Real> m_slave_force;     // (n_slave × 3): force on the slave node itself
-  std::vector<Real> m_force;           // (n_slave × 3): assembled force, this increment
-  std::vector<Real> m_previous_force;  // (n_slave × 3): assembled force, last increment
-  std::vector<Real> m_dissipation;     // (n_slave)
+  std::vector<SlaveTouch> m_touch;   // per slave slot, written by search()
+  std::vector<Real> m_normal_force;  // (n_slave)
+  std::vector<Real> m_slave_force;   // (n_slave × 3): force on the slave node itself
+  std::vector<Real> m_dissipation;   // (n_slave)
   std::vector<OutputStatus> m_output_status;
-  std::vector<Real> m_pair_normal, m_pair_friction;
+  ForceAssembly m_assembly;  // nodal forces and pair sums (stage 5)
 };
 
 }  // namespace xpl::contact

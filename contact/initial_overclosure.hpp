@@ -16,13 +16,14 @@
 ///    - *held* when it cannot move along the contact normal: a translational DOF with a
 ///      boundary condition has a component along it, or the node is tied to a rigid body;
 ///    - otherwise free.
-/// 2. Adjust, by passes: every free node that penetrates its nearest face moves along the
+/// 2. Adjust, by passes (the shared loop of adjustment_pass.hpp): every free node that penetrates
+/// its nearest face moves along the
 ///    contact normal by w·d, d the penetration, w = ½ when a corner of that face moves in the
 ///    same pass (the other view of a balanced pair corrects the other half) and 1 otherwise.
 ///    The search is repeated on the moved geometry until no free node penetrates by more than
-///    TOLERANCE × its facet size. Only positions move, and the solver keeps the velocities:
-///    the elements compute strain from the motion during increments, so the move is strain
-///    free, and the displacement output of frame 0 is the adjustment.
+///    OVERCLOSURE_TOLERANCE × its facet size. Only positions move, and the solver keeps the
+///    velocities: the elements compute strain from the motion during increments, so the move is
+///    strain free, and the displacement output of frame 0 is the adjustment.
 /// 3. Safety: an element one of whose corner volumes (hex) or areas (shell) would drop below
 ///    half its value as read is not distorted: its moved nodes become held (reason
 ///    Distortion) and the passes restart from the mesh as read.
@@ -45,29 +46,10 @@
 #include <span>
 #include <vector>
 
+#include "contact/adjustment_pass.hpp"
 #include "contact/contact_engine.hpp"
 
 namespace xpl::contact {
-
-/// Bits of a node's lock (the caller's view of what holds a node in place).
-inline constexpr std::uint8_t LOCK_X = 1;  ///< translation 1 has a boundary condition
-inline constexpr std::uint8_t LOCK_Y = 2;
-inline constexpr std::uint8_t LOCK_Z = 4;
-inline constexpr std::uint8_t LOCK_RIGID = 8;  ///< moves with a rigid body (member, pin, tie)
-
-/// Why a penetration is stored as an offset instead of being removed.
-enum class OffsetReason : std::uint8_t {
-  Boundary,    ///< a boundary condition acts along the contact normal
-  Rigid,       ///< the node belongs to (or is tied to) a rigid body
-  Pinched,     ///< the node penetrates two master faces that face each other
-  Distortion,  ///< moving it would invert or badly distort an element
-  Conflict,    ///< competing adjustments did not converge
-  LaterStep,   ///< contact first defined after step 1: no node moves (C6)
-  Import,      ///< the run starts from an imported state: no node moves (C6, S7)
-};
-
-/// Name of a reason for reports ("BC", "rigid", ...).
-const char* offset_reason_name(OffsetReason reason);
 
 /// Settings of the pass.
 struct OverclosureSettings {
@@ -76,15 +58,12 @@ struct OverclosureSettings {
   bool detect_crossed = true;                            ///< crossed-surface check (C5)
   /// Deepest penetration below a solid face that is adjusted, as a fraction of the facet size
   /// around the slave node (mean square root of the face areas).
-  Real depth_fraction = 0.15;
-  int max_passes = 60;
+  Real depth_fraction = IGNORED_DEPTH_FRACTION;
+  int max_passes = MAX_ADJUSTMENT_PASSES;  ///< Jacobi passes per round
   /// Per slave slot: 1 for a node the pass leaves alone (it has a contact clearance); empty:
   /// none.
   std::span<const char> exclude;
 };
-
-/// Relative tolerance (of the facet size) under which a node counts as on the surface.
-inline constexpr Real OVERCLOSURE_TOLERANCE = 1e-10;
 
 /// A slave node moved onto the surface.
 struct AdjustedNode {
@@ -151,15 +130,6 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
 /// Facet size around each slave slot of `engine` on `position`: the mean square root of the
 /// areas of the faces around the node, m.
 std::vector<Real> slave_facet_sizes(const ContactEngine& engine, const NodalVectors& position);
-
-/// Elements with a node marked in `node_moved` (n_nodes) one of whose corner volumes (hex) or
-/// corner areas (shell) at `position` falls below half its value at `original`, or inverts;
-/// also the smallest scaled corner measure of the elements with a moved node, before and
-/// after (1 for a perfect element; 1 when there are none).
-std::vector<Index> distorted_elements(const ElementTopology& topology, const NodalVectors& original,
-                                      const NodalVectors& position,
-                                      std::span<const char> node_moved, Real& quality_before,
-                                      Real& quality_after);
 
 /// Carries offsets from the engine of an earlier step to a rebuilt one (a contact domain
 /// changed after step 1, C6): a slave node of both keeps its offset; new slave nodes start

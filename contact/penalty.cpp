@@ -19,9 +19,18 @@ Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>
 }
 
 Real default_penalty_stiffness(Real slave_mass, Real master_mass, Real dt, Real scale) {
-  if (!(slave_mass > 0.0) || !(master_mass > 0.0) || !(dt > 0.0)) return 0.0;
-  const Real m_eff = slave_mass * master_mass / (slave_mass + master_mass);
+  if (!(dt > 0.0)) return 0.0;
+  // m_eff = 1/(1/m_s + 1/m_m); a rigid corner makes the master mass infinite.
+  const bool slave_only = master_mass == RIGID_MASTER_MASS || !(master_mass > 0.0);
+  const Real m_eff =
+      slave_only ? slave_mass : slave_mass * master_mass / (slave_mass + master_mass);
   return DEFAULT_PENALTY_FACTOR * scale * m_eff / (dt * dt);
+}
+
+Real penalty_stiffness(const InteractionLaw& law, Real area, Real slave_mass, Real master_mass,
+                       Real dt, Real scale) {
+  if (law.pressure_slope > 0.0) return linear_penalty_stiffness(law.pressure_slope, area);
+  return default_penalty_stiffness(slave_mass, master_mass, dt, scale);
 }
 
 FrictionUpdate friction_update(const Vec3& previous_force, const Vec3& relative_velocity,

@@ -9,8 +9,11 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
+#include <span>
 
 #include "contact/contact_faces.hpp"
+#include "contact/contact_options.hpp"
 
 namespace xpl::contact {
 
@@ -64,12 +67,39 @@ inline Real updated_offset(Real penetration, Real offset) {
 /// force (N) and sets the status to Closed or Open.
 Real normal_contact_update(ContactConstraint& constraint, Real gap, Real stiffness);
 
-/// Default α of the penalty stiffness (see default_penalty_stiffness).
-inline constexpr Real DEFAULT_PENALTY_FACTOR = 0.5;
+/// The master mass of a face with a rigid corner (a corner of zero inverse mass): infinite, so
+/// that m_eff is the slave node's own mass.
+inline constexpr Real RIGID_MASTER_MASS = std::numeric_limits<Real>::infinity();
+
+/// The contact law of one surface interaction.
+struct InteractionLaw {
+  Real friction = 0.0;        ///< Coulomb coefficient μ ≥ 0
+  Real pressure_slope = 0.0;  ///< Pa/m; > 0: k = slope × tributary area, else the default
+};
 
 /// Mass of the master face at the contact point, Σ N_I m_I (weights N_I, corner masses m_I in
 /// kg); kg.
 Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>& corner_mass);
+
+/// Master mass at the contact point of a face with corners `corners` (node indices), shape
+/// weights `weights`, nodal masses `mass` (kg) and inverse masses `inverse_mass` (1/kg, 0 for
+/// a rigid body node): mass_at_point of the corner masses, or RIGID_MASTER_MASS when a corner
+/// is rigid (its mass does not move with the contact force); kg.
+///
+/// Inline, and summed straight from the nodal masses: the engine's force loop has always
+/// summed it in place, and the compiler contracts that sum (fused multiply–adds) where it sees
+/// it; an out-of-line copy through a corner array rounds differently.
+inline Real master_mass_at_point(const std::array<Real, 4>& weights,
+                                 const std::array<Index, 4>& corners, std::span<const Real> mass,
+                                 std::span<const Real> inverse_mass) {
+  Real master_mass = 0.0;
+  bool rigid = false;
+  for (int a = 0; a < 4; ++a) {
+    master_mass += weights[a] * mass[corners[a]];
+    rigid = rigid || inverse_mass[corners[a]] == 0.0;
+  }
+  return rigid ? RIGID_MASTER_MASS : master_mass;
+}
 
 /// Default penalty stiffness k = α·s·m_eff/Δt², N/m, with α = DEFAULT_PENALTY_FACTOR, s the
 /// user's penalty scale factor, Δt the stable time increment (s) and m_eff = m_s m_m /
@@ -81,9 +111,23 @@ Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>
 /// for ω Δt < 2, i.e. k < 4 m_eff/Δt². With α = 0.5 the spring alone reaches ω² Δt² = 0.5, an
 /// eighth of the limit, which leaves room for the element stiffness already on the node
 /// (frequencies add in squares) and for a node carrying several springs (a slave node that is
-/// also a master corner, both views of balanced contact). Returns 0 when either mass is zero
-/// and Δt ≤ 0 is a caller error (returns 0 too).
+/// also a master corner, both views of balanced contact).
+///
+/// A rigid master (master_mass = RIGID_MASTER_MASS, 1/m_m = 0) and a master without mass
+/// (m_m ≤ 0: nothing to share the spring with) give m_eff = m_s. A slave node without mass
+/// gives 0, and so does Δt ≤ 0 (a caller error).
 Real default_penalty_stiffness(Real slave_mass, Real master_mass, Real dt, Real scale = 1.0);
+
+/// Stiffness of a LINEAR pressure–overclosure law: k = slope (Pa/m) × tributary area (m²); N/m.
+inline Real linear_penalty_stiffness(Real pressure_slope, Real area) {
+  return pressure_slope * area;
+}
+
+/// The penalty stiffness of a constraint under `law` (N/m, before the view weight): the LINEAR
+/// law for a positive pressure slope with the slave node's tributary area `area` (m²), else
+/// default_penalty_stiffness of the slave mass, master mass (kg), Δt (s) and penalty scale.
+Real penalty_stiffness(const InteractionLaw& law, Real area, Real slave_mass, Real master_mass,
+                       Real dt, Real scale);
 
 /// Result of one friction update.
 struct FrictionUpdate {

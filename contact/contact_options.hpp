@@ -1,0 +1,109 @@
+#pragma once
+/// \file The tunables of general contact, each defined once with its reason: the user options
+/// of the engine (ContactOptions) and the fixed constants of every stage of the pipeline
+/// (faces → broad phase → closest point → penalty law → assembly) and of the two start-of-step
+/// passes (contact clearances, initial overclosures). The stages include this header rather
+/// than keeping local copies, so a value changed here changes everywhere it is used.
+
+#include "common/types.hpp"
+
+namespace xpl::contact {
+
+// ---- Penalty law (penalty.hpp) ----------------------------------------------------------
+
+/// α of the default penalty stiffness k = α·s·m_eff/Δt². With α = ½ the contact spring alone
+/// reaches ω²Δt² = ½, an eighth of the central-difference limit 4: room for the element
+/// stiffness on the node and for several springs on one node (derivation in penalty.hpp).
+inline constexpr Real DEFAULT_PENALTY_FACTOR = 0.5;
+
+/// Default of the user's penalty scale factor s: 1 keeps the stiffness at the stable value above.
+inline constexpr Real DEFAULT_PENALTY_SCALE = 1.0;
+
+// ---- Search (contact_engine.cpp, broad_phase.hpp) ---------------------------------------
+
+/// Default search margin as a fraction of the mean face size (mean square root of the face
+/// areas): a node moves much less than a face size per increment, and 0.3 keeps the candidate
+/// lists short while the broad phase is rebuilt only every few increments.
+inline constexpr Real MARGIN_FRACTION = 0.3;
+
+/// Search margin (m) used when the faces give none (no faces, or faces of zero area): any
+/// positive value keeps the broad phase well defined; nothing can touch then anyway.
+inline constexpr Real FALLBACK_MARGIN = 1e-3;
+
+/// Cosine below which a face counts as looking at a slave node: the node normal and the face
+/// normal must be more than ≈100° apart (cos 101.5° = −0.2). Faces at 90° (the side face
+/// beside a block's top, the side faces of another bar at a bar end) are not admissible, a
+/// face tilted by a fold of a few tens of degrees still is.
+inline constexpr Real OPPOSING_COSINE = 0.2;
+
+/// Deepest admissible penetration behind a solid face as a fraction of the depth of the
+/// element behind it (the distance between the face centre and the opposite face centre), and
+/// behind a shell face as a fraction of its mean thickness: ½, so a node on the outer skin of
+/// a thin wall never touches the inner skin of that wall.
+inline constexpr Real DEPTH_LIMIT_FRACTION = 0.5;
+
+// ---- Start-of-step passes (adjustment_pass.hpp, initial_overclosure.hpp,
+// ---- contact_clearance.hpp)
+
+/// Relative tolerance (of the facet size) under which a node counts as on the surface (its
+/// penetration or clearance violation is resolved): far below any geometric feature, well
+/// above the rounding of a closest-point projection.
+inline constexpr Real OVERCLOSURE_TOLERANCE = 1e-10;
+
+/// Deepest penetration below a solid face that the overclosure pass adjusts, as a fraction of
+/// the facet size around the slave node (the default of OverclosureSettings::depth_fraction):
+/// mesh-generation mismatches are a few percent of an element; deeper ones are modelling
+/// errors, "ignored" and pushed out by the penalty instead.
+inline constexpr Real IGNORED_DEPTH_FRACTION = 0.15;
+
+/// Two penetrated faces whose normals are more than 120° apart (cosine below −½) pinch the
+/// node: leaving one means entering the other, so it keeps an offset instead of moving.
+inline constexpr Real PINCH_COSINE = -0.5;
+
+/// A move is refused when an element corner keeps less than this share of its volume (hex) or
+/// area (shell) as read: half, well before an inversion, so the adjusted mesh stays usable.
+inline constexpr Real MIN_CORNER_RATIO = 0.5;
+
+/// A boundary condition on DOF c holds a node when |n_c| of the move direction exceeds this:
+/// a move exactly perpendicular to a fixed DOF (up to rounding) does not fight it.
+inline constexpr Real LOCK_COMPONENT = 1e-6;
+
+/// Jacobi passes of one adjustment round before what remains becomes an offset. Consistent
+/// overclosures and clearances converge in a handful of passes (flat surfaces in one); 60
+/// only bounds the cost of inconsistent ones.
+inline constexpr int MAX_ADJUSTMENT_PASSES = 60;
+
+/// Rounds of "adjust, then refuse distorting moves" before giving up on further refusals:
+/// each round holds the nodes of the refused elements, and a few rounds settle every case
+/// seen; the last round's refusals are kept as they are.
+inline constexpr int MAX_ADJUSTMENT_ROUNDS = 5;
+
+/// The clearance passes stop as soon as one pass fails to bring the largest residual below
+/// this share of the previous pass's (what remains becomes permanent offsets, reason
+/// conflict). Consistent clearances converge by a large factor per pass (flat surfaces in
+/// one), but balanced clearances between curved surfaces are inconsistent (the seed's
+/// curvature change): for two concentric polygons with different chord sags the only state
+/// meeting every clearance has both surfaces shrunk to a fraction of their radius, and further
+/// passes would creep towards it.
+inline constexpr Real CLEARANCE_CONVERGENCE_RATIO = 0.5;
+
+/// Share of the facet size at a solid slave node used as the default clearance search zone
+/// (SPEC C9): mesh mismatches are far smaller, neighbouring surfaces far farther.
+inline constexpr Real DEFAULT_ZONE_FRACTION = 0.1;
+
+/// A node farther than this share of its facet size beside a perimeter edge of the master
+/// surface lies outside the surface (C9); closer, it is taken as right above the edge (the
+/// edge nodes of two matching meshes, up to rounding).
+inline constexpr Real PERIMETER_TOLERANCE = 1e-6;
+
+// ---- User options -----------------------------------------------------------------------
+
+/// Options of the contact engine (the deck's, per step).
+struct ContactOptions {
+  Real penalty_scale = DEFAULT_PENALTY_SCALE;  ///< s, multiplies the default penalty stiffness
+  /// Search margin, m; 0: MARGIN_FRACTION × the mean face size plus the largest half shell
+  /// thickness.
+  Real margin = 0.0;
+};
+
+}  // namespace xpl::contact

@@ -1,0 +1,69 @@
+#pragma once
+/// \file Assembly of contact forces onto the nodes (stage 5, after the penalty law): the force
+/// of every slave node's constraint goes to the node itself (+f) and to the corners of its
+/// master face (−N_I f), per-pair force sums and the work of the contact forces are summed.
+///
+/// Determinism: everything here runs over slave slots in order, one thread, so the nodal
+/// forces and the sums do not depend on the number of threads that computed the constraint
+/// forces.
+
+#include <span>
+#include <vector>
+
+#include "contact/closest_point.hpp"
+#include "contact/penalty.hpp"
+
+namespace xpl::contact {
+
+/// What one increment of contact did.
+struct ContactTotals {
+  /// Work done on the nodes by the contact forces over the increment (trapezoidal rule), J;
+  /// negative while springs are loaded or friction dissipates.
+  Real work = 0.0;
+  Real friction_dissipation = 0.0;  ///< J, ≥ 0
+  Index closed = 0;                 ///< slave nodes with a normal force
+  bool rebuilt = false;             ///< the broad phase was rebuilt
+};
+
+/// The assembled contact forces of the current and the previous increment (for the
+/// trapezoidal work), per slave slot, and the per-pair force sums.
+class ForceAssembly {
+ public:
+  ForceAssembly() = default;
+  /// Room for `n_slave` slave slots and `n_pairs` included pairs, every force zero.
+  ForceAssembly(Index n_slave, Index n_pairs);
+
+  /// One increment: per slave slot s with a touch (`touch`, written by the search), the force
+  /// on the slave node `slave_force` (n_slave × 3, N, normal plus friction, view weight
+  /// included) is subtracted from `force_internal` (n_nodes × 3, N) at the node and added at
+  /// the face corners with the weights N_I; the normal force `normal_force` (n_slave, N) and
+  /// the friction force magnitude of `constraints` go to the pair sums, the frictional
+  /// dissipation `dissipation` (n_slave, J) and the count of loaded nodes to `totals`. Then
+  /// the work of the nodal forces over the increment with velocities `velocity_half`
+  /// (n_nodes × 3, m/s) and length dt (s; none when dt ≤ 0) is added to `totals.work`.
+  void assemble(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
+                std::span<const SlaveTouch> touch, std::span<const Real> slave_force,
+                std::span<const Real> normal_force, std::span<const ContactConstraint> constraints,
+                std::span<const Real> dissipation, const NodalVectors& velocity_half, Real dt,
+                NodalVectors& force_internal, ContactTotals& totals);
+
+  /// Total contact force on the node of slave slot s (as slave and as face corner), N.
+  Vec3 nodal_force(Index s) const {
+    return Vec3(m_force[3 * s], m_force[3 * s + 1], m_force[3 * s + 2]);
+  }
+  /// Per included pair: sums of the normal force magnitudes (N) and of the friction force
+  /// magnitudes (N) over the slave nodes touching through that pair, at the last assembly.
+  const std::vector<Real>& pair_normal_force() const { return m_pair_normal; }
+  const std::vector<Real>& pair_friction_force() const { return m_pair_friction; }
+
+ private:
+  /// Trapezoidal work ½ (f_n + f_{n−1})·v_{n+1/2} Δt of the assembled forces, added to `work`.
+  void add_work(const SlaveNodes& slaves, const NodalVectors& velocity_half, Real dt,
+                Real& work) const;
+
+  std::vector<Real> m_force;           // (n_slave × 3): assembled force, this increment
+  std::vector<Real> m_previous_force;  // (n_slave × 3): assembled force, last increment
+  std::vector<Real> m_pair_normal, m_pair_friction;
+};
+
+}  // namespace xpl::contact
