@@ -1,4 +1,4 @@
-#include "io/xdmf_writer.hpp"
+#include "io/results/xdmf_writer.hpp"
 
 #include <cstdio>
 #include <fstream>

@@ -1,10 +1,10 @@
-#include "io/results_h5.hpp"
+#include "io/results/results_h5.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-#include "io/results_mesh.hpp"
+#include "io/results/results_mesh.hpp"
 
 namespace xpl::io {
 
