@@ -37,36 +37,6 @@ Real reaction_moment(const State& s, Index i, int c) {
 }
 }  // namespace node_values
 
-namespace energy_values {
-Real kinetic(const Energies& e) {
-  return e.kinetic;
-}
-Real strain(const Energies& e) {
-  return e.strain;
-}
-Real artificial(const Energies& e) {
-  return e.artificial;
-}
-Real internal(const Energies& e) {
-  return e.internal();
-}
-Real viscous(const Energies& e) {
-  return e.viscous;
-}
-Real external_work(const Energies& e) {
-  return e.external_work;
-}
-Real friction(const Energies& e) {
-  return e.friction;
-}
-Real contact(const Energies& e) {
-  return e.contact;
-}
-Real total(const Energies& e) {
-  return e.total();
-}
-}  // namespace energy_values
-
 bool frame_flag_written(bool FrameRequest::*flag, bool shells) {
   for (const OutputVariable& v : OUTPUT_VARIABLES)
     if (v.frame == flag && written_on(v, shells)) return true;

@@ -206,33 +206,26 @@ struct EnergyVariable {
   std::string_view description;
 };
 
-/// Energy accessors of ENERGIES.
-namespace energy_values {
-Real kinetic(const Energies& e);
-Real strain(const Energies& e);
-Real artificial(const Energies& e);
-Real internal(const Energies& e);
-Real viscous(const Energies& e);
-Real external_work(const Energies& e);
-Real friction(const Energies& e);
-Real contact(const Energies& e);
-Real total(const Energies& e);
-}  // namespace energy_values
-
 /// The whole-model energies (*ENERGY OUTPUT): the terms of the balance, then the balance.
 /// The history lists them in energy_history_order().
 inline constexpr std::array<EnergyVariable, 9> ENERGIES = {{
-    {"ALLKE", "J", OutputModels::All, energy_values::kinetic, "kinetic energy"},
-    {"ALLSE", "J", OutputModels::All, energy_values::strain, "recoverable strain energy"},
-    {"ALLAE", "J", OutputModels::All, energy_values::artificial, "hourglass energy"},
-    {"ALLIE", "J", OutputModels::All, energy_values::internal, "internal energy ALLSE + ALLAE"},
-    {"ALLVD", "J", OutputModels::All, energy_values::viscous, "bulk-viscosity dissipation"},
-    {"ALLWK", "J", OutputModels::All, energy_values::external_work,
+    {"ALLKE", "J", OutputModels::All, [](const Energies& e) { return e.kinetic; },
+     "kinetic energy"},
+    {"ALLSE", "J", OutputModels::All, [](const Energies& e) { return e.strain; },
+     "recoverable strain energy"},
+    {"ALLAE", "J", OutputModels::All, [](const Energies& e) { return e.artificial; },
+     "hourglass energy"},
+    {"ALLIE", "J", OutputModels::All, [](const Energies& e) { return e.internal(); },
+     "internal energy ALLSE + ALLAE"},
+    {"ALLVD", "J", OutputModels::All, [](const Energies& e) { return e.viscous; },
+     "bulk-viscosity dissipation"},
+    {"ALLWK", "J", OutputModels::All, [](const Energies& e) { return e.external_work; },
      "work of loads and of reactions at prescribed DOFs"},
-    {"ALLFD", "J", OutputModels::Contact, energy_values::friction, "frictional dissipation"},
-    {"ALLPW", "J", OutputModels::Contact, energy_values::contact,
+    {"ALLFD", "J", OutputModels::Contact, [](const Energies& e) { return e.friction; },
+     "frictional dissipation"},
+    {"ALLPW", "J", OutputModels::Contact, [](const Energies& e) { return e.contact; },
      "energy of the contact penalties"},
-    {"ETOTAL", "J", OutputModels::All, energy_values::total,
+    {"ETOTAL", "J", OutputModels::All, [](const Energies& e) { return e.total(); },
      "energy balance ALLKE + ALLIE + ALLVD + ALLFD + ALLPW - ALLWK"},
 }};
 
