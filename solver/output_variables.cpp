@@ -63,6 +63,12 @@ NodeHistoryRequest parse_node_history(std::string_view name) {
   return {};
 }
 
+void append_contact_pair_series(std::vector<HistorySeries>& series, const std::string& pair) {
+  for (const OutputVariable& v : OUTPUT_VARIABLES)
+    if (v.location == OutputLocation::ContactPair)
+      series.push_back({"contact/" + pair + "/" + std::string(v.name), 1, {}});
+}
+
 const std::vector<int>& energy_history_order() {
   static const std::vector<int> order = [] {
     std::vector<int> out;

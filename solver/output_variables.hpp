@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -196,6 +197,10 @@ struct NodeHistoryRequest {
 };
 /// Parses a history node variable: "U" (all components), "U2" (one), "UR1"...
 NodeHistoryRequest parse_node_history(std::string_view name);
+
+/// Appends the history series of contact pair `pair` (CFN, CFS: "contact/PAIR/CFN", ...), in
+/// table order, as every step with contact declares them.
+void append_contact_pair_series(std::vector<HistorySeries>& series, const std::string& pair);
 
 /// One whole-model energy (location OutputLocation::WholeModel), J.
 struct EnergyVariable {

@@ -99,3 +99,13 @@ TEST_CASE("output variables: history node requests", "[results][variables]") {
   CHECK(parse_node_history("CSHEAR1").variable == nullptr);
   CHECK(output_variable(OutputId::CSHEARF).name == "CSHEARF");
 }
+
+TEST_CASE("output variables: the history of a contact pair", "[results][variables]") {
+  std::vector<HistorySeries> series{{"energy/ALLKE", 1, {}}};
+  append_contact_pair_series(series, "ALL_EXTERIOR");
+  REQUIRE(series.size() == 3);
+  CHECK(series[1].path == "contact/ALL_EXTERIOR/CFN");
+  CHECK(series[2].path == "contact/ALL_EXTERIOR/CFS");
+  CHECK(series[2].width == 1);
+  CHECK(series[2].node_ids.empty());
+}
