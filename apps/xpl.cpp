@@ -12,8 +12,8 @@
 
 #include "common/error.hpp"
 #include "io/deck_reader.hpp"
-#include "io/import_state.hpp"
-#include "io/result_files.hpp"
+#include "io/results/import_state.hpp"
+#include "io/results/result_files.hpp"
 #include "solver/explicit_solver.hpp"
 
 namespace {

@@ -75,7 +75,8 @@ void DeckBuilder::read_output(const DeckBlock& block) {
     if (field) {
       for (std::string_view name : PRESELECT_NODE_VARIABLES)
         request.node_variables.emplace_back(name);
-      request.element_variables.emplace_back("S");
+      for (std::string_view name : PRESELECT_ELEMENT_VARIABLES)
+        request.element_variables.emplace_back(name);
     } else {
       request.energy = true;
     }

@@ -8,23 +8,24 @@
 #include <string_view>
 #include <vector>
 
+#include "solver/output_variables.hpp"
+
 namespace xpl::io {
 
-/// Field node variables. UR, VR, RM: rotation, angular velocity and reaction moment of shell
-/// nodes.
-inline constexpr std::array<std::string_view, 7> FIELD_NODE_VARIABLES = {"U",  "V",  "A", "RF",
-                                                                         "UR", "VR", "RM"};
+/// Field node variables (solver/output_variables.hpp). UR, VR, RM: rotation, angular velocity
+/// and reaction moment of shell nodes.
+inline constexpr auto FIELD_NODE_VARIABLES = request_names<OutputKeyword::Node>();
 /// What VARIABLE=PRESELECT writes (on shell models the writer adds UR, VR, RM to U, V, RF).
-inline constexpr std::array<std::string_view, 4> PRESELECT_NODE_VARIABLES = {"U", "V", "A", "RF"};
+inline constexpr auto PRESELECT_NODE_VARIABLES = request_names<OutputKeyword::Node, true>();
+/// ... and its element variables (S).
+inline constexpr auto PRESELECT_ELEMENT_VARIABLES = request_names<OutputKeyword::Element, true>();
 /// Field element variables. STH: the current shell thickness.
-inline constexpr std::array<std::string_view, 4> ELEMENT_VARIABLES = {"S", "EVOL", "MISES", "STH"};
+inline constexpr auto ELEMENT_VARIABLES = request_names<OutputKeyword::Element>();
 /// Whole-model energies. ALLFD: frictional dissipation; ALLPW: work of the contact penalties
 /// (both zero without contact).
-inline constexpr std::array<std::string_view, 9> ENERGY_VARIABLES = {
-    "ALLKE", "ALLSE", "ALLAE", "ALLIE", "ALLVD", "ALLWK", "ALLFD", "ALLPW", "ETOTAL"};
+inline constexpr auto ENERGY_VARIABLES = energy_names();
 /// Contact field variables: contact stress (pressure, shear), status, force.
-inline constexpr std::array<std::string_view, 3> CONTACT_VARIABLES = {"CSTRESS", "CSTATUS",
-                                                                      "CFORCE"};
+inline constexpr auto CONTACT_VARIABLES = request_names<OutputKeyword::Contact>();
 
 template <std::size_t N>
 bool contains(const std::array<std::string_view, N>& list, const std::string& name) {
@@ -49,16 +50,12 @@ inline void add_unique(std::vector<std::string>& list, const std::string& name) 
 /// History node variables: components U1..RF3, UR1..RM3; U, V, A, RF, UR, VR, RM stand for
 /// their three components. False if `name` is none of these.
 inline bool add_history_node_variable(std::vector<std::string>& list, const std::string& name) {
-  if (contains(FIELD_NODE_VARIABLES, name)) {
-    for (char c : {'1', '2', '3'}) add_unique(list, name + c);
-    return true;
-  }
-  if (name.size() >= 2 && (name.back() >= '1' && name.back() <= '3') &&
-      contains(FIELD_NODE_VARIABLES, name.substr(0, name.size() - 1))) {
-    add_unique(list, name);
-    return true;
-  }
-  return false;
+  const NodeHistoryRequest request = parse_node_history(name);
+  if (request.variable == nullptr) return false;
+  for (int c = 0; c < request.variable->width; ++c)
+    if (request.component < 0 || request.component == c)
+      add_unique(list, std::string(request.variable->components[static_cast<std::size_t>(c)]));
+  return true;
 }
 
 }  // namespace xpl::io

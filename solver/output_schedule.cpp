@@ -5,39 +5,7 @@
 
 namespace xpl {
 
-const std::vector<std::string>& energy_names() {
-  static const std::vector<std::string> names = {"ALLKE", "ALLSE",  "ALLAE", "ALLIE", "ALLVD",
-                                                 "ALLWK", "ETOTAL", "ALLFD", "ALLPW"};
-  return names;
-}
-
-Real energy_value(const Energies& e, int index) {
-  switch (index) {
-    case 0:
-      return e.kinetic;
-    case 1:
-      return e.strain;
-    case 2:
-      return e.artificial;
-    case 3:
-      return e.internal();
-    case 4:
-      return e.viscous;
-    case 5:
-      return e.external_work;
-    case 7:
-      return e.friction;
-    case 8:
-      return e.contact;
-    default:
-      return e.total();
-  }
-}
-
 namespace {
-
-/// Index of the first contact energy (ALLFD, ALLPW) in energy_names().
-constexpr int CONTACT_ENERGY_FIRST = 7;
 
 Real interval_of(const OutputRequest& r, Real period, int default_count) {
   if (r.time_interval > 0.0) return r.time_interval;
@@ -46,20 +14,30 @@ Real interval_of(const OutputRequest& r, Real period, int default_count) {
 }
 
 void merge(FrameRequest& into, const FrameRequest& what) {
-  into.displacement |= what.displacement;
-  into.velocity |= what.velocity;
-  into.acceleration |= what.acceleration;
-  into.reaction |= what.reaction;
-  into.stress |= what.stress;
-  into.volume |= what.volume;
-  into.thickness |= what.thickness;
-  into.contact_stress |= what.contact_stress;
-  into.contact_status |= what.contact_status;
-  into.contact_force |= what.contact_force;
+  for (bool FrameRequest::*flag : FRAME_FLAGS) into.*flag |= what.*flag;
 }
 
 bool has(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+/// The names of `r` that `keyword` requested.
+const std::vector<std::string>& requested(const OutputRequest& r, OutputKeyword keyword) {
+  if (keyword == OutputKeyword::Element) return r.element_variables;
+  if (keyword == OutputKeyword::Contact) return r.contact_variables;
+  return r.node_variables;
+}
+
+/// The frame flags of a field request. A request writes its flag's variables together (UR
+/// also writes U); a flag that writes nothing on the model is not set (P2: STH without
+/// shells).
+FrameRequest frame_request(const OutputRequest& r, bool shells) {
+  FrameRequest what;
+  for (const OutputVariable& v : OUTPUT_VARIABLES) {
+    if (v.frame == nullptr || !has(requested(r, v.keyword), std::string(v.request))) continue;
+    if (frame_flag_written(v.frame, shells)) what.*v.frame = true;
+  }
+  return what;
 }
 
 }  // namespace
@@ -77,18 +55,7 @@ void OutputSchedule::begin_step(const Model& model, int step) {
       FieldRequest f;
       f.when.interval = interval_of(r, m_period, 20);
       f.when.next = f.when.interval;
-      // Translations and rotations are written together (as Abaqus does with U and UR).
-      f.what.displacement = has(r.node_variables, "U") || has(r.node_variables, "UR");
-      f.what.velocity = has(r.node_variables, "V") || has(r.node_variables, "VR");
-      f.what.acceleration = has(r.node_variables, "A");
-      f.what.reaction = has(r.node_variables, "RF") || has(r.node_variables, "RM");
-      f.what.stress = has(r.element_variables, "S") || has(r.element_variables, "MISES");
-      f.what.volume = has(r.element_variables, "EVOL");
-      // P2: a model without shells has no thickness to compute or write.
-      f.what.thickness = shells && has(r.element_variables, "STH");
-      f.what.contact_stress = has(r.contact_variables, "CSTRESS");
-      f.what.contact_status = has(r.contact_variables, "CSTATUS");
-      f.what.contact_force = has(r.contact_variables, "CFORCE");
+      f.what = frame_request(r, shells);
       m_field.push_back(f);
       continue;
     }
@@ -97,45 +64,38 @@ void OutputSchedule::begin_step(const Model& model, int step) {
     t.next = t.interval;
     m_history.push_back(t);
     if (r.energy) {
-      const auto& names = energy_names();
-      for (int i = 0; i < static_cast<int>(names.size()); ++i) {
-        if (!r.energy_variables.empty() && !has(r.energy_variables, names[i])) continue;
+      for (const int i : energy_history_order()) {
+        const EnergyVariable& energy = ENERGIES[static_cast<std::size_t>(i)];
+        const std::string name(energy.name);
+        if (!r.energy_variables.empty() && !has(r.energy_variables, name)) continue;
         // P2: the contact energies exist only in models with contact.
-        if (i >= CONTACT_ENERGY_FIRST && !model.has_contact()) continue;
-        m_series.push_back({"energy/" + names[i], 1, {}});
-        m_columns.push_back({Quantity::Energy, i, NO_INDEX});
+        if (energy.models == OutputModels::Contact && !model.has_contact()) continue;
+        m_series.push_back({"energy/" + name, 1, {}});
+        m_columns.push_back({i, nullptr, 0, NO_INDEX});
       }
     }
     if (r.node_set == NO_INDEX) continue;
     const NamedSet& set = model.node_sets[r.node_set];
     for (const std::string& var : r.node_variables) {
       // "U" means U1 U2 U3; "U2" one component.
-      const std::string base = var.substr(0, var.find_first_of("123"));
-      const Quantity q = node_quantity(base, shells);
-      for (int c = 0; c < 3; ++c) {
-        const std::string name = base + std::to_string(c + 1);
-        if (var != base && var != name) continue;
+      const NodeHistoryRequest request = parse_node_history(var);
+      if (request.variable == nullptr) continue;
+      const OutputVariable& v = *request.variable;
+      // Without shells the rotations are not allocated: their history columns hold zeros.
+      const NodeValue value = written_on(v, shells) ? v.node_value : nullptr;
+      for (int c = 0; c < v.width; ++c) {
+        if (request.component >= 0 && request.component != c) continue;
+        const std::string name(v.components[static_cast<std::size_t>(c)]);
         HistorySeries series{
             "node/" + set.name + "/" + name, static_cast<Index>(set.members.size()), {}};
         for (Index node : set.members) {
           series.node_ids.push_back(model.node_ids[node]);
-          m_columns.push_back({q, c, node});
+          m_columns.push_back({-1, value, c, node});
         }
         m_series.push_back(std::move(series));
       }
     }
   }
-}
-
-OutputSchedule::Quantity OutputSchedule::node_quantity(const std::string& base, bool shells) {
-  if (base == "V") return Quantity::V;
-  if (base == "A") return Quantity::A;
-  if (base == "RF") return Quantity::RF;
-  // Without shells the rotations are not allocated: their history columns hold zeros.
-  if (base == "UR") return shells ? Quantity::UR : Quantity::Zero;
-  if (base == "VR") return shells ? Quantity::VR : Quantity::Zero;
-  if (base == "RM") return shells ? Quantity::RM : Quantity::Zero;
-  return Quantity::U;
 }
 
 bool OutputSchedule::fire(Timed& t, Real step_time, bool last, Real period) {
@@ -170,35 +130,10 @@ void OutputSchedule::history_row(const State& state, std::vector<Real>& row) con
   row.resize(m_columns.size());
   for (std::size_t i = 0; i < m_columns.size(); ++i) {
     const Column& c = m_columns[i];
-    switch (c.quantity) {
-      case Quantity::U:
-        row[i] = state.displacement(c.node, c.component);
-        break;
-      case Quantity::V:
-        row[i] = state.velocity(c.node, c.component);
-        break;
-      case Quantity::A:
-        row[i] = state.acceleration(c.node, c.component);
-        break;
-      case Quantity::RF:
-        row[i] = state.reaction(c.node, c.component);
-        break;
-      case Quantity::UR:
-        row[i] = state.rotation(c.node, c.component);
-        break;
-      case Quantity::VR:
-        row[i] = state.angular_velocity(c.node, c.component);
-        break;
-      case Quantity::RM:
-        row[i] = state.reaction_moment(c.node, c.component);
-        break;
-      case Quantity::Zero:
-        row[i] = 0.0;
-        break;
-      case Quantity::Energy:
-        row[i] = energy_value(state.energies, c.component);
-        break;
-    }
+    if (c.energy >= 0)
+      row[i] = ENERGIES[static_cast<std::size_t>(c.energy)].value(state.energies);
+    else
+      row[i] = c.value != nullptr ? c.value(state, c.node, c.component) : 0.0;
   }
 }
 

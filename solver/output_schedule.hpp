@@ -9,6 +9,7 @@
 #include "common/types.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
+#include "solver/output_variables.hpp"
 #include "solver/state.hpp"
 
 namespace xpl {
@@ -49,16 +50,14 @@ class OutputSchedule {
     Timed when;
     FrameRequest what;
   };
-  /// What a history column reads; Zero: a rotational variable on a model without shells.
-  enum class Quantity { U, V, A, RF, UR, VR, RM, Zero, Energy };
+  /// What a history column reads: an energy, or a component of a node variable.
   struct Column {
-    Quantity quantity = Quantity::U;
-    int component = 0;  ///< 0..2, or the energy index
+    int energy = -1;            ///< index into ENERGIES; -1: a node column
+    NodeValue value = nullptr;  ///< node column; nullptr: zero (rotations without shells)
+    int component = 0;          ///< 0..2
     Index node = NO_INDEX;
   };
   static bool fire(Timed& t, Real step_time, bool last, Real period);
-  /// The quantity of a node variable without its component ("U", "UR", ...).
-  static Quantity node_quantity(const std::string& base, bool shells);
 
   Real m_period = 0.0;
   std::vector<FieldRequest> m_field;
@@ -66,10 +65,5 @@ class OutputSchedule {
   std::vector<HistorySeries> m_series;
   std::vector<Column> m_columns;
 };
-
-/// Abaqus names of the whole-model energies, in history order.
-const std::vector<std::string>& energy_names();
-/// Value of energy `index` (into energy_names()).
-Real energy_value(const Energies& e, int index);
 
 }  // namespace xpl

@@ -14,7 +14,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "io/h5_handles.hpp"
+#include "io/results/h5_handles.hpp"
 #include "solver/model.hpp"
 #include "solver/state.hpp"
 

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 
-#include "io/import_state.hpp"
-#include "io/result_files.hpp"
+#include "io/results/import_state.hpp"
+#include "io/results/result_files.hpp"
 #include "results/shell_fixture.hpp"
 
 using namespace xpl;

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <fstream>
 
-#include "io/result_files.hpp"
-#include "io/results_h5.hpp"
+#include "io/results/result_files.hpp"
+#include "io/results/results_h5.hpp"
 #include "results/results_fixture.hpp"
 
 using namespace xpl;

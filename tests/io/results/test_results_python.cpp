@@ -4,7 +4,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "io/result_files.hpp"
+#include "io/results/result_files.hpp"
 #include "results/shell_fixture.hpp"
 
 using namespace xpl;

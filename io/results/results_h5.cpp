@@ -1,10 +1,11 @@
-#include "io/results_h5.hpp"
+#include "io/results/results_h5.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-#include "io/results_mesh.hpp"
+#include "io/results/results_mesh.hpp"
+#include "solver/output_variables.hpp"
 
 namespace xpl::io {
 
@@ -67,16 +68,65 @@ void check_contact(const State& state, const FrameRequest& what, Index n_nodes) 
   }
 }
 
-void write_nodal(hid_t group, const char* name, const NodalVectors& field) {
-  h5::write_real(group, name, row_major(field), {static_cast<hsize_t>(field.rows()), 3});
-}
-
-/// Writes an element field of `width` values per element (width 1: one-dimensional).
-void write_cells(hid_t group, const char* name, const std::vector<Real>& values,
-                 std::size_t width) {
+/// Writes the values of `v` (rows × v.width, row-major; width 1: one-dimensional).
+void write_values(hid_t group, const OutputVariable& v, const std::vector<Real>& values) {
+  const auto width = static_cast<std::size_t>(v.width);
   std::vector<hsize_t> dims{values.size() / width};
   if (width > 1) dims.push_back(width);
-  h5::write_real(group, name, values, dims);
+  h5::write_real(group, std::string(v.name), values, dims);
+}
+
+void write_nodal(hid_t group, const OutputVariable& v, const NodalVectors& field) {
+  write_values(group, v, row_major(field));
+}
+
+/// Writes the frame dataset of `v` from the state.
+void write_variable(hid_t group, const OutputVariable& v, const State& state) {
+  switch (v.id) {
+    case OutputId::U:
+      return write_nodal(group, v, state.position - state.reference);
+    case OutputId::V:
+      return write_nodal(group, v, state.velocity);
+    case OutputId::A:
+      return write_nodal(group, v, state.acceleration);
+    case OutputId::RF:
+      return write_nodal(group, v, state.reaction);
+    case OutputId::UR:
+      return write_nodal(group, v, state.rotation);
+    case OutputId::VR:
+      return write_nodal(group, v, state.angular_velocity);
+    case OutputId::RM:
+      return write_nodal(group, v, state.reaction_moment);
+    case OutputId::S:
+      return write_values(group, v, state.stress);
+    case OutputId::EVOL:
+      return write_values(group, v, state.volume);
+    case OutputId::MISES: {
+      std::vector<double> mises(state.stress.size() / 6);
+      for (std::size_t e = 0; e < mises.size(); ++e) mises[e] = von_mises(&state.stress[e * 6]);
+      return write_values(group, v, mises);
+    }
+    case OutputId::STH:
+      return write_values(group, v, state.thickness);
+    case OutputId::S_SNEG:
+      return write_values(group, v, state.stress_bottom);
+    case OutputId::S_SPOS:
+      return write_values(group, v, state.stress_top);
+    case OutputId::CPRESS:
+      return write_values(group, v, state.contact_pressure);
+    case OutputId::CSHEAR:
+      return write_nodal(group, v, state.contact_shear);
+    case OutputId::CSTATUS:
+      return write_values(group, v, state.contact_status);
+    case OutputId::CNORMF:
+      return write_nodal(group, v, state.contact_normal_force);
+    case OutputId::CSHEARF:
+      return write_nodal(group, v, state.contact_shear_force);
+    case OutputId::CFN:
+    case OutputId::CFS:
+      break;
+  }
+  throw std::logic_error("write_frame: " + std::string(v.name) + " is not field output");
 }
 
 }  // namespace
@@ -151,35 +201,7 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
                            step_index < model.steps.size() ? model.steps[step_index].name : "");
   h5::set_int64_attribute(g, "increment", state.increment);
 
-  if (what.displacement) write_nodal(g, "U", state.position - state.reference);
-  if (what.displacement && shells) write_nodal(g, "UR", state.rotation);
-  if (what.velocity) write_nodal(g, "V", state.velocity);
-  if (what.velocity && shells) write_nodal(g, "VR", state.angular_velocity);
-  if (what.acceleration) write_nodal(g, "A", state.acceleration);
-  if (what.reaction) write_nodal(g, "RF", state.reaction);
-  if (what.reaction && shells) write_nodal(g, "RM", state.reaction_moment);
-  if (what.stress) {
-    write_cells(g, "S", state.stress, 6);
-    std::vector<double> mises(n_elements);
-    for (std::size_t e = 0; e < n_elements; ++e) mises[e] = von_mises(&state.stress[e * 6]);
-    h5::write_real(g, "MISES", mises, {n_elements});
-  }
-  if (what.stress && shells) {
-    write_cells(g, "S_SNEG", state.stress_bottom, 6);
-    write_cells(g, "S_SPOS", state.stress_top, 6);
-  }
-  if (what.volume) write_cells(g, "EVOL", state.volume, 1);
-  if (what.thickness && shells) write_cells(g, "STH", state.thickness, 1);
-  const auto n_nodes = static_cast<hsize_t>(model.node_count());
-  if (what.contact_stress) {
-    h5::write_real(g, "CPRESS", state.contact_pressure, {n_nodes});
-    write_nodal(g, "CSHEAR", state.contact_shear);
-  }
-  if (what.contact_status) h5::write_real(g, "CSTATUS", state.contact_status, {n_nodes});
-  if (what.contact_force) {
-    write_nodal(g, "CNORMF", state.contact_normal_force);
-    write_nodal(g, "CSHEARF", state.contact_shear_force);
-  }
+  for (const OutputVariable* v : frame_variables(what, shells)) write_variable(g, *v, state);
   ++m_frames;
   flush();
   return name;

@@ -1,4 +1,4 @@
-#include "io/results_mesh.hpp"
+#include "io/results/results_mesh.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "io/h5_handles.hpp"
+#include "io/results/h5_handles.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "io/result_files.hpp"
+#include "io/results/result_files.hpp"
 
 #include <unistd.h>
 
@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <optional>
 
-#include "io/results_h5.hpp"
-#include "io/results_log.hpp"
-#include "io/xdmf_writer.hpp"
+#include "io/results/results_h5.hpp"
+#include "io/results/results_log.hpp"
+#include "io/results/xdmf_writer.hpp"
 
 namespace xpl::io {
 

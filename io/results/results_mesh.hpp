@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/h5_handles.hpp"
-#include "io/xdmf_writer.hpp"
+#include "io/results/h5_handles.hpp"
+#include "io/results/xdmf_writer.hpp"
 #include "solver/model.hpp"
 
 namespace xpl::io {

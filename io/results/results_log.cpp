@@ -1,10 +1,10 @@
-#include "io/results_log.hpp"
+#include "io/results/results_log.hpp"
 
 #include <cstdio>
 #include <ctime>
 #include <stdexcept>
 
-#include "io/results_mesh.hpp"
+#include "io/results/results_mesh.hpp"
 
 #ifndef XPL_VERSION
 #define XPL_VERSION "unknown"

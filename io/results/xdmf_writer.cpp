@@ -1,10 +1,12 @@
-#include "io/xdmf_writer.hpp"
+#include "io/results/xdmf_writer.hpp"
 
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
+
+#include "solver/output_variables.hpp"
 
 namespace xpl::io {
 
@@ -41,6 +43,12 @@ std::string exact(Real value) {
   return text;
 }
 
+/// XDMF AttributeType of a variable with `width` components.
+const char* attribute_type(int width) {
+  if (width == 6) return "Tensor6";
+  return width == 3 ? "Vector" : "Scalar";
+}
+
 }  // namespace
 
 XdmfWriter::XdmfWriter(std::filesystem::path path, std::string h5_name)
@@ -68,39 +76,14 @@ void XdmfWriter::add_frame(const std::string& frame, Real time, const FrameReque
           "\n        </Topology>\n";
   grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
           data_item(nodes + " 3", "Float", "/mesh/coordinates") + "\n        </Geometry>\n";
-  const auto attribute = [&](const char* name, const char* type, const char* center,
-                             const std::string& dims) {
-    grid += std::string("        <Attribute Name=\"") + name + "\" AttributeType=\"" + type +
-            "\" Center=\"" + center + "\">\n          " + data_item(dims, "Float", prefix + name) +
-            "\n        </Attribute>\n";
-  };
-  const auto vector = [&](const char* name) { attribute(name, "Vector", "Node", nodes + " 3"); };
-  const bool shells = m_mesh.shells;
-  if (what.displacement) vector("U");
-  if (what.displacement && shells) vector("UR");
-  if (what.velocity) vector("V");
-  if (what.velocity && shells) vector("VR");
-  if (what.acceleration) vector("A");
-  if (what.reaction) vector("RF");
-  if (what.reaction && shells) vector("RM");
-  if (what.stress) {
-    attribute("S", "Tensor6", "Cell", cells + " 6");
-    attribute("MISES", "Scalar", "Cell", cells);
-  }
-  if (what.stress && shells) {
-    attribute("S_SNEG", "Tensor6", "Cell", cells + " 6");
-    attribute("S_SPOS", "Tensor6", "Cell", cells + " 6");
-  }
-  if (what.volume) attribute("EVOL", "Scalar", "Cell", cells);
-  if (what.thickness && shells) attribute("STH", "Scalar", "Cell", cells);
-  if (what.contact_stress) {
-    attribute("CPRESS", "Scalar", "Node", nodes);
-    vector("CSHEAR");
-  }
-  if (what.contact_status) attribute("CSTATUS", "Scalar", "Node", nodes);
-  if (what.contact_force) {
-    vector("CNORMF");
-    vector("CSHEARF");
+  for (const OutputVariable* v : frame_variables(what, m_mesh.shells)) {
+    const std::string name(v->name);
+    const bool node = v->location == OutputLocation::Node;
+    std::string dims = node ? nodes : cells;
+    if (v->width > 1) dims.append(" ").append(std::to_string(v->width));
+    grid += "        <Attribute Name=\"" + name + "\" AttributeType=\"" + attribute_type(v->width) +
+            "\" Center=\"" + (node ? "Node" : "Cell") + "\">\n          " +
+            data_item(dims, "Float", prefix + name) + "\n        </Attribute>\n";
   }
   grid += "      </Grid>\n";
   m_grids += grid;

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "io/h5_handles.hpp"
-#include "io/results_history.hpp"
-#include "io/xdmf_writer.hpp"
+#include "io/results/h5_handles.hpp"
+#include "io/results/results_history.hpp"
+#include "io/results/xdmf_writer.hpp"
 #include "solver/output_sink.hpp"
 
 namespace xpl::io {

@@ -1,4 +1,4 @@
-#include "io/import_state.hpp"
+#include "io/results/import_state.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <type_traits>
 #include <unordered_map>
 
-#include "io/h5_handles.hpp"
+#include "io/results/h5_handles.hpp"
 
 namespace xpl::io {
 

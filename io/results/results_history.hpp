@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "io/h5_handles.hpp"
+#include "io/results/h5_handles.hpp"
 #include "solver/output_sink.hpp"
 
 namespace xpl::io {

@@ -1,4 +1,4 @@
-#include "io/results_history.hpp"
+#include "io/results/results_history.hpp"
 
 #include <stdexcept>
 #include <string>
