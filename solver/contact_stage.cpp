@@ -6,6 +6,7 @@
 
 #include "contact/initial_overclosure.hpp"
 #include "solver/message_text.hpp"
+#include "solver/output_variables.hpp"
 
 namespace xpl {
 
@@ -263,8 +264,8 @@ void ContactStage::fill_output(State& state) const {
 
 void ContactStage::add_history_series(std::vector<HistorySeries>& series) const {
   if (!m_engine) return;
-  for (const std::string& name : m_pair_names)
-    for (const char* v : {"CFN", "CFS"}) series.push_back({"contact/" + name + "/" + v, 1, {}});
+  // Columns in the table's order (CFN, CFS), as add_history_values appends them.
+  for (const std::string& name : m_pair_names) append_contact_pair_series(series, name);
 }
 
 void ContactStage::add_history_values(std::vector<Real>& row) const {
