@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "io/deck_reader.hpp"
+#include "io/deck/deck_reader.hpp"
 #include "io/import_state.hpp"
 #include "io/result_files.hpp"
 #include "solver/explicit_solver.hpp"

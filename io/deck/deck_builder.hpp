@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/deck_lines.hpp"
+#include "io/deck/deck_lines.hpp"
 #include "solver/model.hpp"
 
 namespace xpl::io {

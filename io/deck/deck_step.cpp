@@ -1,8 +1,8 @@
 /// \file History keywords: *STEP, *END STEP, *DYNAMIC, *BULK VISCOSITY, *BOUNDARY, *CLOAD.
 /// Pressures (*DLOAD, *DSLOAD) are in deck_pressure.cpp.
 
-#include "io/deck_builder.hpp"
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_builder.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 namespace xpl::io {
 

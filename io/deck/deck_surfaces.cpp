@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <array>
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_builder.hpp"
 
 namespace xpl::io {
 

@@ -1,8 +1,8 @@
 /// \file Section keywords (*SOLID SECTION, *SHELL SECTION) and the assignment of sections to
 /// elements once the whole deck is read: solids take a *SOLID SECTION, shells a *SHELL SECTION.
 
-#include "io/deck_builder.hpp"
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_builder.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 namespace xpl::io {
 

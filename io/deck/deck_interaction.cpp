@@ -2,7 +2,7 @@
 /// *SURFACE BEHAVIOR (Abaqus and CalculiX forms). Contact definitions that use them are in
 /// deck_contact.cpp.
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_builder.hpp"
 
 namespace xpl::io {
 

@@ -1,14 +1,14 @@
 /// \file Element geometry checks: the shape measures, and the builder's per-element checks run
 /// once the whole mesh is known.
 
-#include "io/deck_geometry.hpp"
+#include "io/deck/deck_geometry.hpp"
 
 #include <algorithm>
 #include <sstream>
 
 #include <Eigen/Geometry>
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_builder.hpp"
 
 namespace xpl::io {
 

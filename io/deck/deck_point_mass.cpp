@@ -7,7 +7,7 @@
 
 #include <map>
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_builder.hpp"
 
 namespace xpl::io {
 

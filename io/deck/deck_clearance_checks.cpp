@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "contact/contact_faces.hpp"
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_builder.hpp"
 
 namespace xpl::io {
 

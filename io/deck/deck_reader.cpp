@@ -1,9 +1,9 @@
-#include "io/deck_reader.hpp"
+#include "io/deck/deck_reader.hpp"
 
 #include <utility>
 
-#include "io/deck_builder.hpp"
-#include "io/deck_lines.hpp"
+#include "io/deck/deck_builder.hpp"
+#include "io/deck/deck_lines.hpp"
 
 namespace xpl::io {
 

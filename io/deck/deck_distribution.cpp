@@ -6,7 +6,7 @@
 #include <array>
 #include <limits>
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_builder.hpp"
 
 namespace xpl::io {
 

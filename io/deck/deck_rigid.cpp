@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "io/deck_builder.hpp"
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_builder.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 namespace xpl::io {
 

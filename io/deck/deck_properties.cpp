@@ -1,7 +1,7 @@
 /// \file Property keywords: *MATERIAL, *DENSITY, *ELASTIC, *SECTION CONTROLS, *AMPLITUDE,
 /// *INITIAL CONDITIONS. Sections are in deck_sections.cpp.
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_builder.hpp"
 
 namespace xpl::io {
 

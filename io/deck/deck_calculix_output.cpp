@@ -8,8 +8,8 @@
 /// the requests take the Abaqus/Explicit defaults instead (20 field frames, 200 history
 /// points per step), and FREQUENCY= is noted as not used.
 
-#include "io/deck_builder.hpp"
-#include "io/deck_output_variables.hpp"
+#include "io/deck/deck_builder.hpp"
+#include "io/deck/deck_output_variables.hpp"
 
 namespace xpl::io {
 

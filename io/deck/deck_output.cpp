@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <array>
 
-#include "io/deck_builder.hpp"
-#include "io/deck_numbers.hpp"
-#include "io/deck_output_variables.hpp"
+#include "io/deck/deck_builder.hpp"
+#include "io/deck/deck_numbers.hpp"
+#include "io/deck/deck_output_variables.hpp"
 
 namespace xpl::io {
 

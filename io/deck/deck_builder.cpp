@@ -1,11 +1,11 @@
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_builder.hpp"
 
 #include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <utility>
 
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 namespace xpl::io {
 
