@@ -2,7 +2,8 @@
 
 #include <utility>
 
-#include "io/deck/deck_builder.hpp"
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_keywords.hpp"
 #include "io/deck/deck_lines.hpp"
 
 namespace xpl::io {
@@ -11,18 +12,18 @@ namespace {
 
 /// Reads the deck text and builds the Model. The blocks (views into `text` and the storage)
 /// are released before the Model is completed, and so is `owned_text` (the text, if the
-/// caller does not need it any more): the peak is then the builder's.
+/// caller does not need it any more): the peak is then the reader state's.
 Model build_model(std::string_view text, const std::string& file_name,
                   std::string* owned_text = nullptr) {
   InputErrors errors;
-  DeckBuilder builder(errors, file_name);
+  DeckState deck(errors, file_name);
   {
     DeckStorage storage;
     const std::vector<DeckBlock> blocks = read_deck_blocks(text, file_name, storage, errors);
-    builder.read(blocks);
+    read_blocks(deck, blocks);
   }
   if (owned_text != nullptr) std::string().swap(*owned_text);
-  Model model = builder.finish();
+  Model model = finish(deck);
   errors.throw_if_any();
   return model;
 }

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "io/deck/deck_builder.hpp"
+#include "io/deck/deck_handlers.hpp"
 #include "io/deck/deck_numbers.hpp"
 
 namespace xpl::io {
@@ -19,40 +19,42 @@ constexpr int MAX_SET_NESTING = 100;
 
 }  // namespace
 
-Model DeckBuilder::finish() {
-  if (m_in_step) {
-    m_errors.add(m_step_where, "*STEP", "step " + m_model.steps.back().name + " is not closed",
-                 "expected *END STEP");
-    if (!m_step_has_dynamic)
-      m_errors.add(m_step_where, "*STEP", "step " + m_model.steps.back().name + " has no procedure",
-                   "expected *DYNAMIC, EXPLICIT with the time period");
+Model finish(DeckState& deck) {
+  if (deck.in_step) {
+    deck.errors.add(deck.step_where, "*STEP",
+                    "step " + deck.model.steps.back().name + " is not closed",
+                    "expected *END STEP");
+    if (!deck.step_has_dynamic)
+      deck.errors.add(deck.step_where, "*STEP",
+                      "step " + deck.model.steps.back().name + " has no procedure",
+                      "expected *DYNAMIC, EXPLICIT with the time period");
   }
-  if (m_model.steps.empty())
-    m_errors.add_plain(m_file_name + ": the deck has no step; expected a *STEP with " +
-                       "*DYNAMIC, EXPLICIT and *END STEP after the model data");
+  if (deck.model.steps.empty())
+    deck.errors.add_plain(deck.file_name + ": the deck has no step; expected a *STEP with " +
+                          "*DYNAMIC, EXPLICIT and *END STEP after the model data");
 
-  const Index n_nodes = m_model.node_count();
-  m_model.coordinates.resize(n_nodes, 3);
+  const Index n_nodes = deck.model.node_count();
+  deck.model.coordinates.resize(n_nodes, 3);
   for (Index i = 0; i < n_nodes; ++i)
     for (int c = 0; c < 3; ++c)
-      m_model.coordinates(i, c) = m_coordinates[static_cast<std::size_t>(3 * i + c)];
-  m_model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
+      deck.model.coordinates(i, c) = deck.coordinates[static_cast<std::size_t>(3 * i + c)];
+  deck.model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
 
-  resolve_element_nodes();
-  resolve_sets(false);  // element sets first: *NSET, ELSET= needs them
-  resolve_sets(true);
-  resolve_sections();
-  resolve_surfaces();
-  resolve_initial_velocity();
-  resolve_steps();
-  resolve_pressures();
-  resolve_gravity();
-  resolve_contact_pairs();
-  resolve_rigid_bodies();
-  resolve_point_inertias();
-  resolve_distributions();
-  resolve_clearances();  // after surfaces, contact pairs, rigid bodies and distributions
-  check_element_geometry();
+  resolve_element_nodes(deck);
+  resolve_sets(deck, false);  // element sets first: *NSET, ELSET= needs them
+  resolve_sets(deck, true);
+  resolve_sections(deck);
+  resolve_surfaces(deck);
+  resolve_initial_velocity(deck);
+  resolve_steps(deck);
+  resolve_pressures(deck);
+  resolve_gravity(deck);
+  resolve_contact_pairs(deck);
+  resolve_rigid_bodies(deck);
+  resolve_point_inertias(deck);
+  resolve_distributions(deck);
+  resolve_clearances(deck);  // after surfaces, contact pairs, rigid bodies and distributions
+  check_element_geometry(deck);
 
   const char* categories[ERROR_CATEGORIES] = {"elements with undefined nodes",
                                               "elements without a section",
@@ -61,74 +63,76 @@ Model DeckBuilder::finish() {
                                               "inverted elements",
                                               "degenerate elements"};
   for (int k = 0; k < ERROR_CATEGORIES; ++k) {
-    if (m_error_counts[k] > ERROR_CAP)
-      m_errors.add_plain(m_file_name + ": " + std::to_string(m_error_counts[k] - ERROR_CAP) +
-                         " more " + categories[k] + " not listed");
+    if (deck.error_counts[k] > ERROR_CAP)
+      deck.errors.add_plain(deck.file_name + ": " +
+                            std::to_string(deck.error_counts[k] - ERROR_CAP) + " more " +
+                            categories[k] + " not listed");
   }
-  return std::move(m_model);
+  return std::move(deck.model);
 }
 
-void DeckBuilder::resolve_element_nodes() {
-  m_model.element_nodes.assign(m_element_node_ids.size(), NO_INDEX);
-  for (Index e = 0; e < m_model.element_count(); ++e) {
+void resolve_element_nodes(DeckState& deck) {
+  deck.model.element_nodes.assign(deck.element_node_ids.size(), NO_INDEX);
+  for (Index e = 0; e < deck.model.element_count(); ++e) {
     bool reported = false;
-    for (Index k = m_model.element_offsets[e]; k < m_model.element_offsets[e + 1]; ++k) {
-      const ExternalId id = m_element_node_ids[static_cast<std::size_t>(k)];
-      const auto it = m_node_index.find(id);
-      if (it != m_node_index.end()) {
-        m_model.element_nodes[static_cast<std::size_t>(k)] = it->second;
+    for (Index k = deck.model.element_offsets[e]; k < deck.model.element_offsets[e + 1]; ++k) {
+      const ExternalId id = deck.element_node_ids[static_cast<std::size_t>(k)];
+      const auto it = deck.node_index.find(id);
+      if (it != deck.node_index.end()) {
+        deck.model.element_nodes[static_cast<std::size_t>(k)] = it->second;
       } else if (!reported) {
-        capped_error(m_error_counts[UNDEFINED_NODES], m_model.element_where(e), "*ELEMENT",
-                     "element " + std::to_string(m_model.element_ids[e]) +
+        capped_error(deck, deck.error_counts[UNDEFINED_NODES], deck.model.element_where(e),
+                     "*ELEMENT",
+                     "element " + std::to_string(deck.model.element_ids[e]) +
                          " refers to undefined node " + std::to_string(id),
                      "expected a *NODE with id " + std::to_string(id));
         reported = true;
       }
     }
   }
-  for (PointElement& element : m_point_elements) {
-    const auto it = m_node_index.find(element.node_id);
-    if (it != m_node_index.end())
+  for (PointElement& element : deck.point_elements) {
+    const auto it = deck.node_index.find(element.node_id);
+    if (it != deck.node_index.end())
       element.node = it->second;
     else
-      capped_error(m_error_counts[UNDEFINED_NODES], element.where, "*ELEMENT",
+      capped_error(deck, deck.error_counts[UNDEFINED_NODES], element.where, "*ELEMENT",
                    "element " + std::to_string(element.id) + " refers to undefined node " +
                        std::to_string(element.node_id),
                    "expected a *NODE with id " + std::to_string(element.node_id));
   }
 }
 
-void DeckBuilder::resolve_sets(bool node_sets) {
-  const std::size_t count = node_sets ? m_node_sets.size() : m_element_sets.size();
-  for (std::size_t s = 0; s < count; ++s) resolve_set(node_sets, static_cast<Index>(s), 0);
+void resolve_sets(DeckState& deck, bool node_sets) {
+  const std::size_t count = node_sets ? deck.node_sets.size() : deck.element_sets.size();
+  for (std::size_t s = 0; s < count; ++s) resolve_set(deck, node_sets, static_cast<Index>(s), 0);
 }
 
-void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
-  PendingSet& pending = node_sets ? m_node_sets[set] : m_element_sets[set];
+void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
+  PendingSet& pending = node_sets ? deck.node_sets[set] : deck.element_sets[set];
   if (pending.state != 0) return;
   pending.state = 1;
-  const auto& ids = node_sets ? m_node_index : m_element_index;
-  const auto& names = node_sets ? m_node_set_index : m_element_set_index;
+  const auto& ids = node_sets ? deck.node_index : deck.element_index;
+  const auto& names = node_sets ? deck.node_set_by_name : deck.element_set_by_name;
   const std::string what = node_sets ? "node" : "element";
-  std::vector<NamedSet>& sets = node_sets ? m_model.node_sets : m_model.element_sets;
+  std::vector<NamedSet>& sets = node_sets ? deck.model.node_sets : deck.model.element_sets;
   std::vector<Index> members = std::move(pending.members);
   // MASS/ROTARYI elements of an element set: kept beside the Model's members.
   std::vector<Index>& points = pending.point_members;
-  const bool has_points = !node_sets && !m_point_element_index.empty();
+  const bool has_points = !node_sets && !deck.point_element_index.empty();
   for (const SetItem& item : pending.items) {
     switch (item.kind) {
       case SetItem::Kind::Id: {
         const auto it = ids.find(item.first);
         const auto point =
-            has_points ? m_point_element_index.find(item.first) : m_point_element_index.end();
+            has_points ? deck.point_element_index.find(item.first) : deck.point_element_index.end();
         if (it != ids.end())
           members.push_back(it->second);
-        else if (point != m_point_element_index.end())
+        else if (point != deck.point_element_index.end())
           points.push_back(point->second);
         else
-          m_errors.add(item.where, item.keyword,
-                       "undefined " + what + " " + std::to_string(item.first),
-                       "expected a defined " + what + " id");
+          deck.errors.add(item.where, item.keyword,
+                          "undefined " + what + " " + std::to_string(item.first),
+                          "expected a defined " + what + " id");
         break;
       }
       case SetItem::Kind::Range: {
@@ -147,54 +151,56 @@ void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
               members.push_back(index);
         }
         if (has_points)
-          for (const auto& [id, index] : m_point_element_index)
+          for (const auto& [id, index] : deck.point_element_index)
             if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
               points.push_back(index);
         if (members.size() + points.size() == before)
-          m_errors.add(item.where, item.keyword,
-                       "range " + std::to_string(item.first) + ".." + std::to_string(item.last) +
-                           " contains no defined " + what,
-                       "expected a range over defined " + what + " ids");
+          deck.errors.add(item.where, item.keyword,
+                          "range " + std::to_string(item.first) + ".." + std::to_string(item.last) +
+                              " contains no defined " + what,
+                          "expected a range over defined " + what + " ids");
         break;
       }
       case SetItem::Kind::SetName: {
         const auto it = names.find(item.name);
         const std::string set_keyword = node_sets ? "*NSET, NSET=" : "*ELSET, ELSET=";
         if (it == names.end()) {
-          m_errors.add(item.where, item.keyword, "undefined " + what + " set " + item.name,
-                       "expected " + set_keyword + item.name);
+          deck.errors.add(item.where, item.keyword, "undefined " + what + " set " + item.name,
+                          "expected " + set_keyword + item.name);
           break;
         }
-        const PendingSet& other = node_sets ? m_node_sets[it->second] : m_element_sets[it->second];
+        const PendingSet& other =
+            node_sets ? deck.node_sets[it->second] : deck.element_sets[it->second];
         if (other.state == 1 || depth >= MAX_SET_NESTING) {
-          m_errors.add(item.where, item.keyword,
-                       what + " set " + sets[set].name + " includes " + item.name +
-                           ", which includes " + sets[set].name + " again",
-                       "expected sets without circular references");
+          deck.errors.add(item.where, item.keyword,
+                          what + " set " + sets[set].name + " includes " + item.name +
+                              ", which includes " + sets[set].name + " again",
+                          "expected sets without circular references");
           break;
         }
-        resolve_set(node_sets, it->second, depth + 1);
+        resolve_set(deck, node_sets, it->second, depth + 1);
         const std::vector<Index>& included = sets[static_cast<std::size_t>(it->second)].members;
         members.insert(members.end(), included.begin(), included.end());
         if (!node_sets) {
-          const std::vector<Index>& other_points = m_element_sets[it->second].point_members;
+          const std::vector<Index>& other_points = deck.element_sets[it->second].point_members;
           points.insert(points.end(), other_points.begin(), other_points.end());
         }
         break;
       }
       case SetItem::Kind::NodesOfElementSet: {
-        const auto it = m_element_set_index.find(item.name);
-        if (it == m_element_set_index.end()) {
-          m_errors.add(item.where, item.keyword, "undefined element set " + item.name,
-                       "expected *ELSET, ELSET=" + item.name);
+        const auto it = deck.element_set_by_name.find(item.name);
+        if (it == deck.element_set_by_name.end()) {
+          deck.errors.add(item.where, item.keyword, "undefined element set " + item.name,
+                          "expected *ELSET, ELSET=" + item.name);
           break;
         }
-        for (Index e : m_model.element_sets[static_cast<std::size_t>(it->second)].members)
-          for (Index k = m_model.element_offsets[e]; k < m_model.element_offsets[e + 1]; ++k)
-            if (m_model.element_nodes[k] != NO_INDEX) members.push_back(m_model.element_nodes[k]);
-        for (Index p : m_element_sets[it->second].point_members)
-          if (m_point_elements[static_cast<std::size_t>(p)].node != NO_INDEX)
-            members.push_back(m_point_elements[static_cast<std::size_t>(p)].node);
+        for (Index e : deck.model.element_sets[static_cast<std::size_t>(it->second)].members)
+          for (Index k = deck.model.element_offsets[e]; k < deck.model.element_offsets[e + 1]; ++k)
+            if (deck.model.element_nodes[k] != NO_INDEX)
+              members.push_back(deck.model.element_nodes[k]);
+        for (Index p : deck.element_sets[it->second].point_members)
+          if (deck.point_elements[static_cast<std::size_t>(p)].node != NO_INDEX)
+            members.push_back(deck.point_elements[static_cast<std::size_t>(p)].node);
         break;
       }
     }
@@ -207,119 +213,119 @@ void DeckBuilder::resolve_set(bool node_sets, Index set, int depth) {
   pending.state = 2;
 }
 
-std::vector<Index> DeckBuilder::resolve_nodes(const DeckReference& reference) {
+std::vector<Index> resolve_nodes(DeckState& deck, const DeckReference& reference) {
   if (reference.token.empty()) {
-    m_errors.add(reference.where, reference.keyword, "missing node or node set",
-                 "expected a node id or a node set name first");
+    deck.errors.add(reference.where, reference.keyword, "missing node or node set",
+                    "expected a node id or a node set name first");
     return {};
   }
   if (looks_numeric(reference.token)) {
     const std::optional<long long> id = parse_integer(reference.token);
-    const auto it = id ? m_node_index.find(*id) : m_node_index.end();
-    if (it == m_node_index.end()) {
-      m_errors.add(reference.where, reference.keyword, "undefined node " + reference.token,
-                   "expected a defined node id or a node set name");
+    const auto it = id ? deck.node_index.find(*id) : deck.node_index.end();
+    if (it == deck.node_index.end()) {
+      deck.errors.add(reference.where, reference.keyword, "undefined node " + reference.token,
+                      "expected a defined node id or a node set name");
       return {};
     }
     return {it->second};
   }
-  const auto it = m_node_set_index.find(reference.token);
-  if (it == m_node_set_index.end()) {
-    m_errors.add(reference.where, reference.keyword, "undefined node set " + reference.token,
-                 "expected *NSET, NSET=" + reference.token);
+  const auto it = deck.node_set_by_name.find(reference.token);
+  if (it == deck.node_set_by_name.end()) {
+    deck.errors.add(reference.where, reference.keyword, "undefined node set " + reference.token,
+                    "expected *NSET, NSET=" + reference.token);
     return {};
   }
-  return m_model.node_sets[static_cast<std::size_t>(it->second)].members;
+  return deck.model.node_sets[static_cast<std::size_t>(it->second)].members;
 }
 
-std::vector<Index> DeckBuilder::resolve_elements(const DeckReference& reference) {
+std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& reference) {
   if (reference.token.empty()) {
-    m_errors.add(reference.where, reference.keyword, "missing element or element set",
-                 "expected an element id or an element set name first");
+    deck.errors.add(reference.where, reference.keyword, "missing element or element set",
+                    "expected an element id or an element set name first");
     return {};
   }
   if (looks_numeric(reference.token)) {
     const std::optional<long long> id = parse_integer(reference.token);
-    const auto it = id ? m_element_index.find(*id) : m_element_index.end();
-    if (it == m_element_index.end()) {
-      m_errors.add(reference.where, reference.keyword, "undefined element " + reference.token,
-                   "expected a defined element id or an element set name");
+    const auto it = id ? deck.element_index.find(*id) : deck.element_index.end();
+    if (it == deck.element_index.end()) {
+      deck.errors.add(reference.where, reference.keyword, "undefined element " + reference.token,
+                      "expected a defined element id or an element set name");
       return {};
     }
     return {it->second};
   }
-  const auto it = m_element_set_index.find(reference.token);
-  if (it == m_element_set_index.end()) {
-    m_errors.add(reference.where, reference.keyword, "undefined element set " + reference.token,
-                 "expected *ELSET, ELSET=" + reference.token);
+  const auto it = deck.element_set_by_name.find(reference.token);
+  if (it == deck.element_set_by_name.end()) {
+    deck.errors.add(reference.where, reference.keyword, "undefined element set " + reference.token,
+                    "expected *ELSET, ELSET=" + reference.token);
     return {};
   }
-  return m_model.element_sets[static_cast<std::size_t>(it->second)].members;
+  return deck.model.element_sets[static_cast<std::size_t>(it->second)].members;
 }
 
-std::string DeckBuilder::element_text(Index e, const DeckReference& reference) const {
+std::string element_text(const DeckState& deck, Index e, const DeckReference& reference) {
   std::string text =
-      std::string(element_type_name(m_model.element_types[static_cast<std::size_t>(e)])) +
-      " element " + std::to_string(m_model.element_ids[e]);
+      std::string(element_type_name(deck.model.element_types[static_cast<std::size_t>(e)])) +
+      " element " + std::to_string(deck.model.element_ids[e]);
   if (!looks_numeric(reference.token)) text += " of set " + reference.token;
   return text;
 }
 
-Index DeckBuilder::resolve_amplitude(const std::string& name, const SourceLocation& where,
-                                     const std::string& keyword) {
+Index resolve_amplitude(DeckState& deck, const std::string& name, const SourceLocation& where,
+                        const std::string& keyword) {
   if (name.empty()) return NO_INDEX;
-  const Index amplitude = m_model.find_amplitude(name);
+  const Index amplitude = deck.model.find_amplitude(name);
   if (amplitude == NO_INDEX)
-    m_errors.add(where, keyword, "undefined amplitude " + name,
-                 "expected *AMPLITUDE, NAME=" + name);
+    deck.errors.add(where, keyword, "undefined amplitude " + name,
+                    "expected *AMPLITUDE, NAME=" + name);
   return amplitude;
 }
 
-void DeckBuilder::resolve_initial_velocity() {
-  for (const PendingVelocity& pending : m_velocities)
-    for (Index node : resolve_nodes(pending.target))
-      m_model.initial_velocity(node, pending.dof - 1) = pending.value;
+void resolve_initial_velocity(DeckState& deck) {
+  for (const PendingVelocity& pending : deck.velocities)
+    for (Index node : resolve_nodes(deck, pending.target))
+      deck.model.initial_velocity(node, pending.dof - 1) = pending.value;
 }
 
-void DeckBuilder::resolve_steps() {
+void resolve_steps(DeckState& deck) {
   // Model-level *BOUNDARY (before the first *STEP) is propagated as part of the first step,
   // ahead of that step's own conditions; OP=NEW in the first step removes them, as in Abaqus.
-  for (const PendingBoundary& pending : m_boundaries) {
-    if (m_model.steps.empty()) break;
+  for (const PendingBoundary& pending : deck.boundaries) {
+    if (deck.model.steps.empty()) break;
     const bool model_level = pending.step == NO_INDEX;
-    Step& step = m_model.steps[static_cast<std::size_t>(model_level ? 0 : pending.step)];
+    Step& step = deck.model.steps[static_cast<std::size_t>(model_level ? 0 : pending.step)];
     if (model_level && step.boundaries_reset) continue;
     const Index amplitude =
-        resolve_amplitude(pending.amplitude, pending.condition.where, pending.target.keyword);
-    for (Index node : resolve_nodes(pending.target)) {
+        resolve_amplitude(deck, pending.amplitude, pending.condition.where, pending.target.keyword);
+    for (Index node : resolve_nodes(deck, pending.target)) {
       BoundaryCondition condition = pending.condition;
       condition.node = node;
       condition.amplitude = amplitude;
       step.boundaries.push_back(condition);
     }
   }
-  for (const PendingLoad& pending : m_loads) {
-    Step& step = m_model.steps[static_cast<std::size_t>(pending.step)];
+  for (const PendingLoad& pending : deck.loads) {
+    Step& step = deck.model.steps[static_cast<std::size_t>(pending.step)];
     const Index amplitude =
-        resolve_amplitude(pending.amplitude, pending.load.where, pending.target.keyword);
-    for (Index node : resolve_nodes(pending.target)) {
+        resolve_amplitude(deck, pending.amplitude, pending.load.where, pending.target.keyword);
+    for (Index node : resolve_nodes(deck, pending.target)) {
       ConcentratedLoad load = pending.load;
       load.node = node;
       load.amplitude = amplitude;
       step.loads.push_back(load);
     }
   }
-  for (const PendingOutputSet& pending : m_output_sets) {
-    OutputRequest& request = m_model.steps[static_cast<std::size_t>(pending.step)]
+  for (const PendingOutputSet& pending : deck.output_sets) {
+    OutputRequest& request = deck.model.steps[static_cast<std::size_t>(pending.step)]
                                  .outputs[static_cast<std::size_t>(pending.output)];
-    const auto& names = pending.node ? m_node_set_index : m_element_set_index;
+    const auto& names = pending.node ? deck.node_set_by_name : deck.element_set_by_name;
     const auto it = names.find(pending.set.token);
     if (it == names.end()) {
-      m_errors.add(pending.set.where, pending.set.keyword,
-                   std::string("undefined ") + (pending.node ? "node" : "element") + " set " +
-                       pending.set.token,
-                   std::string("expected ") + (pending.node ? "*NSET, NSET=" : "*ELSET, ELSET=") +
-                       pending.set.token);
+      deck.errors.add(pending.set.where, pending.set.keyword,
+                      std::string("undefined ") + (pending.node ? "node" : "element") + " set " +
+                          pending.set.token,
+                      std::string("expected ") +
+                          (pending.node ? "*NSET, NSET=" : "*ELSET, ELSET=") + pending.set.token);
       continue;
     }
     (pending.node ? request.node_set : request.element_set) = it->second;

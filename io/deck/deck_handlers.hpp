@@ -1,0 +1,168 @@
+#pragma once
+/// \file Keyword handlers of the deck reader, free functions on the DeckState, grouped by
+/// keyword family (one or a few .cpp files each). Each `read_KEYWORD` takes one keyword block;
+/// the keyword table (deck_keywords.cpp) calls them. The `resolve_*` and `check_*` functions run
+/// in finish(), once the whole deck is known.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/deck/deck_fields.hpp"
+#include "io/deck/deck_state.hpp"
+
+namespace xpl::io {
+
+// --- Mesh and sets (deck_mesh.cpp, deck_surfaces.cpp; resolution in deck_resolve.cpp, element
+// shapes in deck_geometry.cpp)
+
+void read_heading(DeckState& deck, const DeckBlock& block);
+void read_node(DeckState& deck, const DeckBlock& block);
+void read_element(DeckState& deck, const DeckBlock& block);
+void read_set(DeckState& deck, const DeckBlock& block, bool node_set);
+void read_surface(DeckState& deck, const DeckBlock& block);
+/// Resolves references and checks the whole model; returns it (valid only if `deck.errors` is
+/// empty).
+Model finish(DeckState& deck);
+void resolve_element_nodes(DeckState& deck);
+void resolve_sets(DeckState& deck, bool node_sets);
+void resolve_set(DeckState& deck, bool node_sets, Index set, int depth);
+std::vector<Index> resolve_nodes(DeckState& deck, const DeckReference& reference);
+std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& reference);
+/// "S4R element 7" (with " of set NAME" if `reference` names a set), for messages.
+std::string element_text(const DeckState& deck, Index e, const DeckReference& reference);
+Index resolve_amplitude(DeckState& deck, const std::string& name, const SourceLocation& where,
+                        const std::string& keyword);
+void resolve_initial_velocity(DeckState& deck);
+void resolve_steps(DeckState& deck);
+void resolve_surfaces(DeckState& deck);
+/// Faces of the C3D8R elements of `elements` (unique) that no other C3D8R element shares,
+/// ordered by element and face.
+std::vector<ElementFace> exposed_hex_faces(DeckState& deck, const std::vector<Index>& elements);
+void check_element_geometry(DeckState& deck);
+void check_hex_geometry(DeckState& deck, Index element);
+void check_shell_geometry(DeckState& deck, Index element);
+
+// --- Materials, sections, amplitudes and initial conditions (deck_properties.cpp,
+// deck_sections.cpp)
+
+void read_material(DeckState& deck, const DeckBlock& block);
+void read_density(DeckState& deck, const DeckBlock& block);
+void read_elastic(DeckState& deck, const DeckBlock& block);
+void read_section_controls(DeckState& deck, const DeckBlock& block);
+void read_amplitude(DeckState& deck, const DeckBlock& block);
+void read_initial_conditions(DeckState& deck, const DeckBlock& block);
+void read_solid_section(DeckState& deck, const DeckBlock& block);
+void read_shell_section(DeckState& deck, const DeckBlock& block);
+void read_shell_general_section(DeckState& deck, const DeckBlock& block);
+void resolve_sections(DeckState& deck);
+/// Material and controls of a section (reported if undefined); returns its element set or
+/// NO_INDEX (reported).
+Index resolve_section_references(DeckState& deck, const PendingSection& pending,
+                                 const std::string& keyword, const SourceLocation& where,
+                                 Index& material, Index& controls,
+                                 std::vector<bool>& material_checked);
+/// Gives section `section` (of the shell or solid kind) to the elements of `set`.
+void assign_section(DeckState& deck, Index set, Index section, bool shell,
+                    const SourceLocation& where);
+
+// --- Steps, boundary conditions and loads (deck_step.cpp, deck_pressure.cpp)
+
+void read_step(DeckState& deck, const DeckBlock& block);
+void read_end_step(DeckState& deck, const DeckBlock& block);
+void read_dynamic(DeckState& deck, const DeckBlock& block);
+void read_bulk_viscosity(DeckState& deck, const DeckBlock& block);
+void read_boundary(DeckState& deck, const DeckBlock& block);
+/// OP= of *CLOAD, *DLOAD, *DSLOAD: false (reported) if bad; sets `reset` for OP=NEW.
+bool read_load_op(DeckState& deck, const DeckKeyword& keyword, bool& reset);
+void read_cload(DeckState& deck, const DeckBlock& block);
+void read_dload(DeckState& deck, const DeckBlock& block);
+void read_dsload(DeckState& deck, const DeckBlock& block);
+void read_gravity(DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword,
+                  const std::string& amplitude);
+void resolve_pressures(DeckState& deck);
+void resolve_gravity(DeckState& deck);
+
+// --- Output requests (deck_output.cpp)
+
+void read_output(DeckState& deck, const DeckBlock& block);
+void read_node_output(DeckState& deck, const DeckBlock& block);
+void read_element_output(DeckState& deck, const DeckBlock& block);
+void read_energy_output(DeckState& deck, const DeckBlock& block);
+void read_contact_output(DeckState& deck, const DeckBlock& block);
+/// Names on the data lines of `block`, normalized, without repeats; names not in `known`
+/// are reported as "unknown <what> NAME".
+std::vector<std::string> read_names(DeckState& deck, const DeckBlock& block,
+                                    std::span<const std::string_view> known,
+                                    const std::string& what);
+
+// --- Contact, interactions and clearances (deck_interaction.cpp, deck_contact.cpp,
+// deck_clearance.cpp, deck_clearance_checks.cpp, deck_distribution.cpp)
+
+void read_surface_interaction(DeckState& deck, const DeckBlock& block);
+void read_friction(DeckState& deck, const DeckBlock& block);
+void read_surface_behavior(DeckState& deck, const DeckBlock& block);
+void read_contact(DeckState& deck, const DeckBlock& block);
+void read_diagnostics(DeckState& deck, const DeckBlock& block);
+/// *CONTACT INCLUSIONS (`inclusions`) or *CONTACT EXCLUSIONS.
+void read_contact_inclusions(DeckState& deck, const DeckBlock& block, bool inclusions);
+void read_contact_property_assignment(DeckState& deck, const DeckBlock& block);
+void read_contact_controls_assignment(DeckState& deck, const DeckBlock& block);
+void read_contact_pair(DeckState& deck, const DeckBlock& block);
+/// A surface by name, or NO_INDEX (reported).
+Index contact_surface(DeckState& deck, const std::string& name, const SourceLocation& where,
+                      const std::string& keyword);
+Index surface_interaction(DeckState& deck, const std::string& name, const SourceLocation& where,
+                          const std::string& keyword);
+/// Surfaces 1 and 2 of a contact data line (blank: all exterior; surface 2 blank: self
+/// contact of surface 1); nothing (reported) if a surface is undefined.
+std::optional<SurfacePair> surface_pair(DeckState& deck, const DeckDataLine& line,
+                                        const DeckKeyword& keyword);
+/// The general contact of the open step; nullptr (reported) if the step has no *CONTACT.
+GeneralContact* open_contact(DeckState& deck, const DeckKeyword& keyword);
+void resolve_contact_pairs(DeckState& deck);
+void read_contact_clearance(DeckState& deck, const DeckBlock& block);
+void read_clearance_assignment(DeckState& deck, const DeckBlock& block);
+void read_distribution(DeckState& deck, const DeckBlock& block);
+void read_distribution_table(DeckState& deck, const DeckBlock& block);
+void resolve_distributions(DeckState& deck);
+/// Distribution names of the clearances, then the assignments: clearance names, surfaces,
+/// signs of the values and the step rules (SPEC C7–C10).
+void resolve_clearances(DeckState& deck);
+/// Whether assignment `pending` may act in its step (SPEC C7): reported if not.
+bool check_clearance_step(DeckState& deck, const PendingClearanceAssignment& pending);
+/// Whether a negative value of the assignment's clearance meets a solid surface (SPEC C8):
+/// reported if so.
+bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pending);
+/// Whether the assignment has slave nodes off rigid bodies: reported if not.
+bool check_clearance_slaves(DeckState& deck, const PendingClearanceAssignment& pending);
+/// Whether surface `surface` suits a clearance (SPEC C10): element based, single sided, each
+/// edge on at most two faces, consistent normals. Reported (once per surface) if not.
+bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocation& where);
+
+// --- Rigid bodies and point masses (deck_rigid.cpp, deck_point_mass.cpp)
+
+void read_rigid_body(DeckState& deck, const DeckBlock& block);
+void resolve_rigid_bodies(DeckState& deck);
+/// `*ELEMENT, TYPE=MASS|ROTARYI`.
+void read_point_elements(DeckState& deck, const DeckBlock& block, bool rotary);
+/// `*MASS` or (`rotary`) `*ROTARY INERTIA`.
+void read_point_property(DeckState& deck, const DeckBlock& block, bool rotary);
+void resolve_point_inertias(DeckState& deck);
+
+// --- CalculiX output requests (deck_calculix_output.cpp)
+
+/// *NODE FILE (`node`) or *EL FILE: a field output request.
+void read_file_output(DeckState& deck, const DeckBlock& block, bool node);
+void read_node_print(DeckState& deck, const DeckBlock& block);
+/// *EL PRINT, *CONTACT FILE, *CONTACT PRINT: accepted with a note, nothing written.
+void read_ignored_output(DeckState& deck, const DeckBlock& block, const std::string& why);
+
+/// *EL PRINT: accepted with a note (no element history output in xpl).
+void read_el_print(DeckState& deck, const DeckBlock& block);
+/// *CONTACT FILE or *CONTACT PRINT: accepted with a note naming xpl's contact output.
+void read_contact_file(DeckState& deck, const DeckBlock& block);
+
+}  // namespace xpl::io
