@@ -151,12 +151,6 @@ int main(int argc, char** argv) {
               << "; nothing was written\n";
     return 1;
   }
-  if (const auto refused = xpl::unsupported_features(model); !refused.empty()) {
-    for (const auto& m : refused) std::cerr << m << "\n";
-    std::cerr << "xpl: " << refused.size() << " error(s) in " << args.deck.string()
-              << "; nothing was written\n";
-    return 1;
-  }
 
   // --import: read and check the earlier result before anything is written.
   xpl::InitialState initial;
