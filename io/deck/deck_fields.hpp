@@ -13,6 +13,13 @@
 
 namespace xpl::io {
 
+/// One accepted parameter of a keyword: `NAME=value` or a flag.
+struct ParameterSpec {
+  std::string_view name;
+  bool takes_value = true;
+  bool value_optional = false;  ///< both `NAME` and `NAME=value` are fine (NLGEOM)
+};
+
 /// `file:LINE`, as messages name a place in the deck.
 std::string location_text(const SourceLocation& where);
 

@@ -2,17 +2,13 @@
 /// \file State of the deck reader while it turns keyword blocks into a Model: the Model under
 /// construction, the error list, name -> index maps, the references still to resolve and the
 /// position in the deck (open material, step, output request). The keyword handlers
-/// (deck_handlers.hpp) are free functions operating on it. References
-/// (node and element ids, set, material, amplitude and controls names) are recorded while
-/// reading and resolved once the whole deck is known, so definition order does not matter
-/// within the model data.
+/// (deck_handlers.hpp) are free functions operating on it. References (node and element ids,
+/// set, material, amplitude and controls names) are recorded while reading and resolved once
+/// the whole deck is known, so definition order does not matter within the model data.
 
 #include <cstdint>
-#include <initializer_list>
 #include <optional>
-#include <span>
 #include <string>
-#include <string_view>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -21,13 +17,6 @@
 #include "solver/model.hpp"
 
 namespace xpl::io {
-
-/// One accepted parameter of a keyword: `NAME=value` or a flag.
-struct ParameterSpec {
-  std::string_view name;
-  bool takes_value = true;
-  bool value_optional = false;  ///< both `NAME` and `NAME=value` are fine (NLGEOM)
-};
 
 /// A node or element given by id (numeric) or by set name, still to be resolved.
 struct DeckReference {
