@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "io/deck_reader.hpp"
+#include "io/deck/deck_reader.hpp"
 #include "io/results/import_state.hpp"
 #include "io/results/result_files.hpp"
 #include "solver/explicit_solver.hpp"
@@ -148,12 +148,6 @@ int main(int argc, char** argv) {
   } catch (const xpl::InputError& e) {
     for (const auto& m : e.messages()) std::cerr << m << "\n";
     std::cerr << "xpl: " << e.messages().size() << " error(s) in " << args.deck.string()
-              << "; nothing was written\n";
-    return 1;
-  }
-  if (const auto refused = xpl::unsupported_features(model); !refused.empty()) {
-    for (const auto& m : refused) std::cerr << m << "\n";
-    std::cerr << "xpl: " << refused.size() << " error(s) in " << args.deck.string()
               << "; nothing was written\n";
     return 1;
   }

@@ -48,11 +48,6 @@ struct RunSummary {
   Energies energies;  ///< at the end
 };
 
-/// Features the deck reader accepts but the time loop does not run yet, one message per
-/// keyword occurrence (`file:LINE: *KEYWORD: problem; expectation`). The CLI refuses such a
-/// model before writing anything rather than ignoring part of it.
-std::vector<std::string> unsupported_features(const Model& model);
-
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.
 class ExplicitSolver {
  public:

@@ -40,7 +40,8 @@ class RigidBodies {
  public:
   RigidBodies() = default;
   /// Assigns elements and nodes to bodies. A node in two bodies is an input error that
-  /// unsupported_features() reports before anything is written; here it throws SolverError.
+  /// io::unsupported_features() (io/deck/model_checks.hpp) reports before anything is written;
+  /// here it throws SolverError.
   explicit RigidBodies(const Model& model);
 
   bool empty() const { return m_bodies.empty(); }

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "io/deck_reader.hpp"
+#include "io/deck/deck_reader.hpp"
 
 namespace xpl::test {
 

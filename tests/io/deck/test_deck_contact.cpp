@@ -132,7 +132,7 @@ bool same_pair(const SurfacePair& pair, Index first, Index second) {
 TEST_CASE("surface interactions: friction, linear and hard pressure-overclosure",
           "[io][deck][contact]") {
   const std::string& deck = CONTACT_DECK;
-  const Model m = io::read_deck_text(deck, "t.inp");
+  const Model m = io::read_deck_text(deck, "t.inp", io::ModelChecks::Skip);
   REQUIRE(m.surface_interactions.size() == 3);
   const SurfaceInteraction& rough = m.surface_interactions[0];
   CHECK(rough.name == "ROUGH");
@@ -162,7 +162,7 @@ TEST_CASE("surface interactions: friction, linear and hard pressure-overclosure"
 
 TEST_CASE("surfaces without a face label: both shell sides, exposed solid faces",
           "[io][deck][contact]") {
-  const Model m = io::read_deck_text(CONTACT_DECK, "t.inp");
+  const Model m = io::read_deck_text(CONTACT_DECK, "t.inp", io::ModelChecks::Skip);
   const Surface& body = m.surfaces[static_cast<std::size_t>(m.find_surface("BODY"))];
   // The two bricks share face S4 of the first and S6 of the second: 5 + 5 exposed faces.
   std::vector<std::pair<Index, int>> faces;
@@ -181,7 +181,7 @@ TEST_CASE("surfaces without a face label: both shell sides, exposed solid faces"
 TEST_CASE("general contact per step: inclusions, exclusions, properties, penalty scale, OP=NEW",
           "[io][deck][contact]") {
   const std::string& deck = CONTACT_DECK;
-  const Model m = io::read_deck_text(deck, "t.inp");
+  const Model m = io::read_deck_text(deck, "t.inp", io::ModelChecks::Skip);
   const Index body = m.find_surface("BODY"), skin = m.find_surface("SKIN"),
               tops = m.find_surface("TOPS"), nodes = m.find_surface("NODES");
   REQUIRE(m.steps.size() == 4);
@@ -240,7 +240,7 @@ TEST_CASE("general contact per step: inclusions, exclusions, properties, penalty
 TEST_CASE("gravity: whole model or element set, normalised direction, amplitude, OP=NEW",
           "[io][deck][contact]") {
   const std::string& deck = CONTACT_DECK;
-  const Model m = io::read_deck_text(deck, "t.inp");
+  const Model m = io::read_deck_text(deck, "t.inp", io::ModelChecks::Skip);
   const std::vector<GravityLoad>& gravity = m.steps[0].gravity;
   REQUIRE(gravity.size() == 2);
   CHECK(gravity[0].element_set == NO_INDEX);
@@ -267,7 +267,7 @@ TEST_CASE("gravity: whole model or element set, normalised direction, amplitude,
 
 TEST_CASE("rigid bodies and point masses", "[io][deck][contact][rigid]") {
   const std::string& deck = CONTACT_DECK;
-  const Model m = io::read_deck_text(deck, "t.inp");
+  const Model m = io::read_deck_text(deck, "t.inp", io::ModelChecks::Skip);
   const auto node = [&](ExternalId id) {
     for (Index n = 0; n < m.node_count(); ++n)
       if (m.node_ids[static_cast<std::size_t>(n)] == id) return n;
@@ -307,7 +307,7 @@ TEST_CASE("rigid bodies and point masses", "[io][deck][contact][rigid]") {
 }
 
 TEST_CASE("contact output and contact energies", "[io][deck][contact][output]") {
-  const Model m = io::read_deck_text(CONTACT_DECK, "t.inp");
+  const Model m = io::read_deck_text(CONTACT_DECK, "t.inp", io::ModelChecks::Skip);
   const std::vector<OutputRequest>& outputs = m.steps[0].outputs;
   REQUIRE(outputs.size() == 2);
   CHECK(outputs[0].number_interval == 10);

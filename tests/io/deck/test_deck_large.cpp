@@ -8,7 +8,7 @@
 #include <string>
 
 #include "deck_test_support.hpp"
-#include "io/deck_reader.hpp"
+#include "io/deck/deck_reader.hpp"
 
 using namespace xpl;
 

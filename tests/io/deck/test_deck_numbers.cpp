@@ -2,8 +2,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "io/deck_geometry.hpp"
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_geometry.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 using namespace xpl;
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "contact/contact_faces.hpp"
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_handlers.hpp"
 
 namespace xpl::io {
 
@@ -37,11 +37,11 @@ struct FaceEdge {
 
 }  // namespace
 
-bool DeckBuilder::check_clearance_surface(Index surface, const SourceLocation& where) {
-  std::uint8_t& state = m_clearance_surface_state[static_cast<std::size_t>(surface)];
+bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocation& where) {
+  std::uint8_t& state = deck.clearance_surface_state[static_cast<std::size_t>(surface)];
   if (state != 0) return state == 1;
   state = 2;
-  const Surface& s = m_model.surfaces[static_cast<std::size_t>(surface)];
+  const Surface& s = deck.model.surfaces[static_cast<std::size_t>(surface)];
   std::vector<ElementFace> faces = s.faces;
   const auto by_element = [](const ElementFace& a, const ElementFace& b) {
     return a.element != b.element ? a.element < b.element : a.face < b.face;
@@ -53,27 +53,29 @@ bool DeckBuilder::check_clearance_surface(Index surface, const SourceLocation& w
                           }),
               faces.end());
   const auto is_shell_face = [&](const ElementFace& f) {
-    return is_shell(m_model.element_types[static_cast<std::size_t>(f.element)]);
+    return is_shell(deck.model.element_types[static_cast<std::size_t>(f.element)]);
   };
   for (std::size_t i = 1; i < faces.size(); ++i) {
     if (faces[i].element == faces[i - 1].element && is_shell_face(faces[i])) {
-      m_errors.add(where, ASSIGNMENT_KEYWORD,
-                   "surface " + s.name + " is not single sided: it holds both SPOS and SNEG of " +
-                       "S4R element " + std::to_string(m_model.element_ids[faces[i].element]),
-                   "expected one side of each shell (SPOS or SNEG; a surface line without a "
-                   "face label takes both sides)");
+      deck.errors.add(where, ASSIGNMENT_KEYWORD,
+                      "surface " + s.name +
+                          " is not single sided: it holds both SPOS and SNEG of " + "S4R element " +
+                          std::to_string(deck.model.element_ids[faces[i].element]),
+                      "expected one side of each shell (SPOS or SNEG; a surface line without a "
+                      "face label takes both sides)");
       return false;
     }
   }
 
   // Faces in the outward corner order of the contact domain, as the solver will see them.
-  std::vector<contact::ElementKind> kinds(static_cast<std::size_t>(m_model.element_count()));
+  std::vector<contact::ElementKind> kinds(static_cast<std::size_t>(deck.model.element_count()));
   for (std::size_t e = 0; e < kinds.size(); ++e)
-    kinds[e] = is_shell(m_model.element_types[e]) ? contact::ElementKind::Shell
-                                                  : contact::ElementKind::Hex;
+    kinds[e] = is_shell(deck.model.element_types[e]) ? contact::ElementKind::Shell
+                                                     : contact::ElementKind::Hex;
   std::vector<contact::FaceRef> refs;
   for (const ElementFace& f : faces) refs.push_back({f.element, f.face});
-  const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes, kinds};
+  const contact::ElementTopology topology{deck.model.element_offsets, deck.model.element_nodes,
+                                          kinds};
   std::vector<FaceEdge> edges;
   for (const contact::ContactFace& face : contact::surface_faces(topology, refs, surface)) {
     for (std::size_t k = 0; k < 4; ++k) {
@@ -86,8 +88,8 @@ bool DeckBuilder::check_clearance_surface(Index surface, const SourceLocation& w
     return a.low != b.low ? a.low < b.low : a.high < b.high;
   });
   const auto edge_text = [&](const FaceEdge& edge) {
-    const ExternalId a = m_model.node_ids[static_cast<std::size_t>(edge.low)];
-    const ExternalId b = m_model.node_ids[static_cast<std::size_t>(edge.high)];
+    const ExternalId a = deck.model.node_ids[static_cast<std::size_t>(edge.low)];
+    const ExternalId b = deck.model.node_ids[static_cast<std::size_t>(edge.high)];
     return "the edge of nodes " + std::to_string(std::min(a, b)) + " and " +
            std::to_string(std::max(a, b));
   };
@@ -97,17 +99,17 @@ bool DeckBuilder::check_clearance_surface(Index surface, const SourceLocation& w
     while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
     if (j - i > 2 && !crowded) {
       crowded = true;
-      m_errors.add(where, ASSIGNMENT_KEYWORD,
-                   "surface " + s.name + " has " + edge_text(edges[i]) + " on " +
-                       std::to_string(j - i) + " of its faces",
-                   "expected each edge on at most two faces of a surface with a clearance");
+      deck.errors.add(where, ASSIGNMENT_KEYWORD,
+                      "surface " + s.name + " has " + edge_text(edges[i]) + " on " +
+                          std::to_string(j - i) + " of its faces",
+                      "expected each edge on at most two faces of a surface with a clearance");
     } else if (j - i == 2 && edges[i].ascending == edges[i + 1].ascending && !flipped) {
       flipped = true;
-      m_errors.add(
+      deck.errors.add(
           where, ASSIGNMENT_KEYWORD,
           "surface " + s.name + " has discontinuous normals: elements " +
-              std::to_string(m_model.element_ids[edges[i].element]) + " and " +
-              std::to_string(m_model.element_ids[edges[i + 1].element]) + " run through " +
+              std::to_string(deck.model.element_ids[edges[i].element]) + " and " +
+              std::to_string(deck.model.element_ids[edges[i + 1].element]) + " run through " +
               edge_text(edges[i]) + " in the same direction",
           "expected neighbouring faces with their normals on the same side (swap SPOS and SNEG "
           "of one of them)");
@@ -119,16 +121,16 @@ bool DeckBuilder::check_clearance_surface(Index surface, const SourceLocation& w
   return true;
 }
 
-bool DeckBuilder::check_clearance_sign(const PendingClearanceAssignment& pending) {
+bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pending) {
   const ClearanceAssignment& assignment = pending.assignment;
   const ContactClearance& clearance =
-      m_model.contact_clearances[static_cast<std::size_t>(assignment.clearance)];
+      deck.model.contact_clearances[static_cast<std::size_t>(assignment.clearance)];
   const auto surface = [&](Index s) -> const Surface& {
-    return m_model.surfaces[static_cast<std::size_t>(s)];
+    return deck.model.surfaces[static_cast<std::size_t>(s)];
   };
   const auto solid = [&](Index s) {
     return std::any_of(surface(s).faces.begin(), surface(s).faces.end(), [&](const ElementFace& f) {
-      return m_model.element_types[static_cast<std::size_t>(f.element)] == ElementType::C3D8R;
+      return deck.model.element_types[static_cast<std::size_t>(f.element)] == ElementType::C3D8R;
     });
   };
   const std::string expected =
@@ -137,7 +139,7 @@ bool DeckBuilder::check_clearance_sign(const PendingClearanceAssignment& pending
   const NodalDistribution* distribution =
       clearance.distribution == NO_INDEX
           ? nullptr
-          : &m_model.distributions[static_cast<std::size_t>(clearance.distribution)];
+          : &deck.model.distributions[static_cast<std::size_t>(clearance.distribution)];
   if (distribution == nullptr && clearance.value >= 0.0) return true;
   for (const auto& [slave, master] : views_of(assignment)) {
     if (!solid(slave) && !solid(master)) continue;
@@ -146,10 +148,10 @@ bool DeckBuilder::check_clearance_sign(const PendingClearanceAssignment& pending
                                 surface(solid(slave) ? slave : master).name +
                                 " is on C3D8R solid elements";
     if (distribution == nullptr) {
-      m_errors.add(assignment.where, ASSIGNMENT_KEYWORD,
-                   "clearance " + clearance.name + " is negative (" + number_text(clearance.value) +
-                       ") " + between,
-                   expected);
+      deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD,
+                      "clearance " + clearance.name + " is negative (" +
+                          number_text(clearance.value) + ") " + between,
+                      expected);
       return false;
     }
     // The slave nodes' own values, and the master nodes' when a slave node takes its value
@@ -157,9 +159,9 @@ bool DeckBuilder::check_clearance_sign(const PendingClearanceAssignment& pending
     const auto nodes_of = [&](Index s) {
       std::vector<Index> nodes;
       for (const ElementFace& f : surface(s).faces) {
-        const Index* element_nodes = m_model.nodes_of(f.element);
+        const Index* element_nodes = deck.model.nodes_of(f.element);
         const int count =
-            nodes_per_element(m_model.element_types[static_cast<std::size_t>(f.element)]);
+            nodes_per_element(deck.model.element_types[static_cast<std::size_t>(f.element)]);
         nodes.insert(nodes.end(), element_nodes, element_nodes + count);
       }
       std::sort(nodes.begin(), nodes.end());
@@ -176,27 +178,28 @@ bool DeckBuilder::check_clearance_sign(const PendingClearanceAssignment& pending
     const auto negative =
         std::find_if(nodes.begin(), nodes.end(), [&](Index n) { return values[n] < 0.0; });
     if (negative == nodes.end()) continue;
-    m_errors.add(assignment.where, ASSIGNMENT_KEYWORD,
-                 "clearance " + clearance.name + " is negative (" + number_text(values[*negative]) +
-                     " at node " + std::to_string(m_model.node_ids[*negative]) +
-                     " in distribution " + distribution->name + ") " + between,
-                 expected);
+    deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD,
+                    "clearance " + clearance.name + " is negative (" +
+                        number_text(values[*negative]) + " at node " +
+                        std::to_string(deck.model.node_ids[*negative]) + " in distribution " +
+                        distribution->name + ") " + between,
+                    expected);
     return false;
   }
   return true;
 }
 
-bool DeckBuilder::check_clearance_slaves(const PendingClearanceAssignment& pending) {
+bool check_clearance_slaves(DeckState& deck, const PendingClearanceAssignment& pending) {
   const ClearanceAssignment& assignment = pending.assignment;
-  std::vector<char> rigid(static_cast<std::size_t>(m_model.element_count()), 0);
-  for (const RigidBody& body : m_model.rigid_bodies)
+  std::vector<char> rigid(static_cast<std::size_t>(deck.model.element_count()), 0);
+  for (const RigidBody& body : deck.model.rigid_bodies)
     if (body.element_set != NO_INDEX)
-      for (Index e : m_model.element_sets[static_cast<std::size_t>(body.element_set)].members)
+      for (Index e : deck.model.element_sets[static_cast<std::size_t>(body.element_set)].members)
         rigid[static_cast<std::size_t>(e)] = 1;
   // A slave node of a rigid body moves with its reference node: nothing to adjust or offset.
   std::vector<std::string> names;
   for (const auto& [slave, master] : views_of(assignment)) {
-    const Surface& s = m_model.surfaces[static_cast<std::size_t>(slave)];
+    const Surface& s = deck.model.surfaces[static_cast<std::size_t>(slave)];
     if (s.faces.empty() || std::any_of(s.faces.begin(), s.faces.end(), [&](const ElementFace& f) {
           return rigid[static_cast<std::size_t>(f.element)] == 0;
         }))
@@ -209,9 +212,9 @@ bool DeckBuilder::check_clearance_slaves(const PendingClearanceAssignment& pendi
                               "slave nodes"
                         : "surfaces " + names[0] + " and " + names[1] +
                               " lie wholly on rigid bodies: the assignment has no slave nodes";
-  m_errors.add(assignment.where, ASSIGNMENT_KEYWORD, problem,
-               "expected a deformable slave surface (elements outside *RIGID BODY, ELSET=): "
-               "MASTER makes surface 2 the slave, SLAVE surface 1");
+  deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD, problem,
+                  "expected a deformable slave surface (elements outside *RIGID BODY, ELSET=): "
+                  "MASTER makes surface 2 the slave, SLAVE surface 1");
   return false;
 }
 

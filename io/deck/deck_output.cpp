@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <array>
 
-#include "io/deck_builder.hpp"
-#include "io/deck_numbers.hpp"
-#include "io/deck_output_variables.hpp"
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_numbers.hpp"
+#include "io/deck/deck_output_variables.hpp"
 
 namespace xpl::io {
 
@@ -30,16 +30,17 @@ OutputRequest& open_request(Step& step, Index& output, bool node) {
 
 }  // namespace
 
-void DeckBuilder::read_output(const DeckBlock& block) {
+void read_output(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(
-      keyword,
+      deck, keyword,
       {{"FIELD", false}, {"HISTORY", false}, {"NUMBER INTERVAL"}, {"TIME INTERVAL"}, {"VARIABLE"}});
-  expect_no_data(block);
+  expect_no_data(deck, block);
   const bool field = find_parameter(keyword, "FIELD") != nullptr;
   const bool history = find_parameter(keyword, "HISTORY") != nullptr;
   if (field == history) {
-    error(keyword.where, keyword, field ? "both FIELD and HISTORY" : "neither FIELD nor HISTORY",
+    error(deck, keyword.where, keyword,
+          field ? "both FIELD and HISTORY" : "neither FIELD nor HISTORY",
           "expected *OUTPUT, FIELD or *OUTPUT, HISTORY");
     return;
   }
@@ -49,21 +50,21 @@ void DeckBuilder::read_output(const DeckBlock& block) {
   const DeckParameter* number = find_parameter(keyword, "NUMBER INTERVAL");
   const DeckParameter* time = find_parameter(keyword, "TIME INTERVAL");
   if (number != nullptr && time != nullptr) {
-    error(keyword.where, keyword, "both NUMBER INTERVAL and TIME INTERVAL",
+    error(deck, keyword.where, keyword, "both NUMBER INTERVAL and TIME INTERVAL",
           "expected at most one of them");
     return;
   }
   if (number != nullptr && number->has_value) {
     const std::optional<long long> n = parse_integer(number->value);
     if (!n || *n <= 0 || *n > 1000000000)
-      error(keyword.where, keyword, "bad NUMBER INTERVAL=" + number->value,
+      error(deck, keyword.where, keyword, "bad NUMBER INTERVAL=" + number->value,
             "expected a positive integer");
     else
       request.number_interval = static_cast<int>(*n);
   } else if (time != nullptr && time->has_value) {
     const std::optional<Real> t = parse_real(time->value);
     if (!t || *t <= 0.0)
-      error(keyword.where, keyword, "bad TIME INTERVAL=" + time->value,
+      error(deck, keyword.where, keyword, "bad TIME INTERVAL=" + time->value,
             "expected a time interval > 0");
     else
       request.time_interval = *t;
@@ -81,28 +82,28 @@ void DeckBuilder::read_output(const DeckBlock& block) {
       request.energy = true;
     }
   } else if (!variable.empty()) {
-    error(keyword.where, keyword, "VARIABLE=" + variable + " is not supported",
+    error(deck, keyword.where, keyword, "VARIABLE=" + variable + " is not supported",
           "expected VARIABLE=PRESELECT or explicit *NODE/*ELEMENT/*ENERGY OUTPUT lists");
   }
-  Step& step = m_model.steps.back();
+  Step& step = deck.model.steps.back();
   step.outputs.push_back(std::move(request));
-  m_output = static_cast<Index>(step.outputs.size() - 1);
+  deck.output = static_cast<Index>(step.outputs.size() - 1);
 }
 
-void DeckBuilder::read_node_output(const DeckBlock& block) {
+void read_node_output(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"NSET"}});
-  if (m_output == NO_INDEX) {
-    error(keyword.where, keyword, "no *OUTPUT to attach to",
+  check_parameters(deck, keyword, {{"NSET"}});
+  if (deck.output == NO_INDEX) {
+    error(deck, keyword.where, keyword, "no *OUTPUT to attach to",
           "expected *OUTPUT, FIELD or *OUTPUT, HISTORY just before");
     return;
   }
-  Step& step = m_model.steps.back();
+  Step& step = deck.model.steps.back();
   const bool history =
-      step.outputs[static_cast<std::size_t>(m_output)].kind == OutputRequest::Kind::History;
+      step.outputs[static_cast<std::size_t>(deck.output)].kind == OutputRequest::Kind::History;
   const std::string set = optional_name(keyword, "NSET");
   if (history && set.empty()) {
-    error(keyword.where, keyword, "history node output needs a node set",
+    error(deck, keyword.where, keyword, "history node output needs a node set",
           "expected *NODE OUTPUT, NSET=name");
     return;
   }
@@ -114,7 +115,7 @@ void DeckBuilder::read_node_output(const DeckBlock& block) {
       const bool known = history ? add_history_node_variable(variables, name)
                                  : contains(FIELD_NODE_VARIABLES, name);
       if (!known) {
-        error(line.where(), keyword, "unknown output variable " + name,
+        error(deck, line.where(), keyword, "unknown output variable " + name,
               history ? "expected one of " + joined(FIELD_NODE_VARIABLES) +
                             " or a component such as U1, RF3, UR2, RM1"
                       : "expected one of " + joined(FIELD_NODE_VARIABLES));
@@ -124,19 +125,20 @@ void DeckBuilder::read_node_output(const DeckBlock& block) {
     }
   }
   if (block.data.empty()) {
-    error(keyword.where, keyword, "no output variables", "expected a data line such as U, V, RF");
+    error(deck, keyword.where, keyword, "no output variables",
+          "expected a data line such as U, V, RF");
     return;
   }
-  OutputRequest& request = open_request(step, m_output, true);
+  OutputRequest& request = open_request(step, deck.output, true);
   for (const std::string& name : variables) add_unique(request.node_variables, name);
   if (!set.empty())
-    m_output_sets.push_back({static_cast<Index>(m_model.steps.size() - 1), m_output, true,
-                             DeckReference{set, keyword.where, keyword.label()}});
+    deck.output_sets.push_back({static_cast<Index>(deck.model.steps.size() - 1), deck.output, true,
+                                DeckReference{set, keyword.where, keyword.label()}});
 }
 
-std::vector<std::string> DeckBuilder::read_names(const DeckBlock& block,
-                                                 std::span<const std::string_view> known,
-                                                 const std::string& what) {
+std::vector<std::string> read_names(DeckState& deck, const DeckBlock& block,
+                                    std::span<const std::string_view> known,
+                                    const std::string& what) {
   std::vector<std::string> names;
   for (const DeckDataLine& line : block.data) {
     for (const std::string_view field : line.fields) {
@@ -148,61 +150,65 @@ std::vector<std::string> DeckBuilder::read_names(const DeckBlock& block,
       }
       std::string list;
       for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-      error(line.where(), block.keyword, "unknown " + what + " " + name, "expected one of " + list);
+      error(deck, line.where(), block.keyword, "unknown " + what + " " + name,
+            "expected one of " + list);
     }
   }
   return names;
 }
 
-void DeckBuilder::read_element_output(const DeckBlock& block) {
+void read_element_output(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   // DIRECTIONS only adds local material directions to Abaqus' ODB; harmless to accept.
-  check_parameters(keyword, {{"ELSET"}, {"DIRECTIONS"}});
-  if (m_output == NO_INDEX) {
-    error(keyword.where, keyword, "no *OUTPUT to attach to", "expected *OUTPUT, FIELD just before");
+  check_parameters(deck, keyword, {{"ELSET"}, {"DIRECTIONS"}});
+  if (deck.output == NO_INDEX) {
+    error(deck, keyword.where, keyword, "no *OUTPUT to attach to",
+          "expected *OUTPUT, FIELD just before");
     return;
   }
-  Step& step = m_model.steps.back();
-  if (step.outputs[static_cast<std::size_t>(m_output)].kind == OutputRequest::Kind::History) {
-    error(keyword.where, keyword, "element history output is not supported yet",
+  Step& step = deck.model.steps.back();
+  if (step.outputs[static_cast<std::size_t>(deck.output)].kind == OutputRequest::Kind::History) {
+    error(deck, keyword.where, keyword, "element history output is not supported yet",
           "expected *ELEMENT OUTPUT under *OUTPUT, FIELD");
     return;
   }
   const std::vector<std::string> variables =
-      read_names(block, ELEMENT_VARIABLES, "output variable");
+      read_names(deck, block, ELEMENT_VARIABLES, "output variable");
   if (block.data.empty()) {
-    error(keyword.where, keyword, "no output variables", "expected a data line such as S, EVOL");
+    error(deck, keyword.where, keyword, "no output variables",
+          "expected a data line such as S, EVOL");
     return;
   }
-  OutputRequest& request = open_request(step, m_output, false);
+  OutputRequest& request = open_request(step, deck.output, false);
   for (const std::string& name : variables) add_unique(request.element_variables, name);
   const std::string set = optional_name(keyword, "ELSET");
   if (!set.empty())
-    m_output_sets.push_back({static_cast<Index>(m_model.steps.size() - 1), m_output, false,
-                             DeckReference{set, keyword.where, keyword.label()}});
+    deck.output_sets.push_back({static_cast<Index>(deck.model.steps.size() - 1), deck.output, false,
+                                DeckReference{set, keyword.where, keyword.label()}});
 }
 
-void DeckBuilder::read_energy_output(const DeckBlock& block) {
+void read_energy_output(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"VARIABLE"}});
-  if (m_output == NO_INDEX) {
-    error(keyword.where, keyword, "no *OUTPUT to attach to",
+  check_parameters(deck, keyword, {{"VARIABLE"}});
+  if (deck.output == NO_INDEX) {
+    error(deck, keyword.where, keyword, "no *OUTPUT to attach to",
           "expected *OUTPUT, HISTORY just before");
     return;
   }
-  OutputRequest& request = m_model.steps.back().outputs[static_cast<std::size_t>(m_output)];
+  OutputRequest& request = deck.model.steps.back().outputs[static_cast<std::size_t>(deck.output)];
   if (request.kind != OutputRequest::Kind::History) {
-    error(keyword.where, keyword, "energy output is history output",
+    error(deck, keyword.where, keyword, "energy output is history output",
           "expected *ENERGY OUTPUT under *OUTPUT, HISTORY");
     return;
   }
   const std::string variable = optional_name(keyword, "VARIABLE");
   if (!variable.empty() && variable != "PRESELECT" && variable != "ALL") {
-    error(keyword.where, keyword, "bad VARIABLE=" + variable,
+    error(deck, keyword.where, keyword, "bad VARIABLE=" + variable,
           "expected VARIABLE=PRESELECT or VARIABLE=ALL");
     return;
   }
-  const std::vector<std::string> variables = read_names(block, ENERGY_VARIABLES, "energy variable");
+  const std::vector<std::string> variables =
+      read_names(deck, block, ENERGY_VARIABLES, "energy variable");
   const bool all_already = request.energy && request.energy_variables.empty();
   request.energy = true;
   if (variables.empty() || !variable.empty() || all_already) {
@@ -212,32 +218,33 @@ void DeckBuilder::read_energy_output(const DeckBlock& block) {
   }
 }
 
-void DeckBuilder::read_contact_output(const DeckBlock& block) {
+void read_contact_output(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"GENERAL CONTACT", false}, {"VARIABLE"}});
-  if (m_output == NO_INDEX) {
-    error(keyword.where, keyword, "no *OUTPUT to attach to", "expected *OUTPUT, FIELD just before");
+  check_parameters(deck, keyword, {{"GENERAL CONTACT", false}, {"VARIABLE"}});
+  if (deck.output == NO_INDEX) {
+    error(deck, keyword.where, keyword, "no *OUTPUT to attach to",
+          "expected *OUTPUT, FIELD just before");
     return;
   }
-  OutputRequest& request = m_model.steps.back().outputs[static_cast<std::size_t>(m_output)];
+  OutputRequest& request = deck.model.steps.back().outputs[static_cast<std::size_t>(deck.output)];
   if (request.kind != OutputRequest::Kind::Field) {
-    error(keyword.where, keyword, "contact history output is not supported yet",
+    error(deck, keyword.where, keyword, "contact history output is not supported yet",
           "expected *CONTACT OUTPUT under *OUTPUT, FIELD (contact energies: ALLFD, ALLPW in "
           "*ENERGY OUTPUT)");
     return;
   }
   const std::string variable = optional_name(keyword, "VARIABLE");
   if (!variable.empty() && variable != "PRESELECT" && variable != "ALL") {
-    error(keyword.where, keyword, "bad VARIABLE=" + variable,
+    error(deck, keyword.where, keyword, "bad VARIABLE=" + variable,
           "expected VARIABLE=PRESELECT or VARIABLE=ALL");
     return;
   }
   std::vector<std::string> variables =
-      read_names(block, CONTACT_VARIABLES, "contact output variable");
+      read_names(deck, block, CONTACT_VARIABLES, "contact output variable");
   if (!variable.empty()) {
     for (std::string_view name : CONTACT_VARIABLES) add_unique(variables, std::string(name));
   } else if (block.data.empty()) {
-    error(keyword.where, keyword, "no output variables",
+    error(deck, keyword.where, keyword, "no output variables",
           "expected a data line such as CSTRESS, CSTATUS, or VARIABLE=PRESELECT");
     return;
   }

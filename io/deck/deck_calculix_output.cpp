@@ -8,8 +8,8 @@
 /// the requests take the Abaqus/Explicit defaults instead (20 field frames, 200 history
 /// points per step), and FREQUENCY= is noted as not used.
 
-#include "io/deck_builder.hpp"
-#include "io/deck_output_variables.hpp"
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_output_variables.hpp"
 
 namespace xpl::io {
 
@@ -31,31 +31,33 @@ std::string unused_parameters(const DeckKeyword& keyword, std::string_view set_p
 
 }  // namespace
 
-void DeckBuilder::read_file_output(const DeckBlock& block, bool node) {
+void read_file_output(DeckState& deck, const DeckBlock& block, bool node) {
   const DeckKeyword& keyword = block.keyword;
   const std::string_view set_parameter = node ? "NSET" : "ELSET";
   if (node)
-    check_parameters(keyword, {{"NSET"},
-                               {"FREQUENCY"},
-                               {"FREQUENCYF"},
-                               {"OUTPUT"},
-                               {"GLOBAL"},
-                               {"TIME POINTS"},
-                               {"LAST ITERATIONS", false},
-                               {"CONTACT ELEMENTS", false}});
+    check_parameters(deck, keyword,
+                     {{"NSET"},
+                      {"FREQUENCY"},
+                      {"FREQUENCYF"},
+                      {"OUTPUT"},
+                      {"GLOBAL"},
+                      {"TIME POINTS"},
+                      {"LAST ITERATIONS", false},
+                      {"CONTACT ELEMENTS", false}});
   else
-    check_parameters(keyword, {{"ELSET"},
-                               {"FREQUENCY"},
-                               {"FREQUENCYF"},
-                               {"OUTPUT"},
-                               {"POSITION"},
-                               {"GLOBAL"},
-                               {"TIME POINTS"},
-                               {"LAST ITERATIONS", false},
-                               {"CONTACT ELEMENTS", false},
-                               {"SECTION FORCES", false}});
+    check_parameters(deck, keyword,
+                     {{"ELSET"},
+                      {"FREQUENCY"},
+                      {"FREQUENCYF"},
+                      {"OUTPUT"},
+                      {"POSITION"},
+                      {"GLOBAL"},
+                      {"TIME POINTS"},
+                      {"LAST ITERATIONS", false},
+                      {"CONTACT ELEMENTS", false},
+                      {"SECTION FORCES", false}});
   if (block.data.empty()) {
-    error(keyword.where, keyword, "no output variables",
+    error(deck, keyword.where, keyword, "no output variables",
           node ? "expected a data line such as U, RF" : "expected a data line such as S");
     return;
   }
@@ -78,7 +80,7 @@ void DeckBuilder::read_file_output(const DeckBlock& block, bool node) {
            (node ? "*NODE OUTPUT" : "*ELEMENT OUTPUT") +
            (set.empty() ? "" : ", " + std::string(set_parameter) + "=" + set) + ": " +
            joined(variables);
-    Step& step = m_model.steps.back();
+    Step& step = deck.model.steps.back();
     OutputRequest request;
     request.kind = OutputRequest::Kind::Field;
     request.number_interval = 20;  // the Abaqus/Explicit default
@@ -86,29 +88,31 @@ void DeckBuilder::read_file_output(const DeckBlock& block, bool node) {
     request.where = keyword.where;
     step.outputs.push_back(std::move(request));
     if (!set.empty())
-      m_output_sets.push_back({static_cast<Index>(m_model.steps.size() - 1),
-                               static_cast<Index>(step.outputs.size() - 1), node,
-                               DeckReference{set, keyword.where, keyword.label()}});
+      deck.output_sets.push_back({static_cast<Index>(deck.model.steps.size() - 1),
+                                  static_cast<Index>(step.outputs.size() - 1), node,
+                                  DeckReference{set, keyword.where, keyword.label()}});
   }
   if (!dropped.empty()) text += "; dropped (not available in xpl): " + joined(dropped);
   if (const std::string unused = unused_parameters(keyword, set_parameter); !unused.empty())
     text += "; not used: " + unused;
-  note(keyword.where, keyword, text);
+  note(deck, keyword.where, keyword, text);
 }
 
-void DeckBuilder::read_node_print(const DeckBlock& block) {
+void read_node_print(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"NSET"},
-                             {"FREQUENCY"},
-                             {"FREQUENCYF"},
-                             {"TOTALS"},
-                             {"GLOBAL"},
-                             {"TIME POINTS"},
-                             {"LAST ITERATIONS", false},
-                             {"CONTACT ELEMENTS", false}});
-  const std::optional<std::string> set = required_name(keyword, "NSET");
+  check_parameters(deck, keyword,
+                   {{"NSET"},
+                    {"FREQUENCY"},
+                    {"FREQUENCYF"},
+                    {"TOTALS"},
+                    {"GLOBAL"},
+                    {"TIME POINTS"},
+                    {"LAST ITERATIONS", false},
+                    {"CONTACT ELEMENTS", false}});
+  const std::optional<std::string> set = required_name(deck, keyword, "NSET");
   if (block.data.empty()) {
-    error(keyword.where, keyword, "no output variables", "expected a data line such as U, RF");
+    error(deck, keyword.where, keyword, "no output variables",
+          "expected a data line such as U, RF");
     return;
   }
   std::vector<std::string> components, variables, dropped;
@@ -126,26 +130,36 @@ void DeckBuilder::read_node_print(const DeckBlock& block) {
   } else {
     text = "read as *OUTPUT, HISTORY, NUMBER INTERVAL=200 with *NODE OUTPUT, NSET=" + *set + ": " +
            joined(variables);
-    Step& step = m_model.steps.back();
+    Step& step = deck.model.steps.back();
     OutputRequest request;
     request.kind = OutputRequest::Kind::History;
     request.number_interval = 200;  // the Abaqus/Explicit default
     request.node_variables = components;
     request.where = keyword.where;
     step.outputs.push_back(std::move(request));
-    m_output_sets.push_back({static_cast<Index>(m_model.steps.size() - 1),
-                             static_cast<Index>(step.outputs.size() - 1), true,
-                             DeckReference{*set, keyword.where, keyword.label()}});
+    deck.output_sets.push_back({static_cast<Index>(deck.model.steps.size() - 1),
+                                static_cast<Index>(step.outputs.size() - 1), true,
+                                DeckReference{*set, keyword.where, keyword.label()}});
   }
   if (!dropped.empty()) text += "; dropped (not available in xpl): " + joined(dropped);
   if (const std::string unused = unused_parameters(keyword, "NSET"); !unused.empty())
     text += "; not used: " + unused;
-  note(keyword.where, keyword, text);
+  note(deck, keyword.where, keyword, text);
 }
 
-void DeckBuilder::read_ignored_output(const DeckBlock& block, const std::string& why) {
+void read_ignored_output(DeckState& deck, const DeckBlock& block, const std::string& why) {
   // Neither parameters nor data lines are checked: nothing of the keyword is used.
-  note(block.keyword.where, block.keyword, why);
+  note(deck, block.keyword.where, block.keyword, why);
+}
+
+void read_el_print(DeckState& deck, const DeckBlock& block) {
+  read_ignored_output(deck, block, "element history output is not available in xpl; ignored");
+}
+
+void read_contact_file(DeckState& deck, const DeckBlock& block) {
+  read_ignored_output(deck, block,
+                      "ignored: contact results are requested with *CONTACT OUTPUT (CSTRESS, "
+                      "CSTATUS, CFORCE) and the energies ALLFD, ALLPW in *ENERGY OUTPUT");
 }
 
 }  // namespace xpl::io

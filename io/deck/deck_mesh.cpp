@@ -4,8 +4,8 @@
 #include <array>
 #include <string>
 
-#include "io/deck_builder.hpp"
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 namespace xpl::io {
 
@@ -25,31 +25,31 @@ void reserve_more(Container& container, std::size_t capacity, std::size_t extra)
 
 }  // namespace
 
-void DeckBuilder::read_heading(const DeckBlock& block) {
-  check_parameters(block.keyword, {});
+void read_heading(DeckState& deck, const DeckBlock& block) {
+  check_parameters(deck, block.keyword, {});
   for (const DeckDataLine& line : block.data) {
-    if (!m_model.heading.empty()) m_model.heading += '\n';
-    m_model.heading += line.text;
+    if (!deck.model.heading.empty()) deck.model.heading += '\n';
+    deck.model.heading += line.text;
   }
 }
 
-void DeckBuilder::read_node(const DeckBlock& block) {
+void read_node(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"NSET"}});
+  check_parameters(deck, keyword, {{"NSET"}});
   const std::string set_name = optional_name(keyword, "NSET");
-  const Index set = set_name.empty() ? NO_INDEX : node_set_index(set_name, keyword.where);
+  const Index set = set_name.empty() ? NO_INDEX : node_set_index(deck, set_name, keyword.where);
   const std::size_t n_lines = block.data.size();
-  reserve_more(m_model.node_ids, m_model.node_ids.capacity(), n_lines);
-  reserve_more(m_coordinates, m_coordinates.capacity(), 3 * n_lines);
-  reserve_more(m_node_index, m_node_index.bucket_count(), n_lines);
+  reserve_more(deck.model.node_ids, deck.model.node_ids.capacity(), n_lines);
+  reserve_more(deck.coordinates, deck.coordinates.capacity(), 3 * n_lines);
+  reserve_more(deck.node_index, deck.node_index.bucket_count(), n_lines);
   if (set != NO_INDEX)
-    reserve_more(m_node_sets[set].members, m_node_sets[set].members.capacity(), n_lines);
+    reserve_more(deck.node_sets[set].members, deck.node_sets[set].members.capacity(), n_lines);
   for (const DeckDataLine& line : block.data) {
-    check_field_count(line, keyword, 4, "id, x, y, z");
-    const std::optional<long long> id = integer_field(line, keyword, 0, "node id");
+    check_field_count(deck, line, keyword, 4, "id, x, y, z");
+    const std::optional<long long> id = integer_field(deck, line, keyword, 0, "node id");
     if (!id) continue;
     if (*id <= 0) {
-      error(line.where(), keyword, "node id " + id_text(*id) + " is not positive",
+      error(deck, line.where(), keyword, "node id " + id_text(*id) + " is not positive",
             "expected ids 1, 2, ...");
       continue;
     }
@@ -57,69 +57,70 @@ void DeckBuilder::read_node(const DeckBlock& block) {
     bool ok = true;
     for (std::size_t c = 0; c < 3; ++c) {
       const std::optional<Real> value =
-          real_field(line, keyword, c + 1, std::string("coordinate ") + "xyz"[c], 0.0);
+          real_field(deck, line, keyword, c + 1, std::string("coordinate ") + "xyz"[c], 0.0);
       ok = ok && value.has_value();
       if (value) x[c] = *value;
     }
-    const auto [it, inserted] = m_node_index.emplace(*id, m_model.node_count());
+    const auto [it, inserted] = deck.node_index.emplace(*id, deck.model.node_count());
     if (!inserted) {
-      error(line.where(), keyword, "node " + id_text(*id) + " is defined twice",
+      error(deck, line.where(), keyword, "node " + id_text(*id) + " is defined twice",
             "expected each node id once");
       continue;
     }
     // A bad coordinate is reported; the node still counts as defined.
-    if (!ok) m_bad_coordinate_nodes.push_back(it->second);
-    m_model.node_ids.push_back(*id);
-    m_coordinates.insert(m_coordinates.end(), {x[0], x[1], x[2]});
-    if (set != NO_INDEX) m_node_sets[set].members.push_back(it->second);
+    if (!ok) deck.bad_coordinate_nodes.push_back(it->second);
+    deck.model.node_ids.push_back(*id);
+    deck.coordinates.insert(deck.coordinates.end(), {x[0], x[1], x[2]});
+    if (set != NO_INDEX) deck.node_sets[set].members.push_back(it->second);
   }
 }
 
-void DeckBuilder::read_element(const DeckBlock& block) {
+void read_element(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"TYPE"}, {"ELSET"}});
-  const std::optional<std::string> type = required_name(keyword, "TYPE");
+  check_parameters(deck, keyword, {{"TYPE"}, {"ELSET"}});
+  const std::optional<std::string> type = required_name(deck, keyword, "TYPE");
   if (!type) return;
   ElementType element_type = ElementType::C3D8R;
   if (*type == "MASS" || *type == "ROTARYI") {
-    read_point_elements(block, *type == "ROTARYI");
+    read_point_elements(deck, block, *type == "ROTARYI");
     return;
   }
   if (*type == "S4R" || *type == "S4") {
     element_type = ElementType::S4R;
   } else if (*type != "C3D8R") {
-    error(keyword.where, keyword, "element type " + *type + " is not supported yet",
+    error(deck, keyword.where, keyword, "element type " + *type + " is not supported yet",
           "supported: C3D8R, S4R (S4 is run as S4R), MASS, ROTARYI");
     return;
   }
   if (*type == "S4")
-    m_model.deck_messages.push_back(
+    deck.model.deck_messages.push_back(
         {false, location_text(keyword.where) + ": " + keyword.label() +
                     ": S4 elements are run as S4R (reduced integration with hourglass control)"});
   const int n_nodes = nodes_per_element(element_type);
   const std::string set_name = optional_name(keyword, "ELSET");
-  const Index set = set_name.empty() ? NO_INDEX : element_set_index(set_name, keyword.where);
+  const Index set = set_name.empty() ? NO_INDEX : element_set_index(deck, set_name, keyword.where);
   const std::size_t n_lines = block.data.size();
-  reserve_more(m_model.element_ids, m_model.element_ids.capacity(), n_lines);
-  reserve_more(m_model.element_types, m_model.element_types.capacity(), n_lines);
-  reserve_more(m_model.element_offsets, m_model.element_offsets.capacity(), n_lines);
-  reserve_more(m_model.element_file, m_model.element_file.capacity(), n_lines);
-  reserve_more(m_model.element_line, m_model.element_line.capacity(), n_lines);
-  reserve_more(m_element_node_ids, m_element_node_ids.capacity(),
+  reserve_more(deck.model.element_ids, deck.model.element_ids.capacity(), n_lines);
+  reserve_more(deck.model.element_types, deck.model.element_types.capacity(), n_lines);
+  reserve_more(deck.model.element_offsets, deck.model.element_offsets.capacity(), n_lines);
+  reserve_more(deck.model.element_file, deck.model.element_file.capacity(), n_lines);
+  reserve_more(deck.model.element_line, deck.model.element_line.capacity(), n_lines);
+  reserve_more(deck.element_node_ids, deck.element_node_ids.capacity(),
                static_cast<std::size_t>(n_nodes) * n_lines);
-  reserve_more(m_element_index, m_element_index.bucket_count(), n_lines);
+  reserve_more(deck.element_index, deck.element_index.bucket_count(), n_lines);
   if (set != NO_INDEX)
-    reserve_more(m_element_sets[set].members, m_element_sets[set].members.capacity(), n_lines);
+    reserve_more(deck.element_sets[set].members, deck.element_sets[set].members.capacity(),
+                 n_lines);
   for (const DeckDataLine& line : block.data) {
-    const std::optional<long long> id = integer_field(line, keyword, 0, "element id");
+    const std::optional<long long> id = integer_field(deck, line, keyword, 0, "element id");
     if (!id) continue;
     if (*id <= 0) {
-      error(line.where(), keyword, "element id " + id_text(*id) + " is not positive",
+      error(deck, line.where(), keyword, "element id " + id_text(*id) + " is not positive",
             "expected ids 1, 2, ...");
       continue;
     }
     if (line.fields.size() != static_cast<std::size_t>(n_nodes) + 1) {
-      error(line.where(), keyword,
+      error(deck, line.where(), keyword,
             "element " + id_text(*id) + " has " + std::to_string(line.fields.size() - 1) +
                 " node ids",
             "expected " + std::to_string(n_nodes) + " node ids for " + *type +
@@ -130,39 +131,40 @@ void DeckBuilder::read_element(const DeckBlock& block) {
     int found = 0;
     for (int k = 1; k <= n_nodes; ++k) {
       const std::optional<long long> node =
-          integer_field(line, keyword, static_cast<std::size_t>(k), "node id");
+          integer_field(deck, line, keyword, static_cast<std::size_t>(k), "node id");
       if (node && static_cast<std::size_t>(found) < nodes.size())
         nodes[static_cast<std::size_t>(found++)] = *node;
     }
     if (found != n_nodes) continue;
-    const auto [it, inserted] = m_element_index.emplace(*id, m_model.element_count());
-    if (!inserted || (!m_point_element_index.empty() && m_point_element_index.contains(*id))) {
-      if (inserted) m_element_index.erase(it);
-      error(line.where(), keyword, "element " + id_text(*id) + " is defined twice",
+    const auto [it, inserted] = deck.element_index.emplace(*id, deck.model.element_count());
+    if (!inserted ||
+        (!deck.point_element_index.empty() && deck.point_element_index.contains(*id))) {
+      if (inserted) deck.element_index.erase(it);
+      error(deck, line.where(), keyword, "element " + id_text(*id) + " is defined twice",
             "expected each element id once");
       continue;
     }
-    m_model.element_ids.push_back(*id);
-    m_model.element_types.push_back(element_type);
-    m_element_node_ids.insert(m_element_node_ids.end(), nodes.begin(), nodes.begin() + found);
-    m_model.element_offsets.push_back(static_cast<Index>(m_element_node_ids.size()));
-    m_model.add_element_source(*line.file, line.line);
-    if (set != NO_INDEX) m_element_sets[set].members.push_back(it->second);
+    deck.model.element_ids.push_back(*id);
+    deck.model.element_types.push_back(element_type);
+    deck.element_node_ids.insert(deck.element_node_ids.end(), nodes.begin(), nodes.begin() + found);
+    deck.model.element_offsets.push_back(static_cast<Index>(deck.element_node_ids.size()));
+    deck.model.add_element_source(*line.file, line.line);
+    if (set != NO_INDEX) deck.element_sets[set].members.push_back(it->second);
   }
 }
 
-void DeckBuilder::read_set(const DeckBlock& block, bool node_set) {
+void read_set(DeckState& deck, const DeckBlock& block, bool node_set) {
   const DeckKeyword& keyword = block.keyword;
   const std::string_view set_parameter = node_set ? "NSET" : "ELSET";
   if (node_set)
-    check_parameters(keyword, {{"NSET"}, {"GENERATE", false}, {"ELSET"}});
+    check_parameters(deck, keyword, {{"NSET"}, {"GENERATE", false}, {"ELSET"}});
   else
-    check_parameters(keyword, {{"ELSET"}, {"GENERATE", false}});
-  const std::optional<std::string> name = required_name(keyword, set_parameter);
+    check_parameters(deck, keyword, {{"ELSET"}, {"GENERATE", false}});
+  const std::optional<std::string> name = required_name(deck, keyword, set_parameter);
   if (!name) return;
-  const Index set =
-      node_set ? node_set_index(*name, keyword.where) : element_set_index(*name, keyword.where);
-  std::vector<SetItem>& items = node_set ? m_node_sets[set].items : m_element_sets[set].items;
+  const Index set = node_set ? node_set_index(deck, *name, keyword.where)
+                             : element_set_index(deck, *name, keyword.where);
+  std::vector<SetItem>& items = node_set ? deck.node_sets[set].items : deck.element_sets[set].items;
   SetItem base;
   base.keyword = keyword.label();
   base.where = keyword.where;
@@ -174,22 +176,22 @@ void DeckBuilder::read_set(const DeckBlock& block, bool node_set) {
     item.name = optional_name(keyword, "ELSET");
     if (!item.name.empty()) items.push_back(item);
     if (find_parameter(keyword, "GENERATE") != nullptr)
-      error(keyword.where, keyword,
+      error(deck, keyword.where, keyword,
             "GENERATE together with ELSET=", "expected either ELSET= or data lines");
-    expect_no_data(block);
+    expect_no_data(deck, block);
     return;
   }
   if (find_parameter(keyword, "GENERATE") != nullptr) {
     for (const DeckDataLine& line : block.data) {
-      check_field_count(line, keyword, 3, "first, last[, increment]");
-      const std::optional<long long> first = integer_field(line, keyword, 0, "first id");
-      const std::optional<long long> last = integer_field(line, keyword, 1, "last id");
+      check_field_count(deck, line, keyword, 3, "first, last[, increment]");
+      const std::optional<long long> first = integer_field(deck, line, keyword, 0, "first id");
+      const std::optional<long long> last = integer_field(deck, line, keyword, 1, "last id");
       std::optional<long long> increment = 1;
       if (line.fields.size() > 2 && !line.fields[2].empty())
-        increment = integer_field(line, keyword, 2, "increment");
+        increment = integer_field(deck, line, keyword, 2, "increment");
       if (!first || !last || !increment) continue;
       if (*first <= 0 || *last < *first || *increment <= 0) {
-        error(line.where(), keyword,
+        error(deck, line.where(), keyword,
               "bad range " + id_text(*first) + ", " + id_text(*last) + ", " + id_text(*increment),
               "expected 0 < first <= last and increment >= 1");
         continue;
@@ -212,7 +214,7 @@ void DeckBuilder::read_set(const DeckBlock& block, bool node_set) {
       if (looks_numeric(field)) {
         const std::optional<long long> id = parse_integer(field);
         if (!id || *id <= 0) {
-          error(line.where(), keyword, "bad id '" + std::string(field) + "'",
+          error(deck, line.where(), keyword, "bad id '" + std::string(field) + "'",
                 std::string("expected positive ") + (node_set ? "node" : "element") +
                     " ids or set names");
           continue;
@@ -228,22 +230,22 @@ void DeckBuilder::read_set(const DeckBlock& block, bool node_set) {
   }
 }
 
-void DeckBuilder::read_surface(const DeckBlock& block) {
+void read_surface(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"NAME"}, {"TYPE"}});
-  const std::optional<std::string> name = required_name(keyword, "NAME");
+  check_parameters(deck, keyword, {{"NAME"}, {"TYPE"}});
+  const std::optional<std::string> name = required_name(deck, keyword, "NAME");
   const std::string type_text = optional_name(keyword, "TYPE");
   Surface surface;
   if (type_text == "NODE") {
     surface.type = Surface::Type::Node;
   } else if (!type_text.empty() && type_text != "ELEMENT") {
-    error(keyword.where, keyword, "surface type " + type_text + " is not supported",
+    error(deck, keyword.where, keyword, "surface type " + type_text + " is not supported",
           "expected TYPE=ELEMENT or TYPE=NODE");
     return;
   }
   if (!name) return;
-  if (m_model.find_surface(*name) != NO_INDEX) {
-    error(keyword.where, keyword, "surface " + *name + " is defined twice",
+  if (deck.model.find_surface(*name) != NO_INDEX) {
+    error(deck, keyword.where, keyword, "surface " + *name + " is defined twice",
           "expected each surface name once");
     return;
   }
@@ -251,7 +253,7 @@ void DeckBuilder::read_surface(const DeckBlock& block) {
   surface.where = keyword.where;
   std::vector<PendingSurfaceItem> items;
   for (const DeckDataLine& line : block.data) {
-    check_field_count(line, keyword, 2,
+    check_field_count(deck, line, keyword, 2,
                       surface.type == Surface::Type::Node
                           ? "node or node set[, factor]"
                           : "element or element set, face S1..S6 (solids) or SPOS, SNEG (shells)");
@@ -260,7 +262,7 @@ void DeckBuilder::read_surface(const DeckBlock& block) {
     if (surface.type == Surface::Type::Node) {
       // The optional weight factor is checked but not kept: Surface has no field for it and
       // node surfaces are only used as contact node lists.
-      if (line.fields.size() > 1) real_field(line, keyword, 1, "factor", 1.0);
+      if (line.fields.size() > 1) real_field(deck, line, keyword, 1, "factor", 1.0);
     } else {
       // Whether the face fits the element type is checked once the elements are known.
       const std::string face = line.fields.size() > 1 ? normalize_name(line.fields[1]) : "";
@@ -273,7 +275,7 @@ void DeckBuilder::read_surface(const DeckBlock& block) {
       } else if (face.size() == 2 && face[0] == 'S' && face[1] >= '1' && face[1] <= '6') {
         item.face = face[1] - '1';
       } else {
-        error(line.where(), keyword, "bad face label " + face,
+        error(deck, line.where(), keyword, "bad face label " + face,
               "expected S1, S2, S3, S4, S5 or S6 on C3D8R elements, SPOS or SNEG on S4R "
               "elements, or none (all exposed faces, both sides of shells)");
         continue;
@@ -281,8 +283,8 @@ void DeckBuilder::read_surface(const DeckBlock& block) {
     }
     items.push_back(item);
   }
-  m_model.surfaces.push_back(std::move(surface));
-  m_surface_items.push_back(std::move(items));
+  deck.model.surfaces.push_back(std::move(surface));
+  deck.surface_items.push_back(std::move(items));
 }
 
 }  // namespace xpl::io

@@ -1,4 +1,4 @@
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 #include <cctype>
 #include <charconv>

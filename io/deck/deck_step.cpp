@@ -1,8 +1,8 @@
 /// \file History keywords: *STEP, *END STEP, *DYNAMIC, *BULK VISCOSITY, *BOUNDARY, *CLOAD.
 /// Pressures (*DLOAD, *DSLOAD) are in deck_pressure.cpp.
 
-#include "io/deck_builder.hpp"
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 namespace xpl::io {
 
@@ -23,12 +23,13 @@ std::vector<std::pair<int, int>> boundary_type_dofs(const std::string& word) {
 
 }  // namespace
 
-void DeckBuilder::read_step(const DeckBlock& block) {
+void read_step(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   // INC= and INCF= are CalculiX's increment limits: accepted, noted as not used.
-  check_parameters(keyword, {{"NAME"}, {"NLGEOM", false, true}, {"AMPLITUDE"}, {"INC"}, {"INCF"}});
-  if (m_in_step) {
-    error(keyword.where, keyword, "a step is already open",
+  check_parameters(deck, keyword,
+                   {{"NAME"}, {"NLGEOM", false, true}, {"AMPLITUDE"}, {"INC"}, {"INCF"}});
+  if (deck.in_step) {
+    error(deck, keyword.where, keyword, "a step is already open",
           "expected *END STEP before the next *STEP");
     return;
   }
@@ -38,58 +39,59 @@ void DeckBuilder::read_step(const DeckBlock& block) {
   const DeckParameter* name = find_parameter(keyword, "NAME");
   step.name = name != nullptr && name->has_value && !name->value.empty()
                   ? name->value
-                  : "Step-" + std::to_string(m_model.steps.size() + 1);
+                  : "Step-" + std::to_string(deck.model.steps.size() + 1);
   const DeckParameter* nlgeom = find_parameter(keyword, "NLGEOM");
   if (nlgeom != nullptr && nlgeom->has_value && normalize_name(nlgeom->value) != "YES") {
-    error(keyword.where, keyword, "NLGEOM=" + nlgeom->value + " is not supported",
+    error(deck, keyword.where, keyword, "NLGEOM=" + nlgeom->value + " is not supported",
           "expected NLGEOM or NLGEOM=YES (xpl is always geometrically nonlinear)");
   }
   const std::string amplitude = optional_name(keyword, "AMPLITUDE");
   if (amplitude == "RAMP") {
     step.ramp_amplitude = true;
   } else if (!amplitude.empty() && amplitude != "STEP") {
-    error(keyword.where, keyword, "bad AMPLITUDE=" + amplitude,
+    error(deck, keyword.where, keyword, "bad AMPLITUDE=" + amplitude,
           "expected AMPLITUDE=STEP or AMPLITUDE=RAMP");
   }
   for (const char* limit : {"INC", "INCF"})
     if (const DeckParameter* p = find_parameter(keyword, limit); p != nullptr && p->has_value)
-      note(keyword.where, keyword,
+      note(deck, keyword.where, keyword,
            p->name + "=" + p->value +
                " (CalculiX's maximum number of increments) is not used: an explicit step runs "
                "until its time period");
-  m_model.steps.push_back(std::move(step));
-  m_in_step = true;
-  m_step_has_dynamic = false;
-  m_step_where = keyword.where;
+  deck.model.steps.push_back(std::move(step));
+  deck.in_step = true;
+  deck.step_has_dynamic = false;
+  deck.step_where = keyword.where;
 }
 
-void DeckBuilder::read_end_step(const DeckBlock& block) {
+void read_end_step(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {});
-  expect_no_data(block);
-  if (!m_in_step) {
-    error(keyword.where, keyword, "no step is open", "expected *STEP before *END STEP");
+  check_parameters(deck, keyword, {});
+  expect_no_data(deck, block);
+  if (!deck.in_step) {
+    error(deck, keyword.where, keyword, "no step is open", "expected *STEP before *END STEP");
     return;
   }
-  if (!m_step_has_dynamic)
-    m_errors.add(m_step_where, "*STEP", "step " + m_model.steps.back().name + " has no procedure",
-                 "expected *DYNAMIC, EXPLICIT with the time period");
-  m_in_step = false;
+  if (!deck.step_has_dynamic)
+    deck.errors.add(deck.step_where, "*STEP",
+                    "step " + deck.model.steps.back().name + " has no procedure",
+                    "expected *DYNAMIC, EXPLICIT with the time period");
+  deck.in_step = false;
 }
 
-void DeckBuilder::read_dynamic(const DeckBlock& block) {
+void read_dynamic(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword,
+  check_parameters(deck, keyword,
                    {{"EXPLICIT", false}, {"DIRECT USER CONTROL", false}, {"SCALE FACTOR"}});
-  Step& step = m_model.steps.back();
-  if (m_step_has_dynamic) {
-    error(keyword.where, keyword, "second procedure in step " + step.name,
+  Step& step = deck.model.steps.back();
+  if (deck.step_has_dynamic) {
+    error(deck, keyword.where, keyword, "second procedure in step " + step.name,
           "expected one *DYNAMIC, EXPLICIT per step");
     return;
   }
-  m_step_has_dynamic = true;
+  deck.step_has_dynamic = true;
   if (find_parameter(keyword, "EXPLICIT") == nullptr) {
-    error(keyword.where, keyword, "implicit dynamics is not supported",
+    error(deck, keyword.where, keyword, "implicit dynamics is not supported",
           "expected *DYNAMIC, EXPLICIT");
     return;
   }
@@ -98,100 +100,105 @@ void DeckBuilder::read_dynamic(const DeckBlock& block) {
       factor != nullptr && factor->has_value && !factor->value.empty()) {
     const std::optional<Real> value = parse_real(factor->value);
     if (!value || *value <= 0.0)
-      error(keyword.where, keyword, "bad SCALE FACTOR=" + factor->value,
+      error(deck, keyword.where, keyword, "bad SCALE FACTOR=" + factor->value,
             "expected a number > 0, e.g. SCALE FACTOR=0.9");
     else
       step.time_scale_factor = *value;
   }
   if (block.data.size() != 1) {
-    error(keyword.where, keyword, "found " + std::to_string(block.data.size()) + " data lines",
+    error(deck, keyword.where, keyword,
+          "found " + std::to_string(block.data.size()) + " data lines",
           "expected one data line: [time increment], time period");
     return;
   }
   // Abaqus/Explicit data line: (1) blank, or the fixed increment with DIRECT USER CONTROL,
   // (2) time period, (3) blank, (4) maximum increment (not supported).
   const DeckDataLine& line = block.data.front();
-  check_field_count(line, keyword, 4, "[time increment], time period");
-  const std::optional<Real> period = real_field(line, keyword, 1, "time period");
+  check_field_count(deck, line, keyword, 4, "[time increment], time period");
+  const std::optional<Real> period = real_field(deck, line, keyword, 1, "time period");
   if (period && *period <= 0.0)
-    error(line.where(), keyword, "time period " + number_text(*period) + " is not positive",
+    error(deck, line.where(), keyword, "time period " + number_text(*period) + " is not positive",
           "expected a time period > 0");
   else if (period)
     step.time_period = *period;
   const bool has_increment = !line.fields.empty() && !line.fields[0].empty();
   if (direct) {
-    const std::optional<Real> increment = real_field(line, keyword, 0, "time increment");
+    const std::optional<Real> increment = real_field(deck, line, keyword, 0, "time increment");
     if (increment && *increment <= 0.0)
-      error(line.where(), keyword, "time increment " + number_text(*increment) + " is not positive",
+      error(deck, line.where(), keyword,
+            "time increment " + number_text(*increment) + " is not positive",
             "expected a fixed time increment > 0");
     else if (increment)
       step.fixed_increment = *increment;
   } else if (has_increment) {
-    error(line.where(), keyword, "a time increment is given without DIRECT USER CONTROL",
+    error(deck, line.where(), keyword, "a time increment is given without DIRECT USER CONTROL",
           "expected the first value blank, or *DYNAMIC, EXPLICIT, DIRECT USER CONTROL");
   }
   if (line.fields.size() > 2 && !line.fields[2].empty())
-    error(line.where(), keyword, "unexpected third value '" + std::string(line.fields[2]) + "'",
-          "expected it blank");
+    error(deck, line.where(), keyword,
+          "unexpected third value '" + std::string(line.fields[2]) + "'", "expected it blank");
   if (line.fields.size() > 3 && !line.fields[3].empty())
-    error(line.where(), keyword, "a maximum time increment is not supported yet",
+    error(deck, line.where(), keyword, "a maximum time increment is not supported yet",
           "expected the fourth value blank");
 }
 
-void DeckBuilder::read_bulk_viscosity(const DeckBlock& block) {
+void read_bulk_viscosity(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {});
+  check_parameters(deck, keyword, {});
   if (block.data.size() != 1) {
-    error(keyword.where, keyword, "found " + std::to_string(block.data.size()) + " data lines",
+    error(deck, keyword.where, keyword,
+          "found " + std::to_string(block.data.size()) + " data lines",
           "expected one data line: b1, b2");
     return;
   }
-  Step& step = m_model.steps.back();
+  Step& step = deck.model.steps.back();
   const DeckDataLine& line = block.data.front();
-  check_field_count(line, keyword, 2, "b1, b2");
-  const std::optional<Real> linear = real_field(line, keyword, 0, "b1", step.bulk_linear);
-  const std::optional<Real> quadratic = real_field(line, keyword, 1, "b2", step.bulk_quadratic);
+  check_field_count(deck, line, keyword, 2, "b1, b2");
+  const std::optional<Real> linear = real_field(deck, line, keyword, 0, "b1", step.bulk_linear);
+  const std::optional<Real> quadratic =
+      real_field(deck, line, keyword, 1, "b2", step.bulk_quadratic);
   if (linear && *linear < 0.0)
-    error(line.where(), keyword, "b1 " + number_text(*linear) + " is negative", "expected b1 >= 0");
+    error(deck, line.where(), keyword, "b1 " + number_text(*linear) + " is negative",
+          "expected b1 >= 0");
   else if (linear)
     step.bulk_linear = *linear;
   if (quadratic && *quadratic < 0.0)
-    error(line.where(), keyword, "b2 " + number_text(*quadratic) + " is negative",
+    error(deck, line.where(), keyword, "b2 " + number_text(*quadratic) + " is negative",
           "expected b2 >= 0");
   else if (quadratic)
     step.bulk_quadratic = *quadratic;
 }
 
-void DeckBuilder::read_boundary(const DeckBlock& block) {
+void read_boundary(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"TYPE"}, {"AMPLITUDE"}, {"OP"}});
-  const Index step = m_in_step ? static_cast<Index>(m_model.steps.size() - 1) : NO_INDEX;
+  check_parameters(deck, keyword, {{"TYPE"}, {"AMPLITUDE"}, {"OP"}});
+  const Index step = deck.in_step ? static_cast<Index>(deck.model.steps.size() - 1) : NO_INDEX;
   BoundaryCondition condition;
   const std::string type = optional_name(keyword, "TYPE");
   if (type == "VELOCITY") {
     condition.type = BoundaryType::Velocity;
   } else if (!type.empty() && type != "DISPLACEMENT") {
-    error(keyword.where, keyword, "boundary type " + type + " is not supported",
+    error(deck, keyword.where, keyword, "boundary type " + type + " is not supported",
           "expected TYPE=DISPLACEMENT or TYPE=VELOCITY");
     return;
   }
   const std::string op = optional_name(keyword, "OP");
   if (!op.empty() && op != "MOD" && op != "NEW") {
-    error(keyword.where, keyword, "bad OP=" + op, "expected OP=MOD or OP=NEW");
+    error(deck, keyword.where, keyword, "bad OP=" + op, "expected OP=MOD or OP=NEW");
     return;
   }
   if (!op.empty() && step == NO_INDEX) {
-    error(keyword.where, keyword, "OP= outside a step",
+    error(deck, keyword.where, keyword, "OP= outside a step",
           "expected OP= only on a *BOUNDARY inside a step");
     return;
   }
-  if (op == "NEW") m_model.steps.back().boundaries_reset = true;
+  if (op == "NEW") deck.model.steps.back().boundaries_reset = true;
   const std::string amplitude = optional_name(keyword, "AMPLITUDE");
   for (const DeckDataLine& line : block.data) {
     std::vector<std::pair<int, int>> ranges;
     Real value = 0.0;
     if (line.fields.size() < 2 || line.fields[1].empty()) {
-      error(line.where(), keyword, "missing dof",
+      error(deck, line.where(), keyword, "missing dof",
             "expected node or node set, first dof[, last dof[, value]] or a type such as "
             "ENCASTRE");
       continue;
@@ -200,22 +207,22 @@ void DeckBuilder::read_boundary(const DeckBlock& block) {
       const std::string word = normalize_name(line.fields[1]);
       ranges = boundary_type_dofs(word);
       if (ranges.empty()) {
-        error(line.where(), keyword, "unknown boundary type " + word,
+        error(deck, line.where(), keyword, "unknown boundary type " + word,
               "expected a dof number or ENCASTRE, PINNED, XSYMM, YSYMM, ZSYMM, XASYMM, YASYMM, "
               "ZASYMM");
         continue;
       }
-      check_field_count(line, keyword, 2, "node or node set, type");
+      check_field_count(deck, line, keyword, 2, "node or node set, type");
     } else {
-      check_field_count(line, keyword, 4, "node or node set, first dof[, last dof[, value]]");
-      const std::optional<long long> first = integer_field(line, keyword, 1, "first dof");
+      check_field_count(deck, line, keyword, 4, "node or node set, first dof[, last dof[, value]]");
+      const std::optional<long long> first = integer_field(deck, line, keyword, 1, "first dof");
       std::optional<long long> last = first;
       if (line.fields.size() > 2 && !line.fields[2].empty())
-        last = integer_field(line, keyword, 2, "last dof");
-      const std::optional<Real> magnitude = real_field(line, keyword, 3, "value", 0.0);
+        last = integer_field(deck, line, keyword, 2, "last dof");
+      const std::optional<Real> magnitude = real_field(deck, line, keyword, 3, "value", 0.0);
       if (!first || !last || !magnitude) continue;
       if (*first < 1 || *first > 6 || *last < 1 || *last > 6 || *last < *first) {
-        error(line.where(), keyword,
+        error(deck, line.where(), keyword,
               "bad dof range " + std::to_string(*first) + ".." + std::to_string(*last),
               "expected 1 <= first dof <= last dof <= 6");
         continue;
@@ -233,44 +240,44 @@ void DeckBuilder::read_boundary(const DeckBlock& block) {
       pending.condition.type = condition.type;
       pending.condition.where = line.where();
       pending.amplitude = amplitude;
-      m_boundaries.push_back(std::move(pending));
+      deck.boundaries.push_back(std::move(pending));
     }
   }
 }
 
-bool DeckBuilder::read_load_op(const DeckKeyword& keyword, bool& reset) {
+bool read_load_op(DeckState& deck, const DeckKeyword& keyword, bool& reset) {
   const std::string op = optional_name(keyword, "OP");
   if (!op.empty() && op != "MOD" && op != "NEW") {
-    error(keyword.where, keyword, "bad OP=" + op, "expected OP=MOD or OP=NEW");
+    error(deck, keyword.where, keyword, "bad OP=" + op, "expected OP=MOD or OP=NEW");
     return false;
   }
   if (op == "NEW") reset = true;
   return true;
 }
 
-void DeckBuilder::read_cload(const DeckBlock& block) {
+void read_cload(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
-  if (!read_load_op(keyword, m_model.steps.back().loads_reset)) return;
+  check_parameters(deck, keyword, {{"AMPLITUDE"}, {"OP"}});
+  if (!read_load_op(deck, keyword, deck.model.steps.back().loads_reset)) return;
   const std::string amplitude = optional_name(keyword, "AMPLITUDE");
   for (const DeckDataLine& line : block.data) {
-    check_field_count(line, keyword, 3, "node or node set, dof, magnitude");
-    const std::optional<long long> dof = integer_field(line, keyword, 1, "dof");
-    const std::optional<Real> value = real_field(line, keyword, 2, "magnitude");
+    check_field_count(deck, line, keyword, 3, "node or node set, dof, magnitude");
+    const std::optional<long long> dof = integer_field(deck, line, keyword, 1, "dof");
+    const std::optional<Real> value = real_field(deck, line, keyword, 2, "magnitude");
     if (!dof || !value) continue;
     if (*dof < 1 || *dof > 3) {
-      error(line.where(), keyword, "dof " + std::to_string(*dof) + " is out of range",
+      error(deck, line.where(), keyword, "dof " + std::to_string(*dof) + " is out of range",
             "expected dof 1, 2 or 3 (forces only)");
       continue;
     }
     PendingLoad pending;
-    pending.step = static_cast<Index>(m_model.steps.size() - 1);
+    pending.step = static_cast<Index>(deck.model.steps.size() - 1);
     pending.target = reference(line, keyword, 0);
     pending.load.dof = static_cast<int>(*dof);
     pending.load.value = *value;
     pending.load.where = line.where();
     pending.amplitude = amplitude;
-    m_loads.push_back(std::move(pending));
+    deck.loads.push_back(std::move(pending));
   }
 }
 

@@ -1,14 +1,14 @@
-/// \file Element geometry checks: the shape measures, and the builder's per-element checks run
+/// \file Element geometry checks: the shape measures, and the reader's per-element checks run
 /// once the whole mesh is known.
 
-#include "io/deck_geometry.hpp"
+#include "io/deck/deck_geometry.hpp"
 
 #include <algorithm>
 #include <sstream>
 
 #include <Eigen/Geometry>
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_handlers.hpp"
 
 namespace xpl::io {
 
@@ -60,47 +60,48 @@ QuadShape quad_shape(const std::array<Eigen::Vector3d, 4>& x) {
   return shape;
 }
 
-void DeckBuilder::check_element_geometry() {
-  std::vector<char> bad(m_bad_coordinate_nodes.empty() ? 0 : m_model.node_count(), 0);
-  for (Index n : m_bad_coordinate_nodes) bad[n] = 1;
-  for (Index e = 0; e < m_model.element_count(); ++e) {
-    const Index* nodes = m_model.nodes_of(e);
-    const Index* end = nodes + (m_model.element_offsets[e + 1] - m_model.element_offsets[e]);
+void check_element_geometry(DeckState& deck) {
+  std::vector<char> bad(deck.bad_coordinate_nodes.empty() ? 0 : deck.model.node_count(), 0);
+  for (Index n : deck.bad_coordinate_nodes) bad[n] = 1;
+  for (Index e = 0; e < deck.model.element_count(); ++e) {
+    const Index* nodes = deck.model.nodes_of(e);
+    const Index* end = nodes + (deck.model.element_offsets[e + 1] - deck.model.element_offsets[e]);
     // Undefined nodes and bad coordinates are reported already; a shape error would repeat them.
     if (std::any_of(nodes, end, [](Index n) { return n == NO_INDEX; })) continue;
     if (!bad.empty() && std::any_of(nodes, end, [&](Index n) { return bad[n] != 0; })) continue;
-    if (is_shell(m_model.element_types[static_cast<std::size_t>(e)]))
-      check_shell_geometry(e);
+    if (is_shell(deck.model.element_types[static_cast<std::size_t>(e)]))
+      check_shell_geometry(deck, e);
     else
-      check_hex_geometry(e);
+      check_hex_geometry(deck, e);
   }
 }
 
-void DeckBuilder::check_hex_geometry(Index e) {
-  const Index* nodes = m_model.nodes_of(e);
+void check_hex_geometry(DeckState& deck, Index e) {
+  const Index* nodes = deck.model.nodes_of(e);
   std::array<Eigen::Vector3d, 8> x;
-  for (int k = 0; k < 8; ++k) x[k] = m_model.coordinates.row(nodes[k]).transpose();
+  for (int k = 0; k < 8; ++k) x[k] = deck.model.coordinates.row(nodes[k]).transpose();
   const CornerJacobian smallest = smallest_corner_jacobian(x);
   if (smallest.determinant > 0.0) return;
   std::ostringstream problem;
-  problem << "inverted element " << m_model.element_ids[e] << ": volume " << smallest.determinant
-          << " at corner node " << m_model.node_ids[nodes[smallest.corner]];
-  capped_error(m_error_counts[INVERTED], m_model.element_where(e), "*ELEMENT", problem.str(),
+  problem << "inverted element " << deck.model.element_ids[e] << ": volume " << smallest.determinant
+          << " at corner node " << deck.model.node_ids[nodes[smallest.corner]];
+  capped_error(deck, deck.error_counts[INVERTED], deck.model.element_where(e), "*ELEMENT",
+               problem.str(),
                "expected nodes in Abaqus C3D8R order (nodes 1-4 counter-clockwise on the "
                "bottom face seen from the top face 5-8), i.e. a positive Jacobian at every "
                "corner");
 }
 
-void DeckBuilder::check_shell_geometry(Index e) {
-  const Index* nodes = m_model.nodes_of(e);
+void check_shell_geometry(DeckState& deck, Index e) {
+  const Index* nodes = deck.model.nodes_of(e);
   // Messages are built only for a bad element: this runs on every shell of a large mesh.
   auto report = [&](const std::string& what, const std::string& problem,
                     const std::string& expected) {
-    capped_error(m_error_counts[DEGENERATE], m_model.element_where(e), "*ELEMENT",
-                 what + " element " + std::to_string(m_model.element_ids[e]) + ": " + problem,
+    capped_error(deck, deck.error_counts[DEGENERATE], deck.model.element_where(e), "*ELEMENT",
+                 what + " element " + std::to_string(deck.model.element_ids[e]) + ": " + problem,
                  expected);
   };
-  auto node_id = [&](int k) { return std::to_string(m_model.node_ids[nodes[k]]); };
+  auto node_id = [&](int k) { return std::to_string(deck.model.node_ids[nodes[k]]); };
   const std::string distinct =
       "expected 4 distinct corner nodes (triangles and collapsed quadrilaterals are not "
       "supported)";
@@ -112,7 +113,7 @@ void DeckBuilder::check_shell_geometry(Index e) {
     }
   }
   std::array<Eigen::Vector3d, 4> x;
-  for (int k = 0; k < 4; ++k) x[k] = m_model.coordinates.row(nodes[k]).transpose();
+  for (int k = 0; k < 4; ++k) x[k] = deck.model.coordinates.row(nodes[k]).transpose();
   const QuadShape shape = quad_shape(x);
   const Real length = shape.longest_edge;
   const Real small_area = QUAD_TOLERANCE * length * length;

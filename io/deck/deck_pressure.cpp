@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "io/deck_builder.hpp"
-#include "io/deck_numbers.hpp"
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_numbers.hpp"
 
 namespace xpl::io {
 
@@ -26,97 +26,99 @@ std::optional<int> dload_face(const std::string& type) {
 
 }  // namespace
 
-void DeckBuilder::read_dload(const DeckBlock& block) {
+void read_dload(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
-  Step& step = m_model.steps.back();
+  check_parameters(deck, keyword, {{"AMPLITUDE"}, {"OP"}});
+  Step& step = deck.model.steps.back();
   bool reset = false;  // OP=NEW on *DLOAD removes earlier pressures and gravity
-  if (!read_load_op(keyword, reset)) return;
+  if (!read_load_op(deck, keyword, reset)) return;
   if (reset) step.pressures_reset = step.gravity_reset = true;
   const std::string amplitude = optional_name(keyword, "AMPLITUDE");
   for (const DeckDataLine& line : block.data) {
     if (line.fields.size() < 2 || line.fields[1].empty()) {
-      error(line.where(), keyword, "missing load type",
+      error(deck, line.where(), keyword, "missing load type",
             "expected element or element set, load type, magnitude");
       continue;
     }
     const std::string type = normalize_name(line.fields[1]);
     if (type == "GRAV") {
-      read_gravity(line, keyword, amplitude);
+      read_gravity(deck, line, keyword, amplitude);
       continue;
     }
     const std::optional<int> face = dload_face(type);
     if (!face) {  // before the field count: GRAV and BX have other data lines
-      error(line.where(), keyword, "load type " + type + " is not supported yet", DLOAD_TYPES);
+      error(deck, line.where(), keyword, "load type " + type + " is not supported yet",
+            DLOAD_TYPES);
       continue;
     }
-    check_field_count(line, keyword, 3, "element or element set, load type, magnitude");
-    const std::optional<Real> magnitude = real_field(line, keyword, 2, "magnitude");
+    check_field_count(deck, line, keyword, 3, "element or element set, load type, magnitude");
+    const std::optional<Real> magnitude = real_field(deck, line, keyword, 2, "magnitude");
     if (!magnitude) continue;
     PendingPressure pending;
-    pending.step = static_cast<Index>(m_model.steps.size() - 1);
+    pending.step = static_cast<Index>(deck.model.steps.size() - 1);
     pending.target = reference(line, keyword, 0);
     pending.solid_face = *face;
     pending.load_type = type;
     pending.load.value = *magnitude;
     pending.load.where = line.where();
     pending.amplitude = amplitude;
-    m_pressures.push_back(std::move(pending));
+    deck.pressures.push_back(std::move(pending));
   }
 }
 
-void DeckBuilder::read_dsload(const DeckBlock& block) {
+void read_dsload(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"AMPLITUDE"}, {"OP"}});
-  if (!read_load_op(keyword, m_model.steps.back().pressures_reset)) return;
+  check_parameters(deck, keyword, {{"AMPLITUDE"}, {"OP"}});
+  if (!read_load_op(deck, keyword, deck.model.steps.back().pressures_reset)) return;
   const std::string amplitude = optional_name(keyword, "AMPLITUDE");
   for (const DeckDataLine& line : block.data) {
     if (line.fields.empty() || line.fields[0].empty()) {
-      error(line.where(), keyword, "missing surface name", "expected surface, P, magnitude");
+      error(deck, line.where(), keyword, "missing surface name", "expected surface, P, magnitude");
       continue;
     }
     const std::string type = line.fields.size() > 1 ? normalize_name(line.fields[1]) : "";
     if (type.empty()) {
-      error(line.where(), keyword, "missing load type", "expected surface, P, magnitude");
+      error(deck, line.where(), keyword, "missing load type", "expected surface, P, magnitude");
       continue;
     }
     if (type != "P") {
-      error(line.where(), keyword, "load type " + type + " is not supported yet",
+      error(deck, line.where(), keyword, "load type " + type + " is not supported yet",
             "supported: P (pressure on an element-based surface)");
       continue;
     }
-    check_field_count(line, keyword, 3, "surface, P, magnitude");
-    const std::optional<Real> magnitude = real_field(line, keyword, 2, "magnitude");
+    check_field_count(deck, line, keyword, 3, "surface, P, magnitude");
+    const std::optional<Real> magnitude = real_field(deck, line, keyword, 2, "magnitude");
     if (!magnitude) continue;
     PendingPressure pending;
-    pending.step = static_cast<Index>(m_model.steps.size() - 1);
+    pending.step = static_cast<Index>(deck.model.steps.size() - 1);
     pending.target = {normalize_name(line.fields[0]), line.where(), keyword.label()};
     pending.on_surface = true;
     pending.load_type = type;
     pending.load.value = *magnitude;
     pending.load.where = line.where();
     pending.amplitude = amplitude;
-    m_pressures.push_back(std::move(pending));
+    deck.pressures.push_back(std::move(pending));
   }
 }
 
-void DeckBuilder::resolve_pressures() {
-  for (const PendingPressure& pending : m_pressures) {
-    Step& step = m_model.steps[static_cast<std::size_t>(pending.step)];
+void resolve_pressures(DeckState& deck) {
+  for (const PendingPressure& pending : deck.pressures) {
+    Step& step = deck.model.steps[static_cast<std::size_t>(pending.step)];
     const DeckReference& target = pending.target;
     PressureLoad load = pending.load;
-    load.amplitude = resolve_amplitude(pending.amplitude, load.where, target.keyword);
+    load.amplitude = resolve_amplitude(deck, pending.amplitude, load.where, target.keyword);
     if (pending.on_surface) {
-      const Index s = m_model.find_surface(target.token);
+      const Index s = deck.model.find_surface(target.token);
       if (s == NO_INDEX) {
-        m_errors.add(target.where, target.keyword, "undefined surface " + target.token,
-                     "expected *SURFACE, NAME=" + target.token);
+        deck.errors.add(target.where, target.keyword, "undefined surface " + target.token,
+                        "expected *SURFACE, NAME=" + target.token);
         continue;
       }
-      const Surface& surface = m_model.surfaces[static_cast<std::size_t>(s)];
+      const Surface& surface = deck.model.surfaces[static_cast<std::size_t>(s)];
       if (surface.type != Surface::Type::Element) {
-        m_errors.add(target.where, target.keyword, "surface " + target.token + " is node-based",
-                     "expected an element-based surface (*SURFACE, TYPE=ELEMENT) under a pressure");
+        deck.errors.add(
+            target.where, target.keyword, "surface " + target.token + " is node-based",
+            "expected an element-based surface (*SURFACE, TYPE=ELEMENT) under a pressure");
         continue;
       }
       for (const ElementFace& face : surface.faces) {
@@ -126,39 +128,40 @@ void DeckBuilder::resolve_pressures() {
       continue;
     }
     bool reported = false;  // one mismatch per data line, not one per element of a set
-    for (Index e : resolve_elements(target)) {
-      const bool shell = is_shell(m_model.element_types[static_cast<std::size_t>(e)]);
+    for (Index e : resolve_elements(deck, target)) {
+      const bool shell = is_shell(deck.model.element_types[static_cast<std::size_t>(e)]);
       if (shell == (pending.solid_face < 0)) {
         load.face = {e, shell ? SHELL_FACE_POS : static_cast<std::uint8_t>(pending.solid_face)};
         step.pressures.push_back(load);
       } else if (!reported) {
         reported = true;
-        m_errors.add(target.where, target.keyword,
-                     "load type " + pending.load_type + " does not fit " + element_text(e, target),
-                     shell ? "expected P on S4R shell elements"
-                           : "expected P1..P6 on C3D8R solid elements (faces S1..S6)");
+        deck.errors.add(
+            target.where, target.keyword,
+            "load type " + pending.load_type + " does not fit " + element_text(deck, e, target),
+            shell ? "expected P on S4R shell elements"
+                  : "expected P1..P6 on C3D8R solid elements (faces S1..S6)");
       }
     }
   }
 }
 
-void DeckBuilder::read_gravity(const DeckDataLine& line, const DeckKeyword& keyword,
-                               const std::string& amplitude) {
-  check_field_count(line, keyword, 6, GRAV_LINE);
+void read_gravity(DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword,
+                  const std::string& amplitude) {
+  check_field_count(deck, line, keyword, 6, GRAV_LINE);
   const std::string target = line.fields.empty() ? "" : std::string(line.fields[0]);
   if (looks_numeric(target)) {
-    error(line.where(), keyword, "GRAV on a single element (" + target + ") is not supported",
+    error(deck, line.where(), keyword, "GRAV on a single element (" + target + ") is not supported",
           std::string("expected an element set name, or the first field blank for the whole "
                       "model: ") +
               GRAV_LINE);
     return;
   }
-  const std::optional<Real> magnitude = real_field(line, keyword, 2, "gravity magnitude");
+  const std::optional<Real> magnitude = real_field(deck, line, keyword, 2, "gravity magnitude");
   Real direction[3] = {0.0, 0.0, 0.0};
   bool ok = magnitude.has_value();
   for (std::size_t c = 0; c < 3; ++c) {
     const std::optional<Real> value =
-        real_field(line, keyword, 3 + c, std::string("direction d") + "xyz"[c], 0.0);
+        real_field(deck, line, keyword, 3 + c, std::string("direction d") + "xyz"[c], 0.0);
     ok = ok && value.has_value();
     if (value) direction[c] = *value;
   }
@@ -166,36 +169,36 @@ void DeckBuilder::read_gravity(const DeckDataLine& line, const DeckKeyword& keyw
   const Real length = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] +
                                 direction[2] * direction[2]);
   if (!(length > 0.0) || !std::isfinite(length)) {
-    error(line.where(), keyword,
+    error(deck, line.where(), keyword,
           "gravity direction " + number_text(direction[0]) + ", " + number_text(direction[1]) +
               ", " + number_text(direction[2]) + " has no length",
           "expected a nonzero direction dx, dy, dz (it is normalised)");
     return;
   }
   PendingGravity pending;
-  pending.step = static_cast<Index>(m_model.steps.size() - 1);
+  pending.step = static_cast<Index>(deck.model.steps.size() - 1);
   pending.element_set = normalize_name(target);
   pending.load.magnitude = *magnitude;
   for (int c = 0; c < 3; ++c) pending.load.direction[c] = direction[c] / length;
   pending.load.where = line.where();
   pending.amplitude = amplitude;
-  m_gravity.push_back(std::move(pending));
+  deck.gravity.push_back(std::move(pending));
 }
 
-void DeckBuilder::resolve_gravity() {
-  for (const PendingGravity& pending : m_gravity) {
+void resolve_gravity(DeckState& deck) {
+  for (const PendingGravity& pending : deck.gravity) {
     GravityLoad load = pending.load;
-    load.amplitude = resolve_amplitude(pending.amplitude, load.where, "*DLOAD");
+    load.amplitude = resolve_amplitude(deck, pending.amplitude, load.where, "*DLOAD");
     if (!pending.element_set.empty()) {
-      load.element_set = m_model.find_element_set(pending.element_set);
+      load.element_set = deck.model.find_element_set(pending.element_set);
       if (load.element_set == NO_INDEX) {
-        m_errors.add(load.where, "*DLOAD", "undefined element set " + pending.element_set,
-                     "expected *ELSET, ELSET=" + pending.element_set +
-                         ", or the first field blank for the whole model");
+        deck.errors.add(load.where, "*DLOAD", "undefined element set " + pending.element_set,
+                        "expected *ELSET, ELSET=" + pending.element_set +
+                            ", or the first field blank for the whole model");
         continue;
       }
     }
-    m_model.steps[static_cast<std::size_t>(pending.step)].gravity.push_back(load);
+    deck.model.steps[static_cast<std::size_t>(pending.step)].gravity.push_back(load);
   }
 }
 

@@ -1,4 +1,4 @@
-#include "io/deck_lines.hpp"
+#include "io/deck/deck_lines.hpp"
 
 #include <algorithm>
 #include <filesystem>

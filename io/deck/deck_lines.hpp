@@ -4,7 +4,7 @@
 ///
 /// Data lines are kept compact (a view of their text, a file index and a line number: a
 /// large mesh is read without a heap allocation per line); their fields are split when the
-/// builder visits them. The text they view is owned by the caller (the main deck) and by a
+/// keyword handlers visit them. The text they view is owned by the caller (the main deck) and by a
 /// DeckStorage (included files, joined continuation lines), which must outlive the blocks.
 
 #include <cstddef>
@@ -50,7 +50,7 @@ class DeckStorage {
   std::deque<std::string> m_texts;
 };
 
-/// A data line as visited by the builder, continuation lines already joined.
+/// A data line as visited by the keyword handlers, continuation lines already joined.
 struct DeckDataLine {
   std::vector<std::string_view> fields;  ///< comma-separated, trimmed, quotes removed
   std::string_view text;                 ///< the raw line (used by *HEADING)

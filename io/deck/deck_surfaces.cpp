@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <array>
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_handlers.hpp"
 
 namespace xpl::io {
 
@@ -22,22 +22,22 @@ std::array<Index, 4> hex_face_key(const Model& model, Index e, int face) {
 
 }  // namespace
 
-void DeckBuilder::resolve_surfaces() {
-  for (std::size_t s = 0; s < m_model.surfaces.size(); ++s) {
-    Surface& surface = m_model.surfaces[s];
+void resolve_surfaces(DeckState& deck) {
+  for (std::size_t s = 0; s < deck.model.surfaces.size(); ++s) {
+    Surface& surface = deck.model.surfaces[s];
     std::vector<Index> solids;  // of lines without a face label: one search for the surface
-    for (const PendingSurfaceItem& item : m_surface_items[s]) {
+    for (const PendingSurfaceItem& item : deck.surface_items[s]) {
       if (surface.type == Surface::Type::Node) {
-        const std::vector<Index> nodes = resolve_nodes(item.target);
+        const std::vector<Index> nodes = resolve_nodes(deck, item.target);
         surface.nodes.insert(surface.nodes.end(), nodes.begin(), nodes.end());
         continue;
       }
-      const std::vector<Index> elements = resolve_elements(item.target);
+      const std::vector<Index> elements = resolve_elements(deck, item.target);
       if (item.all_faces) {
         // Shells: both sides (a double-sided surface). Solids: the faces no other solid
         // element shares, so that a pressure or a contact surface never sits inside a body.
         for (Index e : elements) {
-          if (is_shell(m_model.element_types[static_cast<std::size_t>(e)]))
+          if (is_shell(deck.model.element_types[static_cast<std::size_t>(e)]))
             surface.faces.insert(surface.faces.end(), {{e, SHELL_FACE_NEG}, {e, SHELL_FACE_POS}});
           else
             solids.push_back(e);
@@ -46,22 +46,23 @@ void DeckBuilder::resolve_surfaces() {
       }
       bool reported = false;  // one mismatch per data line, not one per element of a set
       for (Index e : elements) {
-        const ElementType type = m_model.element_types[static_cast<std::size_t>(e)];
+        const ElementType type = deck.model.element_types[static_cast<std::size_t>(e)];
         if (is_shell(type) == item.shell) {
           surface.faces.push_back({e, static_cast<std::uint8_t>(item.face)});
         } else if (!reported) {
           reported = true;
-          m_errors.add(item.target.where, item.target.keyword,
-                       "face " + item.label + " does not fit " + element_text(e, item.target),
-                       is_shell(type) ? "expected SPOS or SNEG on S4R shell elements"
-                                      : "expected S1..S6 on C3D8R solid elements");
+          deck.errors.add(
+              item.target.where, item.target.keyword,
+              "face " + item.label + " does not fit " + element_text(deck, e, item.target),
+              is_shell(type) ? "expected SPOS or SNEG on S4R shell elements"
+                             : "expected S1..S6 on C3D8R solid elements");
         }
       }
     }
     if (!solids.empty()) {
       std::sort(solids.begin(), solids.end());
       solids.erase(std::unique(solids.begin(), solids.end()), solids.end());
-      const std::vector<ElementFace> exposed = exposed_hex_faces(solids);
+      const std::vector<ElementFace> exposed = exposed_hex_faces(deck, solids);
       surface.faces.insert(surface.faces.end(), exposed.begin(), exposed.end());
     }
     std::sort(surface.nodes.begin(), surface.nodes.end());
@@ -70,13 +71,13 @@ void DeckBuilder::resolve_surfaces() {
   }
 }
 
-std::vector<ElementFace> DeckBuilder::exposed_hex_faces(const std::vector<Index>& elements) {
+std::vector<ElementFace> exposed_hex_faces(DeckState& deck, const std::vector<Index>& elements) {
   const auto is_hex = [&](Index e) {
-    return m_model.element_types[static_cast<std::size_t>(e)] == ElementType::C3D8R;
+    return deck.model.element_types[static_cast<std::size_t>(e)] == ElementType::C3D8R;
   };
   // A face with an undefined node (reported already) cannot be matched: skip its element.
   const auto complete = [&](Index e) {
-    const Index* nodes = m_model.nodes_of(e);
+    const Index* nodes = deck.model.nodes_of(e);
     return std::none_of(nodes, nodes + 8, [](Index n) { return n == NO_INDEX; });
   };
   // Only the faces of the given elements are stored; every C3D8R face of the model is then
@@ -90,14 +91,14 @@ std::vector<ElementFace> DeckBuilder::exposed_hex_faces(const std::vector<Index>
   for (Index e : elements)
     if (is_hex(e) && complete(e))
       for (int f = 0; f < 6; ++f)
-        candidates.push_back({hex_face_key(m_model, e, f), {e, static_cast<std::uint8_t>(f)}});
+        candidates.push_back({hex_face_key(deck.model, e, f), {e, static_cast<std::uint8_t>(f)}});
   if (candidates.empty()) return {};
   const auto by_key = [](const Candidate& a, const Candidate& b) { return a.key < b.key; };
   std::sort(candidates.begin(), candidates.end(), by_key);
-  for (Index e = 0; e < m_model.element_count(); ++e) {
+  for (Index e = 0; e < deck.model.element_count(); ++e) {
     if (!is_hex(e) || !complete(e)) continue;
     for (int f = 0; f < 6; ++f) {
-      const Candidate probe{hex_face_key(m_model, e, f), {}};
+      const Candidate probe{hex_face_key(deck.model, e, f), {}};
       auto [first, last] = std::equal_range(candidates.begin(), candidates.end(), probe, by_key);
       for (; first != last; ++first) ++first->count;
     }

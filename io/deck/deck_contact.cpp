@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <array>
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_handlers.hpp"
 
 namespace xpl::io {
 
@@ -25,55 +25,55 @@ constexpr std::array<std::string_view, 6> PAIR_TYPES = {
 
 }  // namespace
 
-Index DeckBuilder::contact_surface(const std::string& name, const SourceLocation& where,
-                                   const std::string& keyword) {
-  const Index surface = m_model.find_surface(name);
+Index contact_surface(DeckState& deck, const std::string& name, const SourceLocation& where,
+                      const std::string& keyword) {
+  const Index surface = deck.model.find_surface(name);
   if (surface == NO_INDEX)
-    m_errors.add(where, keyword, "undefined surface " + name, "expected *SURFACE, NAME=" + name);
+    deck.errors.add(where, keyword, "undefined surface " + name, "expected *SURFACE, NAME=" + name);
   return surface;
 }
 
-Index DeckBuilder::surface_interaction(const std::string& name, const SourceLocation& where,
-                                       const std::string& keyword) {
-  for (std::size_t i = 0; i < m_model.surface_interactions.size(); ++i)
-    if (m_model.surface_interactions[i].name == name) return static_cast<Index>(i);
-  m_errors.add(where, keyword, "undefined surface interaction " + name,
-               "expected *SURFACE INTERACTION, NAME=" + name);
+Index surface_interaction(DeckState& deck, const std::string& name, const SourceLocation& where,
+                          const std::string& keyword) {
+  for (std::size_t i = 0; i < deck.model.surface_interactions.size(); ++i)
+    if (deck.model.surface_interactions[i].name == name) return static_cast<Index>(i);
+  deck.errors.add(where, keyword, "undefined surface interaction " + name,
+                  "expected *SURFACE INTERACTION, NAME=" + name);
   return NO_INDEX;
 }
 
-std::optional<SurfacePair> DeckBuilder::surface_pair(const DeckDataLine& line,
-                                                     const DeckKeyword& keyword) {
+std::optional<SurfacePair> surface_pair(DeckState& deck, const DeckDataLine& line,
+                                        const DeckKeyword& keyword) {
   const std::string first = line.fields.empty() ? "" : normalize_name(line.fields[0]);
   const std::string second = line.fields.size() < 2 ? "" : normalize_name(line.fields[1]);
   SurfacePair pair;
   pair.where = line.where();
   bool ok = true;
   if (!first.empty()) {
-    pair.first = contact_surface(first, line.where(), keyword.label());
+    pair.first = contact_surface(deck, first, line.where(), keyword.label());
     ok = pair.first != NO_INDEX;
   }
   if (second.empty()) {
     pair.second = pair.first;  // self contact (of all exterior faces, if both are blank)
   } else {
-    pair.second = contact_surface(second, line.where(), keyword.label());
+    pair.second = contact_surface(deck, second, line.where(), keyword.label());
     ok = ok && pair.second != NO_INDEX;
   }
   if (!ok) return std::nullopt;
   return pair;
 }
 
-void DeckBuilder::read_contact(const DeckBlock& block) {
+void read_contact(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"OP"}});
-  expect_no_data(block);
+  check_parameters(deck, keyword, {{"OP"}});
+  expect_no_data(deck, block);
   const std::string op = optional_name(keyword, "OP");
   if (!op.empty() && op != "MOD" && op != "NEW")  // then read as OP=MOD: no follow-up errors
-    error(keyword.where, keyword, "bad OP=" + op,
+    error(deck, keyword.where, keyword, "bad OP=" + op,
           "expected OP=MOD (the default: add to the general contact of earlier steps) or OP=NEW");
-  std::vector<Step>& steps = m_model.steps;
+  std::vector<Step>& steps = deck.model.steps;
   if (steps.back().contact) {
-    error(keyword.where, keyword, "second *CONTACT in step " + steps.back().name,
+    error(deck, keyword.where, keyword, "second *CONTACT in step " + steps.back().name,
           "expected one *CONTACT per step, followed by its options");
     return;
   }
@@ -93,14 +93,15 @@ void DeckBuilder::read_contact(const DeckBlock& block) {
   steps.back().contact = std::move(contact);
 }
 
-void DeckBuilder::read_diagnostics(const DeckBlock& block) {
+void read_diagnostics(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"CONTACT INITIAL OVERCLOSURE"}, {"DETECT CROSSED SURFACES"}});
-  expect_no_data(block);
+  check_parameters(deck, keyword, {{"CONTACT INITIAL OVERCLOSURE"}, {"DETECT CROSSED SURFACES"}});
+  expect_no_data(deck, block);
   // Model data sets the defaults of every step; a step's own setting holds from it on.
-  Diagnostics diagnostics = m_in_step && !m_model.steps.empty()
-                                ? m_model.diagnostics_of(static_cast<int>(m_model.steps.size()) - 1)
-                                : m_model.diagnostics;
+  Diagnostics diagnostics =
+      deck.in_step && !deck.model.steps.empty()
+          ? deck.model.diagnostics_of(static_cast<int>(deck.model.steps.size()) - 1)
+          : deck.model.diagnostics;
   diagnostics.where = keyword.where;
   const std::string level = optional_name(keyword, "CONTACT INITIAL OVERCLOSURE");
   if (level == "DETAIL")
@@ -108,7 +109,7 @@ void DeckBuilder::read_diagnostics(const DeckBlock& block) {
   else if (level == "SUMMARY")
     diagnostics.overclosure_detail = false;
   else if (!level.empty())
-    error(keyword.where, keyword, "bad CONTACT INITIAL OVERCLOSURE=" + level,
+    error(deck, keyword.where, keyword, "bad CONTACT INITIAL OVERCLOSURE=" + level,
           "expected CONTACT INITIAL OVERCLOSURE=DETAIL (every adjusted node and offset in the "
           ".msg file) or SUMMARY (counts in the .sta file)");
   const std::string crossed = optional_name(keyword, "DETECT CROSSED SURFACES");
@@ -117,108 +118,108 @@ void DeckBuilder::read_diagnostics(const DeckBlock& block) {
   else if (crossed == "OFF" || crossed == "NO")
     diagnostics.detect_crossed_surfaces = false;
   else if (!crossed.empty())
-    error(keyword.where, keyword, "bad DETECT CROSSED SURFACES=" + crossed,
+    error(deck, keyword.where, keyword, "bad DETECT CROSSED SURFACES=" + crossed,
           "expected DETECT CROSSED SURFACES=ON or OFF");
-  if (m_in_step)
-    m_model.steps.back().diagnostics = diagnostics;
+  if (deck.in_step)
+    deck.model.steps.back().diagnostics = diagnostics;
   else
-    m_model.diagnostics = diagnostics;
+    deck.model.diagnostics = diagnostics;
 }
 
-GeneralContact* DeckBuilder::open_contact(const DeckKeyword& keyword) {
-  Step& step = m_model.steps.back();
+GeneralContact* open_contact(DeckState& deck, const DeckKeyword& keyword) {
+  Step& step = deck.model.steps.back();
   if (!step.contact) {
-    error(keyword.where, keyword, "no *CONTACT in step " + step.name,
+    error(deck, keyword.where, keyword, "no *CONTACT in step " + step.name,
           "expected *CONTACT before " + keyword.label() + " in the same step");
     return nullptr;
   }
   return &*step.contact;
 }
 
-void DeckBuilder::read_contact_inclusions(const DeckBlock& block, bool inclusions) {
+void read_contact_inclusions(DeckState& deck, const DeckBlock& block, bool inclusions) {
   const DeckKeyword& keyword = block.keyword;
   if (inclusions)
-    check_parameters(keyword, {{"ALL EXTERIOR", false}});
+    check_parameters(deck, keyword, {{"ALL EXTERIOR", false}});
   else
-    check_parameters(keyword, {});
-  GeneralContact* contact = open_contact(keyword);
+    check_parameters(deck, keyword, {});
+  GeneralContact* contact = open_contact(deck, keyword);
   if (contact == nullptr) return;
   if (inclusions && find_parameter(keyword, "ALL EXTERIOR") != nullptr) {
-    expect_no_data(block);
+    expect_no_data(deck, block);
     contact->all_exterior = true;
     return;
   }
   if (block.data.empty()) {
-    error(keyword.where, keyword, "no surface pairs",
+    error(deck, keyword.where, keyword, "no surface pairs",
           std::string(inclusions ? "expected ALL EXTERIOR or data lines: "
                                  : "expected data lines: ") +
               PAIR_LINE);
     return;
   }
   for (const DeckDataLine& line : block.data) {
-    check_field_count(line, keyword, 2, PAIR_LINE);
-    const std::optional<SurfacePair> pair = surface_pair(line, keyword);
+    check_field_count(deck, line, keyword, 2, PAIR_LINE);
+    const std::optional<SurfacePair> pair = surface_pair(deck, line, keyword);
     if (pair) (inclusions ? contact->inclusions : contact->exclusions).push_back(*pair);
   }
 }
 
-void DeckBuilder::read_contact_property_assignment(const DeckBlock& block) {
+void read_contact_property_assignment(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {});
-  GeneralContact* contact = open_contact(keyword);
+  check_parameters(deck, keyword, {});
+  GeneralContact* contact = open_contact(deck, keyword);
   if (contact == nullptr) return;
   if (block.data.empty()) {
-    error(keyword.where, keyword, "no assignments",
+    error(deck, keyword.where, keyword, "no assignments",
           std::string("expected data lines: ") + PROPERTY_LINE);
     return;
   }
   for (const DeckDataLine& line : block.data) {
-    check_field_count(line, keyword, 3, PROPERTY_LINE);
+    check_field_count(deck, line, keyword, 3, PROPERTY_LINE);
     if (line.fields.size() < 3 || line.fields[2].empty()) {
-      error(line.where(), keyword, "missing surface interaction name",
+      error(deck, line.where(), keyword, "missing surface interaction name",
             std::string("expected ") + PROPERTY_LINE);
       continue;
     }
-    const std::optional<SurfacePair> pair = surface_pair(line, keyword);
+    const std::optional<SurfacePair> pair = surface_pair(deck, line, keyword);
     const Index interaction =
-        surface_interaction(normalize_name(line.fields[2]), line.where(), keyword.label());
+        surface_interaction(deck, normalize_name(line.fields[2]), line.where(), keyword.label());
     if (pair && interaction != NO_INDEX) contact->properties.emplace_back(*pair, interaction);
   }
 }
 
-void DeckBuilder::read_contact_controls_assignment(const DeckBlock& block) {
+void read_contact_controls_assignment(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"TYPE"}});
-  GeneralContact* contact = open_contact(keyword);
+  check_parameters(deck, keyword, {{"TYPE"}});
+  GeneralContact* contact = open_contact(deck, keyword);
   if (contact == nullptr) return;
   const std::string type = optional_name(keyword, "TYPE");
   if (type.empty()) {
-    error(keyword.where, keyword, "missing parameter TYPE", "expected TYPE=SCALE PENALTY");
+    error(deck, keyword.where, keyword, "missing parameter TYPE", "expected TYPE=SCALE PENALTY");
     return;
   }
   if (type != "SCALE PENALTY") {
-    error(keyword.where, keyword, "TYPE=" + type + " is not supported yet",
+    error(deck, keyword.where, keyword, "TYPE=" + type + " is not supported yet",
           "supported: TYPE=SCALE PENALTY");
     return;
   }
   if (block.data.empty()) {
-    error(keyword.where, keyword, "missing penalty scale factor",
+    error(deck, keyword.where, keyword, "missing penalty scale factor",
           std::string("expected a data line: ") + CONTROLS_LINE);
     return;
   }
   for (const DeckDataLine& line : block.data) {
-    check_field_count(line, keyword, 3, CONTROLS_LINE);
+    check_field_count(deck, line, keyword, 3, CONTROLS_LINE);
     if ((!line.fields.empty() && !line.fields[0].empty()) ||
         (line.fields.size() > 1 && !line.fields[1].empty())) {
-      error(line.where(), keyword, "penalty scaling of a surface pair is not supported yet",
+      error(deck, line.where(), keyword, "penalty scaling of a surface pair is not supported yet",
             std::string("expected both surfaces blank (the whole general contact): ") +
                 CONTROLS_LINE);
       continue;
     }
-    const std::optional<Real> factor = real_field(line, keyword, 2, "penalty scale factor");
+    const std::optional<Real> factor = real_field(deck, line, keyword, 2, "penalty scale factor");
     if (!factor) continue;
     if (*factor <= 0.0)
-      error(line.where(), keyword,
+      error(deck, line.where(), keyword,
             "penalty scale factor " + number_text(*factor) + " is not positive",
             "expected a factor > 0");
     else
@@ -226,15 +227,15 @@ void DeckBuilder::read_contact_controls_assignment(const DeckBlock& block) {
   }
 }
 
-void DeckBuilder::read_contact_pair(const DeckBlock& block) {
+void read_contact_pair(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(
-      keyword,
+      deck, keyword,
       {{"INTERACTION"}, {"TYPE"}, {"SMALL SLIDING", false}, {"ADJUST"}, {"MECHANICAL CONSTRAINT"}});
-  const std::optional<std::string> interaction = required_name(keyword, "INTERACTION");
+  const std::optional<std::string> interaction = required_name(deck, keyword, "INTERACTION");
   const std::string type = optional_name(keyword, "TYPE");
   if (!type.empty() && std::find(PAIR_TYPES.begin(), PAIR_TYPES.end(), type) == PAIR_TYPES.end())
-    error(keyword.where, keyword, "unknown TYPE=" + type,
+    error(deck, keyword.where, keyword, "unknown TYPE=" + type,
           "expected TYPE=NODE TO SURFACE or SURFACE TO SURFACE (CalculiX)");
   // What xpl does not do differently is said once, in the .msg file.
   std::string unused;
@@ -249,47 +250,49 @@ void DeckBuilder::read_contact_pair(const DeckBlock& block) {
       !constraint.empty() && constraint != "PENALTY")
     add_unused("MECHANICAL CONSTRAINT=" + constraint);
   if (!unused.empty())
-    note(keyword.where, keyword, "xpl runs node-to-face penalty contact; not used: " + unused);
+    note(deck, keyword.where, keyword,
+         "xpl runs node-to-face penalty contact; not used: " + unused);
   if (block.data.empty()) {
-    error(keyword.where, keyword, "no surface pairs",
+    error(deck, keyword.where, keyword, "no surface pairs",
           "expected data lines: slave surface, master surface");
     return;
   }
-  const Index step = m_in_step ? static_cast<Index>(m_model.steps.size() - 1) : NO_INDEX;
+  const Index step = deck.in_step ? static_cast<Index>(deck.model.steps.size() - 1) : NO_INDEX;
   for (const DeckDataLine& line : block.data) {
-    check_field_count(line, keyword, 2, "slave surface, master surface");
+    check_field_count(deck, line, keyword, 2, "slave surface, master surface");
     const bool has_slave = !line.fields.empty() && !line.fields[0].empty();
     const bool has_master = line.fields.size() > 1 && !line.fields[1].empty();
     if (!has_slave || !has_master) {
-      error(line.where(), keyword, has_slave ? "missing master surface" : "missing slave surface",
+      error(deck, line.where(), keyword,
+            has_slave ? "missing master surface" : "missing slave surface",
             "expected slave surface, master surface");
       continue;
     }
     if (!interaction) continue;
-    m_contact_pairs.push_back({step, normalize_name(line.fields[0]), normalize_name(line.fields[1]),
-                               *interaction, line.where()});
+    deck.contact_pairs.push_back({step, normalize_name(line.fields[0]),
+                                  normalize_name(line.fields[1]), *interaction, line.where()});
   }
 }
 
-void DeckBuilder::resolve_contact_pairs() {
+void resolve_contact_pairs(DeckState& deck) {
   const std::string keyword = "*CONTACT PAIR";
-  for (const PendingContactPair& pending : m_contact_pairs) {
+  for (const PendingContactPair& pending : deck.contact_pairs) {
     ContactPair pair;
     pair.where = pending.where;
-    pair.slave = contact_surface(pending.slave, pending.where, keyword);
-    pair.master = contact_surface(pending.master, pending.where, keyword);
-    pair.interaction = surface_interaction(pending.interaction, pending.where, keyword);
+    pair.slave = contact_surface(deck, pending.slave, pending.where, keyword);
+    pair.master = contact_surface(deck, pending.master, pending.where, keyword);
+    pair.interaction = surface_interaction(deck, pending.interaction, pending.where, keyword);
     if (pair.master != NO_INDEX &&
-        m_model.surfaces[static_cast<std::size_t>(pair.master)].type == Surface::Type::Node) {
-      m_errors.add(pending.where, keyword, "master surface " + pending.master + " is node-based",
-                   "expected an element-based surface (*SURFACE, TYPE=ELEMENT) as the master");
+        deck.model.surfaces[static_cast<std::size_t>(pair.master)].type == Surface::Type::Node) {
+      deck.errors.add(pending.where, keyword, "master surface " + pending.master + " is node-based",
+                      "expected an element-based surface (*SURFACE, TYPE=ELEMENT) as the master");
       continue;
     }
     if (pair.slave == NO_INDEX || pair.master == NO_INDEX || pair.interaction == NO_INDEX) continue;
     if (pending.step == NO_INDEX)
-      m_model.contact_pairs.push_back(pair);
+      deck.model.contact_pairs.push_back(pair);
     else
-      m_model.steps[static_cast<std::size_t>(pending.step)].contact_pairs.push_back(pair);
+      deck.model.steps[static_cast<std::size_t>(pending.step)].contact_pairs.push_back(pair);
   }
 }
 

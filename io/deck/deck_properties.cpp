@@ -1,101 +1,104 @@
 /// \file Property keywords: *MATERIAL, *DENSITY, *ELASTIC, *SECTION CONTROLS, *AMPLITUDE,
 /// *INITIAL CONDITIONS. Sections are in deck_sections.cpp.
 
-#include "io/deck_builder.hpp"
+#include "io/deck/deck_handlers.hpp"
 
 namespace xpl::io {
 
-void DeckBuilder::read_material(const DeckBlock& block) {
+void read_material(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"NAME"}});
-  expect_no_data(block);
-  const std::optional<std::string> name = required_name(keyword, "NAME");
+  check_parameters(deck, keyword, {{"NAME"}});
+  expect_no_data(deck, block);
+  const std::optional<std::string> name = required_name(deck, keyword, "NAME");
   if (!name) return;
-  if (m_model.find_material(*name) != NO_INDEX) {
-    error(keyword.where, keyword, "material " + *name + " is defined twice",
+  if (deck.model.find_material(*name) != NO_INDEX) {
+    error(deck, keyword.where, keyword, "material " + *name + " is defined twice",
           "expected each material name once");
     return;
   }
   Material material;
   material.name = *name;
   material.where = keyword.where;
-  m_model.materials.push_back(material);
-  m_material = static_cast<Index>(m_model.materials.size() - 1);
+  deck.model.materials.push_back(material);
+  deck.material = static_cast<Index>(deck.model.materials.size() - 1);
 }
 
-void DeckBuilder::read_density(const DeckBlock& block) {
+void read_density(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {});
-  if (m_material == NO_INDEX) {
-    error(keyword.where, keyword, "no material to attach to",
+  check_parameters(deck, keyword, {});
+  if (deck.material == NO_INDEX) {
+    error(deck, keyword.where, keyword, "no material to attach to",
           "expected *DENSITY right after *MATERIAL, NAME=...");
     return;
   }
-  Material& material = m_model.materials[static_cast<std::size_t>(m_material)];
+  Material& material = deck.model.materials[static_cast<std::size_t>(deck.material)];
   if (material.has_density) {
-    error(keyword.where, keyword, "material " + material.name + " already has a density",
+    error(deck, keyword.where, keyword, "material " + material.name + " already has a density",
           "expected one *DENSITY per material");
     return;
   }
   if (block.data.size() != 1) {
-    error(keyword.where, keyword, "found " + std::to_string(block.data.size()) + " data lines",
+    error(deck, keyword.where, keyword,
+          "found " + std::to_string(block.data.size()) + " data lines",
           "expected one data line with the density");
     return;
   }
   const DeckDataLine& line = block.data.front();
   material.has_density = true;  // even if bad (reported here): no "has no density" follow-up
-  check_field_count(line, keyword, 1, "the density only (no temperature dependence)");
-  const std::optional<Real> rho = real_field(line, keyword, 0, "density");
+  check_field_count(deck, line, keyword, 1, "the density only (no temperature dependence)");
+  const std::optional<Real> rho = real_field(deck, line, keyword, 0, "density");
   if (!rho) return;
   if (*rho <= 0.0) {
-    error(line.where(), keyword, "density " + number_text(*rho) + " is not positive",
+    error(deck, line.where(), keyword, "density " + number_text(*rho) + " is not positive",
           "expected a density > 0");
     return;
   }
   material.density = *rho;
 }
 
-void DeckBuilder::read_elastic(const DeckBlock& block) {
+void read_elastic(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"TYPE"}});
+  check_parameters(deck, keyword, {{"TYPE"}});
   const std::string type = optional_name(keyword, "TYPE");
   if (!type.empty() && type != "ISOTROPIC") {
-    error(keyword.where, keyword, "elastic type " + type + " is not supported yet",
+    error(deck, keyword.where, keyword, "elastic type " + type + " is not supported yet",
           "supported: TYPE=ISOTROPIC");
-    if (m_material != NO_INDEX)  // no "has no elastic data" follow-up
-      m_model.materials[static_cast<std::size_t>(m_material)].has_elastic = true;
+    if (deck.material != NO_INDEX)  // no "has no elastic data" follow-up
+      deck.model.materials[static_cast<std::size_t>(deck.material)].has_elastic = true;
     return;
   }
-  if (m_material == NO_INDEX) {
-    error(keyword.where, keyword, "no material to attach to",
+  if (deck.material == NO_INDEX) {
+    error(deck, keyword.where, keyword, "no material to attach to",
           "expected *ELASTIC right after *MATERIAL, NAME=...");
     return;
   }
-  Material& material = m_model.materials[static_cast<std::size_t>(m_material)];
+  Material& material = deck.model.materials[static_cast<std::size_t>(deck.material)];
   if (material.has_elastic) {
-    error(keyword.where, keyword, "material " + material.name + " already has elastic data",
+    error(deck, keyword.where, keyword, "material " + material.name + " already has elastic data",
           "expected one *ELASTIC per material");
     return;
   }
   if (block.data.size() != 1) {
-    error(keyword.where, keyword, "found " + std::to_string(block.data.size()) + " data lines",
+    error(deck, keyword.where, keyword,
+          "found " + std::to_string(block.data.size()) + " data lines",
           "expected one data line: E, nu");
     return;
   }
   const DeckDataLine& line = block.data.front();
   material.has_elastic = true;  // even if bad (reported here): no follow-up error
-  check_field_count(line, keyword, 2, "E, nu (no temperature dependence)");
-  const std::optional<Real> young = real_field(line, keyword, 0, "Young's modulus");
-  const std::optional<Real> poisson = real_field(line, keyword, 1, "Poisson's ratio");
+  check_field_count(deck, line, keyword, 2, "E, nu (no temperature dependence)");
+  const std::optional<Real> young = real_field(deck, line, keyword, 0, "Young's modulus");
+  const std::optional<Real> poisson = real_field(deck, line, keyword, 1, "Poisson's ratio");
   if (!young || !poisson) return;
   bool ok = true;
   if (*young <= 0.0) {
-    error(line.where(), keyword, "Young's modulus " + number_text(*young) + " is not positive",
-          "expected E > 0");
+    error(deck, line.where(), keyword,
+          "Young's modulus " + number_text(*young) + " is not positive", "expected E > 0");
     ok = false;
   }
   if (!(*poisson > -1.0 && *poisson < 0.5)) {
-    error(line.where(), keyword, "Poisson's ratio " + number_text(*poisson) + " is out of range",
+    error(deck, line.where(), keyword,
+          "Poisson's ratio " + number_text(*poisson) + " is out of range",
           "expected -1 < nu < 0.5");
     ok = false;
   }
@@ -104,10 +107,10 @@ void DeckBuilder::read_elastic(const DeckBlock& block) {
   material.poisson = *poisson;
 }
 
-void DeckBuilder::read_section_controls(const DeckBlock& block) {
+void read_section_controls(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"NAME"}, {"HOURGLASS"}});
-  const std::optional<std::string> name = required_name(keyword, "NAME");
+  check_parameters(deck, keyword, {{"NAME"}, {"HOURGLASS"}});
+  const std::optional<std::string> name = required_name(deck, keyword, "NAME");
   SectionControls controls;
   const std::string hourglass = optional_name(keyword, "HOURGLASS");
   if (hourglass == "VISCOUS") {
@@ -115,7 +118,7 @@ void DeckBuilder::read_section_controls(const DeckBlock& block) {
   } else if (hourglass == "RELAX STIFFNESS") {
     controls.hourglass = HourglassType::RelaxStiffness;
   } else if (!hourglass.empty() && hourglass != "STIFFNESS") {
-    error(keyword.where, keyword, "hourglass control " + hourglass + " is not supported",
+    error(deck, keyword.where, keyword, "hourglass control " + hourglass + " is not supported",
           "expected HOURGLASS=STIFFNESS, VISCOUS or RELAX STIFFNESS");
     return;
   }
@@ -125,15 +128,16 @@ void DeckBuilder::read_section_controls(const DeckBlock& block) {
   // bulk viscosity factors, ...) concern dofs or options xpl does not have: they are checked
   // to be numbers and otherwise ignored.
   if (block.data.size() > 1)
-    error(block.data[1].where(), keyword, "unexpected second data line",
+    error(deck, block.data[1].where(), keyword, "unexpected second data line",
           "expected at most one data line of scale factors");
   if (!block.data.empty()) {
     const DeckDataLine& line = block.data.front();
-    const std::optional<Real> scale = real_field(line, keyword, 0, "hourglass scale factor", 1.0);
+    const std::optional<Real> scale =
+        real_field(deck, line, keyword, 0, "hourglass scale factor", 1.0);
     for (std::size_t i = 1; i < line.fields.size(); ++i)
-      real_field(line, keyword, i, "scale factor " + std::to_string(i + 1), 1.0);
+      real_field(deck, line, keyword, i, "scale factor " + std::to_string(i + 1), 1.0);
     if (scale && *scale <= 0.0) {
-      error(line.where(), keyword,
+      error(deck, line.where(), keyword,
             "hourglass scale factor " + number_text(*scale) + " is not positive",
             "expected a factor > 0");
     } else if (scale) {
@@ -142,25 +146,26 @@ void DeckBuilder::read_section_controls(const DeckBlock& block) {
     }
   }
   if (!name) return;
-  for (const SectionControls& other : m_model.section_controls) {
+  for (const SectionControls& other : deck.model.section_controls) {
     if (other.name == *name) {
-      error(keyword.where, keyword, "section controls " + *name + " are defined twice",
+      error(deck, keyword.where, keyword, "section controls " + *name + " are defined twice",
             "expected each name once");
       return;
     }
   }
   controls.name = *name;
   controls.where = keyword.where;
-  m_model.section_controls.push_back(controls);
+  deck.model.section_controls.push_back(controls);
 }
 
-void DeckBuilder::read_amplitude(const DeckBlock& block) {
+void read_amplitude(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"NAME"}, {"DEFINITION"}, {"TIME"}});
-  const std::optional<std::string> name = required_name(keyword, "NAME");
+  check_parameters(deck, keyword, {{"NAME"}, {"DEFINITION"}, {"TIME"}});
+  const std::optional<std::string> name = required_name(deck, keyword, "NAME");
   const std::string definition = optional_name(keyword, "DEFINITION");
   if (!definition.empty() && definition != "TABULAR") {
-    error(keyword.where, keyword, "amplitude definition " + definition + " is not supported yet",
+    error(deck, keyword.where, keyword,
+          "amplitude definition " + definition + " is not supported yet",
           "supported: DEFINITION=TABULAR");
     return;
   }
@@ -169,27 +174,28 @@ void DeckBuilder::read_amplitude(const DeckBlock& block) {
   if (time == "TOTAL TIME") {
     amplitude.total_time = true;
   } else if (!time.empty() && time != "STEP TIME") {
-    error(keyword.where, keyword, "bad TIME=" + time, "expected TIME=STEP TIME or TOTAL TIME");
+    error(deck, keyword.where, keyword, "bad TIME=" + time,
+          "expected TIME=STEP TIME or TOTAL TIME");
     return;
   }
   bool ok = true;
   for (const DeckDataLine& line : block.data) {
     if (line.fields.size() % 2 != 0) {
-      error(line.where(), keyword,
+      error(deck, line.where(), keyword,
             "odd number of values (" + std::to_string(line.fields.size()) + ")",
             "expected pairs: time, amplitude, time, amplitude, ...");
       ok = false;
       continue;
     }
     for (std::size_t i = 0; i + 1 < line.fields.size(); i += 2) {
-      const std::optional<Real> t = real_field(line, keyword, i, "time");
-      const std::optional<Real> a = real_field(line, keyword, i + 1, "amplitude value");
+      const std::optional<Real> t = real_field(deck, line, keyword, i, "time");
+      const std::optional<Real> a = real_field(deck, line, keyword, i + 1, "amplitude value");
       if (!t || !a) {
         ok = false;
         continue;
       }
       if (!amplitude.time.empty() && *t < amplitude.time.back()) {
-        error(line.where(), keyword,
+        error(deck, line.where(), keyword,
               "time " + number_text(*t) + " is before the previous " +
                   number_text(amplitude.time.back()),
               "expected times that do not decrease");
@@ -200,41 +206,42 @@ void DeckBuilder::read_amplitude(const DeckBlock& block) {
     }
   }
   if (ok && amplitude.time.empty()) {
-    error(keyword.where, keyword, "no data points", "expected data lines t1, a1, t2, a2, ...");
+    error(deck, keyword.where, keyword, "no data points",
+          "expected data lines t1, a1, t2, a2, ...");
     return;
   }
   if (!name) return;
-  if (m_model.find_amplitude(*name) != NO_INDEX) {
-    error(keyword.where, keyword, "amplitude " + *name + " is defined twice",
+  if (deck.model.find_amplitude(*name) != NO_INDEX) {
+    error(deck, keyword.where, keyword, "amplitude " + *name + " is defined twice",
           "expected each amplitude name once");
     return;
   }
   amplitude.name = *name;
   amplitude.where = keyword.where;
-  m_model.amplitudes.push_back(std::move(amplitude));
+  deck.model.amplitudes.push_back(std::move(amplitude));
 }
 
-void DeckBuilder::read_initial_conditions(const DeckBlock& block) {
+void read_initial_conditions(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(keyword, {{"TYPE"}});
-  const std::optional<std::string> type = required_name(keyword, "TYPE");
+  check_parameters(deck, keyword, {{"TYPE"}});
+  const std::optional<std::string> type = required_name(deck, keyword, "TYPE");
   if (!type) return;
   if (*type != "VELOCITY") {
-    error(keyword.where, keyword, "initial condition type " + *type + " is not supported yet",
+    error(deck, keyword.where, keyword, "initial condition type " + *type + " is not supported yet",
           "supported: TYPE=VELOCITY");
     return;
   }
   for (const DeckDataLine& line : block.data) {
-    check_field_count(line, keyword, 3, "node or node set, dof, velocity");
-    const std::optional<long long> dof = integer_field(line, keyword, 1, "dof");
-    const std::optional<Real> value = real_field(line, keyword, 2, "velocity");
+    check_field_count(deck, line, keyword, 3, "node or node set, dof, velocity");
+    const std::optional<long long> dof = integer_field(deck, line, keyword, 1, "dof");
+    const std::optional<Real> value = real_field(deck, line, keyword, 2, "velocity");
     if (!dof || !value) continue;
     if (*dof < 1 || *dof > 3) {
-      error(line.where(), keyword, "dof " + std::to_string(*dof) + " is out of range",
+      error(deck, line.where(), keyword, "dof " + std::to_string(*dof) + " is out of range",
             "expected dof 1, 2 or 3");
       continue;
     }
-    m_velocities.push_back({reference(line, keyword, 0), static_cast<int>(*dof), *value});
+    deck.velocities.push_back({reference(line, keyword, 0), static_cast<int>(*dof), *value});
   }
 }
 

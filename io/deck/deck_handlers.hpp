@@ -1,0 +1,230 @@
+#pragma once
+/// \file Keyword handlers of the deck reader, free functions on the DeckState, grouped by
+/// keyword family (one or a few .cpp files each). Each `read_KEYWORD` takes one keyword block;
+/// the keyword table (deck_keywords.cpp) calls them. The `resolve_*` and `check_*` functions run
+/// in finish(), once the whole deck is known.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/deck/deck_fields.hpp"
+#include "io/deck/deck_state.hpp"
+
+namespace xpl::io {
+
+// --- Mesh and sets (deck_mesh.cpp, deck_surfaces.cpp; resolution in deck_resolve.cpp, element
+// shapes in deck_geometry.cpp)
+
+/// `*HEADING`: the data lines become the title.
+void read_heading(DeckState& deck, const DeckBlock& block);
+/// `*NODE`.
+void read_node(DeckState& deck, const DeckBlock& block);
+/// `*ELEMENT`.
+void read_element(DeckState& deck, const DeckBlock& block);
+/// `*NSET` (`node_set`) or `*ELSET`.
+void read_set(DeckState& deck, const DeckBlock& block, bool node_set);
+/// `*SURFACE`.
+void read_surface(DeckState& deck, const DeckBlock& block);
+/// Resolves references and checks the whole model; returns it (valid only if `deck.errors` is
+/// empty).
+Model finish(DeckState& deck);
+/// Element node ids to node indices (reported if undefined).
+void resolve_element_nodes(DeckState& deck);
+/// Set items (ids, ranges, other sets) into members, node sets (`node_sets`) or element sets.
+void resolve_sets(DeckState& deck, bool node_sets);
+/// One set, its nested sets first (`depth` guards against cycles).
+void resolve_set(DeckState& deck, bool node_sets, Index set, int depth);
+/// The nodes a reference names (reported if undefined).
+std::vector<Index> resolve_nodes(DeckState& deck, const DeckReference& reference);
+/// The elements a reference names (reported if undefined).
+std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& reference);
+/// "S4R element 7" (with " of set NAME" if `reference` names a set), for messages.
+std::string element_text(const DeckState& deck, Index e, const DeckReference& reference);
+/// An amplitude by name, NO_INDEX for none (reported if undefined).
+Index resolve_amplitude(DeckState& deck, const std::string& name, const SourceLocation& where,
+                        const std::string& keyword);
+/// Resolves the recorded initial velocity (in finish()).
+void resolve_initial_velocity(DeckState& deck);
+/// Boundary conditions, loads and output sets into their steps.
+void resolve_steps(DeckState& deck);
+/// Resolves the recorded surfaces (in finish()).
+void resolve_surfaces(DeckState& deck);
+/// Faces of the C3D8R elements of `elements` (unique) that no other C3D8R element shares,
+/// ordered by element and face.
+std::vector<ElementFace> exposed_hex_faces(DeckState& deck, const std::vector<Index>& elements);
+/// Inverted and degenerate elements (capped per category).
+void check_element_geometry(DeckState& deck);
+/// One C3D8R element: inverted or degenerate (reported).
+void check_hex_geometry(DeckState& deck, Index element);
+/// One S4R element: degenerate (reported).
+void check_shell_geometry(DeckState& deck, Index element);
+
+// --- Materials, sections, amplitudes and initial conditions (deck_properties.cpp,
+// deck_sections.cpp)
+
+/// `*MATERIAL`.
+void read_material(DeckState& deck, const DeckBlock& block);
+/// `*DENSITY`.
+void read_density(DeckState& deck, const DeckBlock& block);
+/// `*ELASTIC`.
+void read_elastic(DeckState& deck, const DeckBlock& block);
+/// `*SECTION CONTROLS`.
+void read_section_controls(DeckState& deck, const DeckBlock& block);
+/// `*AMPLITUDE`.
+void read_amplitude(DeckState& deck, const DeckBlock& block);
+/// `*INITIAL CONDITIONS`.
+void read_initial_conditions(DeckState& deck, const DeckBlock& block);
+/// `*SOLID SECTION`.
+void read_solid_section(DeckState& deck, const DeckBlock& block);
+/// `*SHELL SECTION`.
+void read_shell_section(DeckState& deck, const DeckBlock& block);
+/// `*SHELL GENERAL SECTION`: refused with the reason (its elements get no second error).
+void read_shell_general_section(DeckState& deck, const DeckBlock& block);
+/// Resolves the recorded sections (in finish()).
+void resolve_sections(DeckState& deck);
+/// Material and controls of a section (reported if undefined); returns its element set or
+/// NO_INDEX (reported).
+Index resolve_section_references(DeckState& deck, const PendingSection& pending,
+                                 const std::string& keyword, const SourceLocation& where,
+                                 Index& material, Index& controls,
+                                 std::vector<bool>& material_checked);
+/// Gives section `section` (of the shell or solid kind) to the elements of `set`.
+void assign_section(DeckState& deck, Index set, Index section, bool shell,
+                    const SourceLocation& where);
+
+// --- Steps, boundary conditions and loads (deck_step.cpp, deck_pressure.cpp)
+
+/// `*STEP`.
+void read_step(DeckState& deck, const DeckBlock& block);
+/// `*END STEP`.
+void read_end_step(DeckState& deck, const DeckBlock& block);
+/// `*DYNAMIC`.
+void read_dynamic(DeckState& deck, const DeckBlock& block);
+/// `*BULK VISCOSITY`.
+void read_bulk_viscosity(DeckState& deck, const DeckBlock& block);
+/// `*BOUNDARY`.
+void read_boundary(DeckState& deck, const DeckBlock& block);
+/// OP= of *CLOAD, *DLOAD, *DSLOAD: false (reported) if bad; sets `reset` for OP=NEW.
+bool read_load_op(DeckState& deck, const DeckKeyword& keyword, bool& reset);
+/// `*CLOAD`.
+void read_cload(DeckState& deck, const DeckBlock& block);
+/// `*DLOAD` (pressures P, P1..P6 and GRAV).
+void read_dload(DeckState& deck, const DeckBlock& block);
+/// `*DSLOAD`.
+void read_dsload(DeckState& deck, const DeckBlock& block);
+/// One `*DLOAD` GRAV data line.
+void read_gravity(DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword,
+                  const std::string& amplitude);
+/// Resolves the recorded pressures (in finish()).
+void resolve_pressures(DeckState& deck);
+/// Resolves the recorded gravity (in finish()).
+void resolve_gravity(DeckState& deck);
+
+// --- Output requests (deck_output.cpp)
+
+/// `*OUTPUT, FIELD|HISTORY`: opens a request that `*NODE OUTPUT` & co. fill.
+void read_output(DeckState& deck, const DeckBlock& block);
+/// `*NODE OUTPUT`.
+void read_node_output(DeckState& deck, const DeckBlock& block);
+/// `*ELEMENT OUTPUT`.
+void read_element_output(DeckState& deck, const DeckBlock& block);
+/// `*ENERGY OUTPUT`.
+void read_energy_output(DeckState& deck, const DeckBlock& block);
+/// `*CONTACT OUTPUT`.
+void read_contact_output(DeckState& deck, const DeckBlock& block);
+/// Names on the data lines of `block`, normalized, without repeats; names not in `known`
+/// are reported as "unknown <what> NAME".
+std::vector<std::string> read_names(DeckState& deck, const DeckBlock& block,
+                                    std::span<const std::string_view> known,
+                                    const std::string& what);
+
+// --- Contact, interactions and clearances (deck_interaction.cpp, deck_contact.cpp,
+// deck_clearance.cpp, deck_clearance_checks.cpp, deck_distribution.cpp)
+
+/// `*SURFACE INTERACTION`.
+void read_surface_interaction(DeckState& deck, const DeckBlock& block);
+/// `*FRICTION`.
+void read_friction(DeckState& deck, const DeckBlock& block);
+/// `*SURFACE BEHAVIOR`.
+void read_surface_behavior(DeckState& deck, const DeckBlock& block);
+/// `*CONTACT`: the general contact of the open step.
+void read_contact(DeckState& deck, const DeckBlock& block);
+/// `*DIAGNOSTICS`.
+void read_diagnostics(DeckState& deck, const DeckBlock& block);
+/// *CONTACT INCLUSIONS (`inclusions`) or *CONTACT EXCLUSIONS.
+void read_contact_inclusions(DeckState& deck, const DeckBlock& block, bool inclusions);
+/// `*CONTACT PROPERTY ASSIGNMENT`.
+void read_contact_property_assignment(DeckState& deck, const DeckBlock& block);
+/// `*CONTACT CONTROLS ASSIGNMENT`.
+void read_contact_controls_assignment(DeckState& deck, const DeckBlock& block);
+/// `*CONTACT PAIR`.
+void read_contact_pair(DeckState& deck, const DeckBlock& block);
+/// A surface by name, or NO_INDEX (reported).
+Index contact_surface(DeckState& deck, const std::string& name, const SourceLocation& where,
+                      const std::string& keyword);
+/// A *SURFACE INTERACTION by name, or NO_INDEX (reported).
+Index surface_interaction(DeckState& deck, const std::string& name, const SourceLocation& where,
+                          const std::string& keyword);
+/// Surfaces 1 and 2 of a contact data line (blank: all exterior; surface 2 blank: self
+/// contact of surface 1); nothing (reported) if a surface is undefined.
+std::optional<SurfacePair> surface_pair(DeckState& deck, const DeckDataLine& line,
+                                        const DeckKeyword& keyword);
+/// The general contact of the open step; nullptr (reported) if the step has no *CONTACT.
+GeneralContact* open_contact(DeckState& deck, const DeckKeyword& keyword);
+/// Resolves the recorded contact pairs (in finish()).
+void resolve_contact_pairs(DeckState& deck);
+/// `*CONTACT CLEARANCE`.
+void read_contact_clearance(DeckState& deck, const DeckBlock& block);
+/// `*CONTACT CLEARANCE ASSIGNMENT`.
+void read_clearance_assignment(DeckState& deck, const DeckBlock& block);
+/// `*DISTRIBUTION`.
+void read_distribution(DeckState& deck, const DeckBlock& block);
+/// `*DISTRIBUTION TABLE`.
+void read_distribution_table(DeckState& deck, const DeckBlock& block);
+/// Resolves the recorded distributions (in finish()).
+void resolve_distributions(DeckState& deck);
+/// Distribution names of the clearances, then the assignments: clearance names, surfaces,
+/// signs of the values and the step rules (SPEC C7–C10).
+void resolve_clearances(DeckState& deck);
+/// Whether assignment `pending` may act in its step (SPEC C7): reported if not.
+bool check_clearance_step(DeckState& deck, const PendingClearanceAssignment& pending);
+/// Whether a negative value of the assignment's clearance meets a solid surface (SPEC C8):
+/// reported if so.
+bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pending);
+/// Whether the assignment has slave nodes off rigid bodies: reported if not.
+bool check_clearance_slaves(DeckState& deck, const PendingClearanceAssignment& pending);
+/// Whether surface `surface` suits a clearance (SPEC C10): element based, single sided, each
+/// edge on at most two faces, consistent normals. Reported (once per surface) if not.
+bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocation& where);
+
+// --- Rigid bodies and point masses (deck_rigid.cpp, deck_point_mass.cpp)
+
+/// `*RIGID BODY`.
+void read_rigid_body(DeckState& deck, const DeckBlock& block);
+/// Resolves the recorded rigid bodies (in finish()).
+void resolve_rigid_bodies(DeckState& deck);
+/// `*ELEMENT, TYPE=MASS|ROTARYI`.
+void read_point_elements(DeckState& deck, const DeckBlock& block, bool rotary);
+/// `*MASS` or (`rotary`) `*ROTARY INERTIA`.
+void read_point_property(DeckState& deck, const DeckBlock& block, bool rotary);
+/// Resolves the recorded point inertias (in finish()).
+void resolve_point_inertias(DeckState& deck);
+
+// --- CalculiX output requests (deck_calculix_output.cpp)
+
+/// *NODE FILE (`node`) or *EL FILE: a field output request.
+void read_file_output(DeckState& deck, const DeckBlock& block, bool node);
+/// `*NODE PRINT`.
+void read_node_print(DeckState& deck, const DeckBlock& block);
+/// *EL PRINT, *CONTACT FILE, *CONTACT PRINT: accepted with a note, nothing written.
+void read_ignored_output(DeckState& deck, const DeckBlock& block, const std::string& why);
+
+/// *EL PRINT: accepted with a note (no element history output in xpl).
+void read_el_print(DeckState& deck, const DeckBlock& block);
+/// *CONTACT FILE or *CONTACT PRINT: accepted with a note naming xpl's contact output.
+void read_contact_file(DeckState& deck, const DeckBlock& block);
+
+}  // namespace xpl::io

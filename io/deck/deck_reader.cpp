@@ -1,0 +1,51 @@
+#include "io/deck/deck_reader.hpp"
+
+#include <utility>
+
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_keywords.hpp"
+#include "io/deck/deck_lines.hpp"
+#include "io/deck/model_checks.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+/// Reads the deck text and builds the Model. The blocks (views into `text` and the storage)
+/// are released before the Model is completed, and so is `owned_text` (the text, if the
+/// caller does not need it any more): the peak is then the reader state's.
+Model build_model(std::string_view text, const std::string& file_name, ModelChecks checks,
+                  std::string* owned_text = nullptr) {
+  InputErrors errors;
+  DeckState deck(errors, file_name);
+  {
+    DeckStorage storage;
+    const std::vector<DeckBlock> blocks = read_deck_blocks(text, file_name, storage, errors);
+    read_blocks(deck, blocks);
+  }
+  if (owned_text != nullptr) std::string().swap(*owned_text);
+  Model model = finish(deck);
+  // The whole-model checks need a complete model, so they run only on an otherwise clean deck.
+  if (checks == ModelChecks::Run && errors.empty())
+    for (const std::string& message : unsupported_features(model)) errors.add_plain(message);
+  errors.throw_if_any();
+  return model;
+}
+
+}  // namespace
+
+Model read_deck(const std::filesystem::path& path, ModelChecks checks) {
+  std::string content;
+  if (!read_text_file(path, content)) {
+    InputErrors errors;
+    errors.add_plain(path.string() + ": cannot open the deck; expected a readable file");
+    errors.throw_if_any();
+  }
+  return build_model(content, path.string(), checks, &content);
+}
+
+Model read_deck_text(const std::string& text, const std::string& file_name, ModelChecks checks) {
+  return build_model(text, file_name, checks);
+}
+
+}  // namespace xpl::io

@@ -1,0 +1,335 @@
+/// \file Resolution of references once the whole deck is read: element nodes, sets, initial
+/// conditions, boundary conditions, loads and output sets. Sections are resolved in
+/// deck_sections.cpp, surfaces in deck_surfaces.cpp, pressures and gravity in
+/// deck_pressure.cpp, contact pairs in deck_contact.cpp, rigid bodies in deck_rigid.cpp, point
+/// masses in deck_point_mass.cpp, distributions in deck_distribution.cpp, clearances in
+/// deck_clearance.cpp, element shapes checked in deck_geometry.cpp.
+
+#include <algorithm>
+
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_numbers.hpp"
+
+namespace xpl::io {
+
+namespace {
+
+/// Deeper set-of-set chains are almost certainly a mistake (and would deepen the recursion).
+constexpr int MAX_SET_NESTING = 100;
+
+}  // namespace
+
+Model finish(DeckState& deck) {
+  if (deck.in_step) {
+    deck.errors.add(deck.step_where, "*STEP",
+                    "step " + deck.model.steps.back().name + " is not closed",
+                    "expected *END STEP");
+    if (!deck.step_has_dynamic)
+      deck.errors.add(deck.step_where, "*STEP",
+                      "step " + deck.model.steps.back().name + " has no procedure",
+                      "expected *DYNAMIC, EXPLICIT with the time period");
+  }
+  if (deck.model.steps.empty())
+    deck.errors.add_plain(deck.file_name + ": the deck has no step; expected a *STEP with " +
+                          "*DYNAMIC, EXPLICIT and *END STEP after the model data");
+
+  const Index n_nodes = deck.model.node_count();
+  deck.model.coordinates.resize(n_nodes, 3);
+  for (Index i = 0; i < n_nodes; ++i)
+    for (int c = 0; c < 3; ++c)
+      deck.model.coordinates(i, c) = deck.coordinates[static_cast<std::size_t>(3 * i + c)];
+  deck.model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
+
+  resolve_element_nodes(deck);
+  resolve_sets(deck, false);  // element sets first: *NSET, ELSET= needs them
+  resolve_sets(deck, true);
+  resolve_sections(deck);
+  resolve_surfaces(deck);
+  resolve_initial_velocity(deck);
+  resolve_steps(deck);
+  resolve_pressures(deck);
+  resolve_gravity(deck);
+  resolve_contact_pairs(deck);
+  resolve_rigid_bodies(deck);
+  resolve_point_inertias(deck);
+  resolve_distributions(deck);
+  resolve_clearances(deck);  // after surfaces, contact pairs, rigid bodies and distributions
+  check_element_geometry(deck);
+
+  const char* categories[ERROR_CATEGORIES] = {"elements with undefined nodes",
+                                              "elements without a section",
+                                              "elements in two sections",
+                                              "elements with a section of the wrong kind",
+                                              "inverted elements",
+                                              "degenerate elements"};
+  for (int k = 0; k < ERROR_CATEGORIES; ++k) {
+    if (deck.error_counts[k] > ERROR_CAP)
+      deck.errors.add_plain(deck.file_name + ": " +
+                            std::to_string(deck.error_counts[k] - ERROR_CAP) + " more " +
+                            categories[k] + " not listed");
+  }
+  return std::move(deck.model);
+}
+
+void resolve_element_nodes(DeckState& deck) {
+  deck.model.element_nodes.assign(deck.element_node_ids.size(), NO_INDEX);
+  for (Index e = 0; e < deck.model.element_count(); ++e) {
+    bool reported = false;
+    for (Index k = deck.model.element_offsets[e]; k < deck.model.element_offsets[e + 1]; ++k) {
+      const ExternalId id = deck.element_node_ids[static_cast<std::size_t>(k)];
+      const auto it = deck.node_index.find(id);
+      if (it != deck.node_index.end()) {
+        deck.model.element_nodes[static_cast<std::size_t>(k)] = it->second;
+      } else if (!reported) {
+        capped_error(deck, deck.error_counts[UNDEFINED_NODES], deck.model.element_where(e),
+                     "*ELEMENT",
+                     "element " + std::to_string(deck.model.element_ids[e]) +
+                         " refers to undefined node " + std::to_string(id),
+                     "expected a *NODE with id " + std::to_string(id));
+        reported = true;
+      }
+    }
+  }
+  for (PointElement& element : deck.point_elements) {
+    const auto it = deck.node_index.find(element.node_id);
+    if (it != deck.node_index.end())
+      element.node = it->second;
+    else
+      capped_error(deck, deck.error_counts[UNDEFINED_NODES], element.where, "*ELEMENT",
+                   "element " + std::to_string(element.id) + " refers to undefined node " +
+                       std::to_string(element.node_id),
+                   "expected a *NODE with id " + std::to_string(element.node_id));
+  }
+}
+
+void resolve_sets(DeckState& deck, bool node_sets) {
+  const std::size_t count = node_sets ? deck.node_sets.size() : deck.element_sets.size();
+  for (std::size_t s = 0; s < count; ++s) resolve_set(deck, node_sets, static_cast<Index>(s), 0);
+}
+
+void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
+  PendingSet& pending = node_sets ? deck.node_sets[set] : deck.element_sets[set];
+  if (pending.state != 0) return;
+  pending.state = 1;
+  const auto& ids = node_sets ? deck.node_index : deck.element_index;
+  const auto& names = node_sets ? deck.node_set_by_name : deck.element_set_by_name;
+  const std::string what = node_sets ? "node" : "element";
+  std::vector<NamedSet>& sets = node_sets ? deck.model.node_sets : deck.model.element_sets;
+  std::vector<Index> members = std::move(pending.members);
+  // MASS/ROTARYI elements of an element set: kept beside the Model's members.
+  std::vector<Index>& points = pending.point_members;
+  const bool has_points = !node_sets && !deck.point_element_index.empty();
+  for (const SetItem& item : pending.items) {
+    switch (item.kind) {
+      case SetItem::Kind::Id: {
+        const auto it = ids.find(item.first);
+        const auto point =
+            has_points ? deck.point_element_index.find(item.first) : deck.point_element_index.end();
+        if (it != ids.end())
+          members.push_back(it->second);
+        else if (point != deck.point_element_index.end())
+          points.push_back(point->second);
+        else
+          deck.errors.add(item.where, item.keyword,
+                          "undefined " + what + " " + std::to_string(item.first),
+                          "expected a defined " + what + " id");
+        break;
+      }
+      case SetItem::Kind::Range: {
+        // Ids of the range that are not defined are skipped (GENERATE over sparse numbering);
+        // cost is bounded by the smaller of the range and the number of defined ids.
+        const std::size_t before = members.size() + points.size();
+        const long long span = (item.last - item.first) / item.increment + 1;
+        if (static_cast<unsigned long long>(span) <= ids.size()) {
+          for (long long id = item.first; id <= item.last; id += item.increment) {
+            const auto it = ids.find(id);
+            if (it != ids.end()) members.push_back(it->second);
+          }
+        } else {
+          for (const auto& [id, index] : ids)
+            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+              members.push_back(index);
+        }
+        if (has_points)
+          for (const auto& [id, index] : deck.point_element_index)
+            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+              points.push_back(index);
+        if (members.size() + points.size() == before)
+          deck.errors.add(item.where, item.keyword,
+                          "range " + std::to_string(item.first) + ".." + std::to_string(item.last) +
+                              " contains no defined " + what,
+                          "expected a range over defined " + what + " ids");
+        break;
+      }
+      case SetItem::Kind::SetName: {
+        const auto it = names.find(item.name);
+        const std::string set_keyword = node_sets ? "*NSET, NSET=" : "*ELSET, ELSET=";
+        if (it == names.end()) {
+          deck.errors.add(item.where, item.keyword, "undefined " + what + " set " + item.name,
+                          "expected " + set_keyword + item.name);
+          break;
+        }
+        const PendingSet& other =
+            node_sets ? deck.node_sets[it->second] : deck.element_sets[it->second];
+        if (other.state == 1 || depth >= MAX_SET_NESTING) {
+          deck.errors.add(item.where, item.keyword,
+                          what + " set " + sets[set].name + " includes " + item.name +
+                              ", which includes " + sets[set].name + " again",
+                          "expected sets without circular references");
+          break;
+        }
+        resolve_set(deck, node_sets, it->second, depth + 1);
+        const std::vector<Index>& included = sets[static_cast<std::size_t>(it->second)].members;
+        members.insert(members.end(), included.begin(), included.end());
+        if (!node_sets) {
+          const std::vector<Index>& other_points = deck.element_sets[it->second].point_members;
+          points.insert(points.end(), other_points.begin(), other_points.end());
+        }
+        break;
+      }
+      case SetItem::Kind::NodesOfElementSet: {
+        const auto it = deck.element_set_by_name.find(item.name);
+        if (it == deck.element_set_by_name.end()) {
+          deck.errors.add(item.where, item.keyword, "undefined element set " + item.name,
+                          "expected *ELSET, ELSET=" + item.name);
+          break;
+        }
+        for (Index e : deck.model.element_sets[static_cast<std::size_t>(it->second)].members)
+          for (Index k = deck.model.element_offsets[e]; k < deck.model.element_offsets[e + 1]; ++k)
+            if (deck.model.element_nodes[k] != NO_INDEX)
+              members.push_back(deck.model.element_nodes[k]);
+        for (Index p : deck.element_sets[it->second].point_members)
+          if (deck.point_elements[static_cast<std::size_t>(p)].node != NO_INDEX)
+            members.push_back(deck.point_elements[static_cast<std::size_t>(p)].node);
+        break;
+      }
+    }
+  }
+  std::sort(members.begin(), members.end());
+  members.erase(std::unique(members.begin(), members.end()), members.end());
+  sets[static_cast<std::size_t>(set)].members = std::move(members);
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  pending.state = 2;
+}
+
+std::vector<Index> resolve_nodes(DeckState& deck, const DeckReference& reference) {
+  if (reference.token.empty()) {
+    deck.errors.add(reference.where, reference.keyword, "missing node or node set",
+                    "expected a node id or a node set name first");
+    return {};
+  }
+  if (looks_numeric(reference.token)) {
+    const std::optional<long long> id = parse_integer(reference.token);
+    const auto it = id ? deck.node_index.find(*id) : deck.node_index.end();
+    if (it == deck.node_index.end()) {
+      deck.errors.add(reference.where, reference.keyword, "undefined node " + reference.token,
+                      "expected a defined node id or a node set name");
+      return {};
+    }
+    return {it->second};
+  }
+  const auto it = deck.node_set_by_name.find(reference.token);
+  if (it == deck.node_set_by_name.end()) {
+    deck.errors.add(reference.where, reference.keyword, "undefined node set " + reference.token,
+                    "expected *NSET, NSET=" + reference.token);
+    return {};
+  }
+  return deck.model.node_sets[static_cast<std::size_t>(it->second)].members;
+}
+
+std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& reference) {
+  if (reference.token.empty()) {
+    deck.errors.add(reference.where, reference.keyword, "missing element or element set",
+                    "expected an element id or an element set name first");
+    return {};
+  }
+  if (looks_numeric(reference.token)) {
+    const std::optional<long long> id = parse_integer(reference.token);
+    const auto it = id ? deck.element_index.find(*id) : deck.element_index.end();
+    if (it == deck.element_index.end()) {
+      deck.errors.add(reference.where, reference.keyword, "undefined element " + reference.token,
+                      "expected a defined element id or an element set name");
+      return {};
+    }
+    return {it->second};
+  }
+  const auto it = deck.element_set_by_name.find(reference.token);
+  if (it == deck.element_set_by_name.end()) {
+    deck.errors.add(reference.where, reference.keyword, "undefined element set " + reference.token,
+                    "expected *ELSET, ELSET=" + reference.token);
+    return {};
+  }
+  return deck.model.element_sets[static_cast<std::size_t>(it->second)].members;
+}
+
+std::string element_text(const DeckState& deck, Index e, const DeckReference& reference) {
+  std::string text =
+      std::string(element_type_name(deck.model.element_types[static_cast<std::size_t>(e)])) +
+      " element " + std::to_string(deck.model.element_ids[e]);
+  if (!looks_numeric(reference.token)) text += " of set " + reference.token;
+  return text;
+}
+
+Index resolve_amplitude(DeckState& deck, const std::string& name, const SourceLocation& where,
+                        const std::string& keyword) {
+  if (name.empty()) return NO_INDEX;
+  const Index amplitude = deck.model.find_amplitude(name);
+  if (amplitude == NO_INDEX)
+    deck.errors.add(where, keyword, "undefined amplitude " + name,
+                    "expected *AMPLITUDE, NAME=" + name);
+  return amplitude;
+}
+
+void resolve_initial_velocity(DeckState& deck) {
+  for (const PendingVelocity& pending : deck.velocities)
+    for (Index node : resolve_nodes(deck, pending.target))
+      deck.model.initial_velocity(node, pending.dof - 1) = pending.value;
+}
+
+void resolve_steps(DeckState& deck) {
+  // Model-level *BOUNDARY (before the first *STEP) is propagated as part of the first step,
+  // ahead of that step's own conditions; OP=NEW in the first step removes them, as in Abaqus.
+  for (const PendingBoundary& pending : deck.boundaries) {
+    if (deck.model.steps.empty()) break;
+    const bool model_level = pending.step == NO_INDEX;
+    Step& step = deck.model.steps[static_cast<std::size_t>(model_level ? 0 : pending.step)];
+    if (model_level && step.boundaries_reset) continue;
+    const Index amplitude =
+        resolve_amplitude(deck, pending.amplitude, pending.condition.where, pending.target.keyword);
+    for (Index node : resolve_nodes(deck, pending.target)) {
+      BoundaryCondition condition = pending.condition;
+      condition.node = node;
+      condition.amplitude = amplitude;
+      step.boundaries.push_back(condition);
+    }
+  }
+  for (const PendingLoad& pending : deck.loads) {
+    Step& step = deck.model.steps[static_cast<std::size_t>(pending.step)];
+    const Index amplitude =
+        resolve_amplitude(deck, pending.amplitude, pending.load.where, pending.target.keyword);
+    for (Index node : resolve_nodes(deck, pending.target)) {
+      ConcentratedLoad load = pending.load;
+      load.node = node;
+      load.amplitude = amplitude;
+      step.loads.push_back(load);
+    }
+  }
+  for (const PendingOutputSet& pending : deck.output_sets) {
+    OutputRequest& request = deck.model.steps[static_cast<std::size_t>(pending.step)]
+                                 .outputs[static_cast<std::size_t>(pending.output)];
+    const auto& names = pending.node ? deck.node_set_by_name : deck.element_set_by_name;
+    const auto it = names.find(pending.set.token);
+    if (it == names.end()) {
+      deck.errors.add(pending.set.where, pending.set.keyword,
+                      std::string("undefined ") + (pending.node ? "node" : "element") + " set " +
+                          pending.set.token,
+                      std::string("expected ") +
+                          (pending.node ? "*NSET, NSET=" : "*ELSET, ELSET=") + pending.set.token);
+      continue;
+    }
+    (pending.node ? request.node_set : request.element_set) = it->second;
+  }
+}
+
+}  // namespace xpl::io

@@ -1,0 +1,214 @@
+#pragma once
+/// \file State of the deck reader while it turns keyword blocks into a Model: the Model under
+/// construction, the error list, name -> index maps, the references still to resolve and the
+/// position in the deck (open material, step, output request). The keyword handlers
+/// (deck_handlers.hpp) are free functions operating on it. References (node and element ids,
+/// set, material, amplitude and controls names) are recorded while reading and resolved once
+/// the whole deck is known, so definition order does not matter within the model data.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "io/deck/deck_lines.hpp"
+#include "solver/model.hpp"
+
+namespace xpl::io {
+
+/// A node or element given by id (numeric) or by set name, still to be resolved.
+struct DeckReference {
+  std::string token;  ///< id as written, or upper-case set name
+  SourceLocation where;
+  std::string keyword;  ///< "*BOUNDARY", for messages
+};
+
+/// Categories of capped_error, one counter each.
+enum ErrorCategory {
+  UNDEFINED_NODES,
+  NO_SECTION,
+  TWO_SECTIONS,
+  WRONG_SECTION_KIND,
+  INVERTED,
+  DEGENERATE,
+  ERROR_CATEGORIES
+};
+
+/// Errors shown per capped category (capped_error): keeps the report readable for a mesh with
+/// a million bad elements.
+constexpr int ERROR_CAP = 20;
+
+/// One item of a *NSET/*ELSET data line, resolved in finish().
+struct SetItem {
+  enum class Kind { Id, Range, SetName, NodesOfElementSet };
+  Kind kind = Kind::Id;
+  long long first = 0, last = 0, increment = 1;  ///< Kind::Id (first), Kind::Range
+  std::string name;                              ///< Kind::SetName, Kind::NodesOfElementSet
+  SourceLocation where;
+  std::string keyword;
+};
+struct PendingSet {
+  std::vector<Index> members;  ///< members known while reading (*NODE, NSET= / *ELEMENT, ELSET=)
+  /// Element sets: MASS/ROTARYI elements (into point_elements), which the Model's element
+  /// arrays do not hold; sorted and unique once resolved.
+  std::vector<Index> point_members;
+  std::vector<SetItem> items;
+  int state = 0;  ///< 0 unresolved, 1 being resolved, 2 done
+};
+struct PendingSection {
+  std::string element_set, material, controls;
+};
+struct PendingSurfaceItem {
+  DeckReference target;
+  int face = -1;       ///< 0..5 (S1..S6), SHELL_FACE_NEG/POS if `shell`, -1 for a node surface
+  bool shell = false;  ///< SPOS/SNEG: only shell elements fit
+  /// No face label: both sides of shells, the exposed faces of solids (as Abaqus).
+  bool all_faces = false;
+  std::string label;  ///< the face word, upper case, for messages
+};
+struct PendingBoundary {
+  Index step = NO_INDEX;  ///< NO_INDEX: model level, goes to the first step
+  DeckReference target;
+  BoundaryCondition condition;
+  std::string amplitude;
+};
+struct PendingLoad {
+  Index step = NO_INDEX;
+  DeckReference target;
+  ConcentratedLoad load;
+  std::string amplitude;
+};
+/// A `*DLOAD` (element or element set, `P` or `P1`..`P6`) or `*DSLOAD` (surface, `P`) line.
+struct PendingPressure {
+  Index step = NO_INDEX;
+  DeckReference target;  ///< element/element set, or the surface name (`on_surface`)
+  bool on_surface = false;
+  int solid_face = -1;    ///< *DLOAD P1..P6: 0..5; -1 for P (shells, face SPOS)
+  std::string load_type;  ///< upper case, for messages
+  PressureLoad load;
+  std::string amplitude;
+};
+/// A `*DLOAD` GRAV line.
+struct PendingGravity {
+  Index step = NO_INDEX;
+  std::string element_set;  ///< upper case; empty: the whole model
+  GravityLoad load;
+  std::string amplitude;
+};
+struct PendingVelocity {
+  DeckReference target;
+  int dof = 1;
+  Real value = 0.0;
+};
+struct PendingOutputSet {
+  Index step = NO_INDEX, output = NO_INDEX;
+  bool node = true;
+  DeckReference set;
+};
+/// `*CONTACT PAIR` data line; names upper case.
+struct PendingContactPair {
+  Index step = NO_INDEX;  ///< NO_INDEX: model level
+  std::string slave, master, interaction;
+  SourceLocation where;
+};
+/// `*RIGID BODY`; set names upper case, empty when not given.
+struct PendingRigidBody {
+  DeckReference reference_node;
+  std::string element_set, pin_node_set, tie_node_set;
+};
+/// `*DISTRIBUTION, LOCATION=NODE` (parallel to Model::distributions): its data lines.
+struct PendingDistribution {
+  std::optional<Real> default_value;                   ///< first line with a blank node field
+  std::vector<std::pair<DeckReference, Real>> values;  ///< node or node set, value
+  std::string table;                                   ///< TABLE=, upper case; empty if none
+};
+/// `*DISTRIBUTION TABLE, NAME=`: only a single scalar column is accepted.
+struct DistributionTable {
+  std::string name;  ///< upper case
+  SourceLocation where;
+};
+/// A `*CONTACT CLEARANCE ASSIGNMENT` line: surfaces resolved while reading, the clearance
+/// (which may be defined later) and the checks that need the whole deck in finish().
+struct PendingClearanceAssignment {
+  Index step = NO_INDEX;
+  std::string clearance;  ///< upper case
+  ClearanceAssignment assignment;
+};
+/// A `*ELEMENT, TYPE=MASS|ROTARYI` element: the solver has no point elements, so it stays
+/// out of the Model's element arrays; `*MASS`/`*ROTARY INERTIA` make it a PointInertia.
+struct PointElement {
+  ExternalId id = 0;
+  ExternalId node_id = 0;
+  Index node = NO_INDEX;      ///< resolved in finish()
+  bool rotary = false;        ///< ROTARYI, else MASS
+  Index property = NO_INDEX;  ///< into point_properties: the *MASS/*ROTARY INERTIA covering it
+  SourceLocation where;
+};
+/// `*MASS` (mass in values[0]) or `*ROTARY INERTIA` (I11 I22 I33 I12 I13 I23).
+struct PointProperty {
+  std::string element_set;
+  bool rotary = false;
+  Real values[6] = {0, 0, 0, 0, 0, 0};
+  SourceLocation where;
+};
+
+/// What the keyword handlers share while a deck is read; every problem goes into `errors`.
+struct DeckState {
+  /// `file_name`: the deck as named in messages; its stem becomes the job name.
+  DeckState(InputErrors& errors, std::string file_name);
+
+  InputErrors& errors;
+  std::string file_name;
+  Model model;
+  std::vector<Real> coordinates;             ///< x y z per node, copied into the Model at the end
+  std::vector<ExternalId> element_node_ids;  ///< parallel to Model::element_nodes
+  std::unordered_map<ExternalId, Index> node_index;
+  /// Nodes whose coordinates had a bad number (already reported): their elements are not
+  /// checked for inversion, which would only repeat the same mistake as a second error.
+  std::vector<Index> bad_coordinate_nodes;
+  std::unordered_map<ExternalId, Index> element_index;
+  std::unordered_map<std::string, Index> node_set_by_name, element_set_by_name;
+  std::vector<PendingSet> node_sets, element_sets;  ///< parallel to the Model's sets
+  std::vector<PendingSection> sections;             ///< parallel to Model::solid_sections
+  std::vector<PendingSection> shell_sections;       ///< parallel to Model::shell_sections
+  /// ELSET= of refused section keywords (*SHELL GENERAL SECTION): their elements are not
+  /// reported again as having no section.
+  std::vector<std::string> refused_section_sets;
+  /// Elements whose section problem is reported already (refused section, section of the
+  /// wrong kind): no "has no section" follow-up. Empty while there are none.
+  std::vector<char> section_reported;
+  std::vector<std::vector<PendingSurfaceItem>> surface_items;  ///< parallel to surfaces
+  std::vector<PendingBoundary> boundaries;
+  std::vector<PendingLoad> loads;
+  std::vector<PendingPressure> pressures;
+  std::vector<PendingVelocity> velocities;
+  std::vector<PendingOutputSet> output_sets;
+  std::vector<PendingGravity> gravity;
+  std::vector<PendingContactPair> contact_pairs;
+  std::vector<PendingRigidBody> rigid_bodies;  ///< parallel to Model::rigid_bodies
+  std::vector<PointElement> point_elements;
+  std::unordered_map<ExternalId, Index> point_element_index;  ///< into point_elements
+  std::vector<PointProperty> point_properties;
+  std::vector<PendingDistribution> distributions;  ///< parallel to Model::distributions
+  std::vector<DistributionTable> distribution_tables;
+  /// CLEARANCE=name of each clearance (parallel to Model::contact_clearances), upper case;
+  /// empty for a value.
+  std::vector<std::string> clearance_distributions;
+  std::vector<PendingClearanceAssignment> clearance_assignments;
+  /// check_clearance_surface verdict per surface: 0 not checked, 1 fit, 2 reported.
+  std::vector<std::uint8_t> clearance_surface_state;
+
+  // --- position in the deck ------------------------------------------------------------------
+  Index material = NO_INDEX;     ///< the *MATERIAL that *DENSITY/*ELASTIC attach to
+  Index interaction = NO_INDEX;  ///< the *SURFACE INTERACTION that *FRICTION & co. attach to
+  bool has_friction = false, has_behavior = false;  ///< given for interaction already
+  bool in_step = false;
+  bool step_has_dynamic = false;
+  Index output = NO_INDEX;  ///< the latest *OUTPUT of the open step
+  SourceLocation step_where;
+  int error_counts[ERROR_CATEGORIES] = {};
+};
+
+}  // namespace xpl::io
