@@ -1,7 +1,10 @@
 #include "solver/central_difference.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+
+#include "solver/message_text.hpp"
 
 namespace xpl {
 
@@ -10,6 +13,13 @@ namespace {
 /// Nodes per chunk of the nodal loops; partial sums per chunk are added in chunk order so
 /// that energies do not depend on the thread count.
 constexpr Index NODE_CHUNK = 2048;
+/// A prescribed DOF's velocity jumps at the first update of a step when the BC's velocity at
+/// t_n differs from v_{n-1/2} by more than this share of v_{n+1/2} - v_{n-1/2} (about ½ for a
+/// smooth motion, about 1 after a jump).
+constexpr Real JUMP_SHARE = 0.75;
+/// Step of the forward difference that gives a displacement BC's velocity at t_n, as a
+/// fraction of the next increment.
+constexpr Real JUMP_PROBE = 1e-3;
 
 }  // namespace
 
@@ -51,6 +61,7 @@ void CentralDifference::begin_step(int step, State& state, RigidBodies& rigid) {
   m_dropped_members = rigid.empty() ? 0 : rigid.begin_step(active);
   select_prescribed(active, state);
   collect_loads();
+  m_first_update = true;
   if (m_previous_force.rows() == 0 && (!m_prescribed.empty() || !m_free_loads.empty()))
     m_previous_force = NodalVectors::Zero(m_model.node_count(), 3);
   if (m_shells && m_previous_moment.rows() == 0 && !m_prescribed.empty())
@@ -241,6 +252,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   state.energies.kinetic = ke + ke_fix;
   state.energies.external_work += work;
   elements.clear_forces();
+  m_first_update = false;
 }
 
 Real CentralDifference::update_prescribed(State& state, const Field& translation,
@@ -251,6 +263,12 @@ Real CentralDifference::update_prescribed(State& state, const Field& translation
   Real ke_fix = 0.0;
   const Real step_next_half = state.step_time + 0.5 * inc.dt_next;
   const Real step_next_end = state.step_time + inc.dt_next;
+  if (m_jump_work_pending != 0.0) {
+    // The second half of the impulses of the jump one update ago.
+    work += m_jump_work_pending;
+    m_jump_work_pending = 0.0;
+  }
+  if (m_first_update) m_jump.time = state.time;
   for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
     const PrescribedDof& d = m_prescribed[k];
     const bool turn = d.component >= 3;
@@ -283,10 +301,65 @@ Real CentralDifference::update_prescribed(State& state, const Field& translation
     field.velocity[at] = right;
     const Real f_now = f_ext + r;
     Real& f_before = (turn ? m_previous_moment : m_previous_force)(i, c);
+    if (m_first_update && v_new != v_old && is_jump(d, state, inc, v_old, v_new)) {
+      add_jump_work(m, v_old, right, v_new, field.force_internal[at], f_before, inc, work);
+      continue;
+    }
     work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
     f_before = f_now;
   }
   return ke_fix;
+}
+
+bool CentralDifference::is_jump(const PrescribedDof& d, const State& state, const Increment& inc,
+                                Real v_old, Real v_new) const {
+  // The BC's own velocity at t_n: for a smooth motion sampled at t_{n-1/2} and t_{n+1/2} it
+  // lies about half-way between v_old and v_new; after a jump at the start of the step it is
+  // already v_new (up to the change over half an increment).
+  Real v_at = 0.0;
+  if (d.type == BoundaryType::Velocity) {
+    v_at = m_boundary.target(m_model, d, state.step_time, state.time);
+  } else {
+    // The rate of the prescribed displacement just after t_n (a forward difference over a
+    // small fraction of the next increment).
+    const Real h = JUMP_PROBE * inc.dt_next;
+    if (!(h > 0.0)) return false;
+    v_at = (m_boundary.target(m_model, d, state.step_time + h, state.time + h) -
+            m_boundary.target(m_model, d, state.step_time, state.time)) /
+           h;
+  }
+  return std::abs(v_at - v_old) > JUMP_SHARE * std::abs(v_new - v_old);
+}
+
+void CentralDifference::add_jump_work(Real m, Real v_old, Real v_whole, Real v_new, Real f_smooth,
+                                      Real& f_before, const Increment& inc, Real& work) {
+  // The BC's force is the impulse J = m (v_new - v_old) plus the internal force the node
+  // passes on to the elements. The impulse does J (v_old + v_new) / 2 = ½m(v_new² - v_old²):
+  // counted exactly, split at the reported whole-step velocity v_whole so that ETOTAL
+  // balances at t_n too (½m(v_whole² - v_old²) now, the rest with the next increment). The
+  // trapezoidal rule would weigh J by dt_prev v_old / 2 + dt_next v_new / 2 over dt_avg, which
+  // is off by ¼ m (v_new - v_old)² (dt_next - dt_prev) / dt_avg: ½mΔv² at t = 0.
+  // The internal force keeps the trapezoidal rule; the impulse leaves f_before.
+  work += 0.5 * (f_before + f_smooth) * inc.dt_prev * v_old;
+  f_before = f_smooth;
+  const Real now = 0.5 * m * (v_whole * v_whole - v_old * v_old);
+  const Real later = 0.5 * m * (v_new * v_new - v_whole * v_whole);
+  work += now;
+  m_jump_work_pending += later;
+  ++m_jump.dofs;
+  m_jump.energy += now + later;
+  m_jump.largest = std::max(m_jump.largest, std::abs(v_new - v_old));
+}
+
+void CentralDifference::report_jump(int step, OutputSink& sink) {
+  if (m_jump.dofs == 0) return;
+  sink.message(Severity::Warning,
+               "step " + m_model.steps[step].name +
+                   ": a prescribed velocity jump at t = " + format_real(m_jump.time) + " s on " +
+                   std::to_string(m_jump.dofs) + " DOF(s) (|dv| up to " +
+                   format_real(m_jump.largest) + ") put " + format_real(m_jump.energy) +
+                   " J into the model (impulsive input, counted in ALLWK)");
+  m_jump = Jump{};
 }
 
 void CentralDifference::add_load_work(Real dt_prev, Real& work) {
