@@ -247,7 +247,15 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
         dt_prev, dt_next, inc.w_new,
         {state.step_time + 0.5 * dt_next, t_next_half, state.step_time + dt_next, t_next_end},
         work);
+  // Jumps of the prescribed motion: found before the update, their work corrected after it
+  // (the update itself stays as it is for every other DOF).
+  if (m_jump_work_pending != 0.0) {
+    work += m_jump_work_pending;  // the second half of the impulses one update ago
+    m_jump_work_pending = 0.0;
+  }
+  if (m_first_update) find_jumps(state, inc);
   const Real ke_fix = update_prescribed(state, translation, rotation, inc, work);
+  if (!m_jumps.empty()) count_jump_work(translation, rotation, inc, work);
   add_load_work(dt_prev, work);
   state.energies.kinetic = ke + ke_fix;
   state.energies.external_work += work;
@@ -263,12 +271,6 @@ Real CentralDifference::update_prescribed(State& state, const Field& translation
   Real ke_fix = 0.0;
   const Real step_next_half = state.step_time + 0.5 * inc.dt_next;
   const Real step_next_end = state.step_time + inc.dt_next;
-  if (m_jump_work_pending != 0.0) {
-    // The second half of the impulses of the jump one update ago.
-    work += m_jump_work_pending;
-    m_jump_work_pending = 0.0;
-  }
-  if (m_first_update) m_jump.time = state.time;
   for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
     const PrescribedDof& d = m_prescribed[k];
     const bool turn = d.component >= 3;
@@ -301,10 +303,6 @@ Real CentralDifference::update_prescribed(State& state, const Field& translation
     field.velocity[at] = right;
     const Real f_now = f_ext + r;
     Real& f_before = (turn ? m_previous_moment : m_previous_force)(i, c);
-    if (m_first_update && v_new != v_old && is_jump(d, state, inc, v_old, v_new)) {
-      add_jump_work(m, v_old, right, v_new, field.force_internal[at], f_before, inc, work);
-      continue;
-    }
     work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
     f_before = f_now;
   }
@@ -331,24 +329,67 @@ bool CentralDifference::is_jump(const PrescribedDof& d, const State& state, cons
   return std::abs(v_at - v_old) > JUMP_SHARE * std::abs(v_new - v_old);
 }
 
-void CentralDifference::add_jump_work(Real m, Real v_old, Real v_whole, Real v_new, Real f_smooth,
-                                      Real& f_before, const Increment& inc, Real& work) {
-  // The BC's force is the impulse J = m (v_new - v_old) plus the internal force the node
-  // passes on to the elements. The impulse does J (v_old + v_new) / 2 = ½m(v_new² - v_old²):
-  // counted exactly, split at the reported whole-step velocity v_whole so that ETOTAL
-  // balances at t_n too (½m(v_whole² - v_old²) now, the rest with the next increment). The
-  // trapezoidal rule would weigh J by dt_prev v_old / 2 + dt_next v_new / 2 over dt_avg, which
-  // is off by ¼ m (v_new - v_old)² (dt_next - dt_prev) / dt_avg: ½mΔv² at t = 0.
-  // The internal force keeps the trapezoidal rule; the impulse leaves f_before.
-  work += 0.5 * (f_before + f_smooth) * inc.dt_prev * v_old;
-  f_before = f_smooth;
-  const Real now = 0.5 * m * (v_whole * v_whole - v_old * v_old);
-  const Real later = 0.5 * m * (v_new * v_new - v_whole * v_whole);
-  work += now;
-  m_jump_work_pending += later;
-  ++m_jump.dofs;
-  m_jump.energy += now + later;
-  m_jump.largest = std::max(m_jump.largest, std::abs(v_new - v_old));
+void CentralDifference::find_jumps(const State& state, const Increment& inc) {
+  m_jumps.clear();
+  m_jump.time = state.time;
+  const Real step_next_half = state.step_time + 0.5 * inc.dt_next;
+  const Real step_next_end = state.step_time + inc.dt_next;
+  for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
+    const PrescribedDof& d = m_prescribed[k];
+    const bool turn = d.component >= 3;
+    const int c = d.component % 3;
+    const Real v_old = m_v_old_prescribed[k];
+    // v_{n+1/2} as update_prescribed will set it (for the classification only).
+    Real v_new = 0.0;
+    if (d.type == BoundaryType::Velocity) {
+      v_new = m_boundary.target(m_model, d, step_next_half, inc.t_next_half);
+    } else if (inc.dt_next > 0.0) {
+      const Real current =
+          turn ? m_prescribed_value[k] + inc.dt_prev * v_old : state.displacement(d.node, c);
+      v_new =
+          (m_boundary.target(m_model, d, step_next_end, inc.t_next_end) - current) / inc.dt_next;
+    }
+    if (v_new == v_old || !is_jump(d, state, inc, v_old, v_new)) continue;
+    m_jumps.push_back({k, (turn ? m_previous_moment : m_previous_force)(d.node, c)});
+  }
+}
+
+void CentralDifference::count_jump_work(const Field& translation, const Field& rotation,
+                                        const Increment& inc, Real& work) {
+  // The BC's force at a jump is the impulse J = m (v_new - v_old) plus the internal force the
+  // node passes on to the elements. The impulse does J (v_old + v_new) / 2 = ½m(v_new² -
+  // v_old²), counted exactly and split at the reported whole-step velocity v_n, so that ETOTAL
+  // balances at t_n too: ½m(v_n² - v_old²) now, the rest with the next increment. The
+  // trapezoidal rule of update_prescribed weighed J by (dt_prev v_old + dt_next v_new) / 2 over
+  // dt_avg: off by ¼ m (v_new - v_old)² (dt_next - dt_prev) / dt_avg, ½mΔv² at t = 0. Its
+  // term is replaced; the internal force keeps the trapezoidal rule, the impulse leaves
+  // f_before.
+  const Index n = m_model.node_count();
+  for (const PendingJump& j : m_jumps) {
+    const PrescribedDof& d = m_prescribed[j.dof];
+    const bool turn = d.component >= 3;
+    const int c = d.component % 3;
+    const Field& field = turn ? rotation : translation;
+    const Index at = c * n + d.node;
+    const Real m = field.mass[d.node];
+    const Real v_old = m_v_old_prescribed[j.dof];
+    const Real v_new = field.velocity_half[at];
+    const Real v_whole = field.velocity[at];
+    Real& f_before = (turn ? m_previous_moment : m_previous_force)(d.node, c);
+    const Real f_now = f_before;  // what update_prescribed stored: f_ext + reaction
+    const Real f_smooth = field.force_internal[at];
+    const Real trapezoid = 0.5 * (j.f_before + f_now) * inc.dt_prev * v_old;
+    const Real smooth = 0.5 * (j.f_before + f_smooth) * inc.dt_prev * v_old;
+    const Real now = 0.5 * m * (v_whole * v_whole - v_old * v_old);
+    const Real later = 0.5 * m * (v_new * v_new - v_whole * v_whole);
+    work += (smooth + now) - trapezoid;
+    m_jump_work_pending += later;
+    f_before = f_smooth;
+    ++m_jump.dofs;
+    m_jump.energy += now + later;
+    m_jump.largest = std::max(m_jump.largest, std::abs(v_new - v_old));
+  }
+  m_jumps.clear();
 }
 
 void CentralDifference::report_jump(int step, OutputSink& sink) {

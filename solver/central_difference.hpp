@@ -82,11 +82,13 @@ class CentralDifference {
   /// central-difference sampling of a smooth motion (its velocity at t_n lies half-way).
   bool is_jump(const PrescribedDof& d, const State& state, const Increment& inc, Real v_old,
                Real v_new) const;
-  /// Work of a prescribed DOF of mass `m` whose velocity jumps v_old → v_new (whole-step
-  /// v_whole) at this update: the impulse exactly, the internal force `f_smooth` by the
-  /// trapezoidal rule; into `work` and the pending work of the next increment.
-  void add_jump_work(Real m, Real v_old, Real v_whole, Real v_new, Real f_smooth, Real& f_before,
-                     const Increment& inc, Real& work);
+  /// At the first update of a step: the prescribed DOFs whose velocity jumps (is_jump), with
+  /// their force of the previous increment, into m_jumps.
+  void find_jumps(const State& state, const Increment& inc);
+  /// After update_prescribed: the work of the jumps in m_jumps counted as impulses (their
+  /// trapezoidal term replaced), into `work` and the pending work of the next increment.
+  void count_jump_work(const Field& translation, const Field& rotation, const Increment& inc,
+                       Real& work);
   /// Work of the loads on the free loaded DOFs over the increment just taken, into `work`.
   void add_load_work(Real dt_prev, Real& work);
 
@@ -118,6 +120,12 @@ class CentralDifference {
     Real time = 0.0;     ///< total time of the update, s
   };
   Jump m_jump;
+  /// A prescribed DOF that jumps at this update, with f_before of the trapezoidal rule.
+  struct PendingJump {
+    std::size_t dof;  ///< index into m_prescribed
+    Real f_before;    ///< its force at the previous increment, N or N m
+  };
+  std::vector<PendingJump> m_jumps;
   bool m_first_update = false;  ///< the next update is the first one of the step
   /// Work of the impulses of a jump that falls in the increment after it, J: added with the
   /// work of that increment (the second half of the velocity change, v_n → v_{n+1/2}).
