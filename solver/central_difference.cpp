@@ -314,19 +314,24 @@ bool CentralDifference::is_jump(const PrescribedDof& d, const State& state, cons
   // The BC's own velocity at t_n: for a smooth motion sampled at t_{n-1/2} and t_{n+1/2} it
   // lies about half-way between v_old and v_new; after a jump at the start of the step it is
   // already v_new (up to the change over half an increment).
-  Real v_at = 0.0;
+  Real v_at = 0.0, v_later = v_new;
   if (d.type == BoundaryType::Velocity) {
     v_at = m_boundary.target(m_model, d, state.step_time, state.time);
   } else {
     // The rate of the prescribed displacement just after t_n (a forward difference over a
-    // small fraction of the next increment).
+    // small fraction of the next increment), and its mean rate over the next increment. The
+    // latter, not v_new: a BC that takes over at a step boundary finds the node half an
+    // increment behind and v_new catches up, which would hide the jump in the share.
     const Real h = JUMP_PROBE * inc.dt_next;
     if (!(h > 0.0)) return false;
-    v_at = (m_boundary.target(m_model, d, state.step_time + h, state.time + h) -
-            m_boundary.target(m_model, d, state.step_time, state.time)) /
-           h;
+    const Real u_now = m_boundary.target(m_model, d, state.step_time, state.time);
+    v_at = (m_boundary.target(m_model, d, state.step_time + h, state.time + h) - u_now) / h;
+    v_later =
+        (m_boundary.target(m_model, d, state.step_time + inc.dt_next, state.time + inc.dt_next) -
+         u_now) /
+        inc.dt_next;
   }
-  return std::abs(v_at - v_old) > JUMP_SHARE * std::abs(v_new - v_old);
+  return std::abs(v_at - v_old) > JUMP_SHARE * std::abs(v_later - v_old);
 }
 
 void CentralDifference::find_jumps(const State& state, const Increment& inc) {
