@@ -1,7 +1,10 @@
 #include "solver/central_difference.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+
+#include "solver/message_text.hpp"
 
 namespace xpl {
 
@@ -10,6 +13,13 @@ namespace {
 /// Nodes per chunk of the nodal loops; partial sums per chunk are added in chunk order so
 /// that energies do not depend on the thread count.
 constexpr Index NODE_CHUNK = 2048;
+/// A prescribed DOF's velocity jumps at the first update of a step when the BC's velocity at
+/// t_n differs from v_{n-1/2} by more than this share of v_{n+1/2} - v_{n-1/2} (about ½ for a
+/// smooth motion, about 1 after a jump).
+constexpr Real JUMP_SHARE = 0.75;
+/// Step of the forward difference that gives a displacement BC's velocity at t_n, as a
+/// fraction of the next increment.
+constexpr Real JUMP_PROBE = 1e-3;
 
 }  // namespace
 
@@ -51,6 +61,7 @@ void CentralDifference::begin_step(int step, State& state, RigidBodies& rigid) {
   m_dropped_members = rigid.empty() ? 0 : rigid.begin_step(active);
   select_prescribed(active, state);
   collect_loads();
+  m_first_update = true;
   if (m_previous_force.rows() == 0 && (!m_prescribed.empty() || !m_free_loads.empty()))
     m_previous_force = NodalVectors::Zero(m_model.node_count(), 3);
   if (m_shells && m_previous_moment.rows() == 0 && !m_prescribed.empty())
@@ -236,11 +247,20 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
         dt_prev, dt_next, inc.w_new,
         {state.step_time + 0.5 * dt_next, t_next_half, state.step_time + dt_next, t_next_end},
         work);
+  // Jumps of the prescribed motion: found before the update, their work corrected after it
+  // (the update itself stays as it is for every other DOF).
+  if (m_jump_work_pending != 0.0) {
+    work += m_jump_work_pending;  // the second half of the impulses one update ago
+    m_jump_work_pending = 0.0;
+  }
+  if (m_first_update) find_jumps(state, inc);
   const Real ke_fix = update_prescribed(state, translation, rotation, inc, work);
+  if (!m_jumps.empty()) count_jump_work(translation, rotation, inc, work);
   add_load_work(dt_prev, work);
   state.energies.kinetic = ke + ke_fix;
   state.energies.external_work += work;
   elements.clear_forces();
+  m_first_update = false;
 }
 
 Real CentralDifference::update_prescribed(State& state, const Field& translation,
@@ -287,6 +307,105 @@ Real CentralDifference::update_prescribed(State& state, const Field& translation
     f_before = f_now;
   }
   return ke_fix;
+}
+
+bool CentralDifference::is_jump(const PrescribedDof& d, const State& state, const Increment& inc,
+                                Real v_old, Real v_new) const {
+  // The BC's own velocity at t_n: for a smooth motion sampled at t_{n-1/2} and t_{n+1/2} it
+  // lies about half-way between v_old and v_new; after a jump at the start of the step it is
+  // already v_new (up to the change over half an increment).
+  Real v_at = 0.0, v_later = v_new;
+  if (d.type == BoundaryType::Velocity) {
+    v_at = m_boundary.target(m_model, d, state.step_time, state.time);
+  } else {
+    // The rate of the prescribed displacement just after t_n (a forward difference over a
+    // small fraction of the next increment), and its mean rate over the next increment. The
+    // latter, not v_new: a BC that takes over at a step boundary finds the node half an
+    // increment behind and v_new catches up, which would hide the jump in the share.
+    const Real h = JUMP_PROBE * inc.dt_next;
+    if (!(h > 0.0)) return false;
+    const Real u_now = m_boundary.target(m_model, d, state.step_time, state.time);
+    v_at = (m_boundary.target(m_model, d, state.step_time + h, state.time + h) - u_now) / h;
+    v_later =
+        (m_boundary.target(m_model, d, state.step_time + inc.dt_next, state.time + inc.dt_next) -
+         u_now) /
+        inc.dt_next;
+  }
+  return std::abs(v_at - v_old) > JUMP_SHARE * std::abs(v_later - v_old);
+}
+
+void CentralDifference::find_jumps(const State& state, const Increment& inc) {
+  m_jumps.clear();
+  m_jump.time = state.time;
+  const Real step_next_half = state.step_time + 0.5 * inc.dt_next;
+  const Real step_next_end = state.step_time + inc.dt_next;
+  for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
+    const PrescribedDof& d = m_prescribed[k];
+    const bool turn = d.component >= 3;
+    const int c = d.component % 3;
+    const Real v_old = m_v_old_prescribed[k];
+    // v_{n+1/2} as update_prescribed will set it (for the classification only).
+    Real v_new = 0.0;
+    if (d.type == BoundaryType::Velocity) {
+      v_new = m_boundary.target(m_model, d, step_next_half, inc.t_next_half);
+    } else if (inc.dt_next > 0.0) {
+      const Real current =
+          turn ? m_prescribed_value[k] + inc.dt_prev * v_old : state.displacement(d.node, c);
+      v_new =
+          (m_boundary.target(m_model, d, step_next_end, inc.t_next_end) - current) / inc.dt_next;
+    }
+    if (v_new == v_old || !is_jump(d, state, inc, v_old, v_new)) continue;
+    m_jumps.push_back({k, (turn ? m_previous_moment : m_previous_force)(d.node, c)});
+  }
+}
+
+void CentralDifference::count_jump_work(const Field& translation, const Field& rotation,
+                                        const Increment& inc, Real& work) {
+  // The BC's force at a jump is the impulse J = m (v_new - v_old) plus the internal force the
+  // node passes on to the elements. The impulse does J (v_old + v_new) / 2 = ½m(v_new² -
+  // v_old²), counted exactly and split at the reported whole-step velocity v_n, so that ETOTAL
+  // balances at t_n too: ½m(v_n² - v_old²) now, the rest with the next increment. The
+  // trapezoidal rule of update_prescribed weighed J by (dt_prev v_old + dt_next v_new) / 2 over
+  // dt_avg: off by ¼ m (v_new - v_old)² (dt_next - dt_prev) / dt_avg, ½mΔv² at t = 0. Its
+  // term is replaced; the internal force keeps the trapezoidal rule, the impulse leaves
+  // f_before.
+  const Index n = m_model.node_count();
+  for (const PendingJump& j : m_jumps) {
+    const PrescribedDof& d = m_prescribed[j.dof];
+    const bool turn = d.component >= 3;
+    const int c = d.component % 3;
+    const Field& field = turn ? rotation : translation;
+    const Index at = c * n + d.node;
+    const Real m = field.mass[d.node];
+    const Real v_old = m_v_old_prescribed[j.dof];
+    const Real v_new = field.velocity_half[at];
+    const Real v_whole = field.velocity[at];
+    Real& f_before = (turn ? m_previous_moment : m_previous_force)(d.node, c);
+    const Real f_now = f_before;  // what update_prescribed stored: f_ext + reaction
+    const Real f_smooth = field.force_internal[at];
+    const Real trapezoid = 0.5 * (j.f_before + f_now) * inc.dt_prev * v_old;
+    const Real smooth = 0.5 * (j.f_before + f_smooth) * inc.dt_prev * v_old;
+    const Real now = 0.5 * m * (v_whole * v_whole - v_old * v_old);
+    const Real later = 0.5 * m * (v_new * v_new - v_whole * v_whole);
+    work += (smooth + now) - trapezoid;
+    m_jump_work_pending += later;
+    f_before = f_smooth;
+    ++m_jump.dofs;
+    m_jump.energy += now + later;
+    m_jump.largest = std::max(m_jump.largest, std::abs(v_new - v_old));
+  }
+  m_jumps.clear();
+}
+
+void CentralDifference::report_jump(int step, OutputSink& sink) {
+  if (m_jump.dofs == 0) return;
+  sink.message(Severity::Warning,
+               "step " + m_model.steps[step].name +
+                   ": a prescribed velocity jump at t = " + format_real(m_jump.time) + " s on " +
+                   std::to_string(m_jump.dofs) + " DOF(s) (|dv| up to " +
+                   format_real(m_jump.largest) + ") put " + format_real(m_jump.energy) +
+                   " J into the model (impulsive input, counted in ALLWK)");
+  m_jump = Jump{};
 }
 
 void CentralDifference::add_load_work(Real dt_prev, Real& work) {

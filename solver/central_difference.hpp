@@ -34,6 +34,9 @@ class CentralDifference {
   void begin_step(int step, State& state, RigidBodies& rigid);
   /// Notes on the BCs of the step that begin_step() dropped, to the sink.
   void report_step(int step, OutputSink& sink) const;
+  /// A warning to the sink when the last update_nodes() met a jump of the prescribed motion
+  /// (see update_prescribed), with the energy the impulse put in; then forgets the jump.
+  void report_jump(int step, OutputSink& sink);
   /// The prescribed DOFs of the step (those the nodal update drives).
   const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
 
@@ -74,6 +77,18 @@ class CentralDifference {
   /// `work`); returns the kinetic-energy correction to what the free update counted.
   Real update_prescribed(State& state, const Field& translation, const Field& rotation,
                          const Increment& inc, Real& work);
+  /// Whether the velocity v_old → v_new of prescribed DOF `d` at the first update of a step
+  /// is a jump of the BC (its velocity at t_n itself is already the new one) rather than the
+  /// central-difference sampling of a smooth motion (its velocity at t_n lies half-way).
+  bool is_jump(const PrescribedDof& d, const State& state, const Increment& inc, Real v_old,
+               Real v_new) const;
+  /// At the first update of a step: the prescribed DOFs whose velocity jumps (is_jump), with
+  /// their force of the previous increment, into m_jumps.
+  void find_jumps(const State& state, const Increment& inc);
+  /// After update_prescribed: the work of the jumps in m_jumps counted as impulses (their
+  /// trapezoidal term replaced), into `work` and the pending work of the next increment.
+  void count_jump_work(const Field& translation, const Field& rotation, const Increment& inc,
+                       Real& work);
   /// Work of the loads on the free loaded DOFs over the increment just taken, into `work`.
   void add_load_work(Real dt_prev, Real& work);
 
@@ -96,8 +111,27 @@ class CentralDifference {
   std::vector<Real> m_prescribed_value;     ///< current value of each prescribed DOF
   std::vector<Real> m_v_old_prescribed;     ///< v_{n-1/2} at each prescribed DOF
   std::vector<Real> m_v_old_loaded;         ///< v_{n-1/2} at each free loaded DOF
-  bool m_dropped_rotations = false;         ///< begin_step dropped BCs on DOFs 4-6
-  Index m_dropped_members = 0;              ///< BCs on rigid member nodes dropped
+  /// The jumps of the prescribed motion met by the last update (BCs jump where they take
+  /// effect: at the first update of a step).
+  struct Jump {
+    Index dofs = 0;      ///< prescribed DOFs whose velocity jumped
+    Real energy = 0.0;   ///< Σ ½m(v_b² - v_a²): the work of the impulses, J
+    Real largest = 0.0;  ///< largest |v_b - v_a|, m/s or rad/s
+    Real time = 0.0;     ///< total time of the update, s
+  };
+  Jump m_jump;
+  /// A prescribed DOF that jumps at this update, with f_before of the trapezoidal rule.
+  struct PendingJump {
+    std::size_t dof;  ///< index into m_prescribed
+    Real f_before;    ///< its force at the previous increment, N or N m
+  };
+  std::vector<PendingJump> m_jumps;
+  bool m_first_update = false;  ///< the next update is the first one of the step
+  /// Work of the impulses of a jump that falls in the increment after it, J: added with the
+  /// work of that increment (the second half of the velocity change, v_n → v_{n+1/2}).
+  Real m_jump_work_pending = 0.0;
+  bool m_dropped_rotations = false;  ///< begin_step dropped BCs on DOFs 4-6
+  Index m_dropped_members = 0;       ///< BCs on rigid member nodes dropped
 };
 
 }  // namespace xpl

@@ -184,6 +184,7 @@ void ExplicitSolver::Impl::start_run(int step, Real period) {
   m_critical_id =
       totals.critical_element != NO_INDEX ? m_model.element_ids[totals.critical_element] : 0;
   m_nodes.update_nodes(m_state, m_elements, m_rigid, 0.0, m_dt_half, 0.5 * m_dt_half, m_dt_half);
+  m_nodes.report_jump(step, m_sink);
   m_energy.start(m_state, m_dt_half);
   m_started = true;
   if (m_output.has_field()) write_frame(m_output.field_all());
@@ -244,6 +245,7 @@ void ExplicitSolver::Impl::run_step(int step) {
         last ? dt_prev : m_elements.next_increment(totals, period - m_state.step_time, step);
     m_nodes.update_nodes(m_state, m_elements, m_rigid, dt_prev, m_dt_half,
                          m_state.time + 0.5 * m_dt_half, m_state.time + m_dt_half);
+    m_nodes.report_jump(step, m_sink);
     m_energy.check(m_state, totals, m_dt_half, m_critical_id);
 
     // Output as it falls due; a status line every 1 % of the step.
