@@ -230,16 +230,16 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
 void ElementSet::report_increment_limit(OutputSink& sink) {
   FrequencyEstimate e;
   if (!m_global.take_new_estimate(e)) return;
-  sink.message(
-      Severity::Info,
-      "global stable-increment estimate: omega_max " + format_real(e.omega_max) +
-          " rad/s, 2/omega_max with bulk-viscosity damping " + format_real(e.global_dt) +
-          " s; element estimate " + format_real(e.element_dt) + " s (" +
-          format_real(e.element_dt / e.global_dt) + " of it); " +
-          (e.governs() ? "the global limit governs: element estimate x " + format_real(e.ratio)
-                       : std::string("the element estimate governs")) +
-          " (" + std::to_string(e.products) + " Lanczos iterations, " + format_real(e.seconds) +
-          " s)");
+  sink.message(Severity::Info,
+               "global stable-increment estimate: omega_max " + format_real(e.omega_max) +
+                   " rad/s, limit (2/omega_max)(sqrt(1+xi^2)-xi) " + format_real(e.global_dt) +
+                   " s; element estimate " + format_real(e.element_dt) +
+                   " s = " + format_real(e.element_dt / e.global_dt) + " x the global limit: " +
+                   (e.governs() ? "the global limit governs, increment = element estimate x " +
+                                      format_real(e.ratio)
+                                : std::string("the element estimate governs")) +
+                   " (" + std::to_string(e.products) + " Lanczos iterations, " +
+                   format_real(e.seconds) + " s)");
 }
 
 Real ElementSet::stable_increment(const State& state, int step) {
