@@ -63,7 +63,8 @@ void GlobalIncrementLimit::apply(const elements::Hex8rBlock& hex, const NodalVec
                                  elements::IncrementLimit& limit) {
   const Real element_dt = limit.stable_dt;
   if (!std::isfinite(element_dt) || !(element_dt > 0.0) || limit.failed_element != NO_INDEX) return;
-  const bool moved = m_last.element_dt > 0.0 &&
+  ++m_since;
+  const bool moved = m_last.element_dt > 0.0 && m_since >= MIN_INCREMENTS_BETWEEN &&
                      std::abs(element_dt / m_last.element_dt - 1.0) > RECALIBRATE_CHANGE;
   if (m_due || moved) {
     const auto start = std::chrono::steady_clock::now();
@@ -77,6 +78,7 @@ void GlobalIncrementLimit::apply(const elements::Hex8rBlock& hex, const NodalVec
     m_last = e;
     m_due = false;
     m_reported = false;
+    m_since = 0;
   }
   // Where the element estimate is safe the ratio is exactly 1 and the increment keeps its bits.
   if (m_last.ratio < 1.0) limit.stable_dt = element_dt * m_last.ratio;

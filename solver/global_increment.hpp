@@ -25,7 +25,8 @@ struct FrequencyEstimate {
 
 /// Calibrates and applies the global limit: Δt = min(Δt_e, Δt_global / GLOBAL_MARGIN).
 /// The estimate is made at the start of each step and again when the element estimate has
-/// moved by more than RECALIBRATE_CHANGE since; in between the element estimate is scaled by
+/// moved by more than RECALIBRATE_CHANGE since (at most every MIN_INCREMENTS_BETWEEN
+/// increments); in between the element estimate is scaled by
 /// the calibrated ratio (a property of the mesh topology and material), which is never above 1.
 class GlobalIncrementLimit {
  public:
@@ -36,6 +37,9 @@ class GlobalIncrementLimit {
   static constexpr Real GLOBAL_MARGIN = 0.97;
   /// Relative change of the element estimate that calls for a new estimate.
   static constexpr Real RECALIBRATE_CHANGE = 0.1;
+  /// Fewest increments between two estimates within a step (an element estimate that swings
+  /// with the bulk viscosity must not call for one every increment).
+  static constexpr int MIN_INCREMENTS_BETWEEN = 100;
   /// Most Lanczos iterations (stiffness products) per estimate.
   static constexpr int MAX_ITERATIONS = 60;
   /// Convergence: relative change of the largest Ritz value per iteration (the remaining
@@ -64,6 +68,7 @@ class GlobalIncrementLimit {
                           const std::vector<Real>& inverse_mass, int& products) const;
 
   bool m_due = true;
+  int m_since = 0;  ///< apply() calls since the last estimate
   bool m_reported = true;
   FrequencyEstimate m_last;
 };

@@ -88,11 +88,21 @@ TEST_CASE("global increment: a safe element estimate keeps its bits", "[solver][
   FrequencyEstimate e;
   CHECK(limit.take_new_estimate(e));
   CHECK_FALSE(limit.take_new_estimate(e));  // reported once
-  // No new estimate while the element estimate stays within 10 %; one when it moves more.
+  // No new estimate while the element estimate stays within 10 %, nor sooner than
+  // MIN_INCREMENTS_BETWEEN after the last; one when it has moved more.
+  for (int i = 1; i < GlobalIncrementLimit::MIN_INCREMENTS_BETWEEN; ++i) {
+    totals.stable_dt = i % 2 ? 1.05e-8 : 1.2e-8;
+    limit.apply(block, m.x, m.inverse_mass, 0.06, totals);
+  }
+  CHECK_FALSE(limit.take_new_estimate(e));
   totals.stable_dt = 1.05e-8;
   limit.apply(block, m.x, m.inverse_mass, 0.06, totals);
   CHECK_FALSE(limit.take_new_estimate(e));
   totals.stable_dt = 1.2e-8;
+  limit.apply(block, m.x, m.inverse_mass, 0.06, totals);
+  CHECK(limit.take_new_estimate(e));
+  CHECK(limit.last().element_dt == 1.2e-8);
+  limit.begin_step();  // a new step estimates at once
   limit.apply(block, m.x, m.inverse_mass, 0.06, totals);
   CHECK(limit.take_new_estimate(e));
 }
