@@ -93,6 +93,15 @@ class Hex8rBlock {
   /// Stress of block element i (constructor order), for tests.
   std::array<Real, 6> stress(Index i) const;
 
+  /// Linear stiffness product y += K u of the block at `position` (n_nodes × 3, m), for the
+  /// model's highest frequency: the uniform-gradient part (λ, 2μ) and the stiffness
+  /// hourglass term as internal_forces() applies them, from a stress-free state (no geometric
+  /// stiffness; the viscous hourglass form and bulk viscosity are damping, not stiffness).
+  /// `u` (m) and `y` (N) are n_nodes × 3; no element state changes. K u is the derivative of
+  /// the internal force along u. Race-free and independent of the thread count.
+  void add_stiffness_product(const NodalVectors& position, const NodalVectors& u,
+                             NodalVectors& y) const;
+
  private:
   static constexpr int W = simd::W;
   enum Constant {
@@ -109,6 +118,8 @@ class Hex8rBlock {
   void compute_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* vx,
                      const Real* vy, const Real* vz, Real dt, Real b1, Real b2, Real* fx, Real* fy,
                      Real* fz);
+  void stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* ux,
+                       const Real* uy, const Real* uz, Real* yx, Real* yy, Real* yz) const;
 
   std::vector<Index> m_element_index;  ///< model index per block element
   // Batched (AoSoA) data, batch b lane l:

@@ -12,6 +12,7 @@
 #include "elements/hex8r.hpp"
 #include "elements/increment_limit.hpp"
 #include "elements/shell4r.hpp"
+#include "solver/global_increment.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/rigid_bodies.hpp"
@@ -63,9 +64,17 @@ class ElementSet {
   void set_stress(const NodalVectors& position, std::span<const Real> middle,
                   std::span<const Real> bottom, std::span<const Real> top);
 
+  /// Starts a step: the global frequency estimate is made anew at the next force pass.
+  void begin_step() { m_global.begin_step(); }
+  /// The global estimate made since the last call, as a note in `sink` (nothing otherwise).
+  void report_increment_limit(OutputSink& sink);
+  /// The last global estimate (omega_max 0 before the first, or without C3D8R elements).
+  const FrequencyEstimate& increment_estimate() const { return m_global.last(); }
+
   /// Internal forces of every block at the state's positions and half-step velocities over
   /// the increment `dt` (s; 0: no rate terms), added to force_internal() and
-  /// moment_internal(); energies and the increment limit go into `totals`.
+  /// moment_internal(); energies and the increment limit go into `totals`. The increment
+  /// limit is the element estimate bounded by the global one (GlobalIncrementLimit).
   void compute_forces(const State& state, Real dt, ElementTotals& totals);
   /// Stable increment of the elements at the state's positions (no lasting change), s.
   Real stable_increment(const State& state, int step);
@@ -118,7 +127,8 @@ class ElementSet {
   std::vector<Real> m_inverse_inertia;
   std::vector<Real> m_node_thickness;
   std::vector<contact::ElementKind> m_element_kinds;
-  Index m_massless = 0;  ///< nodes that belong to no element and have no mass
+  Index m_massless = 0;           ///< nodes that belong to no element and have no mass
+  GlobalIncrementLimit m_global;  ///< bound on the element estimate from ω_max
 };
 
 }  // namespace xpl

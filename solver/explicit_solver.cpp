@@ -162,6 +162,7 @@ void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_me
 
 void ExplicitSolver::Impl::begin_step(int step) {
   m_nodes.begin_step(step, m_state, m_rigid);
+  m_elements.begin_step();
   m_output.begin_step(step);
   m_state.step = step;
   m_state.step_time = 0.0;
@@ -174,6 +175,7 @@ void ExplicitSolver::Impl::begin_step(int step) {
 void ExplicitSolver::Impl::start_run(int step, Real period) {
   ElementTotals totals;
   m_elements.compute_forces(m_state, 0.0, totals);
+  m_elements.report_increment_limit(m_sink);
   m_state.energies.strain += totals.strain_energy_increment;
   m_nodes.apply_loads(m_state, 0.0, 0.0);
   m_dt_half = m_elements.next_increment(totals, period, step);
@@ -202,6 +204,7 @@ bool ExplicitSolver::Impl::advance_clock(Real dt, Real step_start, Real period) 
 
 void ExplicitSolver::Impl::element_forces(Real dt, ElementTotals& totals) {
   m_elements.compute_forces(m_state, dt, totals);
+  m_elements.report_increment_limit(m_sink);
   m_state.energies.strain += totals.strain_energy_increment;
   m_state.energies.artificial += totals.hourglass_energy_increment;
   m_state.energies.viscous += totals.viscous_energy_increment;
@@ -297,6 +300,7 @@ RunSummary ExplicitSolver::Impl::check() {
     begin_step(0);
     ElementTotals totals;
     m_elements.compute_forces(m_state, 0.0, totals);
+    m_elements.report_increment_limit(m_sink);
     m_elements.clear_forces();
     m_dt_half = m_elements.next_increment(totals, m_model.steps[0].time_period, 0);
     note_critical(totals);

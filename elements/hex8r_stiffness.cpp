@@ -1,0 +1,116 @@
+// The linear stiffness product of the C3D8R block (Hex8rBlock::add_stiffness_product): what
+// the global estimate of the highest frequency needs (solver/global_increment.*).
+#include "elements/hex8_geometry.hpp"
+#include "elements/hex8r.hpp"
+
+namespace xpl::elements {
+
+using simd::Vec;
+
+void Hex8rBlock::add_stiffness_product(const NodalVectors& position, const NodalVectors& u,
+                                       NodalVectors& y) const {
+  const Index n_nodes = static_cast<Index>(position.rows());
+  const Real* px = position.data();
+  const Real* ux = u.data();
+  Real* yx = y.data();
+  // Colours as in internal_forces(): the lanes and batches of a colour share no node.
+  for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
+    const Index first = m_color_batches[c], last = m_color_batches[c + 1];
+#pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
+    for (Index b = first; b < last; ++b)
+      stiffness_batch(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes, ux + 2 * n_nodes, yx,
+                      yx + n_nodes, yx + 2 * n_nodes);
+  }
+}
+
+void Hex8rBlock::stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz,
+                                 const Real* ux, const Real* uy, const Real* uz, Real* yx, Real* yy,
+                                 Real* yz) const {
+  const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
+  const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
+  V3<Vec> ax[8], au[8];
+  {
+    Vec cx[8], cy[8], cz[8], wx[8], wy[8], wz[8];
+    for (int a = 0; a < 8; ++a) {
+      const Index* idx = conn + a * W;
+      cx[a] = simd::gather(px, idx);
+      cy[a] = simd::gather(py, idx);
+      cz[a] = simd::gather(pz, idx);
+      wx[a] = simd::gather(ux, idx);
+      wy[a] = simd::gather(uy, idx);
+      wz[a] = simd::gather(uz, idx);
+    }
+    to_modes(cx, cy, cz, ax);
+    to_modes(wx, wy, wz, au);
+  }
+  V3<Vec> g[8];
+  Vec vol;
+  volume_gradient(ax, g, vol);
+  const Vec inv_vol = 1.0 / vol;
+
+  // Displacement gradient H = (1/V) Σ_k au_k ⊗ g_k and the stress C : sym(H).
+  Vec H[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) H[i][j] = simd::splat(0.0);
+  Vec gsum = simd::splat(0.0);
+  for (int k = 1; k < 7; ++k) {
+    const Vec ui[3] = {au[k].x, au[k].y, au[k].z};
+    const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) H[i][j] += ui[i] * gj[j];
+    gsum += dot(g[k], g[k]);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) H[i][j] *= inv_vol;
+  const Vec lambda = simd::load(cst + LAMBDA * W);
+  const Vec two_mu = simd::load(cst + TWO_MU * W);
+  const Vec lt = lambda * (H[0][0] + H[1][1] + H[2][2]);
+  Vec P[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) P[i][j] = 0.5 * two_mu * (H[i][j] + H[j][i]);
+  for (int i = 0; i < 3; ++i) P[i][i] += lt;
+
+  // Stiffness hourglass forces Q_α = k_hg q_α, q_α = 8 (au_α − H a_α), with the projection
+  // term of the force (see compute_batch).
+  const Vec k_hg = simd::load(cst + HG_STIFFNESS * W) * two_mu * (gsum * 0.125) * (0.125 * inv_vol);
+  V3<Vec> Q[4];
+  for (int m = 0; m < 4; ++m) {
+    const V3<Vec>& a = ax[4 + m];
+    const V3<Vec> ha = {H[0][0] * a.x + H[0][1] * a.y + H[0][2] * a.z,
+                        H[1][0] * a.x + H[1][1] * a.y + H[1][2] * a.z,
+                        H[2][0] * a.x + H[2][1] * a.y + H[2][2] * a.z};
+    Q[m] = (8.0 * k_hg) * (au[4 + m] - ha);
+    const Vec qi[3] = {Q[m].x, Q[m].y, Q[m].z};
+    const Vec aj[3] = {a.x, a.y, a.z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) P[i][j] -= 8.0 * inv_vol * qi[i] * aj[j];
+  }
+  Vec Fx[8], Fy[8], Fz[8];
+  Fx[0] = Fy[0] = Fz[0] = simd::splat(0.0);
+  Fx[7] = Fy[7] = Fz[7] = simd::splat(0.0);
+  for (int k = 1; k < 7; ++k) {
+    Fx[k] = 0.125 * (P[0][0] * g[k].x + P[0][1] * g[k].y + P[0][2] * g[k].z);
+    Fy[k] = 0.125 * (P[1][0] * g[k].x + P[1][1] * g[k].y + P[1][2] * g[k].z);
+    Fz[k] = 0.125 * (P[2][0] * g[k].x + P[2][1] * g[k].y + P[2][2] * g[k].z);
+  }
+  for (int m = 0; m < 4; ++m) {
+    Fx[4 + m] += Q[m].x;
+    Fy[4 + m] += Q[m].y;
+    Fz[4 + m] += Q[m].z;
+  }
+  Vec fnx[8], fny[8], fnz[8];
+  from_modes(Fx, fnx);
+  from_modes(Fy, fny);
+  from_modes(Fz, fnz);
+  for (int l = 0; l < W; ++l) {
+    if (m_lane_owner[batch * W + l] == NO_INDEX) continue;
+    for (int a = 0; a < 8; ++a) {
+      const Index node = conn[a * W + l];
+      yx[node] += fnx[a][l];
+      yy[node] += fny[a][l];
+      yz[node] += fnz[a][l];
+    }
+  }
+}
+
+}  // namespace xpl::elements
