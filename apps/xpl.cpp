@@ -3,16 +3,20 @@
 
 #include <omp.h>
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/error.hpp"
 #include "io/deck/deck_reader.hpp"
 #include "io/results/import_state.hpp"
+#include "io/results/job_lock.hpp"
 #include "io/results/result_files.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -32,7 +36,39 @@ constexpr const char* USAGE =
     "  --import PREV.h5  start from the last frame of an earlier result of the same mesh\n"
     "               (positions, velocities, stresses); penetrations there become contact\n"
     "               offsets without force\n"
-    "The job name is the deck's file name without its extension.\n";
+    "The job name is the deck's file name without its extension. A run holds DIR/JOB.lck;\n"
+    "a second run of the job in DIR is refused. SIGINT/SIGTERM end the run after the\n"
+    "current increment with its last frame written (status interrupted).\n"
+    "Exit codes: 0 done, 1 deck or --import error, 2 usage, 3 the analysis failed,\n"
+    "  4 I/O or internal error, 5 the job is already running, 130/143 SIGINT/SIGTERM.\n";
+
+/// Exit code of a run refused because another run of the job holds its lock.
+constexpr int EXIT_LOCKED = 5;
+
+/// The signal that asks the run to stop (SIGINT/SIGTERM), 0 until one arrives. The handler
+/// only sets it; the time loop looks at it once per increment.
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void on_stop_signal(int signal) {
+  g_stop_signal = signal;
+}
+
+/// SIGINT and SIGTERM end the run after the current increment instead of killing it.
+void install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;  // a write the signal interrupts goes on
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+/// What an exception says, for the terminal and the result files.
+std::string cause_of(const std::exception& e) {
+  if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr)
+    return std::string("out of memory (") + e.what() + ")";
+  return e.what();
+}
 
 struct Arguments {
   std::string command;
@@ -124,6 +160,9 @@ void print_summary(const xpl::RunSummary& s, const xpl::Model& model, int thread
   std::printf("xpl: peak memory: %.1f MB\n", peak_memory_mb());
 }
 
+/// Reads the deck (and --import), then runs or checks it; returns the exit code.
+int run_job(const Arguments& args);
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -141,7 +180,22 @@ int main(int argc, char** argv) {
     std::cerr << "xpl: unknown command '" << args.command << "'\n" << USAGE;
     return 2;
   }
+  install_stop_handlers();
+  // Whatever escapes (std::bad_alloc reading a deck included) ends with a message and exit
+  // code 4, never std::terminate.
+  try {
+    return run_job(args);
+  } catch (const std::exception& e) {
+    std::cerr << "xpl: error: " << cause_of(e) << "\n";
+  } catch (...) {
+    std::cerr << "xpl: error: an unknown internal error\n";
+  }
+  return 4;
+}
 
+namespace {
+
+int run_job(const Arguments& args) {
   xpl::Model model;
   try {
     model = xpl::io::read_deck(args.deck);
@@ -192,37 +246,53 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (g_stop_signal != 0) return 128 + g_stop_signal;  // stopped before anything was written
+  std::optional<xpl::io::ResultFiles> files;
   try {
     xpl::io::ResultOptions ropts;
     ropts.progress = !args.quiet;
-    xpl::io::ResultFiles files(args.out_dir, model.job_name, ropts);
+    files.emplace(args.out_dir, model.job_name, ropts);
     xpl::SolverOptions sopts;
     sopts.threads = args.threads;
+    sopts.stop_signal = &g_stop_signal;
     if (!args.import.empty()) sopts.initial_state = &initial;
-    xpl::ExplicitSolver solver(model, files, sopts);
+    xpl::ExplicitSolver solver(model, *files, sopts);
     const int threads = args.threads > 0 ? args.threads : omp_get_max_threads();
     if (args.command == "check") {
       solver.check();
       if (!args.quiet)
         std::printf("xpl: data check of %s completed; results in %s\n", model.job_name.c_str(),
-                    files.h5_path().string().c_str());
+                    files->h5_path().string().c_str());
       return 0;
     }
     const xpl::RunSummary summary = solver.run();
+    if (summary.stop_signal != 0) {
+      std::fprintf(stderr, "xpl: %s interrupted by signal %d at t = %.6g s; results in %s\n",
+                   model.job_name.c_str(), summary.stop_signal, summary.final_time,
+                   files->h5_path().string().c_str());
+      return 128 + summary.stop_signal;
+    }
     if (!args.quiet) {
       std::printf("xpl: %s completed: %ld increments to t = %.6g s; results in %s\n",
                   model.job_name.c_str(), summary.increments, summary.final_time,
-                  files.h5_path().string().c_str());
+                  files->h5_path().string().c_str());
       print_summary(summary, model, threads);
     }
     return 0;
+  } catch (const xpl::io::JobLocked& e) {
+    std::cerr << "xpl: " << e.what() << "\n";
+    return EXIT_LOCKED;
   } catch (const xpl::SolverError& e) {
     std::cerr << "xpl: " << e.what() << "\n"
               << "xpl: the run stopped; frames written so far are in the results file, "
                  "which records the error\n";
     return 3;
   } catch (const std::exception& e) {
-    std::cerr << "xpl: error: " << e.what() << "\n";
+    const std::string cause = cause_of(e);
+    if (files) files->fail(cause);
+    std::cerr << "xpl: error: " << cause << "\n";
     return 4;
   }
 }
+
+}  // namespace

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <string>
 
 #include "solver/central_difference.hpp"
 #include "solver/contact_stage.hpp"
@@ -51,8 +53,19 @@ struct ExplicitSolver::Impl {
   void element_forces(Real dt, ElementTotals& totals);
   /// Keeps the element that limits the increment of `totals`, when there is one.
   void note_critical(const ElementTotals& totals);
-  /// The time loop of one step: increments until the step time reaches its period.
+  /// The time loop of one step: increments until the step time reaches its period, or until
+  /// a stop signal arrives.
   void run_step(int step);
+  /// The signal that asks the run to stop (SolverOptions::stop_signal), or 0.
+  int stop_requested() const;
+  /// Ends the increment a stop signal interrupted: the frame, history row and status line
+  /// that did not fall due there, so that the results end at the time reached.
+  void write_interrupted(bool frame_written, bool history_written);
+  /// end_run with status failed and `cause`; a second failure there (a full disk) is dropped
+  /// so that the first one reaches the caller.
+  void end_failed(const std::string& cause) noexcept;
+  /// The end message of an interrupted run: the signal and the time reached.
+  std::string interrupted_text() const;
   /// Output through the driver, with the parts that fill the state for it.
   void write_frame(const FrameRequest& what);
   void write_history();
@@ -74,6 +87,7 @@ struct ExplicitSolver::Impl {
   ExternalId m_critical_id = 0;  ///< deck id of the element that limits it
   double m_loop_seconds = 0.0;   ///< wall time of the time loops
   bool m_started = false;        ///< t = 0 has been taken
+  int m_stopped_by = 0;          ///< the signal that stopped the run, 0 while it runs
 };
 
 ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions options)
@@ -254,15 +268,40 @@ void ExplicitSolver::Impl::run_step(int step) {
     // Output as it falls due; a status line every 1 % of the step.
     const FrameRequest frame = m_output.field_due(m_state.step_time, last);
     if (frame.any()) write_frame(frame);
-    if (m_output.history_due(m_state.step_time, last)) write_history();
-    if (m_state.step_time >= next_status || last) {
+    const bool history = m_output.history_due(m_state.step_time, last);
+    if (history) write_history();
+    const bool status = m_state.step_time >= next_status || last;
+    if (status) {
       write_status();
       next_status = (std::floor(m_state.step_time / (0.01 * period)) + 1.0) * 0.01 * period;
     }
     if (last) break;
+    if (const int signal = stop_requested(); signal != 0) {
+      m_stopped_by = signal;
+      write_interrupted(frame.any(), history);
+      if (!status) write_status();
+      break;
+    }
   }
   m_loop_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+}
+
+int ExplicitSolver::Impl::stop_requested() const {
+  return m_options.stop_signal != nullptr ? static_cast<int>(*m_options.stop_signal) : 0;
+}
+
+void ExplicitSolver::Impl::write_interrupted(bool frame_written, bool history_written) {
+  if (m_output.has_field() && !frame_written) write_frame(m_output.field_all());
+  if (m_output.has_history() && !history_written) write_history();
+}
+
+void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
+  try {
+    const RunSummary s = summary();
+    m_sink.end_run(RunStatus::Failed, cause, s.timers, s.element_cycles_per_second);
+  } catch (...) {  // NOLINT(bugprone-empty-catch): the first error is the one to report
+  }
 }
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
@@ -283,16 +322,36 @@ RunSummary ExplicitSolver::Impl::summary() const {
 
 RunSummary ExplicitSolver::Impl::run() {
   try {
-    for (int step = 0; step < static_cast<int>(m_model.steps.size()); ++step) run_step(step);
+    for (int step = 0; step < static_cast<int>(m_model.steps.size()) && m_stopped_by == 0; ++step)
+      run_step(step);
   } catch (const SolverError& e) {
     // end_run records the error in every log; no separate message (it would repeat).
-    const RunSummary s = summary();
-    m_sink.end_run(RunStatus::Failed, e.what(), s.timers, s.element_cycles_per_second);
+    end_failed(e.what());
+    throw;
+  } catch (const std::exception& e) {
+    // An internal or I/O error (std::bad_alloc, a failed write): its own cause, not a
+    // generic one, wherever it can still be written.
+    end_failed(e.what());
     throw;
   }
-  const RunSummary s = summary();
+  RunSummary s = summary();
+  if (m_stopped_by != 0) {
+    s.stop_signal = m_stopped_by;
+    m_sink.end_run(RunStatus::Interrupted, interrupted_text(), s.timers,
+                   s.element_cycles_per_second);
+    return s;
+  }
   m_sink.end_run(RunStatus::Completed, "", s.timers, s.element_cycles_per_second);
   return s;
+}
+
+std::string ExplicitSolver::Impl::interrupted_text() const {
+  const std::string signal = m_stopped_by == SIGINT    ? "SIGINT"
+                             : m_stopped_by == SIGTERM ? "SIGTERM"
+                                                       : "signal " + std::to_string(m_stopped_by);
+  return "interrupted by " + signal + " at t = " + format_real(m_state.time) + " s (step " +
+         std::to_string(m_state.step + 1) + ", increment " + std::to_string(m_state.increment) +
+         "); the last frame is written";
 }
 
 RunSummary ExplicitSolver::Impl::check() {

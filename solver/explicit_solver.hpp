@@ -2,6 +2,7 @@
 /// \file The central-difference time loop (S1–S5): lumped mass, half-step velocities,
 /// element-by-element stable increment every increment, bulk viscosity, energy balance.
 
+#include <csignal>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@ struct SolverOptions {
   Real dt_safety = 0.9;
   /// A run whose stable increment falls below this fraction of the first increment stops.
   Real dt_floor_ratio = 1e-4;
+  /// Set to a signal number by a signal handler (not owned; may be null): the time loop
+  /// checks it once per increment and ends the run there as interrupted, last frame written.
+  const volatile std::sig_atomic_t* stop_signal = nullptr;
 };
 
 /// What a finished run reports.
@@ -45,7 +49,8 @@ struct RunSummary {
   Real final_time = 0.0;
   double element_cycles_per_second = 0.0;  ///< elements × increments / time-loop wall time
   PhaseTimers timers;
-  Energies energies;  ///< at the end
+  Energies energies;    ///< at the end
+  int stop_signal = 0;  ///< the signal that interrupted the run (status interrupted), or 0
 };
 
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.

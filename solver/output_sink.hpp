@@ -78,8 +78,9 @@ struct ResultTable {
 /// Severity of a .msg entry.
 enum class Severity { Info, Note, Warning, Error };
 
-/// How a run ended.
-enum class RunStatus { Completed, Checked, Failed };
+/// How a run ended. Interrupted: stopped on a signal (SIGINT/SIGTERM) after a whole
+/// increment, with its last frame written.
+enum class RunStatus { Completed, Checked, Failed, Interrupted };
 
 /// Receives everything a run produces, in this order: begin_run, (begin_step, frames,
 /// history rows, status lines, messages)*, end_run. Implementations write files; the solver

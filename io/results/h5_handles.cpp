@@ -59,6 +59,11 @@ void set_scalar_attribute(hid_t object, const std::string& name, hid_t type, con
 }  // namespace
 
 void silence_errors() {
+  // No library shutdown at exit: after a failed write (a full disk) H5Fclose leaves the file
+  // half closed, and HDF5's exit handler then crashes closing it again. Every file xpl opens
+  // is closed by its Handle before main returns. (Effective only before the first HDF5 call;
+  // later calls fail harmlessly.)
+  H5dont_atexit();
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
 

@@ -1,11 +1,16 @@
 #include "io/results/result_files.hpp"
 
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <optional>
+#include <stdexcept>
 
+#include "io/results/job_lock.hpp"
 #include "io/results/results_h5.hpp"
 #include "io/results/results_log.hpp"
 #include "io/results/xdmf_writer.hpp"
@@ -20,6 +25,9 @@ using Clock = std::chrono::steady_clock;
 constexpr double PROGRESS_DELAY = 2.0;
 /// Minimum wall time between two updates of the progress line, s.
 constexpr double PROGRESS_INTERVAL = 0.2;
+/// Free space kept on the disk beyond two frames' worth, bytes: the status attributes, the
+/// pending history rows and the logs' last lines must still fit when a run stops there.
+constexpr double SPACE_MARGIN = 64.0 * 1024.0;
 
 const char* status_name(RunStatus status) {
   switch (status) {
@@ -29,6 +37,8 @@ const char* status_name(RunStatus status) {
       return "checked";
     case RunStatus::Failed:
       return "failed";
+    case RunStatus::Interrupted:
+      return "interrupted";
   }
   return "failed";
 }
@@ -44,18 +54,22 @@ struct ResultFiles::Impl {
   std::filesystem::path xdmf;
   std::filesystem::path sta;
   std::filesystem::path msg;
+  JobLock lock;  ///< taken before any file below is opened
   ResultOptions options;
   ResultsH5 h5_file;
   XdmfWriter xdmf_file;
   StaFile sta_file;
   MsgFile msg_file;
 
-  int step = 0;                 ///< zero-based current step
-  Real step_period = 0.0;       ///< time period of the current step, s
-  std::string step_name;        ///< name of the current step
-  bool ended = false;           ///< end_run was called
-  bool progress_tty = false;    ///< stderr is a terminal
-  bool progress_shown = false;  ///< a progress line is on the terminal
+  int step = 0;                   ///< zero-based current step
+  Real step_period = 0.0;         ///< time period of the current step, s
+  std::string step_name;          ///< name of the current step
+  bool ended = false;             ///< end_run was called
+  Real time_reached = 0.0;        ///< total time of the last status line, s
+  std::uintmax_t h5_size = 0;     ///< size of JOB.h5 after the last frame, bytes
+  std::uintmax_t frame_size = 0;  ///< growth of JOB.h5 by the last frame (or the mesh), bytes
+  bool progress_tty = false;      ///< stderr is a terminal
+  bool progress_shown = false;    ///< a progress line is on the terminal
   Clock::time_point start = Clock::now();
   Clock::time_point last_progress{};  ///< when the progress line was last updated
 
@@ -64,6 +78,7 @@ struct ResultFiles::Impl {
         xdmf(directory / (job + ".xdmf")),
         sta(directory / (job + ".sta")),
         msg(directory / (job + ".msg")),
+        lock(directory, job),
         options(opts),
         h5_file(h5, job),
         xdmf_file(xdmf, job + ".h5"),
@@ -93,6 +108,26 @@ struct ResultFiles::Impl {
     progress_shown = true;
   }
 
+  /// Stops the run before a frame that may not fit on the disk. HDF5 cannot recover from a
+  /// write that fails half way (the file's metadata no longer agree and no frame can be
+  /// read), so xpl stops while the frames written so far are whole and the status fits.
+  void check_space() {
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size(h5, error);
+    if (error) return;
+    frame_size = size > h5_size ? size - h5_size : frame_size;
+    h5_size = size;
+    struct statvfs disk {};
+    if (statvfs(h5.c_str(), &disk) != 0) return;
+    const double available = static_cast<double>(disk.f_bavail) * disk.f_frsize;
+    const double needed = 2.0 * static_cast<double>(frame_size) + SPACE_MARGIN;
+    if (available < needed)
+      throw std::runtime_error("disk full: " + std::to_string(disk.f_bavail * disk.f_frsize) +
+                               " bytes free for " + h5.string() + ", the next frame needs about " +
+                               std::to_string(frame_size) +
+                               " (frames written so far are complete)");
+  }
+
   void end_progress() {
     if (!progress_shown) return;
     std::fputc('\n', stderr);
@@ -118,6 +153,10 @@ void ResultFiles::begin_run(const Model& model) {
   m_impl->start = Clock::now();
   m_impl->xdmf_file.set_mesh(m_impl->h5_file.write_mesh(model));
   m_impl->msg_file.summary(model);
+  if (const std::string& owner = m_impl->lock.stale_owner(); !owner.empty())
+    m_impl->msg_file.message(Severity::Note, "the lock file " + m_impl->lock.path().string() +
+                                                 " of process " + owner +
+                                                 " (no longer running) was taken over");
 }
 
 void ResultFiles::begin_step(const Model& model, int step) {
@@ -136,6 +175,7 @@ void ResultFiles::declare_history(const std::vector<HistorySeries>& series) {
 }
 
 void ResultFiles::write_frame(const Model& model, const State& state, const FrameRequest& what) {
+  m_impl->check_space();
   const std::string frame = m_impl->h5_file.write_frame(model, state, what);
   m_impl->xdmf_file.add_frame(frame, state.time, what);
 }
@@ -146,6 +186,7 @@ void ResultFiles::append_history(Real time, std::span<const Real> values) {
 
 void ResultFiles::status(const StatusLine& line) {
   m_impl->sta_file.line(m_impl->step + 1, line);
+  m_impl->time_reached = line.total_time;
   m_impl->progress(line);
 }
 
@@ -166,9 +207,36 @@ void ResultFiles::end_run(RunStatus status, const std::string& error, const Phas
   Impl& impl = *m_impl;
   impl.ended = true;
   impl.end_progress();
-  impl.sta_file.finish(status, error, timers, element_cycles_per_second);
-  impl.msg_file.finish(status, error, timers, element_cycles_per_second);
-  impl.h5_file.finish(status_name(status), error);
+  // Each file records the end even if another cannot (a full disk): the first error is
+  // rethrown once all have been tried.
+  std::exception_ptr first_error;
+  auto attempt = [&first_error](auto&& write) {
+    try {
+      write();
+    } catch (...) {
+      if (!first_error) first_error = std::current_exception();
+    }
+  };
+  attempt([&] { impl.sta_file.finish(status, error, timers, element_cycles_per_second); });
+  attempt([&] { impl.msg_file.finish(status, error, timers, element_cycles_per_second); });
+  const bool ended_early = status == RunStatus::Failed || status == RunStatus::Interrupted;
+  const std::optional<double> reached =
+      ended_early ? std::optional<double>(impl.time_reached) : std::nullopt;
+  try {
+    impl.h5_file.finish(status_name(status), error, reached);
+  } catch (...) {
+    if (!first_error) first_error = std::current_exception();
+    attempt([&] { impl.h5_file.record_status(status_name(status), error, reached); });
+  }
+  if (first_error) std::rethrow_exception(first_error);
+}
+
+void ResultFiles::fail(const std::string& cause) noexcept {
+  if (m_impl->ended) return;
+  try {
+    end_run(RunStatus::Failed, cause, PhaseTimers{}, 0.0);
+  } catch (...) {  // NOLINT(bugprone-empty-catch): the caller reports the cause itself
+  }
 }
 
 std::filesystem::path ResultFiles::h5_path() const {

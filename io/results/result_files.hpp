@@ -16,6 +16,8 @@ struct ResultOptions {
 
 /// An OutputSink that writes JOB.h5, JOB.xdmf, JOB.sta and JOB.msg into a directory.
 /// The HDF5 file is flushed after every frame, so it is readable even if the run dies.
+/// The constructor takes the job lock (JOB.lck, see JobLock) before it opens any file and
+/// throws JobLocked if another run of the job holds it; the destructor releases it.
 class ResultFiles final : public OutputSink {
  public:
   ResultFiles(const std::filesystem::path& directory, const std::string& job_name,
@@ -35,6 +37,10 @@ class ResultFiles final : public OutputSink {
   void write_table(const ResultTable& table) override;
   void end_run(RunStatus status, const std::string& error, const PhaseTimers& timers,
                double element_cycles_per_second) override;
+
+  /// Ends a run abandoned by an exception outside the solver's time loop: status "failed"
+  /// with `cause` wherever it can still be written. Does nothing after end_run.
+  void fail(const std::string& cause) noexcept;
 
   /// Paths of the files written.
   std::filesystem::path h5_path() const;

@@ -233,10 +233,17 @@ void ResultsH5::write_table(const ResultTable& table) {
   flush();
 }
 
-void ResultsH5::finish(const std::string& status, const std::string& error) {
+void ResultsH5::finish(const std::string& status, const std::string& error,
+                       std::optional<double> time_reached) {
   m_history.end();
+  record_status(status, error, time_reached);
+}
+
+void ResultsH5::record_status(const std::string& status, const std::string& error,
+                              std::optional<double> time_reached) {
   h5::set_string_attribute(m_file.get(), "status", status);
   h5::set_string_attribute(m_file.get(), "error", error);
+  if (time_reached) h5::set_real_attribute(m_file.get(), "time_reached", *time_reached);
   flush();
 }
 

@@ -2,6 +2,7 @@
 /// \file JOB.h5: mesh, field frames, history and the run status (layout in README.md).
 
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -37,8 +38,15 @@ class ResultsH5 {
   std::string write_frame(const Model& model, const State& state, const FrameRequest& what);
   /// Writes a setup table as a group of column datasets (OutputSink::write_table).
   void write_table(const ResultTable& table);
-  /// Writes pending history rows, the final status and error text, and flushes.
-  void finish(const std::string& status, const std::string& error);
+  /// Writes pending history rows, the final status and error text, and flushes. A run that
+  /// did not complete also records `time_reached` (total time of its last status line, s).
+  void finish(const std::string& status, const std::string& error,
+              std::optional<double> time_reached = std::nullopt);
+  /// Writes the status attributes only (as finish) and flushes: the fallback when finish
+  /// failed, e.g. on a full disk, where the pending history rows do not fit but a small
+  /// attribute may still.
+  void record_status(const std::string& status, const std::string& error,
+                     std::optional<double> time_reached = std::nullopt);
   /// Flushes the file to disk.
   void flush();
   /// Number of frames written.

@@ -65,6 +65,8 @@ const char* completion_text(RunStatus status) {
       return "DATA CHECK COMPLETED";
     case RunStatus::Failed:
       return "THE ANALYSIS HAS NOT BEEN COMPLETED";
+    case RunStatus::Interrupted:
+      return "THE ANALYSIS HAS BEEN INTERRUPTED";
   }
   return "";
 }
@@ -173,7 +175,8 @@ void MsgFile::message(Severity severity, const std::string& text) {
 void MsgFile::finish(RunStatus status, const std::string& error, const PhaseTimers& timers,
                      double element_cycles_per_second) {
   m_out << "\n " << completion_text(status) << "\n";
-  if (!error.empty()) m_out << "***ERROR: " << error << "\n";
+  if (!error.empty())
+    m_out << (status == RunStatus::Interrupted ? "***NOTE: " : "***ERROR: ") << error << "\n";
   write_timings(m_out, timers, element_cycles_per_second);
   m_out.flush();
 }

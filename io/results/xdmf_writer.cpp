@@ -105,11 +105,17 @@ void XdmfWriter::write() const {
         << "  </Domain>\n"
         << "</Xdmf>\n";
     out.close();
-    if (!out) throw std::runtime_error("cannot write " + temporary.string());
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);  // no stray .tmp on a full disk
+      throw std::runtime_error("cannot write " + temporary.string());
+    }
   }
   std::error_code error;
   std::filesystem::rename(temporary, m_path, error);
   if (error) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
     throw std::runtime_error("cannot rename " + temporary.string() + " to " + m_path.string() +
                              ": " + error.message());
   }
