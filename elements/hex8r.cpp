@@ -8,6 +8,7 @@
 
 #include "elements/element_coloring.hpp"
 #include "elements/hex8_geometry.hpp"
+#include "elements/hex8r_gather.hpp"
 
 namespace xpl::elements {
 
@@ -107,20 +108,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
 
   // Gather and go to mode space (positions x_{n+1}, velocities v_{n+1/2}).
   V3<Vec> ax[8], av[8];
-  {
-    Vec cx[8], cy[8], cz[8], wx[8], wy[8], wz[8];
-    for (int a = 0; a < 8; ++a) {
-      const Index* idx = conn + a * W;
-      cx[a] = simd::gather(px, idx);
-      cy[a] = simd::gather(py, idx);
-      cz[a] = simd::gather(pz, idx);
-      wx[a] = simd::gather(vx, idx);
-      wy[a] = simd::gather(vy, idx);
-      wz[a] = simd::gather(vz, idx);
-    }
-    to_modes(cx, cy, cz, ax);
-    to_modes(wx, wy, wz, av);
-  }
+  gather_modes(conn, px, py, pz, vx, vy, vz, ax, av);
 
   // Geometry at x_{n+1} (forces, hourglass) and at x_{n+1/2} (strain increment).
   V3<Vec> g[8], gm[8];

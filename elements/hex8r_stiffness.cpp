@@ -2,6 +2,7 @@
 // the global estimate of the highest frequency needs (solver/global_increment.*).
 #include "elements/hex8_geometry.hpp"
 #include "elements/hex8r.hpp"
+#include "elements/hex8r_gather.hpp"
 
 namespace xpl::elements {
 
@@ -29,20 +30,7 @@ void Hex8rBlock::stiffness_batch(Index batch, const Real* px, const Real* py, co
   const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
   const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
   V3<Vec> ax[8], au[8];
-  {
-    Vec cx[8], cy[8], cz[8], wx[8], wy[8], wz[8];
-    for (int a = 0; a < 8; ++a) {
-      const Index* idx = conn + a * W;
-      cx[a] = simd::gather(px, idx);
-      cy[a] = simd::gather(py, idx);
-      cz[a] = simd::gather(pz, idx);
-      wx[a] = simd::gather(ux, idx);
-      wy[a] = simd::gather(uy, idx);
-      wz[a] = simd::gather(uz, idx);
-    }
-    to_modes(cx, cy, cz, ax);
-    to_modes(wx, wy, wz, au);
-  }
+  gather_modes(conn, px, py, pz, ux, uy, uz, ax, au);
   V3<Vec> g[8];
   Vec vol;
   volume_gradient(ax, g, vol);
