@@ -12,6 +12,7 @@
 
 #include "common/error.hpp"
 #include "common/types.hpp"
+#include "elements/plasticity.hpp"
 
 namespace xpl {
 
@@ -48,7 +49,8 @@ constexpr int nodes_per_element(ElementType type) {
   return 0;
 }
 
-/// Isotropic linear elastic material with density (consistent units, e.g. SI).
+/// Isotropic linear elastic material with density (consistent units, e.g. SI), optionally
+/// J2-plastic with isotropic hardening (`*PLASTIC`, `*RATE DEPENDENT`).
 struct Material {
   std::string name;    ///< upper-case name
   Real density = 0.0;  ///< mass density, kg/m^3
@@ -56,7 +58,11 @@ struct Material {
   Real poisson = 0.0;  ///< Poisson's ratio ν, -1 < ν < 0.5
   bool has_density = false;
   bool has_elastic = false;
-  SourceLocation where;  ///< the *MATERIAL line
+  /// `*PLASTIC` (with `*RATE DEPENDENT` folded in); empty for an elastic material, which
+  /// then does no plasticity work at all.
+  std::optional<elements::Plasticity> plastic;
+  SourceLocation plastic_where;  ///< the *PLASTIC line (when plastic)
+  SourceLocation where;          ///< the *MATERIAL line
 };
 
 /// Hourglass control of reduced-integration elements (`*SECTION CONTROLS, HOURGLASS=`).
