@@ -163,9 +163,9 @@ TEST_CASE("shell plastic state: one SIMD test, the return only in yielding plast
       CHECK(sxx[l] == r.sxx);
       CHECK(syy[l] == r.syy);
       CHECK(state.peeq(0, 0, l) == r.peeq_increment);
-      CHECK(state.peeq_rate(0, 0, l) == r.peeq_increment / 1e-6);
+      CHECK(state.peeq_rate(0, 0, l) == Approx(r.peeq_increment / 1e-6).epsilon(1e-14));
       CHECK(d[l] == r.dissipation);
-      CHECK(thick[l] == 0.5 * r.thickness_strain);
+      CHECK(thick[l] == Approx(0.5 * r.thickness_strain).epsilon(1e-14));
     } else {
       CHECK(sxx[l] == ((l % 2 == 0) ? 400e6 : 100e6));
       CHECK(state.peeq(0, 0, l) == 0.0);
