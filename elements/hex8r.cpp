@@ -177,7 +177,9 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
   // The elastic update is the trial state of the J2 return (σ_y Δε̄ᵖ per lane, Pa).
   [[maybe_unused]] Vec dissipation = simd::splat(0.0);
-  if constexpr (PLASTIC) dissipation = plastic_return(batch, sn, dt);
+  // No flow without an increment (dt = 0 at the start: an imported state stays as it is).
+  if constexpr (PLASTIC)
+    if (dt > 0.0) dissipation = plastic_return(batch, sn, dt);
   for (int c = 0; c < 6; ++c) simd::store(sig + c * W, sn[c]);
   const Vec strain_power =
       0.5 * ((s[0] + sn[0]) * d00 + (s[1] + sn[1]) * d11 + (s[2] + sn[2]) * d22 +
