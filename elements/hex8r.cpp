@@ -28,7 +28,7 @@ Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index
   m_hourglass.assign(static_cast<std::size_t>(n_batches) * 12 * W, 0.0);
   m_volume.assign(static_cast<std::size_t>(n_batches) * W, 0.0);
   m_slot.assign(n, NO_INDEX);
-  m_batch_energy.assign(static_cast<std::size_t>(n_batches) * 3, 0.0);
+  m_batch_energy.assign(static_cast<std::size_t>(n_batches) * 4, 0.0);
   m_batch_dt.assign(n_batches, 0.0);
   m_batch_critical.assign(n_batches, NO_INDEX);
   m_batch_failed.assign(n_batches, NO_INDEX);
@@ -54,6 +54,7 @@ Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index
       c[HG_VISCOSITY * W] = stiff ? 0.0 : HOURGLASS_VISCOSITY * m.hourglass_scale;
     }
   }
+  setup_plasticity(materials);
 }
 
 void Hex8rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const {
@@ -84,20 +85,30 @@ void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVector
   for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
     const Index first = m_color_batches[c], last = m_color_batches[c + 1];
 #pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
-    for (Index b = first; b < last; ++b)
-      compute_batch(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes, vx + 2 * n_nodes, dt,
-                    bulk_linear, bulk_quadratic, fx, fx + n_nodes, fx + 2 * n_nodes);
+    for (Index b = first; b < last; ++b) {
+      // P2: batches of elastic lanes compile without any plasticity work.
+      if (!m_batch_plastic.empty() && m_batch_plastic[b])
+        compute_batch<true>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
+                            vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
+                            fx + 2 * n_nodes);
+      else
+        compute_batch<false>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
+                             vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
+                             fx + 2 * n_nodes);
+    }
   }
   // Serial reduction in batch order: independent of the thread count.
   const Index n_batches = m_color_batches.back();
   for (Index b = 0; b < n_batches; ++b) {
-    totals.strain_energy_increment += m_batch_energy[b * 3 + 0];
-    totals.hourglass_energy_increment += m_batch_energy[b * 3 + 1];
-    totals.viscous_energy_increment += m_batch_energy[b * 3 + 2];
+    totals.strain_energy_increment += m_batch_energy[b * 4 + 0];
+    totals.hourglass_energy_increment += m_batch_energy[b * 4 + 1];
+    totals.viscous_energy_increment += m_batch_energy[b * 4 + 2];
+    totals.plastic_energy_increment += m_batch_energy[b * 4 + 3];
     totals.merge(m_batch_dt[b], m_batch_critical[b], m_batch_failed[b]);
   }
 }
 
+template <bool PLASTIC>
 void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, const Real* pz,
                                const Real* vx, const Real* vy, const Real* vz, Real dt, Real b1,
                                Real b2, Real* fx, Real* fy, Real* fz) {
@@ -164,6 +175,11 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   sn[3] = s[3] + dt * (two_mu * d01 + r01 + r10);
   sn[4] = s[4] + dt * (two_mu * d02 + r02 + r20);
   sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
+  // The elastic update is the trial state of the J2 return (σ_y Δε̄ᵖ per lane, Pa).
+  [[maybe_unused]] Vec dissipation = simd::splat(0.0);
+  // No flow without an increment (dt = 0 at the start: an imported state stays as it is).
+  if constexpr (PLASTIC)
+    if (dt > 0.0) dissipation = plastic_return(batch, sn, dt);
   for (int c = 0; c < 6; ++c) simd::store(sig + c * W, sn[c]);
   const Vec strain_power =
       0.5 * ((s[0] + sn[0]) * d00 + (s[1] + sn[1]) * d11 + (s[2] + sn[2]) * d22 +
@@ -243,12 +259,19 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   from_modes(Fz, fnz);
 
   simd::store(&m_volume[static_cast<std::size_t>(batch) * W], vol);
-  const Vec strain_inc = dt * volm * strain_power;
+  // Stress work minus plastic dissipation: ALLSE is the recoverable part.
+  Vec strain_inc = dt * volm * strain_power;
+  [[maybe_unused]] Vec plastic_inc = simd::splat(0.0);
+  if constexpr (PLASTIC) {
+    plastic_inc = volm * dissipation;
+    strain_inc -= plastic_inc;
+  }
   const Vec visc_inc = dt * volm * sv * tr;
   const Vec hg_inc = dt * hg_power;
 
   // Scatter (lanes of a batch share no node) and per-batch reductions over real lanes.
-  Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, best_dt = std::numeric_limits<Real>::infinity();
+  Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, e_plastic = 0.0,
+       best_dt = std::numeric_limits<Real>::infinity();
   Index critical = NO_INDEX, failed = NO_INDEX;
   for (int l = 0; l < W; ++l) {
     const Index owner = m_lane_owner[batch * W + l];
@@ -262,6 +285,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
     e_strain += strain_inc[l];
     e_hg += hg_inc[l];
     e_visc += visc_inc[l];
+    if constexpr (PLASTIC) e_plastic += plastic_inc[l];
     const Index model_e = m_element_index[owner];
     if (!(vol[l] > 0.0) || !(volm[l] > 0.0)) {
       if (failed == NO_INDEX || model_e < failed) failed = model_e;
@@ -270,9 +294,10 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
       critical = model_e;
     }
   }
-  m_batch_energy[batch * 3 + 0] = e_strain;
-  m_batch_energy[batch * 3 + 1] = e_hg;
-  m_batch_energy[batch * 3 + 2] = e_visc;
+  m_batch_energy[batch * 4 + 0] = e_strain;
+  m_batch_energy[batch * 4 + 1] = e_hg;
+  m_batch_energy[batch * 4 + 2] = e_visc;
+  m_batch_energy[batch * 4 + 3] = e_plastic;
   m_batch_dt[batch] = best_dt;
   m_batch_critical[batch] = critical;
   m_batch_failed[batch] = failed;

@@ -14,6 +14,7 @@
 
 #include "common/types.hpp"
 #include "elements/increment_limit.hpp"
+#include "elements/plasticity.hpp"
 #include "elements/simd.hpp"
 
 namespace xpl::elements {
@@ -43,6 +44,9 @@ struct HexMaterial {
   Real poisson = 0.0;  ///< -
   HourglassForm hourglass = HourglassForm::Stiffness;
   Real hourglass_scale = 1.0;  ///< scales the coefficient of the chosen form
+  /// J2 plasticity of the material, or nullptr for an elastic one. Not owned: read (and
+  /// copied, once per distinct law) by the block's constructor only.
+  const Plasticity* plastic = nullptr;
 };
 
 /// What one internal-force pass reports (sums are over the block, in a fixed order).
@@ -50,6 +54,7 @@ struct HexStepTotals : IncrementLimit {
   Real strain_energy_increment = 0.0;     ///< ΔALLSE, J
   Real hourglass_energy_increment = 0.0;  ///< ΔALLAE, J
   Real viscous_energy_increment = 0.0;    ///< ΔALLVD, J
+  Real plastic_energy_increment = 0.0;    ///< ΔALLPD, J (σ_y Δε̄ᵖ V at mid-increment)
 };
 
 /// A set of C3D8R elements and their state (stress, hourglass forces).
@@ -93,6 +98,19 @@ class Hex8rBlock {
   /// Stress of block element i (constructor order), for tests.
   std::array<Real, 6> stress(Index i) const;
 
+  /// Whether any element of the block is plastic (else no plastic state exists, P2).
+  bool has_plasticity() const { return !m_laws.empty(); }
+  /// Writes the equivalent plastic strain PEEQ (-) of every element of the block at its model
+  /// index into a model-sized array (n_elements); elastic elements write 0.
+  void gather_plastic_strain(std::vector<Real>& peeq) const;
+  /// Sets PEEQ of the plastic elements of the block from a model-sized array (n_elements, -,
+  /// ≥ 0): the inverse of gather_plastic_strain, for a run that starts from an imported
+  /// state. Rows of elastic elements and of elements outside the block are not read.
+  void set_plastic_strain(std::span<const Real> peeq);
+  /// PEEQ (-) and its rate over the last increment (1/s) of block element i, for tests.
+  Real plastic_strain(Index i) const;
+  Real plastic_strain_rate(Index i) const;
+
   /// Linear stiffness product y += K u of the block at `position` (n_nodes × 3, m), for the
   /// model's highest frequency: the uniform-gradient part (λ, 2μ) and the stiffness
   /// hourglass term as internal_forces() applies them, from a stress-free state (no geometric
@@ -115,9 +133,17 @@ class Hex8rBlock {
     N_CONST
   };
 
+  template <bool PLASTIC>
   void compute_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* vx,
                      const Real* vy, const Real* vz, Real dt, Real b1, Real b2, Real* fx, Real* fy,
                      Real* fz);
+  /// J2 return of the trial stresses `sn` (6 × W) of a batch with plastic lanes over the
+  /// increment `dt`: scales the deviatoric part of yielding lanes onto the yield surface,
+  /// updates PEEQ, its rate and the yield stress, and returns σ_y Δε̄ᵖ per lane (Pa; 0 in
+  /// lanes that stay elastic). One SIMD yield test; the scalar return only where it fails.
+  simd::Vec plastic_return(Index batch, simd::Vec sn[6], Real dt);
+  /// Copies the plastic laws and the plastic state arrays (constructor).
+  void setup_plasticity(const std::vector<HexMaterial>& materials);
   void stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* ux,
                        const Real* uy, const Real* uz, Real* yx, Real* yy, Real* yz) const;
 
@@ -131,8 +157,15 @@ class Hex8rBlock {
   std::vector<Real> m_volume;          ///< [b][W]
   std::vector<Index> m_slot;           ///< block element -> batch*W + lane
   std::vector<Index> m_color_batches;  ///< batches of colour c: [m_color_batches[c], [c+1])
+  // Plasticity (all empty when no element is plastic):
+  std::vector<Plasticity> m_laws;              ///< the distinct laws of the block's materials
+  std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, or -1 (elastic lane)
+  std::vector<unsigned char> m_batch_plastic;  ///< [b] 1 if any lane of the batch is plastic
+  std::vector<Real> m_peeq;                    ///< [b][W] equivalent plastic strain ε̄ᵖ, -
+  std::vector<Real> m_peeq_rate;               ///< [b][W] Δε̄ᵖ/dt of the last increment, 1/s
+  std::vector<Real> m_yield;  ///< [b][W] σ_y(ε̄ᵖ, 0), Pa; +inf in elastic lanes
   // Per-batch results, reduced serially in batch order (deterministic).
-  std::vector<Real> m_batch_energy;  ///< [b][3]
+  std::vector<Real> m_batch_energy;  ///< [b][4]: strain, hourglass, viscous, plastic
   std::vector<Real> m_batch_dt;
   std::vector<Index> m_batch_critical;
   std::vector<Index> m_batch_failed;

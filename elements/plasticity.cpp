@@ -8,7 +8,10 @@ namespace xpl::elements {
 namespace {
 
 /// Smallest argument at which unbounded derivatives (ε^(n−1), rate^(1/n−1)) are evaluated.
-constexpr Real TINY_STRAIN = 1e-12;
+/// Far below any increment of a return (a small overstress on a power law gives Δε̄ᵖ/dt of
+/// 1e-25 /s and less), so that Newton sees the true slope there; large enough that the
+/// slope stays finite for exponents down to 0.01.
+constexpr Real TINY_STRAIN = 1e-100;
 
 /// σ_0(ε̄ᵖ) and its slope.
 void static_curve(const Plasticity& law, Real peeq, Real& stress, Real& slope) {
@@ -102,8 +105,15 @@ PlasticIncrement radial_return(const Plasticity& law, Real q_trial, Real three_g
       hi = delta;
     if (hi - lo <= 1e-15 * hi) break;
     const Real slope = three_g + f.d_strain + f.d_rate * inv_dt;
-    Real next = slope > 0.0 ? delta + g / slope : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    Real next = slope > 0.0 ? delta + g / slope : -1.0;
+    if (!(next > lo && next < hi)) {
+      // Bisection, geometric while the bracket spans decades: the root of a power law with
+      // a small overstress lies many decades below q_trial/3G.
+      if (hi <= 16.0 * lo)
+        next = 0.5 * (lo + hi);
+      else
+        next = lo > 0.0 ? std::sqrt(lo * hi) : hi / 16.0;
+    }
     delta = next;
   }
   return result;

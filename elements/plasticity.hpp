@@ -83,8 +83,8 @@ struct PlasticIncrement {
 /// 3G per unit of Δε̄ᵖ: solves q_trial − 3G Δε̄ᵖ = σ_y(ε̄ᵖ_n + Δε̄ᵖ, Δε̄ᵖ/dt) for Δε̄ᵖ.
 /// Exact (one step) for linear hardening without rate dependence; otherwise Newton on the
 /// consistency condition, safeguarded by bisection on [0, q_trial/3G], to a relative residual
-/// of 1e-12 of σ_y. `three_g` = 3G (Pa), `peeq` = ε̄ᵖ_n, `dt` > 0 (s; rate laws only).
-/// The deviatoric trial stress is then scaled by σ_y/q_trial.
+/// of 1e-12 of σ_y (or Δε̄ᵖ to 1e-15). `three_g` = 3G (Pa), `peeq` = ε̄ᵖ_n, `dt` > 0 (s; rate laws
+/// only). The deviatoric trial stress is then scaled by σ_y/q_trial.
 PlasticIncrement radial_return(const Plasticity& law, Real q_trial, Real three_g, Real peeq,
                                Real dt);
 

@@ -43,6 +43,13 @@ inline void store(Real* p, Vec v) {
   for (int l = 0; l < W; ++l) p[l] = v[l];
 }
 
+/// Whether any lane of `m` is true.
+inline bool any(Mask m) {
+  bool r = false;
+  for (int l = 0; l < W; ++l) r |= m[l] != 0;
+  return r;
+}
+
 inline Vec select(Mask m, Vec a, Vec b) {
   return m ? a : b;
 }

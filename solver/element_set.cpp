@@ -19,6 +19,7 @@ elements::HexMaterial hex_material(const Model& model, Index element) {
   h.density = m.density;
   h.young = m.young;
   h.poisson = m.poisson;
+  if (m.plastic) h.plastic = &*m.plastic;
   if (section.controls != NO_INDEX) {
     const SectionControls& c = model.section_controls[section.controls];
     h.hourglass = c.hourglass == HourglassType::Viscous ? elements::HourglassForm::Viscous
@@ -218,6 +219,10 @@ void ElementSet::set_stress(const NodalVectors& position, std::span<const Real> 
   if (m_shell) m_shell->set_output_stress(position, middle, bottom, top);
 }
 
+void ElementSet::set_plastic_strain(std::span<const Real> peeq) {
+  if (m_hex) m_hex->set_plastic_strain(peeq);
+}
+
 void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& totals) {
   ScopedTimer timer(m_timers, Phase::InternalForce);
   const Step& s = m_model.steps[state.step];
@@ -277,6 +282,11 @@ Real ElementSet::next_increment(const ElementTotals& totals, Real remaining, int
 }
 
 void ElementSet::gather_output(State& state, const FrameRequest& what) const {
+  if (what.plastic_strain) {
+    // PEEQ of every element (0 where elastic); each block writes the rows of its elements.
+    state.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);
+    if (m_hex) m_hex->gather_plastic_strain(state.peeq);
+  }
   if (!what.stress && !what.volume && !what.thickness) return;
   // Element output arrays exist only in runs that write element output (P2).
   const auto n_elements = static_cast<std::size_t>(m_model.element_count());

@@ -27,13 +27,17 @@ struct ElementTotals : elements::IncrementLimit {
   Real strain_energy_increment = 0.0;
   Real hourglass_energy_increment = 0.0;
   Real viscous_energy_increment = 0.0;
+  Real plastic_energy_increment = 0.0;  ///< ΔALLPD: plastic dissipation of the pass
 
-  /// Adds one block's totals (strain and hourglass energy, increment limit; the caller adds
-  /// the viscous energy of the blocks that have it).
+  /// Adds one block's totals (strain and hourglass energy, plastic dissipation where the
+  /// block's totals have a `plastic_energy_increment`, increment limit; the caller adds the
+  /// viscous energy of the blocks that have it).
   template <class BlockTotals>
   void add(const BlockTotals& t) {
     strain_energy_increment += t.strain_energy_increment;
     hourglass_energy_increment += t.hourglass_energy_increment;
+    if constexpr (requires { t.plastic_energy_increment; })
+      plastic_energy_increment += t.plastic_energy_increment;
     merge(t);
   }
 };
@@ -65,6 +69,9 @@ class ElementSet {
   void set_stress(const NodalVectors& position, std::span<const Real> middle,
                   std::span<const Real> bottom, std::span<const Real> top);
 
+  /// Sets imported equivalent plastic strains (n_elements, -) of the plastic elements.
+  void set_plastic_strain(std::span<const Real> peeq);
+
   /// Starts a step: the global frequency estimate is made anew at the next force pass.
   void begin_step() { m_global.begin_step(); }
   /// The global estimate made since the last call, as a note in `sink` (nothing otherwise).
@@ -89,7 +96,7 @@ class ElementSet {
   Real next_increment(const ElementTotals& totals, Real remaining, int step,
                       Real limit = std::numeric_limits<Real>::infinity()) const;
 
-  /// Element output requested by `what` (stress, section stresses, volume, thickness) into
+  /// Element output requested by `what` (stress, section stresses, volume, thickness, PEEQ) into
   /// `state`; the arrays are allocated on first use (n_elements rows).
   void gather_output(State& state, const FrameRequest& what) const;
 

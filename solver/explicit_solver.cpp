@@ -151,6 +151,7 @@ void ExplicitSolver::Impl::apply_initial_state(const InitialState& imported) {
     m_elements.set_stress(m_state.position, imported.stress,
                           imported.stress_bottom.empty() ? imported.stress : imported.stress_bottom,
                           imported.stress_top.empty() ? imported.stress : imported.stress_top);
+  if (!imported.peeq.empty()) m_elements.set_plastic_strain(imported.peeq);
 }
 
 void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_messages) {
@@ -161,6 +162,7 @@ void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_me
                    "the run starts from the imported state of " + imported->source +
                        " (positions, velocities" +
                        (imported->stress.empty() ? "" : ", element stresses") +
+                       (imported->peeq.empty() ? "" : ", equivalent plastic strains") +
                        "); time starts at 0. Hourglass forces and contact state start at zero; "
                        "ALLSE counts the strain energy from here on");
   for (const DeckMessage& m : m_model.deck_messages)
@@ -226,6 +228,7 @@ void ExplicitSolver::Impl::element_forces(Real dt, ElementTotals& totals) {
   m_state.energies.strain += totals.strain_energy_increment;
   m_state.energies.artificial += totals.hourglass_energy_increment;
   m_state.energies.viscous += totals.viscous_energy_increment;
+  m_state.energies.plastic += totals.plastic_energy_increment;
   note_critical(totals);
 }
 
@@ -381,6 +384,7 @@ RunSummary ExplicitSolver::Impl::check() {
     m_state.energies.kinetic = kinetic;
     FrameRequest all;
     all.displacement = all.velocity = all.acceleration = all.reaction = all.stress = true;
+    all.plastic_strain = m_model.has_plasticity();
     write_frame(all);
     write_status();
   }

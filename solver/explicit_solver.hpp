@@ -25,6 +25,7 @@ struct InitialState {
   NodalVectors angular_velocity;                ///< VR (n_nodes × 3) or 0 rows
   std::vector<Real> stress;                     ///< S (n_elements × 6) or empty
   std::vector<Real> stress_bottom, stress_top;  ///< shell S_SNEG / S_SPOS or empty
+  std::vector<Real> peeq;                       ///< PEEQ (n_elements, -) or empty
 };
 
 struct SolverOptions {

@@ -39,6 +39,11 @@ bool Model::has_contact() const {
   return false;
 }
 
+bool Model::has_plasticity() const {
+  return std::any_of(materials.begin(), materials.end(),
+                     [](const Material& m) { return m.plastic.has_value(); });
+}
+
 bool Model::has_shells() const {
   return std::any_of(element_types.begin(), element_types.end(), is_shell);
 }

@@ -431,6 +431,9 @@ struct Model {
   bool has_shells() const;
   /// Whether any step has general contact or the model has a contact pair.
   bool has_contact() const;
+  /// Whether any material is plastic (then PEEQ and ALLPD exist; P2: otherwise nothing
+  /// plastic is allocated, computed or written).
+  bool has_plasticity() const;
 
   Index node_count() const { return static_cast<Index>(node_ids.size()); }
   Index element_count() const { return static_cast<Index>(element_ids.size()); }

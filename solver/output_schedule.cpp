@@ -31,11 +31,11 @@ const std::vector<std::string>& requested(const OutputRequest& r, OutputKeyword 
 /// The frame flags of a field request. A request writes its flag's variables together (UR
 /// also writes U); a flag that writes nothing on the model is not set (P2: STH without
 /// shells).
-FrameRequest frame_request(const OutputRequest& r, bool shells) {
+FrameRequest frame_request(const OutputRequest& r, OutputScope scope) {
   FrameRequest what;
   for (const OutputVariable& v : OUTPUT_VARIABLES) {
     if (v.frame == nullptr || !has(requested(r, v.keyword), std::string(v.request))) continue;
-    if (frame_flag_written(v.frame, shells)) what.*v.frame = true;
+    if (frame_flag_written(v.frame, scope)) what.*v.frame = true;
   }
   return what;
 }
@@ -49,13 +49,13 @@ void OutputSchedule::begin_step(const Model& model, int step) {
   m_history.clear();
   m_series.clear();
   m_columns.clear();
-  const bool shells = model.has_shells();
+  const OutputScope scope = output_scope(model);
   for (const OutputRequest& r : s.outputs) {
     if (r.kind == OutputRequest::Kind::Field) {
       FieldRequest f;
       f.when.interval = interval_of(r, m_period, 20);
       f.when.next = f.when.interval;
-      f.what = frame_request(r, shells);
+      f.what = frame_request(r, scope);
       m_field.push_back(f);
       continue;
     }
@@ -70,6 +70,7 @@ void OutputSchedule::begin_step(const Model& model, int step) {
         if (!r.energy_variables.empty() && !has(r.energy_variables, name)) continue;
         // P2: the contact energies exist only in models with contact.
         if (energy.models == OutputModels::Contact && !model.has_contact()) continue;
+        if (energy.models == OutputModels::Plastic && !scope.plastic) continue;
         m_series.push_back({"energy/" + name, 1, {}});
         m_columns.push_back({i, nullptr, 0, NO_INDEX});
       }
@@ -82,7 +83,7 @@ void OutputSchedule::begin_step(const Model& model, int step) {
       if (request.variable == nullptr) continue;
       const OutputVariable& v = *request.variable;
       // Without shells the rotations are not allocated: their history columns hold zeros.
-      const NodeValue value = written_on(v, shells) ? v.node_value : nullptr;
+      const NodeValue value = written_on(v, scope) ? v.node_value : nullptr;
       for (int c = 0; c < v.width; ++c) {
         if (request.component >= 0 && request.component != c) continue;
         const std::string name(v.components[static_cast<std::size_t>(c)]);

@@ -26,13 +26,14 @@ struct FrameRequest {
   bool stress = false;          ///< S (also writes the von Mises MISES)
   bool volume = false;          ///< EVOL
   bool thickness = false;       ///< STH (shells)
+  bool plastic_strain = false;  ///< PEEQ (models with plastic materials)
   bool contact_stress = false;  ///< CSTRESS: CPRESS (scalar) and CSHEAR (vector) per node
   bool contact_status = false;  ///< CSTATUS per node: 0 open, 1 slipping, 2 sticking
   bool contact_force = false;   ///< CFORCE: CNORMF and CSHEARF (vectors) per node
   /// Whether anything at all is requested.
   bool any() const {
     return displacement || velocity || acceleration || reaction || stress || volume || thickness ||
-           contact_stress || contact_status || contact_force;
+           plastic_strain || contact_stress || contact_status || contact_force;
   }
 };
 

@@ -37,18 +37,22 @@ Real reaction_moment(const State& s, Index i, int c) {
 }
 }  // namespace node_values
 
-bool frame_flag_written(bool FrameRequest::*flag, bool shells) {
+OutputScope output_scope(const Model& model) {
+  return {model.has_shells(), model.has_plasticity()};
+}
+
+bool frame_flag_written(bool FrameRequest::*flag, OutputScope scope) {
   for (const OutputVariable& v : OUTPUT_VARIABLES)
-    if (v.frame == flag && written_on(v, shells)) return true;
+    if (v.frame == flag && written_on(v, scope)) return true;
   return false;
 }
 
-std::vector<const OutputVariable*> frame_variables(const FrameRequest& what, bool shells) {
+std::vector<const OutputVariable*> frame_variables(const FrameRequest& what, OutputScope scope) {
   std::vector<const OutputVariable*> out;
   for (bool FrameRequest::*flag : FRAME_FLAGS) {
     if (!(what.*flag)) continue;
     for (const OutputVariable& v : OUTPUT_VARIABLES)
-      if (v.frame == flag && written_on(v, shells)) out.push_back(&v);
+      if (v.frame == flag && written_on(v, scope)) out.push_back(&v);
   }
   return out;
 }

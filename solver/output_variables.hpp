@@ -21,7 +21,7 @@ namespace xpl {
 // clang-format off
 enum class OutputId {
   U, V, A, RF, UR, VR, RM,                  // node
-  S, EVOL, MISES, STH, S_SNEG, S_SPOS,      // element
+  S, EVOL, MISES, STH, PEEQ, S_SNEG, S_SPOS, // element
   CPRESS, CSHEAR, CSTATUS, CNORMF, CSHEARF, // node, contact
   CFN, CFS                                  // contact pair
 };
@@ -39,6 +39,8 @@ enum class OutputLocation {
 enum class OutputModels {
   All,     ///< every model
   Shells,  ///< models with shells only: left out of the frames of other models
+  /// Models with a plastic material only (PEEQ, ALLPD): left out of elastic models (P2).
+  Plastic,
   /// Contact output: zero away from contact; the contact energies and pair forces are left
   /// out of models without contact.
   Contact,
@@ -93,7 +95,7 @@ Real reaction_moment(const State& s, Index i, int c);
 /// in messages; a frame writes its datasets flag by flag (FRAME_FLAGS), in table order within
 /// a flag (frame_variables()).
 // clang-format off
-inline constexpr std::array<OutputVariable, 20> OUTPUT_VARIABLES = {{
+inline constexpr std::array<OutputVariable, 21> OUTPUT_VARIABLES = {{
     // id, name, location, width, components, unit, models, keyword, request, preselect,
     // frame flag, node history value, description
     {OutputId::U, "U", OutputLocation::Node, 3, {"U1", "U2", "U3"}, "m", OutputModels::All,
@@ -132,6 +134,9 @@ inline constexpr std::array<OutputVariable, 20> OUTPUT_VARIABLES = {{
     {OutputId::STH, "STH", OutputLocation::Element, 1, {"STH"}, "m", OutputModels::Shells,
      OutputKeyword::Element, "STH", false, &FrameRequest::thickness, nullptr,
      "current shell thickness; NaN for solids"},
+    {OutputId::PEEQ, "PEEQ", OutputLocation::Element, 1, {"PEEQ"}, "", OutputModels::Plastic,
+     OutputKeyword::Element, "PEEQ", true, &FrameRequest::plastic_strain, nullptr,
+     "equivalent plastic strain; 0 for elastic elements; shells: largest section point"},
     {OutputId::S_SNEG, "S_SNEG", OutputLocation::Element, 6, STRESS_COMPONENTS, "Pa",
      OutputModels::Shells, OutputKeyword::Element, "S", false, &FrameRequest::stress, nullptr,
      "shell stress at the bottom section point; NaN for solids"},
@@ -171,24 +176,34 @@ constexpr const OutputVariable& output_variable(OutputId id) {
 }
 
 /// The flags of a field frame, in the order their variables are written.
-inline constexpr std::array<bool FrameRequest::*, 10> FRAME_FLAGS = {
-    &FrameRequest::displacement, &FrameRequest::velocity,       &FrameRequest::acceleration,
-    &FrameRequest::reaction,     &FrameRequest::stress,         &FrameRequest::volume,
-    &FrameRequest::thickness,    &FrameRequest::contact_stress, &FrameRequest::contact_status,
-    &FrameRequest::contact_force};
+inline constexpr std::array<bool FrameRequest::*, 11> FRAME_FLAGS = {
+    &FrameRequest::displacement,   &FrameRequest::velocity,       &FrameRequest::acceleration,
+    &FrameRequest::reaction,       &FrameRequest::stress,         &FrameRequest::volume,
+    &FrameRequest::thickness,      &FrameRequest::plastic_strain, &FrameRequest::contact_stress,
+    &FrameRequest::contact_status, &FrameRequest::contact_force};
 
-/// Whether a frame of a model with (`shells`) or without shells writes `v`.
-constexpr bool written_on(const OutputVariable& v, bool shells) {
-  return v.models != OutputModels::Shells || shells;
+/// What a model has that decides which variables its frames write (OutputModels).
+struct OutputScope {
+  bool shells = false;   ///< the model has shells (Model::has_shells)
+  bool plastic = false;  ///< the model has a plastic material (Model::has_plasticity)
+};
+
+/// The scope of `model`.
+OutputScope output_scope(const Model& model);
+
+/// Whether a frame of a model of scope `scope` writes `v`.
+constexpr bool written_on(const OutputVariable& v, OutputScope scope) {
+  return (v.models != OutputModels::Shells || scope.shells) &&
+         (v.models != OutputModels::Plastic || scope.plastic);
 }
 
-/// Whether `flag` writes anything on a model with (`shells`) or without shells (STH: not
-/// without shells; U: always, with or without UR).
-bool frame_flag_written(bool FrameRequest::*flag, bool shells);
+/// Whether `flag` writes anything on a model of scope `scope` (STH: not without shells;
+/// PEEQ: not without plasticity; U: always, with or without UR).
+bool frame_flag_written(bool FrameRequest::*flag, OutputScope scope);
 
-/// The datasets a frame `what` holds on a model with (`shells`) or without shells, in the
-/// order they are written.
-std::vector<const OutputVariable*> frame_variables(const FrameRequest& what, bool shells);
+/// The datasets a frame `what` holds on a model of scope `scope`, in the order they are
+/// written.
+std::vector<const OutputVariable*> frame_variables(const FrameRequest& what, OutputScope scope);
 
 /// A history node request parsed: the variable and the component asked for.
 struct NodeHistoryRequest {
@@ -206,22 +221,24 @@ void append_contact_pair_series(std::vector<HistorySeries>& series, const std::s
 struct EnergyVariable {
   std::string_view name;  ///< Abaqus name ("ALLKE")
   std::string_view unit;
-  OutputModels models;  ///< All, or Contact (left out without contact)
+  OutputModels models;  ///< All, Contact (left out without contact) or Plastic (without plasticity)
   Real (*value)(const Energies& e);
   std::string_view description;
 };
 
 /// The whole-model energies (*ENERGY OUTPUT): the terms of the balance, then the balance.
 /// The history lists them in energy_history_order().
-inline constexpr std::array<EnergyVariable, 9> ENERGIES = {{
+inline constexpr std::array<EnergyVariable, 10> ENERGIES = {{
     {"ALLKE", "J", OutputModels::All, [](const Energies& e) { return e.kinetic; },
      "kinetic energy"},
     {"ALLSE", "J", OutputModels::All, [](const Energies& e) { return e.strain; },
      "recoverable strain energy"},
+    {"ALLPD", "J", OutputModels::Plastic, [](const Energies& e) { return e.plastic; },
+     "plastic dissipation"},
     {"ALLAE", "J", OutputModels::All, [](const Energies& e) { return e.artificial; },
      "hourglass energy"},
     {"ALLIE", "J", OutputModels::All, [](const Energies& e) { return e.internal(); },
-     "internal energy ALLSE + ALLAE"},
+     "internal energy ALLSE + ALLPD + ALLAE"},
     {"ALLVD", "J", OutputModels::All, [](const Energies& e) { return e.viscous; },
      "bulk-viscosity dissipation"},
     {"ALLWK", "J", OutputModels::All, [](const Energies& e) { return e.external_work; },

@@ -11,6 +11,7 @@ namespace xpl {
 struct Energies {
   Real kinetic = 0.0;        ///< ALLKE
   Real strain = 0.0;         ///< ALLSE, recoverable strain energy
+  Real plastic = 0.0;        ///< ALLPD, plastic dissipation ∫σ_y dε̄ᵖ dV
   Real artificial = 0.0;     ///< ALLAE, hourglass energy
   Real viscous = 0.0;        ///< ALLVD, bulk-viscosity dissipation
   Real external_work = 0.0;  ///< ALLWK, work of loads and of reactions at prescribed DOFs
@@ -20,8 +21,8 @@ struct Energies {
   /// to ~0 after a rebound). Abaqus reports the same quantity with the opposite sign as the
   /// work of the penalties; xpl keeps it positive so that it adds to ETOTAL like ALLIE.
   Real contact = 0.0;
-  /// ALLIE = ALLSE + ALLAE (+ plastic energies when they exist).
-  Real internal() const { return strain + artificial; }
+  /// ALLIE = ALLSE + ALLPD + ALLAE.
+  Real internal() const { return strain + plastic + artificial; }
   /// ETOTAL = ALLKE + ALLIE + ALLVD + ALLFD + ALLPW − ALLWK; constant for a correct, stable run.
   Real total() const { return kinetic + internal() + viscous + friction + contact - external_work; }
 };
@@ -57,6 +58,9 @@ struct State {
   std::vector<Real> thickness;
   /// Current element volume, filled with `stress` (n_elements), m^3.
   std::vector<Real> volume;
+  /// Equivalent plastic strain PEEQ (n_elements), -: 0 for elastic elements; shells: the
+  /// largest of their section points. Filled before a frame that asks for it (plastic models).
+  std::vector<Real> peeq;
 
   // Contact output per node, filled before a frame that asks for it (zero away from contact).
   // The node's total contact force F (as slave and as face corner) split along its outward

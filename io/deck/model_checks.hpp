@@ -23,8 +23,6 @@ std::vector<std::string> unsupported_features(const Model& model);
 /// refuses them like unsupported features. `model` must be complete (no deck errors).
 std::vector<std::string> unimplemented_kernels(const Model& model);
 
-/// The C3D8R part of unimplemented_kernels (removed when the hex return mapping lands).
-void refuse_plastic_hexes(const Model& model, std::vector<std::string>& out);
 /// The S4R part of unimplemented_kernels (removed when the shell return mapping lands).
 void refuse_plastic_shells(const Model& model, std::vector<std::string>& out);
 

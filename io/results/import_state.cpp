@@ -332,23 +332,25 @@ NodalVectors read_nodal(hid_t file, const std::string& frame, const char* name,
   return field;
 }
 
-/// An element field of the frame (n_elements × 6, file rows → model rows); refuses
-/// non-finite values in the rows of the elements `check_row` accepts.
+/// An element field of the frame (n_elements × `width`, file rows → model rows; width 1: a
+/// one-dimensional dataset); refuses non-finite values in the rows of the elements
+/// `check_row` accepts.
 template <class CheckRow>
 std::vector<Real> read_cells(hid_t file, const std::string& path,
                              const std::vector<Index>& element_of_row, const Model& model,
-                             CheckRow check_row) {
-  const auto values = read_array<Real>(file, path, element_of_row.size(), 6);
+                             CheckRow check_row, int width = 6) {
+  const auto w = static_cast<std::size_t>(width);
+  const auto values = read_array<Real>(file, path, element_of_row.size(), width == 1 ? 0 : w);
   std::vector<Real> field(values.size());
   for (std::size_t r = 0; r < element_of_row.size(); ++r) {
     const auto e = static_cast<std::size_t>(element_of_row[r]);
-    for (int c = 0; c < 6; ++c) {
-      const Real v = values[r * 6 + c];
+    for (std::size_t c = 0; c < w; ++c) {
+      const Real v = values[r * w + c];
       if (check_row(e) && !std::isfinite(v)) {
         refuse(path + " is not finite at element " + std::to_string(model.element_ids[e]),
                "expected the state of a run that did not go unstable");
       }
-      field[e * 6 + c] = v;
+      field[e * w + c] = v;
     }
   }
   return field;
@@ -416,6 +418,17 @@ ImportedState read_file(hid_t file, const Model& model) {
     state.notes.push_back(
         "no S_SNEG/S_SPOS in the last frame: the shells take the middle stress S through the "
         "whole thickness (no bending stress)");
+  }
+  if (model.has_plasticity()) {
+    if (has("PEEQ")) {
+      state.peeq = read_cells(file, frame + "/PEEQ", element_of_row, model, all_rows, 1);
+      for (std::size_t e = 0; e < state.peeq.size(); ++e)
+        if (state.peeq[e] < 0.0)
+          refuse(frame + "/PEEQ is negative at element " + std::to_string(model.element_ids[e]),
+                 "expected equivalent plastic strains >= 0");
+    } else {
+      state.notes.push_back("no PEEQ in the last frame: the plastic strains start at 0");
+    }
   }
   const std::string status = run_status(file);
   if (!status.empty() && status != "completed" && status != "checked") {

@@ -44,6 +44,7 @@ void check_frame(const State& state, const FrameRequest& what, Index n_nodes,
   if (what.reaction) check_rows(state.reaction, n_nodes, "RF");
   if (what.stress) check_size(state.stress, n_elements * 6, "stress");
   if (what.volume) check_size(state.volume, n_elements, "volume");
+  if (what.plastic_strain) check_size(state.peeq, n_elements, "peeq");
   if (!shells) return;
   if (what.displacement) check_rows(state.rotation, n_nodes, "UR");
   if (what.velocity) check_rows(state.angular_velocity, n_nodes, "VR");
@@ -108,6 +109,8 @@ void write_variable(hid_t group, const OutputVariable& v, const State& state) {
     }
     case OutputId::STH:
       return write_values(group, v, state.thickness);
+    case OutputId::PEEQ:
+      return write_values(group, v, state.peeq);
     case OutputId::S_SNEG:
       return write_values(group, v, state.stress_bottom);
     case OutputId::S_SPOS:
@@ -201,7 +204,8 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
                            step_index < model.steps.size() ? model.steps[step_index].name : "");
   h5::set_int64_attribute(g, "increment", state.increment);
 
-  for (const OutputVariable* v : frame_variables(what, shells)) write_variable(g, *v, state);
+  for (const OutputVariable* v : frame_variables(what, output_scope(model)))
+    write_variable(g, *v, state);
   ++m_frames;
   flush();
   return name;

@@ -127,6 +127,7 @@ XdmfMesh write_mesh_group(hid_t file, const Model& model) {
   xdmf.nodes = model.node_count();
   xdmf.cells = model.element_count();
   xdmf.shells = std::any_of(present.begin(), present.end(), is_shell);
+  xdmf.plastic = model.has_plasticity();
   if (mixed) {
     const std::vector<std::int64_t> topology = mixed_topology(model);
     h5::write_int64(mesh.get(), "mixed_topology", topology, {topology.size()});

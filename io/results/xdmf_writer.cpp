@@ -76,7 +76,7 @@ void XdmfWriter::add_frame(const std::string& frame, Real time, const FrameReque
           "\n        </Topology>\n";
   grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
           data_item(nodes + " 3", "Float", "/mesh/coordinates") + "\n        </Geometry>\n";
-  for (const OutputVariable* v : frame_variables(what, m_mesh.shells)) {
+  for (const OutputVariable* v : frame_variables(what, {m_mesh.shells, m_mesh.plastic})) {
     const std::string name(v->name);
     const bool node = v->location == OutputLocation::Node;
     std::string dims = node ? nodes : cells;

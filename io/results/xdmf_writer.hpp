@@ -23,6 +23,8 @@ struct XdmfMesh {
   std::string topology_dimensions = "0 8";
   /// Shell models: U, V, RF, S, STH also list UR, VR, RM, S_SNEG + S_SPOS, STH.
   bool shells = false;
+  /// Models with a plastic material: frames may list PEEQ.
+  bool plastic = false;
 };
 
 /// Writes the XDMF index of the frames in an HDF5 result file.

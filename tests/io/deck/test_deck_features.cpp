@@ -189,7 +189,8 @@ TEST_CASE("output requests: PRESELECT, defaults, several *NODE OUTPUT", "[io][de
   REQUIRE(out.size() == 4);
   CHECK(out[0].number_interval == 20);
   CHECK(out[0].node_variables == std::vector<std::string>{"U", "V", "A", "RF"});
-  CHECK(out[0].element_variables == std::vector<std::string>{"S"});
+  // PEEQ is written on plastic models only (OutputModels::Plastic).
+  CHECK(out[0].element_variables == std::vector<std::string>{"S", "PEEQ"});
   CHECK(out[1].number_interval == 50);
   CHECK(out[1].energy);
   CHECK(out[1].energy_variables.empty());

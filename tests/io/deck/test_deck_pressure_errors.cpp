@@ -100,7 +100,7 @@ TEST_CASE("unknown rotational output variables", "[io][deck][shell][errors]") {
   CHECK(errors[0] == at(deck, "UR1", "*NODE OUTPUT") +
                          "unknown output variable UR1; expected one of U, V, A, RF, UR, VR, RM");
   CHECK(errors[1] == at(deck, "STH, SF", "*ELEMENT OUTPUT") +
-                         "unknown output variable SF; expected one of S, EVOL, MISES, STH");
+                         "unknown output variable SF; expected one of S, EVOL, MISES, STH, PEEQ");
   CHECK(errors[2] == at(deck, "UR4", "*NODE OUTPUT") +
                          "unknown output variable UR4; expected one of U, V, A, RF, UR, VR, RM "
                          "or a component such as U1, RF3, UR2, RM1");

@@ -19,9 +19,10 @@ std::vector<std::string> strings(const List& list) {
   return {list.begin(), list.end()};
 }
 
-std::vector<std::string> frame_names(const FrameRequest& what, bool shells) {
+std::vector<std::string> frame_names(const FrameRequest& what, bool shells, bool plastic = false) {
   std::vector<std::string> names;
-  for (const OutputVariable* v : frame_variables(what, shells)) names.emplace_back(v->name);
+  for (const OutputVariable* v : frame_variables(what, {shells, plastic}))
+    names.emplace_back(v->name);
   return names;
 }
 
@@ -38,11 +39,13 @@ TEST_CASE("output variables: the names each deck keyword accepts", "[results][va
   CHECK(strings(request_names<OutputKeyword::Node>()) ==
         Names{"U", "V", "A", "RF", "UR", "VR", "RM"});
   CHECK(strings(request_names<OutputKeyword::Node, true>()) == Names{"U", "V", "A", "RF"});
-  CHECK(strings(request_names<OutputKeyword::Element>()) == Names{"S", "EVOL", "MISES", "STH"});
-  CHECK(strings(request_names<OutputKeyword::Element, true>()) == Names{"S"});
+  CHECK(strings(request_names<OutputKeyword::Element>()) ==
+        Names{"S", "EVOL", "MISES", "STH", "PEEQ"});
+  // As Abaqus/Explicit's PRESELECT (PEEQ is written on plastic models only).
+  CHECK(strings(request_names<OutputKeyword::Element, true>()) == Names{"S", "PEEQ"});
   CHECK(strings(request_names<OutputKeyword::Contact>()) == Names{"CSTRESS", "CSTATUS", "CFORCE"});
-  CHECK(strings(energy_names()) ==
-        Names{"ALLKE", "ALLSE", "ALLAE", "ALLIE", "ALLVD", "ALLWK", "ALLFD", "ALLPW", "ETOTAL"});
+  CHECK(strings(energy_names()) == Names{"ALLKE", "ALLSE", "ALLPD", "ALLAE", "ALLIE", "ALLVD",
+                                         "ALLWK", "ALLFD", "ALLPW", "ETOTAL"});
 }
 
 TEST_CASE("output variables: a frame writes its datasets in the order of the files",
@@ -56,18 +59,25 @@ TEST_CASE("output variables: a frame writes its datasets in the order of the fil
                                                   "CSHEARF"});
   CHECK(frame_names({.reaction = true, .volume = true}, true) == Names{"RF", "RM", "EVOL"});
   CHECK(frame_names({}, true).empty());
-  // A flag whose variables are all shell-only writes nothing without shells.
-  CHECK_FALSE(frame_flag_written(&FrameRequest::thickness, false));
-  CHECK(frame_flag_written(&FrameRequest::thickness, true));
-  CHECK(frame_flag_written(&FrameRequest::displacement, false));
+  // PEEQ after EVOL and STH, on plastic models only.
+  CHECK(frame_names(everything(), false, true) == Names{"U", "V", "A", "RF", "S", "MISES", "EVOL",
+                                                        "PEEQ", "CPRESS", "CSHEAR", "CSTATUS",
+                                                        "CNORMF", "CSHEARF"});
+  // A flag whose variables are all shell-only writes nothing without shells, PEEQ nothing
+  // without plasticity.
+  CHECK_FALSE(frame_flag_written(&FrameRequest::thickness, {false, true}));
+  CHECK(frame_flag_written(&FrameRequest::thickness, {true, false}));
+  CHECK(frame_flag_written(&FrameRequest::displacement, {}));
+  CHECK_FALSE(frame_flag_written(&FrameRequest::plastic_strain, {true, false}));
+  CHECK(frame_flag_written(&FrameRequest::plastic_strain, {false, true}));
 }
 
 TEST_CASE("output variables: energies in history order, contact ones last",
           "[results][variables]") {
   std::vector<std::string> names;
   for (const int i : energy_history_order()) names.emplace_back(ENERGIES[i].name);
-  CHECK(names == std::vector<std::string>{"ALLKE", "ALLSE", "ALLAE", "ALLIE", "ALLVD", "ALLWK",
-                                          "ETOTAL", "ALLFD", "ALLPW"});
+  CHECK(names == std::vector<std::string>{"ALLKE", "ALLSE", "ALLPD", "ALLAE", "ALLIE", "ALLVD",
+                                          "ALLWK", "ETOTAL", "ALLFD", "ALLPW"});
   Energies e;
   e.kinetic = 1.0;
   e.strain = 2.0;
@@ -76,9 +86,12 @@ TEST_CASE("output variables: energies in history order, contact ones last",
   e.external_work = 16.0;
   e.friction = 32.0;
   e.contact = 64.0;
+  e.plastic = 128.0;
   std::vector<Real> values;
   for (const EnergyVariable& energy : ENERGIES) values.push_back(energy.value(e));
-  CHECK(values == std::vector<Real>{1.0, 2.0, 4.0, 6.0, 8.0, 16.0, 32.0, 64.0, e.total()});
+  // ALLIE = ALLSE + ALLPD + ALLAE.
+  CHECK(values == std::vector<Real>{1.0, 2.0, 128.0, 4.0, 134.0, 8.0, 16.0, 32.0, 64.0, e.total()});
+  CHECK(e.total() == 1.0 + 134.0 + 8.0 + 32.0 + 64.0 - 16.0);
 }
 
 TEST_CASE("output variables: history node requests", "[results][variables]") {
