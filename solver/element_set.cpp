@@ -219,8 +219,10 @@ void ElementSet::set_stress(const NodalVectors& position, std::span<const Real> 
   if (m_shell) m_shell->set_output_stress(position, middle, bottom, top);
 }
 
-void ElementSet::set_plastic_strain(std::span<const Real> peeq) {
-  if (m_hex) m_hex->set_plastic_strain(peeq);
+void ElementSet::set_plastic_strain(std::span<const Real> peeq, std::span<const Real> middle,
+                                    std::span<const Real> bottom, std::span<const Real> top) {
+  if (m_hex && !peeq.empty()) m_hex->set_plastic_strain(peeq);
+  if (m_shell && !middle.empty()) m_shell->set_plastic_strain(middle, bottom, top);
 }
 
 void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& totals) {
@@ -286,6 +288,18 @@ void ElementSet::gather_output(State& state, const FrameRequest& what) const {
     // PEEQ of every element (0 where elastic); each block writes the rows of its elements.
     state.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);
     if (m_hex) m_hex->gather_plastic_strain(state.peeq);
+    if (m_shell) m_shell->gather_plastic_strain(state.peeq);
+    if (m_model.has_plastic_shells()) {
+      // Per section point: NaN rows for solids and rigid elements, like S_SNEG and S_SPOS.
+      const auto n = static_cast<std::size_t>(m_model.element_count());
+      const Real nan = std::numeric_limits<Real>::quiet_NaN();
+      state.peeq_bottom.assign(n, nan);
+      state.peeq_middle.assign(n, nan);
+      state.peeq_top.assign(n, nan);
+      if (m_shell)
+        m_shell->gather_section_plastic_strain(state.peeq_bottom, state.peeq_middle,
+                                               state.peeq_top);
+    }
   }
   if (!what.stress && !what.volume && !what.thickness) return;
   // Element output arrays exist only in runs that write element output (P2).

@@ -69,8 +69,12 @@ class ElementSet {
   void set_stress(const NodalVectors& position, std::span<const Real> middle,
                   std::span<const Real> bottom, std::span<const Real> top);
 
-  /// Sets imported equivalent plastic strains (n_elements, -) of the plastic elements.
-  void set_plastic_strain(std::span<const Real> peeq);
+  /// Sets imported equivalent plastic strains of the plastic elements: the solids' from `peeq`,
+  /// the shells' from their middle, bottom and top section points (n_elements each, -; between
+  /// them interpolated through the thickness, Shell4rBlock::set_plastic_strain). An empty
+  /// `peeq` leaves the solids alone, an empty `middle` the shells.
+  void set_plastic_strain(std::span<const Real> peeq, std::span<const Real> middle,
+                          std::span<const Real> bottom, std::span<const Real> top);
 
   /// Starts a step: the global frequency estimate is made anew at the next force pass.
   void begin_step() { m_global.begin_step(); }

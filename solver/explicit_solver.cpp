@@ -151,7 +151,9 @@ void ExplicitSolver::Impl::apply_initial_state(const InitialState& imported) {
     m_elements.set_stress(m_state.position, imported.stress,
                           imported.stress_bottom.empty() ? imported.stress : imported.stress_bottom,
                           imported.stress_top.empty() ? imported.stress : imported.stress_top);
-  if (!imported.peeq.empty()) m_elements.set_plastic_strain(imported.peeq);
+  if (!imported.peeq.empty() || !imported.peeq_middle.empty())
+    m_elements.set_plastic_strain(imported.peeq, imported.peeq_middle, imported.peeq_bottom,
+                                  imported.peeq_top);
 }
 
 void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_messages) {

@@ -26,6 +26,8 @@ struct InitialState {
   std::vector<Real> stress;                     ///< S (n_elements × 6) or empty
   std::vector<Real> stress_bottom, stress_top;  ///< shell S_SNEG / S_SPOS or empty
   std::vector<Real> peeq;                       ///< PEEQ (n_elements, -) or empty
+  /// Shell PEEQ_SMID / PEEQ_SNEG / PEEQ_SPOS (n_elements each, -) or empty.
+  std::vector<Real> peeq_middle, peeq_bottom, peeq_top;
 };
 
 struct SolverOptions {

@@ -44,6 +44,12 @@ bool Model::has_plasticity() const {
                      [](const Material& m) { return m.plastic.has_value(); });
 }
 
+bool Model::has_plastic_shells() const {
+  return std::any_of(shell_sections.begin(), shell_sections.end(), [&](const ShellSection& s) {
+    return s.material != NO_INDEX && materials[s.material].plastic.has_value();
+  });
+}
+
 bool Model::has_shells() const {
   return std::any_of(element_types.begin(), element_types.end(), is_shell);
 }

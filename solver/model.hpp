@@ -434,6 +434,9 @@ struct Model {
   /// Whether any material is plastic (then PEEQ and ALLPD exist; P2: otherwise nothing
   /// plastic is allocated, computed or written).
   bool has_plasticity() const;
+  /// Whether a shell section has a plastic material (then the shells' PEEQ per section point,
+  /// PEEQ_SNEG/SMID/SPOS, is written).
+  bool has_plastic_shells() const;
 
   Index node_count() const { return static_cast<Index>(node_ids.size()); }
   Index element_count() const { return static_cast<Index>(element_ids.size()); }

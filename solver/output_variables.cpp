@@ -38,7 +38,7 @@ Real reaction_moment(const State& s, Index i, int c) {
 }  // namespace node_values
 
 OutputScope output_scope(const Model& model) {
-  return {model.has_shells(), model.has_plasticity()};
+  return {model.has_shells(), model.has_plasticity(), model.has_plastic_shells()};
 }
 
 bool frame_flag_written(bool FrameRequest::*flag, OutputScope scope) {

@@ -22,6 +22,7 @@ namespace xpl {
 enum class OutputId {
   U, V, A, RF, UR, VR, RM,                  // node
   S, EVOL, MISES, STH, PEEQ, S_SNEG, S_SPOS, // element
+  PEEQ_SNEG, PEEQ_SMID, PEEQ_SPOS,          // element, plastic shells
   CPRESS, CSHEAR, CSTATUS, CNORMF, CSHEARF, // node, contact
   CFN, CFS                                  // contact pair
 };
@@ -41,6 +42,8 @@ enum class OutputModels {
   Shells,  ///< models with shells only: left out of the frames of other models
   /// Models with a plastic material only (PEEQ, ALLPD): left out of elastic models (P2).
   Plastic,
+  /// Models with shells and a plastic material (the shells' per-section-point PEEQ).
+  PlasticShells,
   /// Contact output: zero away from contact; the contact energies and pair forces are left
   /// out of models without contact.
   Contact,
@@ -70,7 +73,8 @@ struct OutputVariable {
   std::string_view request;  ///< the name that requests it there ("CSTRESS" for CPRESS)
   bool preselect;            ///< part of *OUTPUT, FIELD, VARIABLE=PRESELECT
   /// The flag of a field frame that writes it (nullptr: not field output). The variables of
-  /// one flag are written together: U with UR, S with MISES, S_SNEG and S_SPOS.
+  /// one flag are written together: U with UR, S with MISES, S_SNEG and S_SPOS, PEEQ with
+  /// PEEQ_SNEG, PEEQ_SMID and PEEQ_SPOS.
   bool FrameRequest::*frame;
   NodeValue node_value;  ///< node history value (nullptr: no node history)
   std::string_view description;
@@ -95,7 +99,7 @@ Real reaction_moment(const State& s, Index i, int c);
 /// in messages; a frame writes its datasets flag by flag (FRAME_FLAGS), in table order within
 /// a flag (frame_variables()).
 // clang-format off
-inline constexpr std::array<OutputVariable, 21> OUTPUT_VARIABLES = {{
+inline constexpr std::array<OutputVariable, 24> OUTPUT_VARIABLES = {{
     // id, name, location, width, components, unit, models, keyword, request, preselect,
     // frame flag, node history value, description
     {OutputId::U, "U", OutputLocation::Node, 3, {"U1", "U2", "U3"}, "m", OutputModels::All,
@@ -143,6 +147,19 @@ inline constexpr std::array<OutputVariable, 21> OUTPUT_VARIABLES = {{
     {OutputId::S_SPOS, "S_SPOS", OutputLocation::Element, 6, STRESS_COMPONENTS, "Pa",
      OutputModels::Shells, OutputKeyword::Element, "S", false, &FrameRequest::stress, nullptr,
      "shell stress at the top section point; NaN for solids"},
+    {OutputId::PEEQ_SNEG, "PEEQ_SNEG", OutputLocation::Element, 1, {"PEEQ_SNEG"}, "",
+     OutputModels::PlasticShells, OutputKeyword::Element, "PEEQ", false,
+     &FrameRequest::plastic_strain, nullptr,
+     "shell PEEQ at the bottom section point; NaN for solids"},
+    {OutputId::PEEQ_SMID, "PEEQ_SMID", OutputLocation::Element, 1, {"PEEQ_SMID"}, "",
+     OutputModels::PlasticShells, OutputKeyword::Element, "PEEQ", false,
+     &FrameRequest::plastic_strain, nullptr,
+     "shell PEEQ at the middle section point (what --import needs besides SNEG and SPOS); "
+     "NaN for solids"},
+    {OutputId::PEEQ_SPOS, "PEEQ_SPOS", OutputLocation::Element, 1, {"PEEQ_SPOS"}, "",
+     OutputModels::PlasticShells, OutputKeyword::Element, "PEEQ", false,
+     &FrameRequest::plastic_strain, nullptr,
+     "shell PEEQ at the top section point; NaN for solids"},
     {OutputId::CPRESS, "CPRESS", OutputLocation::Node, 1, {"CPRESS"}, "Pa", OutputModels::Contact,
      OutputKeyword::Contact, "CSTRESS", false, &FrameRequest::contact_stress, nullptr,
      "contact pressure"},
@@ -184,8 +201,9 @@ inline constexpr std::array<bool FrameRequest::*, 11> FRAME_FLAGS = {
 
 /// What a model has that decides which variables its frames write (OutputModels).
 struct OutputScope {
-  bool shells = false;   ///< the model has shells (Model::has_shells)
-  bool plastic = false;  ///< the model has a plastic material (Model::has_plasticity)
+  bool shells = false;          ///< the model has shells (Model::has_shells)
+  bool plastic = false;         ///< the model has a plastic material (Model::has_plasticity)
+  bool plastic_shells = false;  ///< a shell section of the model has a plastic material
 };
 
 /// The scope of `model`.
@@ -194,7 +212,8 @@ OutputScope output_scope(const Model& model);
 /// Whether a frame of a model of scope `scope` writes `v`.
 constexpr bool written_on(const OutputVariable& v, OutputScope scope) {
   return (v.models != OutputModels::Shells || scope.shells) &&
-         (v.models != OutputModels::Plastic || scope.plastic);
+         (v.models != OutputModels::Plastic || scope.plastic) &&
+         (v.models != OutputModels::PlasticShells || scope.plastic_shells);
 }
 
 /// Whether `flag` writes anything on a model of scope `scope` (STH: not without shells;

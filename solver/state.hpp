@@ -61,6 +61,10 @@ struct State {
   /// Equivalent plastic strain PEEQ (n_elements), -: 0 for elastic elements; shells: the
   /// largest of their section points. Filled before a frame that asks for it (plastic models).
   std::vector<Real> peeq;
+  /// Shell PEEQ at the bottom (SNEG), middle and top (SPOS) section points (n_elements each),
+  /// -: 0 for elastic shells, NaN for non-shell elements. Filled with `peeq` on models with
+  /// plastic shells only, else empty.
+  std::vector<Real> peeq_bottom, peeq_middle, peeq_top;
 
   // Contact output per node, filled before a frame that asks for it (zero away from contact).
   // The node's total contact force F (as slave and as face corner) split along its outward

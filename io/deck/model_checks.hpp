@@ -16,14 +16,12 @@ namespace xpl::io {
 /// is written rather than partly ignored. `model` must be complete (no deck errors).
 std::vector<std::string> unsupported_features(const Model& model);
 
-/// What a time loop would run wrongly because an element kernel lacks it (plastic materials
-/// on element types without a return mapping yet: one message per material and type, at its
-/// `*PLASTIC` line). Kept apart from unsupported_features so that a data check can still
-/// report the rest of the model (ModelChecks::DataCheck makes these warnings); `xpl run`
-/// refuses them like unsupported features. `model` must be complete (no deck errors).
+/// What a time loop would run wrongly because an element kernel lacks it (one message per
+/// material and element type, at the material's keyword line; none in this version: C3D8R
+/// and S4R run every material xpl reads, plasticity included). Kept apart from unsupported_features
+/// so that a data check can still report the rest of the model (ModelChecks::DataCheck makes these
+/// warnings); `xpl run` refuses them like unsupported features. `model` must be complete (no deck
+/// errors).
 std::vector<std::string> unimplemented_kernels(const Model& model);
-
-/// The S4R part of unimplemented_kernels (removed when the shell return mapping lands).
-void refuse_plastic_shells(const Model& model, std::vector<std::string>& out);
 
 }  // namespace xpl::io

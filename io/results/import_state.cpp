@@ -430,6 +430,26 @@ ImportedState read_file(hid_t file, const Model& model) {
       state.notes.push_back("no PEEQ in the last frame: the plastic strains start at 0");
     }
   }
+  if (model.has_plastic_shells()) {
+    const char* names[3] = {"PEEQ_SMID", "PEEQ_SNEG", "PEEQ_SPOS"};
+    std::vector<Real>* fields[3] = {&state.peeq_middle, &state.peeq_bottom, &state.peeq_top};
+    if (has(names[0]) && has(names[1]) && has(names[2])) {
+      for (int k = 0; k < 3; ++k) {
+        const std::string path = frame + "/" + names[k];
+        *fields[k] = read_cells(file, path, element_of_row, model, shell_rows, 1);
+        for (std::size_t e = 0; e < fields[k]->size(); ++e)
+          if (shell_rows(e) && (*fields[k])[e] < 0.0)
+            refuse(path + " is negative at element " + std::to_string(model.element_ids[e]),
+                   "expected equivalent plastic strains >= 0");
+      }
+    } else if (!state.peeq.empty()) {
+      // A frame of another writer: the largest PEEQ through the thickness, everywhere in it.
+      for (std::vector<Real>* field : fields) *field = state.peeq;
+      state.notes.push_back(
+          "no PEEQ_SNEG/PEEQ_SMID/PEEQ_SPOS in the last frame: the shells take their largest "
+          "PEEQ through the whole thickness");
+    }
+  }
   const std::string status = run_status(file);
   if (!status.empty() && status != "completed" && status != "checked") {
     state.notes.push_back("the earlier run's status is '" + status +

@@ -34,7 +34,7 @@ void check_size(const std::vector<Real>& values, std::size_t expected, const cha
 /// Throws std::invalid_argument, before anything is written, if a field the frame needs does
 /// not have the size of the model.
 void check_frame(const State& state, const FrameRequest& what, Index n_nodes,
-                 std::size_t n_elements, bool shells) {
+                 std::size_t n_elements, bool shells, bool plastic_shells) {
   if (what.displacement) {
     check_rows(state.reference, n_nodes, "reference");
     check_rows(state.position, n_nodes, "position");
@@ -45,6 +45,11 @@ void check_frame(const State& state, const FrameRequest& what, Index n_nodes,
   if (what.stress) check_size(state.stress, n_elements * 6, "stress");
   if (what.volume) check_size(state.volume, n_elements, "volume");
   if (what.plastic_strain) check_size(state.peeq, n_elements, "peeq");
+  if (what.plastic_strain && plastic_shells) {
+    check_size(state.peeq_bottom, n_elements, "peeq_bottom");
+    check_size(state.peeq_middle, n_elements, "peeq_middle");
+    check_size(state.peeq_top, n_elements, "peeq_top");
+  }
   if (!shells) return;
   if (what.displacement) check_rows(state.rotation, n_nodes, "UR");
   if (what.velocity) check_rows(state.angular_velocity, n_nodes, "VR");
@@ -115,6 +120,12 @@ void write_variable(hid_t group, const OutputVariable& v, const State& state) {
       return write_values(group, v, state.stress_bottom);
     case OutputId::S_SPOS:
       return write_values(group, v, state.stress_top);
+    case OutputId::PEEQ_SNEG:
+      return write_values(group, v, state.peeq_bottom);
+    case OutputId::PEEQ_SMID:
+      return write_values(group, v, state.peeq_middle);
+    case OutputId::PEEQ_SPOS:
+      return write_values(group, v, state.peeq_top);
     case OutputId::CPRESS:
       return write_values(group, v, state.contact_pressure);
     case OutputId::CSHEAR:
@@ -189,7 +200,7 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
   // A scan of one byte per element: negligible next to the fields of a frame.
   const bool shells = model.has_shells();
   const auto n_elements = static_cast<std::size_t>(model.element_count());
-  check_frame(state, what, model.node_count(), n_elements, shells);
+  check_frame(state, what, model.node_count(), n_elements, shells, model.has_plastic_shells());
   check_contact(state, what, model.node_count());
   m_history.write_pending();
   char name[16];

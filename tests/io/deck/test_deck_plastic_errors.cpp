@@ -229,32 +229,17 @@ TEST_CASE("several plasticity errors of one deck are reported together", "[io][d
   CHECK(has_error(errors, soft, "material SOFT has no *ELASTIC"));
 }
 
-TEST_CASE("plastic materials are refused where the element kernel has no return mapping yet",
-          "[io][deck][plastic]") {
-  // Issue 14: the hex and shell return mappings land separately; until then each element
-  // type refuses plasticity rather than running it elastic. Delete a section with its kernel.
-  // C3D8R has its return mapping: a plastic hex deck is accepted.
+TEST_CASE("plastic materials are accepted on every element type", "[io][deck][plastic]") {
+  // Issue 14: C3D8R and S4R both have their return mappings, so neither `xpl run` nor
+  // `xpl check` refuses or warns about a plastic deck of either.
   CHECK(test::deck_errors(with_plastic("*PLASTIC\n4e8, 0\n")).empty());
   std::string shell_deck = shell_plate_model() + simple_step();
   shell_deck.insert(shell_deck.find("7e10, 0.33\n") + 11, "*PLASTIC\n2.5e8, 0\n");
-  const std::string& shell = shell_deck;
-  for (const std::string* deck : {&shell}) {
-    const std::string type = "S4R";
-    const std::string material = "ALU";
-    const std::string message = at(*deck, "*PLASTIC", "*PLASTIC") + "plasticity (*PLASTIC) on " +
-                                type + " elements (material " + material +
-                                ") is not implemented yet; expected an elastic " + "material on " +
-                                type + " elements with this version of xpl";
-    // xpl run: refused.
-    const std::vector<std::string> errors = test::deck_errors(*deck);
-    REQUIRE(errors.size() == 1);
-    CHECK(errors[0] == message);
-    // xpl check: a warning, the model is read.
-    const Model m = io::read_deck_text(*deck, "t.inp", io::ModelChecks::DataCheck);
-    REQUIRE(m.deck_messages.size() == 1);
-    CHECK(m.deck_messages[0].warning);
-    CHECK(m.deck_messages[0].text == message + " (xpl run refuses this model)");
-  }
+  CHECK(test::deck_errors(shell_deck).empty());
+  const Model m = io::read_deck_text(shell_deck, "t.inp", io::ModelChecks::DataCheck);
+  CHECK(m.deck_messages.empty());
+  REQUIRE(m.materials.size() == 1);
+  CHECK(m.materials[0].plastic.has_value());
   // Elastic decks are not affected.
   CHECK(test::deck_errors(two_brick_model() + simple_step()).empty());
 }

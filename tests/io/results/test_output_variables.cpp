@@ -19,9 +19,10 @@ std::vector<std::string> strings(const List& list) {
   return {list.begin(), list.end()};
 }
 
-std::vector<std::string> frame_names(const FrameRequest& what, bool shells, bool plastic = false) {
+std::vector<std::string> frame_names(const FrameRequest& what, bool shells, bool plastic = false,
+                                     bool plastic_shells = false) {
   std::vector<std::string> names;
-  for (const OutputVariable* v : frame_variables(what, {shells, plastic}))
+  for (const OutputVariable* v : frame_variables(what, {shells, plastic, plastic_shells}))
     names.emplace_back(v->name);
   return names;
 }
@@ -63,6 +64,11 @@ TEST_CASE("output variables: a frame writes its datasets in the order of the fil
   CHECK(frame_names(everything(), false, true) == Names{"U", "V", "A", "RF", "S", "MISES", "EVOL",
                                                         "PEEQ", "CPRESS", "CSHEAR", "CSTATUS",
                                                         "CNORMF", "CSHEARF"});
+  // Plastic shells: PEEQ (the largest through the thickness) with its section points; a model
+  // with shells whose plastic material is on solids only writes PEEQ alone.
+  CHECK(frame_names({.plastic_strain = true}, true, true, true) ==
+        Names{"PEEQ", "PEEQ_SNEG", "PEEQ_SMID", "PEEQ_SPOS"});
+  CHECK(frame_names({.plastic_strain = true}, true, true, false) == Names{"PEEQ"});
   // A flag whose variables are all shell-only writes nothing without shells, PEEQ nothing
   // without plasticity.
   CHECK_FALSE(frame_flag_written(&FrameRequest::thickness, {false, true}));
