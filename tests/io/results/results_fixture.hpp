@@ -60,7 +60,7 @@ inline Model tiny_model() {
     model.element_section.push_back(0);
     model.add_element_source("fixture.inp", 1);
   }
-  model.materials.push_back({"STEEL", 7800.0, 210e9, 0.3, true, true, {}});
+  model.materials.push_back({"STEEL", 7800.0, 210e9, 0.3, true, true, {}, {}, {}});
   model.node_sets.push_back({"FIXED", {0, 3, 6, 9}, {}});
   model.element_sets.push_back({"ALL", {0, 1}, {}});
   Step step;
