@@ -253,6 +253,7 @@ int run_job(const Arguments& args) {
   try {
     xpl::io::ResultOptions ropts;
     ropts.progress = !args.quiet;
+    ropts.threads = args.threads > 0 ? args.threads : omp_get_max_threads();
     files.emplace(args.out_dir, model.job_name, ropts);
     xpl::SolverOptions sopts;
     sopts.threads = args.threads;
