@@ -20,8 +20,8 @@ constexpr int EXIT_DIFFERS = 1;
 constexpr int EXIT_UNUSABLE = 2;
 
 constexpr const char* COMPARE_USAGE =
-    "usage: xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--history] [--fields U,S,...]\n"
-    "                   [--frames last|all] [--json]\n";
+    "usage: xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
+    "                   [--fields U,S,...] [--frames last|all] [--json]\n";
 
 /// A number argument; false (after a message) if it is not a finite number ≥ 0.
 bool parse_tolerance(const std::string& option, const std::string& text, double& value) {
@@ -44,9 +44,10 @@ std::string describe(const io::CompareValue& v) {
 
 void print_text(const io::CompareReport& report, const io::CompareOptions& options,
                 const std::string& ref, const std::string& cand) {
-  std::printf("xpl compare: %s (REF) vs %s (NEW): pass when |new - ref| <= %s + %s |ref|\n",
-              ref.c_str(), cand.c_str(), io::format_number(options.atol).c_str(),
-              io::format_number(options.rtol).c_str());
+  std::printf(
+      "xpl compare: %s (REF) vs %s (NEW): pass when |new - ref| <= %s + %s |ref| + %s max|ref|\n",
+      ref.c_str(), cand.c_str(), io::format_number(options.atol).c_str(),
+      io::format_number(options.rtol).c_str(), io::format_number(options.ftol).c_str());
   long failed = 0;
   for (const io::DatasetComparison& d : report.datasets) {
     if (!d.problem.empty()) {
@@ -83,10 +84,12 @@ int compare_main(const std::vector<std::string>& args) {
       }
       return &args[++i];
     };
-    if (w == "--rtol" || w == "--atol") {
+    if (w == "--rtol" || w == "--atol" || w == "--ftol") {
       const std::string* v = value();
-      if (!v || !parse_tolerance(w, *v, w == "--rtol" ? options.rtol : options.atol))
-        return EXIT_UNUSABLE;
+      double& tolerance = w == "--rtol"   ? options.rtol
+                          : w == "--atol" ? options.atol
+                                          : options.ftol;
+      if (!v || !parse_tolerance(w, *v, tolerance)) return EXIT_UNUSABLE;
     } else if (w == "--history") {
       history = true;
     } else if (w == "--fields") {

@@ -37,11 +37,21 @@ std::string shape_text(const Matrix& m) {
 }
 
 /// Takes in one pair of values: counts it, keeps the largest and the worst difference.
+/// The largest finite |value| of REF's dataset, for CompareOptions::ftol.
+double largest_magnitude(const std::vector<double>& values) {
+  double largest = 0.0;
+  for (double v : values)
+    if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
+  return largest;
+}
+
+/// Takes in one pair of values: counts it, keeps the largest and the worst difference.
+/// `scale`: the dataset's largest |ref| (CompareOptions::ftol).
 template <class Where>
-void add(DatasetComparison& d, const CompareOptions& o, double ref, double value, double time,
-         const Where& where) {
+void add(DatasetComparison& d, const CompareOptions& o, double scale, double ref, double value,
+         double time, const Where& where) {
   ++d.compared;
-  const double tolerance = o.atol + o.rtol * std::abs(ref);
+  const double tolerance = o.atol + o.rtol * std::abs(ref) + o.ftol * scale;
   double difference = 0.0;
   bool ok = true;
   if (std::isnan(ref) || std::isnan(value)) {
@@ -167,6 +177,7 @@ DatasetComparison compare_series(hid_t ref, hid_t cand, const std::string& path,
                 std::to_string(times.rows()) + " in NEW)";
     return d;
   }
+  const double scale = largest_magnitude(a.values);
   for (std::size_t i = 0; i < a.rows && i < ref_time.size(); ++i) {
     if (!times.inside(i)) {
       d.problem = "REF's time " + format_number(ref_time[i]) + " s lies outside NEW's history (" +
@@ -175,7 +186,7 @@ DatasetComparison compare_series(hid_t ref, hid_t cand, const std::string& path,
     }
     for (std::size_t c = 0; c < a.columns; ++c) {
       const double value = times.at(i, b.values, b.columns, column[c]);
-      add(d, options, a.values[i * a.columns + c], value, ref_time[i], [&] {
+      add(d, options, scale, a.values[i * a.columns + c], value, ref_time[i], [&] {
         return ref_ids && c < ref_ids->size() ? "node " + std::to_string((*ref_ids)[c])
                                               : std::string();
       });
@@ -211,10 +222,11 @@ DatasetComparison compare_field(hid_t ref, hid_t cand, const std::string& ref_pa
   }
   const std::vector<std::int64_t> ids =
       ids_path ? mesh_ids(ref, ids_path) : std::vector<std::int64_t>{};
+  const double scale = largest_magnitude(a.values);
   for (std::size_t r = 0; r < a.rows; ++r) {
     const std::size_t row = map ? (*map)[r] : r;
     for (std::size_t c = 0; c < a.columns; ++c)
-      add(d, options, a.values[r * a.columns + c], b.values[row * b.columns + c], time, [&] {
+      add(d, options, scale, a.values[r * a.columns + c], b.values[row * b.columns + c], time, [&] {
         const std::int64_t id = map ? ids[r] : static_cast<std::int64_t>(r);
         return std::string(kind) + " " + std::to_string(id) + ", " + component(name, c, a.columns);
       });
@@ -235,8 +247,9 @@ DatasetComparison compare_table(hid_t ref, hid_t cand, const std::string& path,
     d.problem = "shape " + shape_text(a) + " in REF, " + shape_text(b) + " in NEW";
     return d;
   }
+  const double scale = largest_magnitude(a.values);
   for (std::size_t k = 0; k < a.values.size(); ++k)  // both empty: nothing differs
-    add(d, options, a.values[k], b.values[k], std::nan(""), [&] {
+    add(d, options, scale, a.values[k], b.values[k], std::nan(""), [&] {
       return "row " + std::to_string(k / a.columns) +
              (a.columns > 1 ? ", column " + std::to_string(k % a.columns) : std::string());
     });

@@ -199,6 +199,7 @@ JsonValue CompareReport::json(const CompareOptions& options, const std::string& 
   out.set("new", candidate);
   out.set("rtol", options.rtol);
   out.set("atol", options.atol);
+  out.set("ftol", options.ftol);
   out.set("passed", passed());
   long failed = 0;
   for (const DatasetComparison& d : datasets) failed += d.passed() ? 0 : 1;

@@ -16,7 +16,10 @@ namespace xpl::io {
 /// What to compare and how closely.
 struct CompareOptions {
   double rtol = 0.0;  ///< relative tolerance: a value passes when |new − ref| ≤ atol + rtol·|ref|
-  double atol = 0.0;               ///< absolute tolerance, in the units of each dataset
+  double atol = 0.0;  ///< absolute tolerance, in the units of each dataset
+  /// Absolute tolerance as a fraction of the dataset's largest |ref| (scale-free: one value
+  /// serves energies in J, displacements in m and stresses in Pa); adds to atol + rtol·|ref|.
+  double ftol = 0.0;
   bool history = true;             ///< /history/step_N/* series
   bool fields = true;              ///< field datasets of the frames
   bool tables = true;              ///< /overclosure tables and /mesh/coordinates
@@ -31,7 +34,7 @@ struct CompareValue {
   double reference = 0.0;   ///< value in REF
   double value = 0.0;       ///< value in NEW (interpolated on REF's time for history)
   double difference = 0.0;  ///< |value − reference| (infinite when one of them is NaN)
-  double tolerance = 0.0;   ///< atol + rtol·|reference|
+  double tolerance = 0.0;   ///< atol + rtol·|reference| + ftol·max|reference| of the dataset
 };
 
 /// The comparison of one dataset.
