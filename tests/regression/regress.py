@@ -20,9 +20,10 @@ Tolerances (passed to xpl compare):
   RTOL = 1e-6 relative and FTOL = 1e-6 of each dataset's largest |value|. On the machine that
   blessed them the results are bitwise equal. Another CPU (or compiler) changes the rounding
   of single operations (FMA contraction, vector width of reductions) by ~1e-16; in these short,
-  stable explicit runs that grows roughly with the increment count, to ~1e-12 after 10^4
-  increments (measured across builds: see README, developer section), so 1e-6 leaves six
-  orders of margin. A real change of the physics moves results by far more: a 0.1 % change of
+  stable explicit runs that grows roughly with the increment count, to an estimated ~1e-12
+  after 10^4 increments (an estimate, not yet measured on a second CPU), so 1e-6 leaves about
+  six orders of margin; a deck with a bifurcation (tube_crush buckles) may amplify round-off
+  more and is the first to loosen, with a measurement, if another machine disagrees. A real change of the physics moves results by far more: a 0.1 % change of
   an initial velocity changes ALLKE by 2e-3 and U by ~1e-3, a different contact penalty the
   contact force history by percent. FTOL covers values near zero (stresses of 1e-3 Pa in a
   field of 1e8 Pa, displacements of fixed nodes), where a relative tolerance means nothing.
