@@ -133,6 +133,15 @@ void StaFile::note(const std::string& text) {
 }
 
 void StaFile::line(int step, const StatusLine& line) {
+  if (line.critical_contact_node != 0) {
+    // A contact penalty limits the increment: "node N" in the critical column.
+    const std::string critical = "node " + std::to_string(line.critical_contact_node);
+    m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12s %12.4E %12.4E\n", step, line.increment,
+                    line.total_time, line.step_time, line.dt, critical.c_str(),
+                    line.energies.kinetic, line.energies.total());
+    m_out.flush();
+    return;
+  }
   m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12lld %12.4E %12.4E\n", step, line.increment,
                   line.total_time, line.step_time, line.dt,
                   static_cast<long long>(line.critical_element), line.energies.kinetic,
