@@ -13,7 +13,8 @@
 # Environment overrides: N (elements per side, 316), INCREMENTS (300), REPS (5),
 # THREADS ("1 2"), SWEEP (mesh sizes, none), SWEEP_ONLY=1, SKIP_BUILD=1 (use the existing
 # build), XPL (binary, build/release/apps/xpl), RESULTS_DIR (benchmarks/results),
-# IDLE_MIN (90), WAIT_MAX (600).
+# IDLE_MIN (90), WAIT_MAX (600), DECK_ARGS (more options of make_plate_benchmark.py, e.g.
+# "--load stretch --plastic 50e6" for the plastic plate of issue 14).
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -61,8 +62,9 @@ run_plate() {
 }
 
 if [[ "${SWEEP_ONLY:-0}" != 1 ]]; then
+  # shellcheck disable=SC2086 # DECK_ARGS is a list of options
   "$python" benchmarks/make_plate_benchmark.py -n "$n" --increments "$increments" \
-    --out "$bench_dir/plate_$n.inp"
+    ${DECK_ARGS:-} --out "$bench_dir/plate_$n.inp"
   logs=()
   for threads in $threads_list; do
     for rep in $(seq 1 "$reps"); do
