@@ -38,7 +38,7 @@ results_dir="${RESULTS_DIR:-benchmarks/results}"
 bench_dir=build/bench
 log_dir="$bench_dir/shell_logs"
 mkdir -p "$log_dir"
-rm -f "$log_dir"/run_n*_t*_r*.log
+rm -f "$log_dir"/run_n*_t*_r*.log "$log_dir"/run_n*_t*_r*.summary.json
 
 bench_name=run_shell_benchmark
 # shellcheck source=benchmarks/quiet_machine.sh
@@ -58,7 +58,9 @@ run_plate() {
     exit 1
   fi
   grep -h '^bench:\|^xpl: element cycles per second' "$log" >&2 || true
-  echo "$log"
+  # The run's JOB.summary.json is what shell_benchmark.py reads (no stdout parsing).
+  cp "$bench_dir/out/plate_$size.summary.json" "${log%.log}.summary.json"
+  echo "${log%.log}.summary.json"
 }
 
 if [[ "${SWEEP_ONLY:-0}" != 1 ]]; then
