@@ -283,6 +283,9 @@ int run_job(const Arguments& args) {
     std::cerr << "xpl: " << e.what() << "\n";
     return EXIT_LOCKED;
   } catch (const xpl::SolverError& e) {
+    // The solver records its own failures; one outside the time loop (the data check, the
+    // setup) is recorded here, so the file never says less than the terminal.
+    if (files) files->fail(e.what());
     std::cerr << "xpl: " << e.what() << "\n"
               << "xpl: the run stopped; frames written so far are in the results file, "
                  "which records the error\n";

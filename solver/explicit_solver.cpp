@@ -184,6 +184,7 @@ void ExplicitSolver::Impl::begin_step(int step) {
   m_nodes.report_step(step, m_sink);
   m_contact.begin_step(step, m_state, m_elements, m_rigid, m_nodes.prescribed());
   m_output.declare_history(m_contact);
+  m_output.report_notes();
 }
 
 void ExplicitSolver::Impl::start_run(int step, Real period) {
@@ -239,6 +240,7 @@ void ExplicitSolver::Impl::run_step(int step) {
     start_run(step, period);
   else
     m_dt_half = std::min(m_dt_half, period);
+  m_output.note_short_intervals(m_dt_half);
   if (m_output.has_history()) write_history();
   write_status();
 
