@@ -24,6 +24,7 @@ namespace {
 
 constexpr const char* USAGE =
     "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]\n"
+    "               [--energy-limit PERCENT]\n"
     "       xpl check DECK.inp [-o DIR]\n"
     "       xpl --help | --version\n"
     "\n"
@@ -36,6 +37,9 @@ constexpr const char* USAGE =
     "  --import PREV.h5  start from the last frame of an earlier result of the same mesh\n"
     "               (positions, velocities, stresses); penetrations there become contact\n"
     "               offsets without force\n"
+    "  --energy-limit PERCENT  the run fails (exit 3) when ETOTAL drifts by more than\n"
+    "               PERCENT of the largest energy (default 10; a drift above 1 % is warned\n"
+    "               of once in JOB.msg and JOB.sta)\n"
     "The job name is the deck's file name without its extension. A run holds DIR/JOB.lck;\n"
     "a second run of the job in DIR is refused. SIGINT/SIGTERM end the run after the\n"
     "current increment with its last frame written (status interrupted).\n"
@@ -75,6 +79,7 @@ struct Arguments {
   std::filesystem::path deck;
   std::filesystem::path out_dir = ".";
   int threads = 0;
+  double energy_limit = 10.0;  ///< --energy-limit, percent of the largest energy
   bool quiet = false;
   std::filesystem::path import;  ///< --import: a result file to start from
 };
@@ -109,6 +114,19 @@ bool parse(int argc, char** argv, Arguments& args) {
         if (used != v->size() || args.threads < 1) throw std::invalid_argument(*v);
       } catch (const std::exception&) {
         std::cerr << "xpl: --threads: '" << *v << "' is not a positive whole number\n";
+        return false;
+      }
+    } else if (w == "--energy-limit") {
+      const std::string* v = value("a percentage");
+      if (!v) return false;
+      try {
+        std::size_t used = 0;
+        args.energy_limit = std::stod(*v, &used);
+        if (used != v->size() || !(args.energy_limit > 0.0) || args.energy_limit > 1e6)
+          throw std::invalid_argument(*v);
+      } catch (const std::exception&) {
+        std::cerr << "xpl: --energy-limit: '" << *v
+                  << "' is not a percentage > 0 (such as 10 for 10 %)\n";
         return false;
       }
     } else if (w == "--import") {
@@ -157,6 +175,8 @@ void print_summary(const xpl::RunSummary& s, const xpl::Model& model, int thread
     std::printf("xpl: phase %s: %.3f s\n", std::string(xpl::phase_name(phase)).c_str(),
                 s.timers.seconds(phase));
   }
+  std::printf("xpl: largest energy balance drift: %.3g %% of the largest energy (t = %.6g s)\n",
+              100.0 * s.energy_drift, s.energy_drift_time);
   std::printf("xpl: peak memory: %.1f MB\n", peak_memory_mb());
 }
 
@@ -254,6 +274,7 @@ int run_job(const Arguments& args) {
     files.emplace(args.out_dir, model.job_name, ropts);
     xpl::SolverOptions sopts;
     sopts.threads = args.threads;
+    sopts.energy_limit = args.energy_limit / 100.0;
     sopts.stop_signal = &g_stop_signal;
     if (!args.import.empty()) sopts.initial_state = &initial;
     xpl::ExplicitSolver solver(model, *files, sopts);
