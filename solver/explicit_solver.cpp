@@ -8,6 +8,7 @@
 #include <csignal>
 #include <string>
 
+#include "common/error.hpp"
 #include "solver/central_difference.hpp"
 #include "solver/contact_stage.hpp"
 #include "solver/element_set.hpp"
@@ -166,7 +167,7 @@ void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_me
                        "); time starts at 0. Hourglass forces and contact state start at zero; "
                        "ALLSE counts the strain energy from here on");
   for (const DeckMessage& m : m_model.deck_messages)
-    m_sink.message(m.warning ? Severity::Warning : Severity::Note, m.text);
+    m_sink.message(m.warning ? Severity::Warning : Severity::Note, escape_control(m.text));
   for (const SectionControls& c : m_model.section_controls)
     if (c.hourglass == HourglassType::RelaxStiffness)
       m_sink.message(Severity::Note, "section controls " + c.name +
