@@ -3,8 +3,11 @@
 
 #include <omp.h>
 
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -43,8 +46,23 @@ constexpr const char* USAGE =
     "The job name is the deck's file name without its extension. A run holds DIR/JOB.lck;\n"
     "a second run of the job in DIR is refused. SIGINT/SIGTERM end the run after the\n"
     "current increment with its last frame written (status interrupted).\n"
+    "OpenMP threads wait passively (OMP_WAIT_POLICY=PASSIVE: they sleep instead of\n"
+    "spinning, so a second job on the machine keeps its core) unless OMP_WAIT_POLICY or\n"
+    "GOMP_SPINCOUNT is set; OMP_WAIT_POLICY=ACTIVE lets them spin (a little faster on a\n"
+    "machine with nothing else to run).\n"
     "Exit codes: 0 done, 1 deck or --import error, 2 usage, 3 the analysis failed,\n"
     "  4 I/O or internal error, 5 the job is already running, 130/143 SIGINT/SIGTERM.\n";
+
+/// Makes OpenMP threads sleep at barriers instead of spinning, unless the user chose
+/// (OMP_WAIT_POLICY or GOMP_SPINCOUNT set). libgomp reads its environment when it is loaded,
+/// before main, so xpl sets OMP_WAIT_POLICY=PASSIVE and executes itself again; the second
+/// time the variable is set and this returns. If the exec fails, the run goes on with the
+/// runtime's default.
+void default_to_passive_wait(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
+  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+}
 
 /// Exit code of a run refused because another run of the job holds its lock.
 constexpr int EXIT_LOCKED = 5;
@@ -186,6 +204,7 @@ int run_job(const Arguments& args);
 }  // namespace
 
 int main(int argc, char** argv) {
+  default_to_passive_wait(argv);  // first of all: before anything starts OpenMP threads
   if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
     std::cout << USAGE;
     return 0;
