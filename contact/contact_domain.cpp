@@ -174,4 +174,12 @@ Index ContactDomain::interaction(Index s, Index f) const {
   return m_default_interaction;
 }
 
+bool ContactDomain::may_use(Index s, Index interaction) const {
+  if (interaction == m_default_interaction) return true;
+  const std::uint64_t node = m_slave_mask[s];
+  for (const auto& [p, i] : m_interactions)
+    if (i == interaction && (in(node, p.first) || in(node, p.second))) return true;
+  return false;
+}
+
 }  // namespace xpl::contact

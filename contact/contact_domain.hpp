@@ -85,6 +85,9 @@ class ContactDomain {
   Real weight(Index s, Index f, Index& pair) const;
   /// Interaction of slave slot s touching face f (DomainSpec::interactions rule).
   Index interaction(Index s, Index f) const;
+  /// Whether slave slot s may touch some face through interaction `interaction`: the default
+  /// interaction, or an assignment of it names a surface of the node (a bound, for checks).
+  bool may_use(Index s, Index interaction) const;
 
   /// Name of domain surface k (DomainSpec::surfaces).
   const std::string& surface_name(Index k) const { return m_surface_names[k]; }

@@ -57,6 +57,12 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_dissipation.assign(n, 0.0);
   m_output_status.assign(n, OutputStatus::Open);
   m_assembly = ForceAssembly(m_domain.slaves().size(), m_domain.pair_count());
+  for (const InteractionLaw& law : m_laws)
+    m_user_stiffness = m_user_stiffness || law.pressure_slope > 0.0;
+  if (m_user_stiffness) {
+    m_user_k.assign(n, 0.0);
+    m_user_law.assign(n, NO_INDEX);
+  }
 }
 
 ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
@@ -234,6 +240,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     Vec3 f = Vec3::Zero();
     Real fn = 0.0;
     OutputStatus status = OutputStatus::Open;
+    if (m_user_stiffness) m_user_k[s] = 0.0;
     if (t.face == NO_INDEX) {
       c.master_face = NO_INDEX;
       c.status = ContactStatus::Inactive;
@@ -253,6 +260,15 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       c.eta = t.eta;
       fn = normal_contact_update(c, t.gap, k);
       f = fn * t.normal;
+      if (law.pressure_slope > 0.0) {
+        // Counted while closed, or when the approach closes it within the look-ahead.
+        Vec3 v_rel = node_point(velocity_half, node);
+        for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
+        const Real ahead = t.gap + PENALTY_LOOKAHEAD_INCREMENTS * dt_penalty * v_rel.dot(t.normal);
+        const bool acts = fn > 0.0 || penalty_force(ahead, c.offset, k) > 0.0;
+        m_user_k[s] = acts ? k : 0.0;
+        m_user_law[s] = ia;
+      }
       if (law.friction > 0.0 && dt > 0.0) {
         Vec3 v_rel = node_point(velocity_half, node);
         for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
@@ -275,7 +291,32 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   // Assembly, sums and work, in slot order (independent of the thread count).
   m_assembly.assemble(slaves, faces, m_touch, m_slave_force, m_normal_force, m_constraints,
                       m_dissipation, velocity_half, dt, force_internal, totals);
+  if (m_user_stiffness) {
+    m_penalty_sum.reset(static_cast<Index>(mass.size()));
+    for (Index s = 0; s < n_slave; ++s)
+      if (m_user_k[s] > 0.0)
+        m_penalty_sum.add_spring(slaves.nodes()[s], faces[m_touch[s].face].nodes, m_touch[s].shape,
+                                 m_user_k[s], m_user_law[s], inverse_mass);
+    m_penalty_limit = m_penalty_sum.largest(inverse_mass);
+  }
   return totals;
+}
+
+PenaltyLimit ContactEngine::estimate_penalty_limit(std::span<const Real> inverse_mass) const {
+  PenaltyLimit out;
+  if (!m_user_stiffness) return out;
+  const SlaveNodes& slaves = m_domain.slaves();
+  for (Index s = 0; s < slaves.size(); ++s) {
+    if (m_domain.slave_rigid(s)) continue;
+    const Index node = slaves.nodes()[s];
+    for (Index ia = 0; ia < static_cast<Index>(m_laws.size()); ++ia) {
+      if (!(m_laws[ia].pressure_slope > 0.0) || !m_domain.may_use(s, ia)) continue;
+      const Real k = linear_penalty_stiffness(m_laws[ia].pressure_slope, slaves.areas()[s]);
+      const Real w = 2.0 * k * inverse_mass[node];
+      if (w > out.omega_sq) out = {w, node, ia};
+    }
+  }
+  return out;
 }
 
 }  // namespace xpl::contact

@@ -50,6 +50,7 @@
 #include "contact/contact_options.hpp"
 #include "contact/force_assembly.hpp"
 #include "contact/penalty.hpp"
+#include "contact/penalty_increment.hpp"
 
 namespace xpl::contact {
 
@@ -103,6 +104,15 @@ class ContactEngine {
   const std::vector<Real>& pair_normal_force() const { return m_assembly.pair_normal_force(); }
   const std::vector<Real>& pair_friction_force() const { return m_assembly.pair_friction_force(); }
   const BroadPhase& broad_phase() const { return m_broad; }
+  /// The stiffest node of the user-stiffness springs (LINEAR laws) at the last update: those
+  /// closed or closing within PENALTY_LOOKAHEAD_INCREMENTS (penalty_increment.hpp); empty
+  /// (omega_sq 0) when none acts or every law is the default penalty.
+  const PenaltyLimit& penalty_limit() const { return m_penalty_limit; }
+  /// Before any contact (`xpl check`): the stiffest node the user-stiffness springs could
+  /// make, every slave node taken as pressed by each LINEAR interaction that may apply to it
+  /// with its tributary area, on a master of its own kind (row sum 2k/m); nodal masses as
+  /// inverse masses (n_nodes, 1/kg).
+  PenaltyLimit estimate_penalty_limit(std::span<const Real> inverse_mass) const;
   /// Widens the search margin by `extra` (m, > 0) for contact surfaces moved out towards the
   /// slave nodes by negative permanent offsets (clearances); the next search rebuilds the lists.
   void widen_search(Real extra);
@@ -145,7 +155,12 @@ class ContactEngine {
   std::vector<Real> m_slave_force;   // (n_slave × 3): force on the slave node itself
   std::vector<Real> m_dissipation;   // (n_slave)
   std::vector<OutputStatus> m_output_status;
-  ForceAssembly m_assembly;  // nodal forces and pair sums (stage 5)
+  ForceAssembly m_assembly;       // nodal forces and pair sums (stage 5)
+  bool m_user_stiffness = false;  // some law has its own stiffness (a LINEAR slope)
+  std::vector<Real> m_user_k;     // (n_slave) user-stiffness spring counted this update, N/m
+  std::vector<Index> m_user_law;  // (n_slave) its interaction
+  PenaltyStiffnessSum m_penalty_sum;
+  PenaltyLimit m_penalty_limit;
 };
 
 }  // namespace xpl::contact

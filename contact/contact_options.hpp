@@ -19,6 +19,23 @@ inline constexpr Real DEFAULT_PENALTY_FACTOR = 0.5;
 /// Default of the user's penalty scale factor s: 1 keeps the stiffness at the stable value above.
 inline constexpr Real DEFAULT_PENALTY_SCALE = 1.0;
 
+/// ω_c²Δt² a deck's own penalty stiffness (a LINEAR pressure–overclosure slope) may reach
+/// before it shortens the increment (penalty_increment.hpp): α, what the default penalty
+/// reaches by construction, so a user's spring no stiffer than the default leaves the
+/// increment alone and a stiffer one gets the default's share of the stability budget.
+inline constexpr Real PENALTY_INCREMENT_BUDGET = DEFAULT_PENALTY_FACTOR;
+
+/// ω_c²Δt² a user's spring may reach on its own, whatever the elements: 2, half the linear
+/// limit 4. A spring that opens and closes loses its energy balance well before the linear
+/// limit: bar on bar with a 1e15 Pa/m slope (ω_c ≈ 3.5 ω_e) ran with ETOTAL drift 0.5 % at
+/// ω_cΔt = 1.49, 6 % at 1.67 and failed at 1.86.
+inline constexpr Real PENALTY_ALONE_BUDGET = 2.0;
+
+/// A user-stiffness spring counts in the increment limit when it is closed, or open but
+/// closing within this many increments at its current normal approach speed: a spring that
+/// closes during the next increment is then already in the increment that takes it.
+inline constexpr Real PENALTY_LOOKAHEAD_INCREMENTS = 2.0;
+
 // ---- Search (contact_engine.cpp, broad_phase.hpp) ---------------------------------------
 
 /// Default search margin as a fraction of the mean face size (mean square root of the face

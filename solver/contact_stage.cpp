@@ -12,7 +12,11 @@ namespace xpl {
 
 ContactStage::ContactStage(const Model& model, OutputSink& sink, PhaseTimers& timers,
                            bool imported_start)
-    : m_model(model), m_sink(sink), m_timers(timers), m_imported_start(imported_start) {}
+    : m_model(model),
+      m_sink(sink),
+      m_timers(timers),
+      m_imported_start(imported_start),
+      m_penalty(model, sink) {}
 
 void ContactStage::begin_step(int step, State& state, ElementSet& elements,
                               const RigidBodies& rigid,
@@ -229,6 +233,35 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
       state.mass, elements.inverse_mass(), elements.force_internal(), m_timers);
   state.energies.friction += t.friction_dissipation;
   state.energies.contact += -t.work - t.friction_dissipation;
+}
+
+Real ContactStage::penalty_increment(Real raw_dt, Real dt_elements, int step, const State& state) {
+  const contact::PenaltyLimit none;
+  return m_penalty.apply(m_engine ? m_engine->penalty_limit() : none, raw_dt, dt_elements, step,
+                         state.time, state.increment);
+}
+
+void ContactStage::check_penalty(Real raw_dt, Real dt_elements, int step,
+                                 const std::vector<Real>& inverse_mass) const {
+  if (!m_engine) return;
+  const contact::PenaltyLimit limit = m_engine->estimate_penalty_limit(inverse_mass);
+  const Step& s = m_model.steps[step];
+  if (s.fixed_increment || !(limit.omega_sq > 0.0)) return;
+  const Real dt = PenaltyIncrementLimit::combined_increment(raw_dt, dt_elements,
+                                                            s.time_scale_factor, limit.omega_sq);
+  if (!(dt < dt_elements)) return;
+  const SurfaceInteraction& i = m_model.surface_interactions[limit.interaction];
+  // ω_c² grows with the slope; the springs stop governing at ω_c²Δt_e² = B·s².
+  const Real threshold = i.linear_slope * contact::PENALTY_INCREMENT_BUDGET * s.time_scale_factor *
+                         s.time_scale_factor / (limit.omega_sq * dt_elements * dt_elements);
+  m_sink.message(Severity::Warning,
+                 "step " + s.name + ": the penalty of interaction " + i.name +
+                     " (PRESSURE-OVERCLOSURE=LINEAR, slope " + format_real(i.linear_slope) +
+                     " Pa/m) will govern the stable increment while in contact: about " +
+                     format_real(dt) + " s against the elements' " + format_real(dt_elements) +
+                     " s (x" + format_real(dt / dt_elements) + ", stiffest at node " +
+                     std::to_string(m_model.node_ids[limit.node]) + "); a slope up to " +
+                     format_real(threshold) + " Pa/m would not");
 }
 
 void ContactStage::fill_output(State& state) const {

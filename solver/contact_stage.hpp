@@ -15,6 +15,7 @@
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/overclosure_report.hpp"
+#include "solver/penalty_increment_limit.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
 
@@ -41,6 +42,22 @@ class ContactStage {
   /// friction and penalty energies into state.energies. `dt_taken` is the increment just
   /// taken (0 at t = 0), `dt_penalty` the increment the penalty stiffness is tied to, s.
   void apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty);
+
+  /// The increment a deck's own penalty stiffness allows after the last apply() (+inf when it
+  /// does not govern: no contact, default penalty, or springs no stiffer than the default),
+  /// for the element estimate `raw_dt` and the element increment `dt_elements` (s) of `step`;
+  /// reports the spans where it governs (PenaltyIncrementLimit).
+  Real penalty_increment(Real raw_dt, Real dt_elements, int step, const State& state);
+  /// Deck id of the contact node that governs the last penalty_increment(), 0 when none.
+  ExternalId critical_contact_node() const { return m_penalty.critical_node(); }
+  /// Ends the step: the summary of a span in which contact governed the increment.
+  void end_step() { m_penalty.end_span(); }
+  /// `xpl check`: a warning when a LINEAR penalty will govern the increment once in contact,
+  /// estimated on the slave nodes' tributary areas (ContactEngine::estimate_penalty_limit)
+  /// with `inverse_mass` (n_nodes, 1/kg), the element estimate `raw_dt` and increment
+  /// `dt_elements` (s) of `step`.
+  void check_penalty(Real raw_dt, Real dt_elements, int step,
+                     const std::vector<Real>& inverse_mass) const;
 
   /// Per-node contact pressure, status and forces into `state` (zero without contact).
   void fill_output(State& state) const;
@@ -71,6 +88,7 @@ class ContactStage {
   bool m_imported_start;
   std::unique_ptr<contact::ContactEngine> m_engine;  ///< null when the step has no contact
   std::vector<std::string> m_pair_names;  ///< in the engine's pair order (history output)
+  PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
 };
 
 }  // namespace xpl

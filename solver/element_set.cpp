@@ -255,8 +255,9 @@ Real ElementSet::stable_step(const ElementTotals& totals, int step) const {
                            : totals.stable_dt * s.time_scale_factor * m_dt_safety;
 }
 
-Real ElementSet::next_increment(const ElementTotals& totals, Real remaining, int step) const {
-  Real dt = stable_step(totals, step);
+Real ElementSet::next_increment(const ElementTotals& totals, Real remaining, int step,
+                                Real limit) const {
+  Real dt = std::min(stable_step(totals, step), limit);
   if (!std::isfinite(dt)) dt = remaining;  // no elements: one increment to the end
   // Land exactly on the end of the step; avoid a sliver increment just before it.
   if (dt >= remaining || remaining - dt < 1e-3 * dt) dt = remaining;

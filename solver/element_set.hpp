@@ -3,6 +3,7 @@
 /// nodal masses and rotary inertias they make, their internal forces and the stable
 /// increment they allow.
 
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -82,9 +83,11 @@ class ElementSet {
   /// fixed increment), before it is shortened to land on the end of the step; +inf without
   /// elements.
   Real stable_step(const ElementTotals& totals, int step) const;
-  /// The next increment: stable_step(), or what `remaining` (s) of the step is left when it
-  /// lies closer than a sliver.
-  Real next_increment(const ElementTotals& totals, Real remaining, int step) const;
+  /// The next increment: stable_step() or `limit` (s; a contact penalty's, +inf for none),
+  /// whichever is shorter, or what `remaining` (s) of the step is left when it lies closer
+  /// than a sliver.
+  Real next_increment(const ElementTotals& totals, Real remaining, int step,
+                      Real limit = std::numeric_limits<Real>::infinity()) const;
 
   /// Element output requested by `what` (stress, section stresses, volume, thickness) into
   /// `state`; the arrays are allocated on first use (n_elements rows).

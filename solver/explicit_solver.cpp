@@ -196,11 +196,15 @@ void ExplicitSolver::Impl::start_run(int step, Real period) {
   m_elements.report_increment_limit(m_sink);
   m_state.energies.strain += totals.strain_energy_increment;
   m_nodes.apply_loads(m_state, 0.0, 0.0);
-  m_dt_half = m_elements.next_increment(totals, period, step);
   // The penalty is tied to the increment the elements allow, not to one shortened to land
   // on the end of a step: a short last increment must not stiffen the springs.
   const Real dt_stable = m_elements.stable_step(totals, step);
-  m_contact.apply(m_state, m_elements, 0.0, std::isfinite(dt_stable) ? dt_stable : m_dt_half);
+  const Real dt_first = m_elements.next_increment(totals, period, step);
+  m_contact.apply(m_state, m_elements, 0.0, std::isfinite(dt_stable) ? dt_stable : dt_first);
+  // A deck's own penalty stiffness may shorten the increment (penalty_increment_limit.hpp).
+  m_dt_half = m_elements.next_increment(
+      totals, period, step,
+      m_contact.penalty_increment(totals.stable_dt, dt_stable, step, m_state));
   m_critical_id =
       totals.critical_element != NO_INDEX ? m_model.element_ids[totals.critical_element] : 0;
   m_nodes.update_nodes(m_state, m_elements, m_rigid, 0.0, m_dt_half, 0.5 * m_dt_half, m_dt_half);
@@ -261,10 +265,12 @@ void ExplicitSolver::Impl::run_step(int step) {
     m_nodes.apply_loads(m_state, m_state.step_time, m_state.time);
     const Real dt_stable = m_elements.stable_step(totals, step);
     m_contact.apply(m_state, m_elements, dt_prev, std::isfinite(dt_stable) ? dt_stable : dt_prev);
+    const Real dt_contact = m_contact.penalty_increment(totals.stable_dt, dt_stable, step, m_state);
 
     // v_{n+3/2} over the next increment, then the health of the run.
     m_dt_half =
-        last ? dt_prev : m_elements.next_increment(totals, period - m_state.step_time, step);
+        last ? dt_prev
+             : m_elements.next_increment(totals, period - m_state.step_time, step, dt_contact);
     m_nodes.update_nodes(m_state, m_elements, m_rigid, dt_prev, m_dt_half,
                          m_state.time + 0.5 * m_dt_half, m_state.time + m_dt_half);
     m_nodes.report_jump(step, m_sink);
@@ -288,6 +294,7 @@ void ExplicitSolver::Impl::run_step(int step) {
       break;
     }
   }
+  m_contact.end_step();
   m_loop_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
 }
@@ -331,7 +338,7 @@ void ExplicitSolver::Impl::write_history() {
 }
 
 void ExplicitSolver::Impl::write_status() {
-  m_output.write_status(m_state, m_dt_half, m_critical_id);
+  m_output.write_status(m_state, m_dt_half, m_critical_id, m_contact.critical_contact_node());
 }
 
 RunSummary ExplicitSolver::Impl::summary() const {
@@ -384,6 +391,8 @@ RunSummary ExplicitSolver::Impl::check() {
     m_elements.report_increment_limit(m_sink);
     m_elements.clear_forces();
     m_dt_half = m_elements.next_increment(totals, m_model.steps[0].time_period, 0);
+    m_contact.check_penalty(totals.stable_dt, m_elements.stable_step(totals, 0), 0,
+                            m_elements.inverse_mass());
     note_critical(totals);
     m_sink.message(Severity::Info, "initial stable increment " + format_real(m_dt_half) +
                                        " s (element " + std::to_string(m_critical_id) + ")");

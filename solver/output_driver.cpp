@@ -47,7 +47,8 @@ void OutputDriver::write_history(State& state, const ContactStage& contact,
   m_sink.append_history(state.time, m_history_row);
 }
 
-void OutputDriver::write_status(const State& state, Real dt_next, ExternalId critical_id) {
+void OutputDriver::write_status(const State& state, Real dt_next, ExternalId critical_id,
+                                ExternalId contact_node) {
   ScopedTimer timer(m_timers, Phase::Output);
   StatusLine line;
   line.increment = state.increment;
@@ -55,6 +56,7 @@ void OutputDriver::write_status(const State& state, Real dt_next, ExternalId cri
   line.total_time = state.time;
   line.dt = dt_next;
   line.critical_element = critical_id;
+  line.critical_contact_node = contact_node;
   line.energies = state.energies;
   m_sink.status(line);
 }

@@ -53,7 +53,8 @@ class OutputDriver {
   void write_history(State& state, const ContactStage& contact, CentralDifference& nodes);
   /// One .sta line: the increment `dt_next` (s) about to be taken and the element
   /// `critical_id` (deck id) that limits it.
-  void write_status(const State& state, Real dt_next, ExternalId critical_id);
+  void write_status(const State& state, Real dt_next, ExternalId critical_id,
+                    ExternalId contact_node = 0);
 
   /// The run summary of `state`: `element_count` elements cycled over the increments in
   /// `loop_seconds` of time-loop wall time.

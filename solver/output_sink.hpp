@@ -52,6 +52,8 @@ struct StatusLine {
   Real total_time = 0.0;
   Real dt = 0.0;
   ExternalId critical_element = 0;  ///< deck id of the element that limits the increment
+  /// Deck id of the contact node whose penalty limits the increment instead, 0 when none.
+  ExternalId critical_contact_node = 0;
   Energies energies;
 };
 

@@ -71,6 +71,14 @@ void read_material(DeckState& deck, const DeckBlock& block);
 void read_density(DeckState& deck, const DeckBlock& block);
 /// `*ELASTIC`.
 void read_elastic(DeckState& deck, const DeckBlock& block);
+/// `*PLASTIC` (deck_plastic.cpp): tabular or Johnson–Cook isotropic hardening.
+void read_plastic(DeckState& deck, const DeckBlock& block);
+/// `*RATE DEPENDENT` (deck_plastic.cpp): power-law or Johnson–Cook rate factor of the
+/// material's `*PLASTIC`.
+void read_rate_dependent(DeckState& deck, const DeckBlock& block);
+/// Plastic materials without `*ELASTIC`, reported at their `*PLASTIC` line (in finish(),
+/// before the sections, which then do not report the missing elastic data again).
+void check_plastic_materials(DeckState& deck);
 /// `*SECTION CONTROLS`.
 void read_section_controls(DeckState& deck, const DeckBlock& block);
 /// `*AMPLITUDE`.

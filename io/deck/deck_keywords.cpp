@@ -51,6 +51,8 @@ constexpr KeywordSpec KEYWORDS[] = {
     {"MATERIAL", Model, None, read_material},
     {"DENSITY", Model, Material, read_density},
     {"ELASTIC", Model, Material, read_elastic},
+    {"PLASTIC", Model, Material, read_plastic},
+    {"RATE DEPENDENT", Model, Material, read_rate_dependent},
     {"SOLID SECTION", Model, None, read_solid_section},
     {"SHELL SECTION", Model, None, read_shell_section},
     {"SHELL GENERAL SECTION", Model, None, read_shell_general_section, false},
@@ -122,11 +124,14 @@ void read_block(DeckState& deck, const DeckBlock& block) {
                                  [&](const KeywordSpec& s) { return s.name == keyword.name; });
   const bool known = spec != std::end(KEYWORDS);
 
-  // *DENSITY and *ELASTIC belong to the material opened just before, *FRICTION and *SURFACE
-  // BEHAVIOR to the interaction, *NODE OUTPUT & co. to the latest *OUTPUT. Any other keyword
-  // closes those option blocks.
+  // *DENSITY, *ELASTIC, *PLASTIC, ... belong to the material opened just before, *FRICTION and
+  // *SURFACE BEHAVIOR to the interaction, *NODE OUTPUT & co. to the latest *OUTPUT. Any other
+  // keyword closes those option blocks.
   const KeywordBlock option_of = known ? spec->block : None;
-  if (option_of != Material) deck.material = NO_INDEX;
+  if (option_of != Material) {
+    deck.material = NO_INDEX;
+    deck.plastic_without_material = false;
+  }
   if (option_of != Interaction) deck.interaction = NO_INDEX;
   if (option_of != Output) deck.output = NO_INDEX;
 

@@ -27,8 +27,15 @@ Model build_model(std::string_view text, const std::string& file_name, ModelChec
   if (owned_text != nullptr) std::string().swap(*owned_text);
   Model model = finish(deck);
   // The whole-model checks need a complete model, so they run only on an otherwise clean deck.
-  if (checks == ModelChecks::Run && errors.empty())
+  if (checks != ModelChecks::Skip && errors.empty()) {
     for (const std::string& message : unsupported_features(model)) errors.add_plain(message);
+    for (const std::string& message : unimplemented_kernels(model)) {
+      if (checks == ModelChecks::Run)
+        errors.add_plain(message);
+      else
+        model.deck_messages.push_back({true, message + " (xpl run refuses this model)"});
+    }
+  }
   errors.throw_if_any();
   return model;
 }

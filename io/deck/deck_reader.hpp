@@ -10,7 +10,10 @@ namespace xpl::io {
 
 /// Whether read_deck checks the model as a whole once the deck reads without errors.
 enum class ModelChecks {
-  Run,   ///< refuse what the time loop does not run yet (unsupported_features, model_checks.hpp)
+  Run,  ///< refuse what the time loop does not run yet (unsupported_features, model_checks.hpp)
+  /// As Run, but what only an element kernel lacks (unimplemented_kernels) becomes a warning
+  /// in Model::deck_messages: `xpl check` reports such a model fully, `xpl run` refuses it.
+  DataCheck,
   Skip,  ///< only the deck itself: for tests of how such features are read
 };
 

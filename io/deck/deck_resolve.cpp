@@ -43,6 +43,7 @@ Model finish(DeckState& deck) {
   resolve_element_nodes(deck);
   resolve_sets(deck, false);  // element sets first: *NSET, ELSET= needs them
   resolve_sets(deck, true);
+  check_plastic_materials(deck);  // before the sections check the materials
   resolve_sections(deck);
   resolve_surfaces(deck);
   resolve_initial_velocity(deck);

@@ -154,6 +154,13 @@ struct PointProperty {
   SourceLocation where;
 };
 
+/// The `*PLASTIC` and `*RATE DEPENDENT` lines of one material, valid or not (line 0: none):
+/// a bad `*PLASTIC` leaves Material::plastic empty but still counts as given, so that it draws
+/// no "no *PLASTIC" or "given twice" follow-up error.
+struct PlasticLines {
+  SourceLocation plastic, rate_dependent;
+};
+
 /// What the keyword handlers share while a deck is read; every problem goes into `errors`.
 struct DeckState {
   /// `file_name`: the deck as named in messages; its stem becomes the job name.
@@ -173,6 +180,8 @@ struct DeckState {
   std::vector<PendingSet> node_sets, element_sets;  ///< parallel to the Model's sets
   std::vector<PendingSection> sections;             ///< parallel to Model::solid_sections
   std::vector<PendingSection> shell_sections;       ///< parallel to Model::shell_sections
+  /// Per material (index into Model::materials; grown on demand by *PLASTIC).
+  std::vector<PlasticLines> plastic_lines;
   /// ELSET= of refused section keywords (*SHELL GENERAL SECTION): their elements are not
   /// reported again as having no section.
   std::vector<std::string> refused_section_sets;
@@ -201,7 +210,10 @@ struct DeckState {
   std::vector<std::uint8_t> clearance_surface_state;
 
   // --- position in the deck ------------------------------------------------------------------
-  Index material = NO_INDEX;     ///< the *MATERIAL that *DENSITY/*ELASTIC attach to
+  Index material = NO_INDEX;  ///< the *MATERIAL that *DENSITY/*ELASTIC/*PLASTIC attach to
+  /// A *PLASTIC outside a material (reported) opened the block: its *RATE DEPENDENT is not
+  /// reported again for the same missing *MATERIAL.
+  bool plastic_without_material = false;
   Index interaction = NO_INDEX;  ///< the *SURFACE INTERACTION that *FRICTION & co. attach to
   bool has_friction = false, has_behavior = false;  ///< given for interaction already
   bool in_step = false;

@@ -1,6 +1,7 @@
 #pragma once
 /// \file Checks of a whole, otherwise valid Model that the deck reader runs after building it:
-/// features it reads but the time loop does not run yet, and rigid bodies sharing a node.
+/// features it reads but the time loop does not run yet, element kernels that lack a material
+/// model, and rigid bodies sharing a node.
 
 #include <string>
 #include <vector>
@@ -14,5 +15,17 @@ namespace xpl::io {
 /// bodies. read_deck reports them as deck errors, so such a model is refused before anything
 /// is written rather than partly ignored. `model` must be complete (no deck errors).
 std::vector<std::string> unsupported_features(const Model& model);
+
+/// What a time loop would run wrongly because an element kernel lacks it (plastic materials
+/// on element types without a return mapping yet: one message per material and type, at its
+/// `*PLASTIC` line). Kept apart from unsupported_features so that a data check can still
+/// report the rest of the model (ModelChecks::DataCheck makes these warnings); `xpl run`
+/// refuses them like unsupported features. `model` must be complete (no deck errors).
+std::vector<std::string> unimplemented_kernels(const Model& model);
+
+/// The C3D8R part of unimplemented_kernels (removed when the hex return mapping lands).
+void refuse_plastic_hexes(const Model& model, std::vector<std::string>& out);
+/// The S4R part of unimplemented_kernels (removed when the shell return mapping lands).
+void refuse_plastic_shells(const Model& model, std::vector<std::string>& out);
 
 }  // namespace xpl::io

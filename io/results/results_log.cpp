@@ -55,6 +55,48 @@ void write_timings(std::ofstream& out, const PhaseTimers& timers, double cycles_
   out << format(" ELEMENT-CYCLES PER SECOND %12.4E\n", cycles_per_second);
 }
 
+/// How material `m`'s plasticity reads in the model summary: initial yield stress, hardening
+/// form and rate dependence, one line each.
+void write_plasticity(std::ofstream& out, const Material& m) {
+  const elements::Plasticity& p = *m.plastic;
+  out << format("     %s: initial yield stress %.4E\n", m.name.c_str(), p.initial_yield());
+  if (p.hardening == elements::Hardening::JohnsonCook) {
+    out << format("       hardening Johnson-Cook A + B*PEEQ^n: A %.4E, B %.4E, n %g\n", p.jc_a,
+                  p.jc_b, p.jc_n);
+    out << format(
+        "       thermal term taken as 1 (no temperature field): m %g, melt %g, "
+        "transition %g\n",
+        p.jc_m, p.jc_melt, p.jc_transition);
+  } else {
+    const std::size_t n = p.yield_stress.size();
+    if (n == 1)
+      out << "       hardening none: perfectly plastic\n";
+    else
+      out << format(
+          "       hardening tabular isotropic: %zu points to PEEQ %g (yield %.4E), "
+          "constant beyond\n",
+          n, p.plastic_strain.back(), p.yield_stress.back());
+    if (p.softens()) out << "       the table softens: the yield stress falls with PEEQ\n";
+  }
+  switch (p.rate) {
+    case elements::RateDependence::None:
+      out << "       rate dependence none\n";
+      break;
+    case elements::RateDependence::PowerLaw:
+      out << format(
+          "       rate dependence power law (Cowper-Symonds) 1 + (rate/D)^(1/n): "
+          "D %g 1/s, n %g\n",
+          p.power_d, p.power_n);
+      break;
+    case elements::RateDependence::JohnsonCook:
+      out << format(
+          "       rate dependence Johnson-Cook 1 + C ln(rate/rate0): C %g, rate0 %g "
+          "1/s\n",
+          p.rate_c, p.rate_reference);
+      break;
+  }
+}
+
 }  // namespace
 
 const char* completion_text(RunStatus status) {
@@ -91,6 +133,15 @@ void StaFile::note(const std::string& text) {
 }
 
 void StaFile::line(int step, const StatusLine& line) {
+  if (line.critical_contact_node != 0) {
+    // A contact penalty limits the increment: "node N" in the critical column.
+    const std::string critical = "node " + std::to_string(line.critical_contact_node);
+    m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12s %12.4E %12.4E\n", step, line.increment,
+                    line.total_time, line.step_time, line.dt, critical.c_str(),
+                    line.energies.kinetic, line.energies.total());
+    m_out.flush();
+    return;
+  }
   m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12lld %12.4E %12.4E\n", step, line.increment,
                   line.total_time, line.step_time, line.dt,
                   static_cast<long long>(line.critical_element), line.energies.kinetic,
@@ -127,6 +178,13 @@ void MsgFile::summary(const Model& model) {
     m_out << format("   %-28s %10zu\n", what, n);
   };
   line("materials", model.materials.size());
+  std::size_t plastic = 0;
+  for (const Material& m : model.materials) plastic += m.plastic ? 1 : 0;
+  if (plastic > 0) {
+    line("  plastic (J2, isotropic)", plastic);
+    for (const Material& m : model.materials)
+      if (m.plastic) write_plasticity(m_out, m);
+  }
   line("solid sections", model.solid_sections.size());
   if (!model.shell_sections.empty()) line("shell sections", model.shell_sections.size());
   line("node sets", model.node_sets.size());

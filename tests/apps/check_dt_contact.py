@@ -6,7 +6,7 @@ Usage: check_dt_contact.py XPL DECK WORK_DIR
 Runs DECK as it is and a copy without its *CONTACT / *CONTACT INCLUSIONS lines, and checks
 that the stable increment is the same before contact (to 1e-12) and at most 1 % smaller
 during it, and that both runs take the same number of increments within 1 %. Contact in xpl
-never enters the increment (the default penalty k = 0.5 m_eff / dt^2 is tied to it); what
+never enters the increment with the default penalty (k = 0.5 m_eff / dt^2 is tied to it); what
 changes it is the physics: the impacted bars are compressed (strain sigma/E = 0.1 % for
 bar_bar), which shortens their elements by as much. A penalty that limited the increment
 would show up as a cut of tens of percent. The contact run must complete (stable; the energy

@@ -1,0 +1,74 @@
+#pragma once
+/// \file The stable increment with a deck's own penalty stiffness: where the springs of a
+/// LINEAR pressure–overclosure slope are stiffer than the default penalty would be at the
+/// element increment, the increment is shortened for the increments where they act, and the
+/// spans where contact governs are reported (.msg: which interaction, by how much; .sta: the
+/// critical contact node).
+///
+/// Rule. The elements allow Δt_e = s·φ·Δt_raw (scale factor s, safety φ, element estimate
+/// Δt_raw, so their highest frequency is ω_e = 2/Δt_raw and ω_eΔt_e = 2sφ). The default penalty
+/// adds ω_c²Δt_e² = B = PENALTY_INCREMENT_BUDGET on top (contact/penalty_increment.hpp). A
+/// user's spring of frequency bound ω_c (the stiffest node, both views and the corner shares
+/// summed) gets the same total: frequencies add in squares, so
+///   Δt_c = s·√((2φ)² + B) / √(ω_e² + ω_c²),
+/// which equals Δt_e exactly when ω_c²Δt_e² = B·s² and is below it only for stiffer springs.
+/// Where the springs dominate (ω_c² > 1.1 ω_e²) the spring alone is held to
+/// ω_cΔt ≤ s·√PENALTY_ALONE_BUDGET instead: Δt_c = s·min(√((2φ)² + B)/√(ω_e² + ω_c²), √2/ω_c).
+/// Δt = min(Δt_e, Δt_c); a step with a fixed increment keeps it. The stiffest node of a span
+/// is held for HOLD_INCREMENTS after its springs stop acting: a node that rebounds off a stiff
+/// spring and touches again within an element increment (chatter at a bar end) would
+/// otherwise meet it at the long increment.
+
+#include <string>
+
+#include "contact/penalty_increment.hpp"
+#include "solver/model.hpp"
+#include "solver/output_sink.hpp"
+
+namespace xpl {
+
+/// Applies and reports the penalty limit of one run.
+class PenaltyIncrementLimit {
+ public:
+  /// Increments a span's stiffest node keeps governing after its springs opened.
+  static constexpr int HOLD_INCREMENTS = 50;
+
+  /// `model` and `sink` must outlive the limit.
+  PenaltyIncrementLimit(const Model& model, OutputSink& sink) : m_model(model), m_sink(sink) {}
+
+  /// The increment the user's springs allow with the element estimate `raw_dt` (s, before
+  /// scale factor and safety) and the element increment `dt_elements` (s, after them) in
+  /// `step`, for the stiffest node `limit`; +inf when they do not govern. `time` (s) and
+  /// `increment` say where, for the reports.
+  Real apply(const contact::PenaltyLimit& limit, Real raw_dt, Real dt_elements, int step, Real time,
+             long increment);
+  /// Deck id of the contact node that governs the increment last returned, 0 when none.
+  ExternalId critical_node() const { return m_governing ? m_critical_node : 0; }
+  /// Ends a span in which contact governs (end of a step or of the run): its .msg summary.
+  void end_span();
+
+  /// Δt_c of the rule above (s) for raw_dt, dt_elements (s), scale factor `scale` and the
+  /// contact frequency bound `omega_sq` (1/s²); +inf when omega_sq ≤ 0.
+  static Real combined_increment(Real raw_dt, Real dt_elements, Real scale, Real omega_sq);
+
+ private:
+  /// The interaction's name and law for the messages.
+  std::string interaction_text(Index interaction) const;
+
+  const Model& m_model;
+  OutputSink& m_sink;
+  bool m_governing = false;
+  contact::PenaltyLimit m_held;  ///< the stiffest node since the span began
+  int m_hold = 0;                ///< increments the held node still governs
+  ExternalId m_critical_node = 0;
+  // The span in which contact governs: where it began, its shortest increment and where.
+  int m_step = 0;
+  long m_increments = 0;
+  Real m_end_time = 0.0;
+  Real m_smallest_ratio = 1.0;
+  Real m_smallest_dt = 0.0;
+  ExternalId m_smallest_node = 0;
+  Index m_smallest_interaction = NO_INDEX;
+};
+
+}  // namespace xpl
