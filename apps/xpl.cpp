@@ -1,5 +1,6 @@
 // xpl command line: `xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]`,
-// `xpl check DECK.inp`.
+// `xpl check DECK.inp`; the result-file tools `xpl compare` and `xpl history` are in
+// compare.cpp and history.cpp.
 
 #include <omp.h>
 
@@ -22,6 +23,7 @@
 #include "io/results/job_lock.hpp"
 #include "io/results/result_files.hpp"
 #include "solver/explicit_solver.hpp"
+#include "subcommands.hpp"
 
 namespace {
 
@@ -29,6 +31,9 @@ constexpr const char* USAGE =
     "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]\n"
     "               [--energy-limit PERCENT]\n"
     "       xpl check DECK.inp [-o DIR]\n"
+    "       xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
+    "                   [--fields U,S,...] [--frames last|all] [--json]\n"
+    "       xpl history JOB.h5 [--step N] [--csv FILE]\n"
     "       xpl --help | --version\n"
     "\n"
     "  run     read the deck, run every step, write JOB.h5, JOB.xdmf, JOB.sta, JOB.msg\n"
@@ -43,6 +48,17 @@ constexpr const char* USAGE =
     "  --energy-limit PERCENT  the run fails (exit 3) when ETOTAL drifts by more than\n"
     "               PERCENT of the largest energy (default 10; a drift above 1 % is warned\n"
     "               of once in JOB.msg and JOB.sta)\n"
+    "  compare  compare two result files for a regression test: a value passes when\n"
+    "          |new - ref| <= A + R |ref| + F max|ref of the dataset| (default 0);\n"
+    "          history on REF's times\n"
+    "          (NEW interpolated), fields of the last frame (--frames all: every frame),\n"
+    "          nodes and elements matched by id; --history / --fields U,S select (default:\n"
+    "          everything); --json: the report as JSON. Exit 0 all pass, 1 something\n"
+    "          differs, 2 unusable input (missing, not HDF5, other mesh, failed or\n"
+    "          truncated run)\n"
+    "  history  every history series as CSV (time, then RF2@N17, ALLKE, ...), all steps or\n"
+    "          --step N, to stdout or --csv FILE\n"
+    "Every run and check writes JOB.summary.json (status, timing, energies).\n"
     "The job name is the deck's file name without its extension. A run holds DIR/JOB.lck;\n"
     "a second run of the job in DIR is refused. SIGINT/SIGTERM end the run after the\n"
     "current increment with its last frame written (status interrupted).\n"
@@ -205,6 +221,16 @@ int run_job(const Arguments& args);
 
 int main(int argc, char** argv) {
   default_to_passive_wait(argv);  // first of all: before anything starts OpenMP threads
+  if (argc >= 2 && (std::string(argv[1]) == "compare" || std::string(argv[1]) == "history")) {
+    const std::vector<std::string> rest(argv + 2, argv + argc);
+    try {
+      return std::string(argv[1]) == "compare" ? xpl::apps::compare_main(rest)
+                                               : xpl::apps::history_main(rest);
+    } catch (const std::exception& e) {
+      std::cerr << "xpl " << argv[1] << ": error: " << cause_of(e) << "\n";
+      return 4;
+    }
+  }
   if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
     std::cout << USAGE;
     return 0;
@@ -292,6 +318,7 @@ int run_job(const Arguments& args) {
   try {
     xpl::io::ResultOptions ropts;
     ropts.progress = !args.quiet;
+    ropts.threads = args.threads > 0 ? args.threads : omp_get_max_threads();
     files.emplace(args.out_dir, model.job_name, ropts);
     xpl::SolverOptions sopts;
     sopts.threads = args.threads;

@@ -32,8 +32,15 @@ csv=benchmarks/results/compare_builds.csv
 stamp=$(date -u +%Y-%m-%dT%H:%M)
 run() { # deck threads build binary rep
   local rate
-  rate=$(OMP_NUM_THREADS=$2 "$4" run "$work/$1.inp" -o "$work/out_$3" --threads "$2" 2>&1 |
-    sed -n 's/^xpl: element cycles per second: *\([0-9.e+-]*\).*/\1/p')
+  local log summary="$work/out_$3/$1.summary.json"
+  rm -f "$summary"
+  log=$(OMP_NUM_THREADS=$2 "$4" run "$work/$1.inp" -o "$work/out_$3" --threads "$2" 2>&1)
+  # A binary with the run summary writes JOB.summary.json; an older one only prints the figure.
+  if [[ -f $summary ]]; then
+    rate=$("$python" -c 'import json, sys; print(json.load(open(sys.argv[1]))["element_cycles_per_second"])' "$summary")
+  else
+    rate=$(sed -n 's/^xpl: element cycles per second: *\([0-9.e+-]*\).*/\1/p' <<<"$log")
+  fi
   echo "$stamp,$1,$2,$3,$5,$rate" >>"$csv"
   echo "$1 threads=$2 $3 rep $5: $rate"
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Collect xpl C3D8R block benchmark runs into a CSV, a PNG plot and a markdown table.
 
-Input: the stdout logs of `xpl run` (one file per run). Each ends with the summary
+Input: the run summaries JOB.summary.json of `xpl run` (one per run; the run scripts keep a
+copy of each beside its log), or the stdout logs of older runs, which end with the summary
 
     xpl: element cycles per second: 1.234567e+07 (97336 elements x 300 increments, 2 threads)
     xpl: phase setup: 0.123 s
@@ -16,6 +17,7 @@ Needs matplotlib: run with /usr/bin/python3 (Debian's python3-matplotlib).
 import argparse
 import csv
 import datetime
+import json
 import os
 import pathlib
 import platform
@@ -62,6 +64,33 @@ def parse_summary(text, source="log"):
         raise SummaryError(f"{source}: no xpl summary value for {', '.join(missing)}")
     run["bytes_per_element"] = round(run["peak_memory_mb"] * BYTES_PER_MB / run["elements"], 1)
     return run
+
+
+def summary_from_json(summary, source="summary"):
+    """The CSV columns of one run from its JOB.summary.json (apps/summary.schema.json)."""
+    if summary.get("status") != "completed":
+        raise SummaryError(f"{source}: the run did not complete (status {summary.get('status')!r})")
+    run = {
+        "element_cycles_per_s": summary["element_cycles_per_second"],
+        "elements": summary["model"]["elements"],
+        "increments": summary["increments"],
+        "threads": summary["threads"],
+        "peak_memory_mb": summary["peak_memory_mb"],
+    }
+    for name, column in zip(PHASES, PHASE_COLUMNS):
+        run[column] = summary["wall_time"][name.replace(" ", "_")]
+    run["bytes_per_element"] = round(run["peak_memory_mb"] * BYTES_PER_MB / run["elements"], 1)
+    return run
+
+
+def read_run(path):
+    """One run from a JOB.summary.json, or from a stdout log."""
+    if path.name.endswith(".summary.json"):
+        try:
+            return summary_from_json(json.loads(path.read_text()), str(path))
+        except (KeyError, TypeError, json.JSONDecodeError) as error:
+            raise SummaryError(f"{path}: not an xpl run summary ({error})") from error
+    return parse_summary(path.read_text(), str(path))
 
 
 def machine_description():
@@ -182,14 +211,15 @@ def plot(csv_path, png_path, title="C3D8R block", show_untimed=False):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("logs", nargs="+", type=pathlib.Path, help="stdout logs of xpl runs")
+    parser.add_argument("logs", nargs="+", type=pathlib.Path,
+                        help="JOB.summary.json files (or stdout logs) of xpl runs")
     parser.add_argument("--csv", type=pathlib.Path, required=True, help="CSV to append to")
     parser.add_argument("--png", type=pathlib.Path, required=True, help="plot to write")
     parser.add_argument("--machine", default=None, help="machine description (default: CPU)")
     args = parser.parse_args(argv)
 
     try:
-        runs = [parse_summary(log.read_text(), str(log)) for log in args.logs]
+        runs = [read_run(log) for log in args.logs]
     except (OSError, SummaryError) as error:
         print(f"hex_benchmark: {error}", file=sys.stderr)
         return 1

@@ -34,7 +34,7 @@ results_dir="${RESULTS_DIR:-benchmarks/results}"
 bench_dir=build/bench
 log_dir="$bench_dir/contact_logs"
 mkdir -p "$log_dir"
-rm -f "$log_dir"/run_*.log
+rm -f "$log_dir"/run_*.log "$log_dir"/run_*.summary.json
 
 bench_name=run_contact_benchmark
 # shellcheck source=benchmarks/quiet_machine.sh
@@ -53,7 +53,9 @@ run_case() {
     exit 1
   fi
   grep -h '^bench:\|^xpl: element cycles per second\|^xpl: phase' "$log" >&2 || true
-  echo "$log"
+  # The run's JOB.summary.json is what hex_benchmark.py reads (no stdout parsing).
+  cp "$bench_dir/out/$name.summary.json" "${log%.log}.summary.json"
+  echo "${log%.log}.summary.json"
 }
 
 "$python" benchmarks/make_contact_benchmark.py "$bench_dir/contact.inp" --n "$n" --m "$m" \

@@ -25,7 +25,7 @@ results_dir="${RESULTS_DIR:-benchmarks/results}"
 bench_dir=build/bench
 log_dir="$bench_dir/logs"
 mkdir -p "$log_dir"
-rm -f "$log_dir"/run_t*_r*.log
+rm -f "$log_dir"/run_t*_r*.log "$log_dir"/run_t*_r*.summary.json
 deck="$bench_dir/block_$n.inp"
 "$python" benchmarks/make_block.py -n "$n" --increments "$increments" --out "$deck"
 
@@ -41,7 +41,9 @@ for threads in $threads_list; do
       exit 1
     fi
     grep '^xpl: element cycles per second' "$log" || true
-    logs+=("$log")
+    # The run's JOB.summary.json is what hex_benchmark.py reads (no stdout parsing).
+    cp "$bench_dir/out/block_$n.summary.json" "${log%.log}.summary.json"
+    logs+=("${log%.log}.summary.json")
   done
 done
 

@@ -13,7 +13,8 @@
 # Environment overrides: N (elements per side, 316), INCREMENTS (300), REPS (5),
 # THREADS ("1 2"), SWEEP (mesh sizes, none), SWEEP_ONLY=1, SKIP_BUILD=1 (use the existing
 # build), XPL (binary, build/release/apps/xpl), RESULTS_DIR (benchmarks/results),
-# IDLE_MIN (90), WAIT_MAX (600).
+# IDLE_MIN (90), WAIT_MAX (600), DECK_ARGS (more options of make_plate_benchmark.py, e.g.
+# "--load stretch --plastic 50e6" for the plastic plate of issue 14).
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -37,7 +38,7 @@ results_dir="${RESULTS_DIR:-benchmarks/results}"
 bench_dir=build/bench
 log_dir="$bench_dir/shell_logs"
 mkdir -p "$log_dir"
-rm -f "$log_dir"/run_n*_t*_r*.log
+rm -f "$log_dir"/run_n*_t*_r*.log "$log_dir"/run_n*_t*_r*.summary.json
 
 bench_name=run_shell_benchmark
 # shellcheck source=benchmarks/quiet_machine.sh
@@ -57,12 +58,15 @@ run_plate() {
     exit 1
   fi
   grep -h '^bench:\|^xpl: element cycles per second' "$log" >&2 || true
-  echo "$log"
+  # The run's JOB.summary.json is what shell_benchmark.py reads (no stdout parsing).
+  cp "$bench_dir/out/plate_$size.summary.json" "${log%.log}.summary.json"
+  echo "${log%.log}.summary.json"
 }
 
 if [[ "${SWEEP_ONLY:-0}" != 1 ]]; then
+  # shellcheck disable=SC2086 # DECK_ARGS is a list of options
   "$python" benchmarks/make_plate_benchmark.py -n "$n" --increments "$increments" \
-    --out "$bench_dir/plate_$n.inp"
+    ${DECK_ARGS:-} --out "$bench_dir/plate_$n.inp"
   logs=()
   for threads in $threads_list; do
     for rep in $(seq 1 "$reps"); do

@@ -98,7 +98,8 @@ def collect(argv):
     """Parse the arguments and logs: (args, best rows with date and machine) or None."""
     sweep = "--sweep" in argv
     parser = argparse.ArgumentParser(prog=PROG, description=DESCRIPTION)
-    parser.add_argument("logs", nargs="+", type=pathlib.Path, help="stdout logs of xpl runs")
+    parser.add_argument("logs", nargs="+", type=pathlib.Path,
+                        help="JOB.summary.json files (or stdout logs) of xpl runs")
     parser.add_argument("--csv", type=pathlib.Path, required=True, help="CSV to append to")
     parser.add_argument("--png", type=pathlib.Path, required=True, help="plot to write")
     parser.add_argument("--machine", default=None, help="machine description (default: CPU)")
@@ -106,7 +107,7 @@ def collect(argv):
                         help="logs of several mesh sizes: best per (elements, threads)")
     args = parser.parse_args(argv)
     try:
-        runs = [hb.parse_summary(log.read_text(), str(log)) for log in args.logs]
+        runs = [hb.read_run(log) for log in args.logs]
     except (OSError, hb.SummaryError) as error:
         print(f"{PROG}: {error}", file=sys.stderr)
         return None

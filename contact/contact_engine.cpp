@@ -55,6 +55,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_normal_force.assign(n, 0.0);
   m_slave_force.assign(3 * n, 0.0);
   m_dissipation.assign(n, 0.0);
+  m_stored.assign(n, 0.0);
   m_output_status.assign(n, OutputStatus::Open);
   m_assembly = ForceAssembly(m_domain.slaves().size(), m_domain.pair_count());
   for (const InteractionLaw& law : m_laws)
@@ -237,6 +238,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     ContactConstraint& c = m_constraints[s];
     const SlaveTouch& t = m_touch[s];
     m_dissipation[s] = 0.0;
+    m_stored[s] = 0.0;
     Vec3 f = Vec3::Zero();
     Real fn = 0.0;
     OutputStatus status = OutputStatus::Open;
@@ -259,6 +261,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       c.xi = t.xi;
       c.eta = t.eta;
       fn = normal_contact_update(c, t.gap, k);
+      m_stored[s] = penalty_energy(t.gap, c.offset, k);
       f = fn * t.normal;
       if (law.pressure_slope > 0.0) {
         // Counted while closed, or when the approach closes it within the look-ahead.
@@ -276,6 +279,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
             friction_update(c.tangential_force, v_rel, t.normal, fn, law.friction, k, dt);
         c.tangential_force = fr.force;
         m_dissipation[s] = fr.dissipation;
+        if (k > 0.0) m_stored[s] += 0.5 * fr.force.dot(fr.force) / k;
         f += fr.force;
         if (fn > 0.0) status = fr.slipping ? OutputStatus::Slip : OutputStatus::Stick;
       } else {
@@ -291,6 +295,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   // Assembly, sums and work, in slot order (independent of the thread count).
   m_assembly.assemble(slaves, faces, m_touch, m_slave_force, m_normal_force, m_constraints,
                       m_dissipation, velocity_half, dt, force_internal, totals);
+  for (Index s = 0; s < n_slave; ++s) totals.stored_energy += m_stored[s];
   if (m_user_stiffness) {
     m_penalty_sum.reset(static_cast<Index>(mass.size()));
     for (Index s = 0; s < n_slave; ++s)

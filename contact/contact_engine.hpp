@@ -154,6 +154,7 @@ class ContactEngine {
   std::vector<Real> m_normal_force;  // (n_slave)
   std::vector<Real> m_slave_force;   // (n_slave × 3): force on the slave node itself
   std::vector<Real> m_dissipation;   // (n_slave)
+  std::vector<Real> m_stored;        // (n_slave): energy in the slot's springs, J
   std::vector<OutputStatus> m_output_status;
   ForceAssembly m_assembly;       // nodal forces and pair sums (stage 5)
   bool m_user_stiffness = false;  // some law has its own stiffness (a LINEAR slope)

@@ -21,8 +21,13 @@ struct ContactTotals {
   /// negative while springs are loaded or friction dissipates.
   Real work = 0.0;
   Real friction_dissipation = 0.0;  ///< J, ≥ 0
-  Index closed = 0;                 ///< slave nodes with a normal force
-  bool rebuilt = false;             ///< the broad phase was rebuilt
+  /// Energy held by the springs at the end of the increment, J: Σ ½ k (d − d0)² over the
+  /// closed normal springs plus Σ ½ |f_t|²/k_t over the stick springs of friction (k_t = k).
+  /// ALLPW should equal it (issue 20, item 4); what the springs hold beyond ALLPW was created
+  /// by contact (ContactEnergyCheck).
+  Real stored_energy = 0.0;
+  Index closed = 0;      ///< slave nodes with a normal force
+  bool rebuilt = false;  ///< the broad phase was rebuilt
 };
 
 /// The assembled contact forces of the current and the previous increment (for the

@@ -79,7 +79,7 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
   m_shear.assign(n_batches * 2 * W, 0.0);
   m_hourglass.assign(n_batches * N_HOURGLASS * W, 0.0);
   m_slot.assign(n, NO_INDEX);
-  m_batch_energy.assign(n_batches * 2, 0.0);
+  m_batch_energy.assign(n_batches * 3, 0.0);
   m_batch_dt.assign(n_batches, 0.0);
   m_batch_critical.assign(n_batches, NO_INDEX);
   m_batch_failed.assign(n_batches, NO_INDEX);
@@ -115,6 +115,12 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
         m_weight[(b * m_points + k) * W + l] = weight[k];
       }
     }
+  std::vector<const Plasticity*> lane_law(n_batches * W, nullptr);
+  for (std::size_t s = 0; s < lane_law.size(); ++s) {
+    const Index owner = m_lane_owner[s];
+    lane_law[s] = properties[owner != NO_INDEX ? owner : m_lane_owner[s - s % W]].plastic;
+  }
+  m_plastic = ShellPlasticState(lane_law, m_points);
 }
 
 void Shell4rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass,
@@ -181,16 +187,23 @@ void Shell4rBlock::internal_forces(const NodalVectors& position, const NodalVect
   for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
     const Index first = m_color_batches[c], last = m_color_batches[c + 1];
 #pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
-    for (Index b = first; b < last; ++b) compute_batch(b, p, v, w, dt, f, m);
+    for (Index b = first; b < last; ++b) {
+      if (m_plastic.batch_plastic(static_cast<std::size_t>(b)))
+        compute_batch<true>(b, p, v, w, dt, f, m);
+      else
+        compute_batch<false>(b, p, v, w, dt, f, m);
+    }
   }
   const Index n_batches = m_color_batches.back();
   for (Index b = 0; b < n_batches; ++b) {
-    totals.strain_energy_increment += m_batch_energy[b * 2 + 0];
-    totals.hourglass_energy_increment += m_batch_energy[b * 2 + 1];
+    totals.strain_energy_increment += m_batch_energy[b * 3 + 0];
+    totals.hourglass_energy_increment += m_batch_energy[b * 3 + 1];
+    totals.plastic_energy_increment += m_batch_energy[b * 3 + 2];
     totals.merge(m_batch_dt[b], m_batch_critical[b], m_batch_failed[b]);
   }
 }
 
+template <bool PLASTIC>
 void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
                                  const Real* const w[3], Real dt, Real* const f[3],
                                  Real* const m[3]) {
@@ -240,14 +253,15 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   const Vec q11 = constant(Q11), q12 = constant(Q12), g = constant(SHEAR);
   const Vec offset = constant(OFFSET);
   const Vec t_old = simd::load(&m_thickness[b * W]);
-  const Vec t =
-      t_old * (1.0 - constant(NU_RATIO) * dt * (dxx + dyy - offset * t_old * (kxx + kyy)));
+  Vec t = t_old * (1.0 - constant(NU_RATIO) * dt * (dxx + dyy - offset * t_old * (kxx + kyy)));
   simd::store(&m_thickness[b * W], t);
   const Vec t_mid = 0.5 * (t_old + t);
   // Through-thickness integration (z from the reference surface, which is OFFSET·t above
   // the mid-surface), plane stress.
   Vec nxx = simd::splat(0.0), nyy = nxx, nxy = nxx, mxx = nxx, myy = nxx, mxy = nxx;
   Vec work = simd::splat(0.0);  // strain energy increment per unit area
+  // Plastic batches: dissipation per unit area and Σ weight · Δε33ᵖ over the section points.
+  Vec plastic_work = simd::splat(0.0), thinning = simd::splat(0.0);
   for (int k = 0; k < m_points; ++k) {
     const Vec zeta = 0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset;
     const Vec weight = simd::load(&m_weight[(b * m_points + k) * W]);
@@ -257,9 +271,13 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     const Vec exy = dt * (gxy + zk * kxy);
     Real* s = &m_stress[(b * m_points + k) * 3 * W];
     const Vec sxx = simd::load(s), syy = simd::load(s + W), sxy = simd::load(s + 2 * W);
-    const Vec sxx_n = sxx + q11 * exx + q12 * eyy;
-    const Vec syy_n = syy + q12 * exx + q11 * eyy;
-    const Vec sxy_n = sxy + g * exy;
+    Vec sxx_n = sxx + q11 * exx + q12 * eyy;
+    Vec syy_n = syy + q12 * exx + q11 * eyy;
+    Vec sxy_n = sxy + g * exy;
+    if constexpr (PLASTIC) {
+      plastic_work +=
+          tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, sxx_n, syy_n, sxy_n, thinning);
+    }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
     simd::store(s + 2 * W, sxy_n);
@@ -270,6 +288,22 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     myy += (tw_n * zk_n) * syy_n;
     mxy += (tw_n * zk_n) * sxy_n;
     work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
+  }
+  if constexpr (PLASTIC) {
+    // Plastic incompressibility: Δε33 = −ν/(1−ν)(Δε11ᵉ + Δε22ᵉ) − (Δε11ᵖ + Δε22ᵖ). The update
+    // above took the elastic term on the total strain Δεᵉ + Δεᵖ, so the plastic part adds
+    // (1 − ν/(1−ν)) Δε33ᵖ, Δε33ᵖ averaged through the thickness with the weights. N scales with
+    // t and M with t², so the resultants follow the end thickness as in the elastic case.
+    const Vec r = 1.0 + (1.0 - constant(NU_RATIO)) * thinning;
+    t = t * r;
+    simd::store(&m_thickness[b * W], t);
+    const Vec r2 = r * r;
+    nxx *= r;
+    nyy *= r;
+    nxy *= r;
+    mxx *= r2;
+    myy *= r2;
+    mxy *= r2;
   }
   Real* shear = &m_shear[b * 2 * W];
   const Vec kg = constant(SHEAR_T);
@@ -322,9 +356,15 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   // Stable increment of the one-point quad: its breathing mode has ω = 2 c √(1+ν) / h on a
   // square; L = √2 A / (longer diagonal) is h on a square and shorter on skewed elements.
   const Vec dt_e = (1.41421356237309515 * area / fe.diagonal) / constant(DT_SPEED);
-  const Vec strain_inc = fm.area * work;
+  Vec strain_inc = fm.area * work;
+  Vec plastic_inc = simd::splat(0.0);
+  if constexpr (PLASTIC) {
+    // The trapezoidal work is the total; ALLSE keeps the recoverable part.
+    plastic_inc = fm.area * plastic_work;
+    strain_inc -= plastic_inc;
+  }
 
-  Real e_strain = 0.0, e_hg = 0.0, best_dt = std::numeric_limits<Real>::infinity();
+  Real e_strain = 0.0, e_hg = 0.0, e_plastic = 0.0, best_dt = std::numeric_limits<Real>::infinity();
   Index critical = NO_INDEX, failed = NO_INDEX;
   for (int l = 0; l < W; ++l) {
     const Index owner = m_lane_owner[b * W + l];
@@ -340,6 +380,7 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     }
     e_strain += strain_inc[l];
     e_hg += hg_work[l];
+    if constexpr (PLASTIC) e_plastic += plastic_inc[l];
     const Index model_e = m_element_index[owner];
     if (!(area[l] > 0.0) || !(fm.area[l] > 0.0) || !std::isfinite(dt_e[l])) {
       if (failed == NO_INDEX || model_e < failed) failed = model_e;
@@ -348,8 +389,9 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
       critical = model_e;
     }
   }
-  m_batch_energy[b * 2 + 0] = e_strain;
-  m_batch_energy[b * 2 + 1] = e_hg;
+  m_batch_energy[b * 3 + 0] = e_strain;
+  m_batch_energy[b * 3 + 1] = e_hg;
+  m_batch_energy[b * 3 + 2] = e_plastic;
   m_batch_dt[b] = best_dt;
   m_batch_critical[b] = critical;
   m_batch_failed[b] = failed;
@@ -379,6 +421,10 @@ ShellSectionOutput Shell4rBlock::section_output(const NodalVectors& position, In
     o[5] = -sn * txz + c * tyz;
   }
   out.thickness = m_thickness[b * W + l];
+  if (has_plasticity()) {
+    for (int q = 0; q < 3; ++q) out.peeq[q] = m_plastic.peeq(b, pick[q], l);
+    for (int k = 0; k < points; ++k) out.peeq_max = std::max(out.peeq_max, m_plastic.peeq(b, k, l));
+  }
   return out;
 }
 

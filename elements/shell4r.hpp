@@ -10,6 +10,11 @@
 /// length z_h Γ_I along the normal (velocities projected, forces and moments transferred
 /// back), so rigid rotations of warped elements stay strain and hourglass free.
 ///
+/// Plastic materials: plane-stress J2 at every section point (shell_plasticity.hpp), the
+/// thickness following the elastic plane-stress strain and the plastic incompressibility;
+/// the transverse shear stays elastic (as in Belytschko–Tsay codes). Blocks without plastic
+/// material carry no plastic state and run the elastic kernel alone.
+///
 /// Rotary inertia is lumped and scaled: each node gets (m_e/4)·max(t²/12, A/8) from each
 /// element, so the rotational and transverse-shear frequencies stay below the membrane
 /// frequency and the stable increment is set by the membrane wave.
@@ -23,6 +28,7 @@
 
 #include "common/types.hpp"
 #include "elements/increment_limit.hpp"
+#include "elements/shell_plasticity.hpp"
 #include "elements/simd.hpp"
 
 namespace xpl::elements {
@@ -46,12 +52,18 @@ struct ShellProperties {
   int integration_points = 5;  ///< through the thickness (Simpson, odd), 1 = membrane only
   Real offset = 0.0;           ///< reference surface above the mid-surface / thickness
   Real hourglass_scale = 1.0;  ///< scales SHELL_HOURGLASS_STIFFNESS
+  /// J2 plasticity of the material, or nullptr for an elastic one. Not owned: read (and
+  /// copied, once per distinct law) by the block's constructor only.
+  const Plasticity* plastic = nullptr;
 };
 
 /// What one shell internal-force pass reports (sums over the block in a fixed order).
 struct ShellStepTotals : IncrementLimit {
   Real strain_energy_increment = 0.0;     ///< ΔALLSE, J
   Real hourglass_energy_increment = 0.0;  ///< ΔALLAE, J
+  /// ΔALLPD, J: Σ over section points of weight · σ_y Δε̄ᵖ · mid-increment volume. The
+  /// strain energy increment above is the recoverable part (total work minus this).
+  Real plastic_energy_increment = 0.0;
 };
 
 /// Section output of one shell element.
@@ -60,6 +72,10 @@ struct ShellSectionOutput {
   /// default local axes (1 = projection of global x, or of global z when x is normal).
   std::array<std::array<Real, 6>, 3> stress{};
   Real thickness = 0.0;  ///< current thickness, m
+  /// Equivalent plastic strain PEEQ (-) at the bottom, middle and top section points
+  /// (0 for an elastic element).
+  std::array<Real, 3> peeq{};
+  Real peeq_max = 0.0;  ///< largest PEEQ over all section points, -
 };
 
 /// A set of S4R elements and their state.
@@ -125,6 +141,27 @@ class Shell4rBlock {
   void set_output_stress(const NodalVectors& position, std::span<const Real> middle,
                          std::span<const Real> bottom, std::span<const Real> top);
 
+  /// Whether any element of the block is plastic (else no plastic state exists, P2).
+  bool has_plasticity() const { return !m_plastic.empty(); }
+  /// Writes the largest PEEQ (-) through the thickness of every block element at its model
+  /// index into a model-sized array (n_elements); elastic elements write 0.
+  void gather_plastic_strain(std::vector<Real>& peeq) const;
+  /// Writes the PEEQ (-) of the bottom (SNEG), middle and top (SPOS) section points of every
+  /// block element at its model index into model-sized arrays (n_elements each).
+  void gather_section_plastic_strain(std::vector<Real>& bottom, std::vector<Real>& middle,
+                                     std::vector<Real>& top) const;
+  /// Sets the PEEQ of the plastic elements from model-sized arrays (n_elements each, -, ≥ 0)
+  /// at the middle, bottom and top section points (an imported state): interpolated linearly
+  /// in ζ between them as set_output_stress does for the stresses. Exact at the three section
+  /// points; points between them get the interpolated value (a result file does not hold the
+  /// others). Elastic elements and rows outside the block are not read.
+  void set_plastic_strain(std::span<const Real> middle, std::span<const Real> bottom,
+                          std::span<const Real> top);
+  /// PEEQ (-) and its rate over the last increment (1/s) of section point k (0 = bottom) of
+  /// block element i, for tests.
+  Real plastic_strain(Index i, int k) const;
+  Real plastic_strain_rate(Index i, int k) const;
+
  private:
   static constexpr int W = simd::W;
   enum Constant {
@@ -143,6 +180,7 @@ class Shell4rBlock {
   /// Hourglass resultants: in-plane x, y, transverse, rotational x, y.
   static constexpr int N_HOURGLASS = 5;
 
+  template <bool PLASTIC>
   void compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
                      const Real* const w[3], Real dt, Real* const f[3], Real* const m[3]);
   std::size_t slot_of(Index i) const { return static_cast<std::size_t>(m_slot[i]); }
@@ -163,7 +201,8 @@ class Shell4rBlock {
   std::vector<Real> m_hourglass;       ///< [b][N_HOURGLASS][W]
   std::vector<Index> m_slot;           ///< block element -> b*W + l
   std::vector<Index> m_color_batches;  ///< batches of colour c: [c], [c+1]
-  std::vector<Real> m_batch_energy;    ///< [b][2]
+  ShellPlasticState m_plastic;         ///< section-point plasticity (empty when elastic)
+  std::vector<Real> m_batch_energy;    ///< [b][3]: strain, hourglass, plastic
   std::vector<Real> m_batch_dt;
   std::vector<Index> m_batch_critical;
   std::vector<Index> m_batch_failed;

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Install missing dependencies, build xpl with a preset and run its test suite.
+# Install missing dependencies, build xpl with a preset and run its test suite, then fuzz the
+# deck reader under address+undefined sanitizers.
 # Usage: scripts/run_tests.sh [preset]    (release by default)
-# Exit code: ctest's.
+#   XPL_FUZZ_DECKS=N  mutated decks for the sanitizer fuzz stage (default 3000, 0 skips it);
+#                     the stage builds only the xpl program with the sanitize preset.
+# Exit code: ctest's, else the fuzzer's (1 when it found a crash, hang or sanitizer report).
 set -euo pipefail
 
 preset="${1:-release}"
@@ -21,4 +24,11 @@ set +e
 ctest "${ctest_target[@]}" --output-on-failure -j2
 status=$?
 set -e
-exit "$status"
+if [[ $status -ne 0 ]]; then exit "$status"; fi
+
+fuzz_decks="${XPL_FUZZ_DECKS:-3000}"
+if [[ $fuzz_decks -gt 0 ]]; then
+  [[ $preset == sanitize ]] || bash scripts/build.sh sanitize xpl
+  python3 tests/fuzz/fuzz_decks.py --xpl build/sanitize/apps/xpl --count "$fuzz_decks" \
+    --seed 1 --timeout 10 --keep build/sanitize/fuzz-findings
+fi

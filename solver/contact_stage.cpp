@@ -227,12 +227,14 @@ std::vector<contact::ClearanceView> ContactStage::clearance_views(
 }
 
 void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty) {
+  m_stored_energy = 0.0;
   if (!m_engine) return;
   const contact::ContactTotals t = m_engine->update(
       state.position, state.velocity_half, dt_taken, dt_penalty, elements.node_thickness(),
       state.mass, elements.inverse_mass(), elements.force_internal(), m_timers);
   state.energies.friction += t.friction_dissipation;
   state.energies.contact += -t.work - t.friction_dissipation;
+  m_stored_energy = t.stored_energy;
 }
 
 Real ContactStage::penalty_increment(Real raw_dt, Real dt_elements, int step, const State& state) {

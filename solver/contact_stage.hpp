@@ -42,6 +42,9 @@ class ContactStage {
   /// friction and penalty energies into state.energies. `dt_taken` is the increment just
   /// taken (0 at t = 0), `dt_penalty` the increment the penalty stiffness is tied to, s.
   void apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty);
+  /// Energy held by the contact springs after the last apply() (ContactTotals::stored_energy),
+  /// J, 0 without contact: what ALLPW should be (ContactEnergyCheck).
+  Real stored_energy() const { return m_stored_energy; }
 
   /// The increment a deck's own penalty stiffness allows after the last apply() (+inf when it
   /// does not govern: no contact, default penalty, or springs no stiffer than the default),
@@ -89,6 +92,7 @@ class ContactStage {
   std::unique_ptr<contact::ContactEngine> m_engine;  ///< null when the step has no contact
   std::vector<std::string> m_pair_names;  ///< in the engine's pair order (history output)
   PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
+  Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
 };
 
 }  // namespace xpl

@@ -39,6 +39,7 @@ elements::ShellProperties shell_properties(const Model& model, Index element) {
   p.thickness = section.thickness;
   p.integration_points = section.integration_points;
   p.offset = section.offset;
+  if (m.plastic) p.plastic = &*m.plastic;
   if (section.controls != NO_INDEX)
     p.hourglass_scale = model.section_controls[section.controls].stiffness_scale;
   return p;
@@ -171,6 +172,17 @@ void ElementSet::report_setup(const NodalVectors& reference, OutputSink& sink) c
       sink.message(Severity::Note, "section controls " + c.name +
                                        ": S4R elements use the stiffness hourglass form "
                                        "(HOURGLASS=VISCOUS applies to C3D8R only)");
+  // One section point is a membrane: it carries no bending moment, elastic or plastic, so
+  // a plastic hinge cannot form. Legitimate for membranes, a mistake for a crash part.
+  for (const ShellSection& s : m_model.shell_sections) {
+    const Material& material = m_model.materials[s.material];
+    if (s.integration_points != 1 || !material.plastic) continue;
+    sink.message(Severity::Warning,
+                 s.where.file + ":" + std::to_string(s.where.line) +
+                     ": *SHELL SECTION: 1 section point on the plastic material " + material.name +
+                     ": a membrane-only section (no bending stiffness, no plastic bending); "
+                     "give 5 or more points for bending");
+  }
 }
 
 void ElementSet::report_warped_shells(const NodalVectors& reference, OutputSink& sink) const {

@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "solver/central_difference.hpp"
+#include "solver/contact_energy_check.hpp"
 #include "solver/contact_stage.hpp"
 #include "solver/element_set.hpp"
 #include "solver/energy_check.hpp"
@@ -85,6 +86,7 @@ struct ExplicitSolver::Impl {
   CentralDifference m_nodes;
   ContactStage m_contact;
   EnergyCheck m_energy;
+  ContactEnergyCheck m_contact_energy;  ///< energy created by the contact springs
   OutputDriver m_output;
   Real m_dt_half = 0.0;          ///< dt_{n+1/2}: the increment about to be taken, s
   ExternalId m_critical_id = 0;  ///< deck id of the element that limits it
@@ -241,6 +243,7 @@ void ExplicitSolver::Impl::note_critical(const ElementTotals& totals) {
 void ExplicitSolver::Impl::run_step(int step) {
   begin_step(step);
   m_energy.begin_step(m_state.increment);
+  m_contact_energy.begin_step(m_state.increment);
   const Real period = m_model.steps[step].time_period;
   const Real step_start = m_state.time;
   if (!m_started)
@@ -275,6 +278,11 @@ void ExplicitSolver::Impl::run_step(int step) {
                          m_state.time + 0.5 * m_dt_half, m_state.time + m_dt_half);
     m_nodes.report_jump(step, m_sink);
     m_energy.check(m_state, totals, m_dt_half, m_critical_id, m_sink);
+    if (m_contact.active()) {
+      const std::string warning =
+          m_contact_energy.check(m_state, m_contact.stored_energy(), m_critical_id);
+      if (!warning.empty()) m_sink.message(Severity::Warning, warning);
+    }
 
     // Output as it falls due; a status line every 1 % of the step.
     const FrameRequest frame = m_output.field_due(m_state.step_time, last);

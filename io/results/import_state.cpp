@@ -12,10 +12,14 @@
 #include <unordered_map>
 
 #include "io/results/h5_handles.hpp"
+#include "io/results/h5_reader.hpp"
 
 namespace xpl::io {
 
 namespace {
+
+using h5::has_link;
+using h5::refuse;
 
 /// What every mesh mismatch expects.
 const char* const SAME_MESH =
@@ -29,21 +33,6 @@ constexpr Real COORDINATE_TOLERANCE = 1e-9;
 
 /// Element types a result file can hold, as /mesh/TYPE groups.
 constexpr ElementType ELEMENT_TYPES[] = {ElementType::C3D8R, ElementType::S4R};
-
-/// Thrown inside the reader; read_imported_state adds the file name.
-class Refusal : public std::runtime_error {
- public:
-  Refusal(const std::string& problem, std::string expected)
-      : std::runtime_error(problem), m_expected(std::move(expected)) {}
-  const std::string& expected() const { return m_expected; }
-
- private:
-  std::string m_expected;
-};
-
-[[noreturn]] void refuse(const std::string& problem, std::string expected) {
-  throw Refusal(problem, std::move(expected));
-}
 
 std::string format_reals(const Real* values, int count) {
   std::string out = "(";
@@ -61,57 +50,16 @@ std::string format_ids(const std::vector<ExternalId>& ids) {
   return out;
 }
 
-/// Whether the link `path` (absolute) exists, every intermediate group included.
-bool has_link(hid_t file, const std::string& path) {
-  std::string prefix;
-  std::stringstream parts(path);
-  for (std::string part; std::getline(parts, part, '/');) {
-    if (part.empty()) continue;
-    prefix += "/" + part;
-    const htri_t exists = H5Lexists(file, prefix.c_str(), H5P_DEFAULT);
-    if (exists < 0) h5::fail("cannot look up " + prefix);
-    if (exists == 0) return false;
-  }
-  return true;
-}
-
-/// The values (row-major) of the dataset `path`: one-dimensional when `width` is 0, else
-/// rows × width; `rows` empty accepts any number of rows. Ids are read as integers, fields as
-/// floats; a missing dataset or another shape is refused.
+/// h5::read_array with this reader's expectation (an earlier xpl run's file).
 template <class T>
 std::vector<T> read_array(hid_t file, const std::string& path, std::optional<hsize_t> rows,
                           hsize_t width) {
-  if (!has_link(file, path)) refuse("the file has no " + path, XPL_FILE);
-  const h5::Handle dataset{h5::check_id(H5Dopen2(file, path.c_str(), H5P_DEFAULT), path), H5Dclose};
-  const h5::Handle type{h5::check_id(H5Dget_type(dataset.get()), path), H5Tclose};
-  constexpr bool integer = std::is_integral_v<T>;
-  const H5T_class_t type_class = H5Tget_class(type.get());
-  if (type_class != (integer ? H5T_INTEGER : H5T_FLOAT)) {
-    refuse(path + " is not " + (integer ? "an integer" : "a floating-point") + " dataset",
-           XPL_FILE);
-  }
-  const h5::Handle space{h5::check_id(H5Dget_space(dataset.get()), path), H5Sclose};
-  const int rank = H5Sget_simple_extent_ndims(space.get());
-  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
-  if (rank < 0 || H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0) {
-    h5::fail("cannot read the shape of " + path);
-  }
-  const bool shape_ok =
-      (width == 0 ? rank == 1 : rank == 2 && dims[1] == width) && (!rows || dims[0] == *rows);
-  if (!shape_ok) {
-    std::string shape, want = rows ? std::to_string(*rows) : "n";
-    for (hsize_t d : dims) shape += (shape.empty() ? "" : " × ") + std::to_string(d);
-    if (width > 0) want += " × " + std::to_string(width);
-    refuse(path + " has shape (" + shape + ")", "expected (" + want + ") " + "for this model");
-  }
-  std::vector<T> values(static_cast<std::size_t>(dims.empty() ? 0 : dims[0]) *
-                        static_cast<std::size_t>(std::max<hsize_t>(width, 1)));
-  if (!values.empty()) {
-    const hid_t memory_type = integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
-    h5::check(H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-              "cannot read " + path);
-  }
-  return values;
+  return h5::read_array<T>(file, path, rows, width, XPL_FILE);
+}
+
+template <class T>
+T numeric_attribute(hid_t file, const std::string& path, const char* name) {
+  return h5::numeric_attribute<T>(file, path, name, XPL_FILE);
 }
 
 /// Rows of the file mapped onto model indices, for nodes or elements ("node", "element").
@@ -246,19 +194,9 @@ void check_element_types(hid_t file, const Model& model, const std::vector<std::
 std::string last_frame(hid_t file) {
   const char* const no_frames = "expected a result file with at least one field output frame";
   if (!has_link(file, "/frames")) refuse("the file has no frames (/frames)", no_frames);
-  const h5::Handle group{h5::check_id(H5Gopen2(file, "/frames", H5P_DEFAULT), "/frames"), H5Gclose};
-  H5G_info_t info;
-  h5::check(H5Gget_info(group.get(), &info), "cannot list /frames");
   std::string best;
   long long best_number = -1;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t length = H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i,
-                                              nullptr, 0, H5P_DEFAULT);
-    if (length < 0) h5::fail("cannot list /frames");
-    std::string name(static_cast<std::size_t>(length) + 1, '\0');
-    H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
-                       H5P_DEFAULT);
-    name.resize(static_cast<std::size_t>(length));
+  for (const std::string& name : h5::group_members(file, "/frames")) {
     if (name.empty() || name.size() > 15 ||
         name.find_first_not_of("0123456789") != std::string::npos) {
       continue;
@@ -271,44 +209,6 @@ std::string last_frame(hid_t file) {
   }
   if (best.empty()) refuse("the file has no frames (/frames is empty)", no_frames);
   return best;
-}
-
-/// A scalar numeric attribute of the object at `path`, converted to T (double or int64).
-template <class T>
-T numeric_attribute(hid_t file, const std::string& path, const char* name) {
-  const htri_t exists = H5Aexists_by_name(file, path.c_str(), name, H5P_DEFAULT);
-  if (exists < 0) h5::fail("cannot look up attribute " + std::string(name) + " of " + path);
-  if (exists == 0) refuse(path + " has no attribute " + name, XPL_FILE);
-  const h5::Handle attribute{
-      h5::check_id(H5Aopen_by_name(file, path.c_str(), name, H5P_DEFAULT, H5P_DEFAULT), name),
-      H5Aclose};
-  const h5::Handle space{h5::check_id(H5Aget_space(attribute.get()), name), H5Sclose};
-  if (H5Sget_simple_extent_npoints(space.get()) != 1) {
-    refuse("attribute " + std::string(name) + " of " + path + " is not a single value", XPL_FILE);
-  }
-  T value{};
-  const hid_t type = std::is_integral_v<T> ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
-  h5::check(H5Aread(attribute.get(), type, &value),
-            "cannot read attribute " + std::string(name) + " of " + path);
-  return value;
-}
-
-/// The root attribute "status" (running, completed, checked, failed), or "" if unreadable.
-std::string run_status(hid_t file) {
-  if (H5Aexists(file, "status") <= 0) return "";
-  const h5::Handle attribute{h5::check_id(H5Aopen(file, "status", H5P_DEFAULT), "status"),
-                             H5Aclose};
-  const h5::Handle type{h5::check_id(H5Tcopy(H5T_C_S1), "status"), H5Tclose};
-  h5::check(H5Tset_size(type.get(), H5T_VARIABLE), "status");
-  h5::check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "status");  // as the writer stores it
-  char* text = nullptr;
-  if (H5Aread(attribute.get(), type.get(), static_cast<void*>(&text)) < 0) {
-    H5Eclear2(H5E_DEFAULT);
-    return "";
-  }
-  std::string status = text != nullptr ? text : "";
-  H5free_memory(text);
-  return status;
 }
 
 /// A nodal field of the frame (file rows → model rows); refuses non-finite values.
@@ -417,7 +317,7 @@ ImportedState read_file(hid_t file, const Model& model) {
         "no S_SNEG/S_SPOS in the last frame: the shells take the middle stress S through the "
         "whole thickness (no bending stress)");
   }
-  const std::string status = run_status(file);
+  const std::string status = h5::string_attribute(file, "/", "status").value_or("");
   if (!status.empty() && status != "completed" && status != "checked") {
     state.notes.push_back("the earlier run's status is '" + status +
                           "', not 'completed': its last frame is imported as it is");
@@ -432,22 +332,12 @@ ImportedState read_imported_state(const std::filesystem::path& h5, const Model& 
   const auto refused = [&](const std::string& problem, const std::string& expected) {
     return InputError({source + ": --import: " + problem + "; " + expected});
   };
-  std::error_code error;
-  if (!std::filesystem::exists(h5, error)) throw refused("the file does not exist", XPL_FILE);
-  if (!std::filesystem::is_regular_file(h5, error)) throw refused("not a file", XPL_FILE);
-  h5::silence_errors();
-  if (H5Fis_hdf5(source.c_str()) <= 0) {
-    H5Eclear2(H5E_DEFAULT);
-    throw refused("not an HDF5 file", std::string(XPL_FILE) + " (JOB.h5, not JOB.xdmf)");
-  }
   try {
-    const h5::Handle file{
-        h5::check_id(H5Fopen(source.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open the file"),
-        H5Fclose};
+    const h5::Handle file = h5::open_read_only(h5, XPL_FILE);
     ImportedState state = read_file(file.get(), model);
     state.source = source;
     return state;
-  } catch (const Refusal& refusal) {
+  } catch (const h5::FormatError& refusal) {
     throw refused(refusal.what(), refusal.expected());
   } catch (const h5::Error& failure) {
     throw refused(failure.what(), XPL_FILE);

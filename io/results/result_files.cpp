@@ -13,6 +13,7 @@
 #include "io/results/job_lock.hpp"
 #include "io/results/results_h5.hpp"
 #include "io/results/results_log.hpp"
+#include "io/results/run_summary_file.hpp"
 #include "io/results/xdmf_writer.hpp"
 
 namespace xpl::io {
@@ -54,6 +55,7 @@ struct ResultFiles::Impl {
   std::filesystem::path xdmf;
   std::filesystem::path sta;
   std::filesystem::path msg;
+  std::filesystem::path summary_json;
   JobLock lock;  ///< taken before any file below is opened
   ResultOptions options;
   ResultsH5 h5_file;
@@ -71,20 +73,29 @@ struct ResultFiles::Impl {
   bool progress_tty = false;      ///< stderr is a terminal
   bool progress_shown = false;    ///< a progress line is on the terminal
   Clock::time_point start = Clock::now();
-  Clock::time_point last_progress{};  ///< when the progress line was last updated
+  Clock::time_point last_progress{};        ///< when the progress line was last updated
+  Clock::time_point opened = Clock::now();  ///< when the files were opened
+  SummaryRecord summary;                    ///< JOB.summary.json, filled as the run goes
 
   Impl(const std::filesystem::path& directory, const std::string& job, ResultOptions opts)
       : h5(prepared(directory) / (job + ".h5")),
         xdmf(directory / (job + ".xdmf")),
         sta(directory / (job + ".sta")),
         msg(directory / (job + ".msg")),
+        summary_json(io::summary_path(h5)),
         lock(directory, job),
         options(opts),
         h5_file(h5, job),
         xdmf_file(xdmf, job + ".h5"),
         sta_file(sta, job),
         msg_file(msg, job),
-        progress_tty(opts.progress && isatty(STDERR_FILENO) == 1) {}
+        progress_tty(opts.progress && isatty(STDERR_FILENO) == 1) {
+    summary.job = job;
+    summary.threads = opts.threads;
+    // A summary of an earlier run must not pass for this one's while it runs.
+    std::error_code ignored;
+    std::filesystem::remove(summary_json, ignored);
+  }
 
   /// Creates the output directory (before any file in it is opened).
   static const std::filesystem::path& prepared(const std::filesystem::path& directory) {
@@ -128,6 +139,17 @@ struct ResultFiles::Impl {
                                " (frames written so far are complete)");
   }
 
+  /// Completes the summary record for a run that ends with `status`.
+  JsonValue final_summary(const char* status, const std::string& error, const PhaseTimers& timers,
+                          double element_cycles_per_second) {
+    summary.status = status;
+    summary.exit_reason = error;
+    summary.timers = timers;
+    summary.element_cycles_per_second = element_cycles_per_second;
+    summary.elapsed_seconds = seconds_since(opened);
+    return summary.json();
+  }
+
   void end_progress() {
     if (!progress_shown) return;
     std::fputc('\n', stderr);
@@ -144,7 +166,14 @@ ResultFiles::~ResultFiles() {
   // The run was abandoned (an exception passed the solver): say so rather than "running".
   try {
     m_impl->end_progress();
-    m_impl->h5_file.finish("failed", "the run ended without end_run");
+    const std::string cause = "the run ended without end_run";
+    const JsonValue summary = m_impl->final_summary("failed", cause, PhaseTimers{}, 0.0);
+    try {
+      write_summary_json(m_impl->summary_json, summary);
+    } catch (...) {  // NOLINT(bugprone-empty-catch): the .h5 status below matters more
+    }
+    m_impl->h5_file.write_summary(summary);
+    m_impl->h5_file.finish("failed", cause);
   } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor must not throw
   }
 }
@@ -153,6 +182,9 @@ void ResultFiles::begin_run(const Model& model) {
   m_impl->start = Clock::now();
   m_impl->xdmf_file.set_mesh(m_impl->h5_file.write_mesh(model));
   m_impl->msg_file.summary(model);
+  m_impl->summary.nodes = model.node_count();
+  m_impl->summary.elements = model.element_count();
+  m_impl->summary.steps = static_cast<int>(model.steps.size());
   if (const std::string& owner = m_impl->lock.stale_owner(); !owner.empty())
     m_impl->msg_file.message(Severity::Note, "the lock file " + m_impl->lock.path().string() +
                                                  " of process " + owner +
@@ -162,6 +194,7 @@ void ResultFiles::begin_run(const Model& model) {
 void ResultFiles::begin_step(const Model& model, int step) {
   Impl& impl = *m_impl;
   impl.step = step;
+  impl.summary.steps_started = step + 1;
   const auto index = static_cast<std::size_t>(step);
   impl.step_period = index < model.steps.size() ? model.steps[index].time_period : 0.0;
   impl.step_name = index < model.steps.size() ? model.steps[index].name : "";
@@ -187,6 +220,7 @@ void ResultFiles::append_history(Real time, std::span<const Real> values) {
 void ResultFiles::status(const StatusLine& line) {
   m_impl->sta_file.line(m_impl->step + 1, line);
   m_impl->time_reached = line.total_time;
+  m_impl->summary.add_status(line);
   m_impl->progress(line);
 }
 
@@ -222,7 +256,11 @@ void ResultFiles::end_run(RunStatus status, const std::string& error, const Phas
   const bool ended_early = status == RunStatus::Failed || status == RunStatus::Interrupted;
   const std::optional<double> reached =
       ended_early ? std::optional<double>(impl.time_reached) : std::nullopt;
+  const JsonValue summary =
+      impl.final_summary(status_name(status), error, timers, element_cycles_per_second);
+  attempt([&] { write_summary_json(impl.summary_json, summary); });
   try {
+    impl.h5_file.write_summary(summary);
     impl.h5_file.finish(status_name(status), error, reached);
   } catch (...) {
     if (!first_error) first_error = std::current_exception();
@@ -250,6 +288,9 @@ std::filesystem::path ResultFiles::sta_path() const {
 }
 std::filesystem::path ResultFiles::msg_path() const {
   return m_impl->msg;
+}
+std::filesystem::path ResultFiles::summary_path() const {
+  return m_impl->summary_json;
 }
 
 }  // namespace xpl::io

@@ -12,9 +12,11 @@ namespace xpl::io {
 /// Options of the result files.
 struct ResultOptions {
   bool progress = true;  ///< a progress line on stderr for runs longer than ~2 s
+  int threads = 0;       ///< OpenMP threads of the run, for the summary
 };
 
-/// An OutputSink that writes JOB.h5, JOB.xdmf, JOB.sta and JOB.msg into a directory.
+/// An OutputSink that writes JOB.h5, JOB.xdmf, JOB.sta and JOB.msg into a directory, and at
+/// the end of the run, however it ends, JOB.summary.json and /summary (run_summary_file.hpp).
 /// The HDF5 file is flushed after every frame, so it is readable even if the run dies.
 /// The constructor takes the job lock (JOB.lck, see JobLock) before it opens any file and
 /// throws JobLocked if another run of the job holds it; the destructor releases it.
@@ -47,6 +49,7 @@ class ResultFiles final : public OutputSink {
   std::filesystem::path xdmf_path() const;
   std::filesystem::path sta_path() const;
   std::filesystem::path msg_path() const;
+  std::filesystem::path summary_path() const;
 
  private:
   struct Impl;

@@ -247,6 +247,28 @@ void ResultsH5::record_status(const std::string& status, const std::string& erro
   flush();
 }
 
+void ResultsH5::write_summary(const JsonValue& summary) {
+  const h5::Handle group = h5::require_group(m_file.get(), "summary");
+  const auto write = [&](const auto& self, const JsonValue& value, const std::string& key) -> void {
+    if (const auto* members = value.as_object()) {
+      for (const auto& [name, member] : *members)
+        self(self, member, key.empty() ? name : key + "." + name);
+    } else if (const bool* b = value.as_bool()) {
+      h5::set_int64_attribute(group.get(), key, *b ? 1 : 0);
+    } else if (const std::int64_t* i = value.as_int()) {
+      h5::set_int64_attribute(group.get(), key, *i);
+    } else if (const double* d = value.as_double()) {
+      h5::set_real_attribute(group.get(), key, *d);
+    } else if (const std::string* s = value.as_string()) {
+      h5::set_string_attribute(group.get(), key, *s);
+    } else if (value.is_null()) {
+      h5::set_real_attribute(group.get(), key, std::nan(""));
+    }
+    // Arrays: the summary has none.
+  };
+  write(write, summary, "");
+}
+
 void ResultsH5::flush() {
   h5::check(H5Fflush(m_file.get(), H5F_SCOPE_GLOBAL), "cannot flush " + m_path);
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/results/h5_handles.hpp"
+#include "io/results/json_value.hpp"
 #include "io/results/results_history.hpp"
 #include "io/results/xdmf_writer.hpp"
 #include "solver/output_sink.hpp"
@@ -47,6 +48,9 @@ class ResultsH5 {
   /// attribute may still.
   void record_status(const std::string& status, const std::string& error,
                      std::optional<double> time_reached = std::nullopt);
+  /// Writes the run summary (run_summary_file.hpp) as attributes of the group /summary:
+  /// nested keys joined by '.' ("wall_time.setup"), booleans as int64 0/1, null as NaN.
+  void write_summary(const JsonValue& summary);
   /// Flushes the file to disk.
   void flush();
   /// Number of frames written.

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Compare every dataset and attribute of every .h5 below two folders bitwise.
 
-Usage: h5_bitwise.py A_DIR B_DIR   (exit 1 on any difference; xpl_version is not compared)
+Usage: h5_bitwise.py A_DIR B_DIR   (exit 1 on any difference; xpl_version and the run summary
+/summary, whose wall times, memory, threads and build differ from run to run, are not compared)
 """
 import glob
 import os
@@ -14,7 +15,7 @@ import numpy as np
 def objects(f):
     names = []
     f.visit(names.append)
-    return names
+    return [n for n in names if n != "summary" and not n.startswith("summary/")]
 
 
 def main(a_root, b_root):

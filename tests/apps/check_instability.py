@@ -19,6 +19,10 @@ import sys
 
 import h5py
 
+from summary_check import check_summary
+
+SCHEMA = pathlib.Path(__file__).resolve().parents[2] / "apps" / "summary.schema.json"
+
 JOB = "cli_unstable_bar"
 PERIOD = "3e-05"
 FIXED_INCREMENT = "1.5e-06"
@@ -73,6 +77,13 @@ def main():
     sta_text = sta.read_text()
     check("THE ANALYSIS HAS NOT BEEN COMPLETED" in sta_text, ".sta does not say NOT BEEN COMPLETED")
     check("COMPLETED SUCCESSFULLY" not in sta_text, ".sta claims success")
+    # The summary of a failed run: valid, status failed, the error as its exit reason.
+    try:
+        summary = check_summary(SCHEMA, out, JOB, "failed")
+    except AssertionError as e:
+        sys.exit(f"check_instability.py: FAILED: {e}")
+    check(summary["exit_reason"] == error, f"summary exit_reason {summary['exit_reason']!r}")
+    check(summary["increments"] > 0, "the failed run's summary counts no increments")
     print(f"check_instability.py: exit code 3, status failed, error recorded: {error}")
 
 

@@ -21,6 +21,10 @@ import time
 
 import h5py
 
+from summary_check import check_summary
+
+SCHEMA = pathlib.Path(__file__).resolve().parents[2] / "apps" / "summary.schema.json"
+
 SKIP = 77
 
 
@@ -138,7 +142,13 @@ def case_sigterm(xpl, deck, out):
             fail(f"{log} does not say the run was interrupted")
     if (results / "block.lck").exists():
         fail("block.lck left behind")
-    print(f"interrupted at t = {reached:.6g} s, {frames} frames readable")
+    try:
+        summary = check_summary(SCHEMA, results, "block", "interrupted")
+    except AssertionError as e:
+        fail(str(e))
+    if "SIGTERM" not in summary["exit_reason"] or summary["simulated_time"] != reached:
+        fail(f"summary: exit_reason {summary['exit_reason']!r}, time {summary['simulated_time']}")
+    print(f"interrupted at t = {reached:.6g} s, {frames} frames readable, summary valid")
 
 
 def case_diskfull(xpl, deck, out):

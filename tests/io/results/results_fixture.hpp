@@ -60,7 +60,13 @@ inline Model tiny_model() {
     model.element_section.push_back(0);
     model.add_element_source("fixture.inp", 1);
   }
-  model.materials.push_back({"STEEL", 7800.0, 210e9, 0.3, true, true, {}});
+  Material steel;
+  steel.name = "STEEL";
+  steel.density = 7800.0;
+  steel.young = 210e9;
+  steel.poisson = 0.3;
+  steel.has_density = steel.has_elastic = true;
+  model.materials.push_back(steel);
   model.node_sets.push_back({"FIXED", {0, 3, 6, 9}, {}});
   model.element_sets.push_back({"ALL", {0, 1}, {}});
   Step step;

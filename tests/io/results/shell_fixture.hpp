@@ -58,7 +58,13 @@ inline Model mixed_model(bool with_hex = true) {
   }
   add(42, ElementType::S4R, RIGHT_SHELL);
 
-  model.materials.push_back({"STEEL", 7800.0, 210e9, 0.3, true, true, {}});
+  Material steel;
+  steel.name = "STEEL";
+  steel.density = 7800.0;
+  steel.young = 210e9;
+  steel.poisson = 0.3;
+  steel.has_density = steel.has_elastic = true;
+  model.materials.push_back(steel);
   model.element_sets.push_back({"SHELLS", {0, with_hex ? 2 : 1}, {}});
   model.shell_sections.push_back({0, 0, NO_INDEX, 0.01, 5, 0.0, {}});
   if (with_hex) {

@@ -1,0 +1,274 @@
+#include "elements/shell_plasticity.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace xpl::elements {
+
+using simd::Vec;
+
+namespace {
+
+/// A trial this little outside the yield surface (relative, on σ²) counts as inside: the
+/// stress of a point returned in the last increment lies on the surface to round-off, and a
+/// zero-strain pass (dt = 0) must not send it through the return again.
+constexpr Real YIELD_TOLERANCE = 1e-12;
+
+/// Whether any lane of `m` is set.
+bool any_lane(simd::Mask m) {
+  bool r = false;
+  for (int l = 0; l < simd::W; ++l) r |= m[l] != 0;
+  return r;
+}
+
+/// Result of the return of the lanes of a batch point.
+struct LaneReturn {
+  Vec sxx, syy, sxy;  ///< returned stress (the trial in lanes not returned)
+  Vec dpeeq;          ///< Δε̄ᵖ (0 in lanes not returned)
+  Vec yield;          ///< σ_y at the end, with the rate factor
+  Vec dgamma;         ///< Δγ
+};
+
+/// The plane-stress return of the lanes in `active`, all lanes at once: Newton on Δγ with
+/// SIMD arithmetic, the flow stress per active lane (laws[l], ε̄ᵖ_n = peeq[l]). Lanes that
+/// converge keep their Δγ while the others iterate, so every lane gets its own solution.
+///
+/// Eigen-components of the trial: Σ = σxx+σyy (eigenvalue of C: E/(1−ν) = q11+q12, of P:
+/// 1/3), D = σxx−σyy and σxy (C: 2G, P: 1 and 2 with engineering shear). Along the return Σ
+/// scales by f1 = 1/(1 + aΔγ), D and σxy by f2 = 1/(1 + cΔγ), and
+/// ‖σ‖²_vM = ¼Σ² f1² + (¾D² + 3σxy²) f2².
+///
+/// g(Δγ) = ‖σ(Δγ)‖_vM − σ_y(ε̄ᵖ_n + Δε̄ᵖ, Δε̄ᵖ/dt), Δε̄ᵖ = ⅔Δγ‖σ‖_vM: positive at 0 and −σ_y
+/// < 0 as Δγ → ∞ (the stress vanishes, Δε̄ᵖ stays bounded). Newton runs on the equivalent
+/// σ_y/‖σ‖_vM − 1 = 0, which is nearly linear in Δγ (exactly, for perfect plasticity, when
+/// one eigen-component carries the stress), so two or three iterations reach round-off;
+/// a step that leaves the bracket (softening) bisects, or doubles while no upper bound is
+/// known.
+/// Lanes in `linear` take σ_y = seg_stress + seg_slope Δε̄ᵖ in SIMD arithmetic instead of the
+/// law (see segment_at); the others call flow_stress.
+LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::Mask linear,
+                        Vec seg_stress, Vec seg_slope, Vec q11, Vec q12, Vec shear, Vec sxx,
+                        Vec syy, Vec sxy, Vec peeq, Real dt) {
+  const Real inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;  // rate-free laws ignore the rate
+  const Vec sum = sxx + syy, diff = sxx - syy;
+  const Vec a = (q11 + q12) * (1.0 / 3.0), c = 2.0 * shear;
+  const Vec p1_trial = 0.25 * sum * sum, p2_trial = 0.75 * diff * diff + 3.0 * (sxy * sxy);
+  const Vec zero = simd::splat(0.0), inf = simd::splat(std::numeric_limits<Real>::infinity());
+  Vec dg = zero, lo = zero, hi = inf, f1 = zero + 1.0, f2 = f1, vm = zero, dpeeq = zero;
+  Vec yield = zero, hardening = zero;
+  simd::Mask open = active;  // lanes still iterating
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    f1 = 1.0 / (1.0 + a * dg);
+    f2 = 1.0 / (1.0 + c * dg);
+    const Vec p1 = p1_trial * f1 * f1, p2 = p2_trial * f2 * f2;
+    vm = simd::sqrt(p1 + p2);
+    const Vec dvm = -(a * p1 * f1 + c * p2 * f2) / vm;
+    dpeeq = (2.0 / 3.0) * dg * vm;
+    yield = simd::select(linear, seg_stress + seg_slope * dpeeq, yield);
+    hardening = simd::select(linear, seg_slope, hardening);
+    for (int l = 0; l < simd::W && any_lane(open & ~linear); ++l) {
+      if (!open[l] || linear[l]) continue;
+      const FlowStress f = flow_stress(*laws[l], peeq[l] + dpeeq[l], dpeeq[l] * inv_dt);
+      yield[l] = f.stress;
+      hardening[l] = f.d_strain + f.d_rate * inv_dt;
+    }
+    const Vec g = vm - yield;
+    const simd::Mask bracketed = hi < inf;
+    const simd::Mask done =
+        (g <= 1e-12 * yield && g >= -1e-12 * yield) | (bracketed & (hi - lo <= 1e-15 * hi));
+    open &= ~done;
+    if (!any_lane(open)) break;
+    lo = simd::select(open & (g > 0.0), dg, lo);
+    hi = simd::select(open & (g <= 0.0), dg, hi);
+    // vm · d(σ_y/vm − 1)/dΔγ, positive but where the law softens.
+    const Vec slope = hardening * (2.0 / 3.0) * (vm + dg * dvm) - (yield / vm) * dvm;
+    Vec next = simd::select(slope > 0.0, dg + g / slope, zero - 1.0);
+    const Vec fallback =
+        simd::select(hi < inf, 0.5 * (lo + hi), simd::select(lo > 0.0, 2.0 * lo, 1.0 / c));
+    next = simd::select((next > lo) & (next < hi), next, fallback);
+    dg = simd::select(open, next, dg);
+  }
+  LaneReturn r;
+  r.sxx = simd::select(active, 0.5 * (sum * f1 + diff * f2), sxx);
+  r.syy = simd::select(active, 0.5 * (sum * f1 - diff * f2), syy);
+  r.sxy = simd::select(active, sxy * f2, sxy);
+  r.dpeeq = simd::select(active, dpeeq, zero);
+  r.yield = yield;
+  r.dgamma = simd::select(active, dg, zero);
+  return r;
+}
+
+/// Whether the flow stress of `law` is piecewise linear in ε̄ᵖ alone (tabular, rate-free).
+bool piecewise_linear(const Plasticity& law) {
+  return law.hardening == Hardening::Tabular && law.rate == RateDependence::None;
+}
+
+/// The table segment of a piecewise-linear law holding ε̄ᵖ = peeq: σ_y = stress + slope
+/// (ε̄ᵖ − peeq) for ε̄ᵖ ≤ end (+inf on the last, constant part).
+struct Segment {
+  Real stress, slope, end;
+};
+
+Segment segment_at(const Plasticity& law, Real peeq) {
+  const FlowStress f = flow_stress(law, peeq, 0.0);
+  const std::vector<Real>& eps = law.plastic_strain;
+  const auto upper = std::upper_bound(eps.begin(), eps.end(), peeq);
+  return {f.stress, f.d_strain,
+          upper == eps.end() ? std::numeric_limits<Real>::infinity() : *upper};
+}
+
+/// The return of the lanes in `active`: rate-free tables on the segment of ε̄ᵖ_n in SIMD
+/// arithmetic, and again through flow_stress in the lanes whose ε̄ᵖ passed the segment's
+/// end (a table break crossed within the increment); other laws through flow_stress.
+LaneReturn solve_lanes(const Plasticity* const* laws, simd::Mask active, Vec q11, Vec q12,
+                       Vec shear, Vec sxx, Vec syy, Vec sxy, Vec peeq, Real dt) {
+  simd::Mask linear = active & (active == 0);  // all clear
+  Vec seg_stress = simd::splat(0.0), seg_slope = seg_stress;
+  Vec seg_end = simd::splat(std::numeric_limits<Real>::infinity());
+  for (int l = 0; l < simd::W; ++l) {
+    if (!active[l] || !piecewise_linear(*laws[l])) continue;
+    const Segment segment = segment_at(*laws[l], peeq[l]);
+    linear[l] = -1;
+    seg_stress[l] = segment.stress;
+    seg_slope[l] = segment.slope;
+    seg_end[l] = segment.end;
+  }
+  LaneReturn r = return_lanes(laws, active, linear, seg_stress, seg_slope, q11, q12, shear, sxx,
+                              syy, sxy, peeq, dt);
+  const simd::Mask crossed = linear & (peeq + r.dpeeq > seg_end);
+  if (!any_lane(crossed)) return r;
+  const LaneReturn again = return_lanes(laws, crossed, crossed & (crossed == 0), seg_stress,
+                                        seg_slope, q11, q12, shear, sxx, syy, sxy, peeq, dt);
+  r.sxx = simd::select(crossed, again.sxx, r.sxx);
+  r.syy = simd::select(crossed, again.syy, r.syy);
+  r.sxy = simd::select(crossed, again.sxy, r.sxy);
+  r.dpeeq = simd::select(crossed, again.dpeeq, r.dpeeq);
+  r.yield = simd::select(crossed, again.yield, r.yield);
+  r.dgamma = simd::select(crossed, again.dgamma, r.dgamma);
+  return r;
+}
+
+}  // namespace
+
+PlaneStressReturn plane_stress_return(const Plasticity& law, Real q11, Real q12, Real shear,
+                                      Real sxx, Real syy, Real sxy, Real peeq, Real dt) {
+  PlaneStressReturn r;
+  r.sxx = sxx;
+  r.syy = syy;
+  r.sxy = sxy;
+  const FlowStress start = flow_stress(law, peeq, 0.0);
+  r.yield_stress = r.static_yield = start.stress;
+  const Real vm2_trial = sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy;
+  if (vm2_trial <= start.stress * start.stress * (1.0 + YIELD_TOLERANCE)) return r;
+  // The batch return with lane 0 alone: one implementation for the kernel and this.
+  const Plasticity* laws[simd::W];
+  for (const Plasticity*& l : laws) l = &law;
+  simd::Mask active = simd::splat(0.0) != 0.0;
+  active[0] = -1;
+  const LaneReturn lanes =
+      solve_lanes(laws, active, simd::splat(q11), simd::splat(q12), simd::splat(shear),
+                  simd::splat(sxx), simd::splat(syy), simd::splat(sxy), simd::splat(peeq), dt);
+  r.sxx = lanes.sxx[0];
+  r.syy = lanes.syy[0];
+  r.sxy = lanes.sxy[0];
+  r.peeq_increment = lanes.dpeeq[0];
+  r.yield_stress = lanes.yield[0];
+  r.static_yield = flow_stress(law, peeq + r.peeq_increment, 0.0).stress;
+  // Δεᵖ = Δγ P σ: Δε11ᵖ + Δε22ᵖ = Δγ (σxx + σyy)/3.
+  r.thickness_strain = -lanes.dgamma[0] * (r.sxx + r.syy) / 3.0;
+  r.dissipation = r.yield_stress * r.peeq_increment;
+  return r;
+}
+
+ShellPlasticState::ShellPlasticState(std::span<const Plasticity* const> lane_law, int points)
+    : m_points(points) {
+  const std::size_t n_batches = lane_law.size() / W;
+  std::vector<const Plasticity*> seen;
+  m_lane_law.assign(lane_law.size(), -1);
+  m_batch_plastic.assign(n_batches, 0);
+  for (std::size_t s = 0; s < lane_law.size(); ++s) {
+    const Plasticity* law = lane_law[s];
+    if (law == nullptr) continue;
+    auto it = std::find(seen.begin(), seen.end(), law);
+    if (it == seen.end()) {
+      seen.push_back(law);
+      m_laws.push_back(*law);
+      it = seen.end() - 1;
+    }
+    m_lane_law[s] = static_cast<int>(it - seen.begin());
+    m_batch_plastic[s / W] = 1;
+  }
+  if (m_laws.empty()) {
+    m_lane_law.clear();
+    m_batch_plastic.clear();
+    return;
+  }
+  const std::size_t n = n_batches * static_cast<std::size_t>(points) * W;
+  m_peeq.assign(n, 0.0);
+  m_rate.assign(n, 0.0);
+  m_yield.assign(n, std::numeric_limits<Real>::infinity());
+  for (std::size_t b = 0; b < n_batches; ++b)
+    for (std::size_t l = 0; l < W; ++l) {
+      const int law = m_lane_law[b * W + l];
+      if (law < 0) continue;
+      const Real y = m_laws[static_cast<std::size_t>(law)].initial_yield();
+      for (int k = 0; k < points; ++k) m_yield[row(b, k) + l] = y;
+    }
+}
+
+Vec ShellPlasticState::point_return(std::size_t b, int k, Vec q11, Vec q12, Vec shear, Real dt,
+                                    Vec weight, Vec& sxx, Vec& syy, Vec& sxy,
+                                    Vec& thickness_strain) {
+  const std::size_t r = row(b, k);
+  const Vec y = simd::load(&m_yield[r]);
+  const Vec vm2 = sxx * sxx - sxx * syy + syy * syy + 3.0 * (sxy * sxy);
+  const simd::Mask yielding = vm2 > (y * y) * (1.0 + YIELD_TOLERANCE);
+  Vec dissipation = simd::splat(0.0);
+  if (!any_lane(yielding)) {
+    simd::store(&m_rate[r], dissipation);
+    return dissipation;
+  }
+  // Laws of the lanes (elastic lanes never yield: their σ_y is +inf).
+  const Plasticity* laws[W];
+  for (std::size_t l = 0; l < W; ++l) {
+    const int law = m_lane_law[b * W + l];
+    laws[l] = &m_laws[static_cast<std::size_t>(law < 0 ? 0 : law)];
+  }
+  const Vec peeq = simd::load(&m_peeq[r]);
+  const LaneReturn ret = solve_lanes(laws, yielding, q11, q12, shear, sxx, syy, sxy, peeq, dt);
+  sxx = ret.sxx;
+  syy = ret.syy;
+  sxy = ret.sxy;
+  simd::store(&m_peeq[r], peeq + ret.dpeeq);
+  simd::store(&m_rate[r], dt > 0.0 ? ret.dpeeq * (1.0 / dt) : dissipation);
+  // Δεᵖ = Δγ P σ: Δε11ᵖ + Δε22ᵖ = Δγ (σxx + σyy)/3, so Δε33ᵖ = −Δγ (σxx + σyy)/3.
+  thickness_strain -= weight * ret.dgamma * (sxx + syy) * (1.0 / 3.0);
+  dissipation = simd::select(yielding, ret.yield * ret.dpeeq, dissipation);
+  // The next trial's test: σ_y(ε̄ᵖ_{n+1}, 0), the end yield stress itself without a rate law.
+  for (std::size_t l = 0; l < W; ++l) {
+    if (!yielding[l]) continue;
+    const Plasticity& law = *laws[l];
+    m_yield[r + l] = law.rate == RateDependence::None
+                         ? ret.yield[l]
+                         : flow_stress(law, peeq[l] + ret.dpeeq[l], 0.0).stress;
+  }
+  return dissipation;
+}
+
+Real ShellPlasticState::peeq(std::size_t b, int k, std::size_t l) const {
+  return empty() ? 0.0 : m_peeq[row(b, k) + l];
+}
+
+Real ShellPlasticState::peeq_rate(std::size_t b, int k, std::size_t l) const {
+  return empty() ? 0.0 : m_rate[row(b, k) + l];
+}
+
+void ShellPlasticState::set_peeq(std::size_t b, int k, std::size_t l, Real value) {
+  if (empty() || m_lane_law[b * W + l] < 0) return;
+  const Plasticity& law = m_laws[static_cast<std::size_t>(m_lane_law[b * W + l])];
+  m_peeq[row(b, k) + l] = value;
+  m_yield[row(b, k) + l] = flow_stress(law, value, 0.0).stress;
+}
+
+}  // namespace xpl::elements

@@ -1,0 +1,153 @@
+#include "io/results/run_summary_file.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+// Build description, set for this file by io/results/CMakeLists.txt.
+#ifndef XPL_BUILD_TYPE
+#define XPL_BUILD_TYPE ""
+#endif
+#ifndef XPL_BUILD_COMPILER
+#define XPL_BUILD_COMPILER ""
+#endif
+#ifndef XPL_BUILD_CXX_FLAGS
+#define XPL_BUILD_CXX_FLAGS ""
+#endif
+#ifndef XPL_BUILD_NATIVE
+#define XPL_BUILD_NATIVE 0
+#endif
+#ifndef XPL_BUILD_SANITIZE
+#define XPL_BUILD_SANITIZE ""
+#endif
+
+namespace xpl::io {
+
+namespace {
+
+/// "internal force" → "internal_force": phase names as JSON keys.
+std::string key_of(std::string_view name) {
+  std::string key(name);
+  std::replace(key.begin(), key.end(), ' ', '_');
+  return key;
+}
+
+JsonValue energies_json(const Energies& e) {
+  JsonValue out = JsonValue::object();
+  out.set("ALLKE", e.kinetic);
+  out.set("ALLSE", e.strain);
+  out.set("ALLAE", e.artificial);
+  out.set("ALLVD", e.viscous);
+  out.set("ALLWK", e.external_work);
+  out.set("ALLFD", e.friction);
+  out.set("ALLPW", e.contact);
+  out.set("ALLIE", e.internal());
+  out.set("ETOTAL", e.total());
+  return out;
+}
+
+JsonValue build_json() {
+  JsonValue out = JsonValue::object();
+  out.set("type", XPL_BUILD_TYPE);
+  out.set("compiler", XPL_BUILD_COMPILER);
+  out.set("cxx_flags", XPL_BUILD_CXX_FLAGS);
+  out.set("native", XPL_BUILD_NATIVE != 0);
+  out.set("timers", XPL_ENABLE_TIMERS != 0);
+  out.set("sanitize", XPL_BUILD_SANITIZE);
+  return out;
+}
+
+}  // namespace
+
+void SummaryRecord::add_status(const StatusLine& line) {
+  const Energies& e = line.energies;
+  if (!has_energies) {
+    m_initial_total = e.total();
+    first_increment = line.dt;
+  }
+  has_energies = true;
+  increments = line.increment;
+  simulated_time = line.total_time;
+  last_increment = line.dt;
+  energies = e;
+  energy_scale = std::max({energy_scale, e.kinetic, e.internal(), std::abs(e.external_work)});
+  const Real drift = std::abs(e.total() - m_initial_total);
+  if (drift > energy_error || !std::isfinite(drift)) {
+    energy_error = drift;
+    energy_error_time = line.total_time;
+  }
+}
+
+JsonValue SummaryRecord::json() const {
+  JsonValue out = JsonValue::object();
+  out.set("format", SUMMARY_FORMAT);
+  out.set("job", job);
+  out.set("status", status);
+  out.set("exit_reason", exit_reason);
+  out.set("xpl_version", XPL_VERSION);
+  out.set("build", build_json());
+  JsonValue& model = out.set("model", JsonValue::object());
+  model.set("nodes", static_cast<long>(nodes));
+  model.set("elements", static_cast<long>(elements));
+  model.set("steps", steps);
+  out.set("threads", threads);
+  out.set("steps_started", steps_started);
+  out.set("increments", increments);
+  out.set("simulated_time", simulated_time);
+  out.set("first_increment", first_increment);
+  out.set("last_increment", last_increment);
+  JsonValue& wall = out.set("wall_time", JsonValue::object());
+  for (int p = 0; p < static_cast<int>(Phase::COUNT); ++p) {
+    const auto phase = static_cast<Phase>(p);
+    wall.set(key_of(phase_name(phase)), timers.seconds(phase));
+  }
+  wall.set("phases_total", timers.total());
+  wall.set("elapsed", elapsed_seconds);
+  out.set("element_cycles_per_second", element_cycles_per_second);
+  out.set("peak_memory_mb", peak_memory_mb());
+  out.set("energies", energies_json(energies));
+  JsonValue& balance = out.set("energy_balance", JsonValue::object());
+  balance.set("max_error", energy_error);
+  balance.set("relative_error", energy_scale > 0.0 ? energy_error / energy_scale : 0.0);
+  balance.set("time", energy_error_time);
+  balance.set("energy_scale", energy_scale);
+  return out;
+}
+
+double peak_memory_mb() {
+  struct rusage usage {};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
+}
+
+void write_summary_json(const std::filesystem::path& path, const JsonValue& summary) {
+  std::filesystem::path temporary = path;
+  temporary += ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::trunc);
+    out << summary.text();
+    out.flush();
+  }
+  std::error_code error;
+  if (std::filesystem::file_size(temporary, error) == 0 || error) {
+    std::filesystem::remove(temporary, error);  // a full disk leaves no stray file
+    throw std::runtime_error("cannot write " + temporary.string());
+  }
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw std::runtime_error("cannot write " + path.string());
+  }
+}
+
+std::filesystem::path summary_path(const std::filesystem::path& h5) {
+  std::filesystem::path path = h5;
+  path.replace_extension(".summary.json");
+  return path;
+}
+
+}  // namespace xpl::io

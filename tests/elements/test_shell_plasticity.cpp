@@ -1,0 +1,183 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "elements/shell_plasticity.hpp"
+
+using namespace xpl;
+using namespace xpl::elements;
+
+namespace {
+
+constexpr Real E = 200e9, NU = 0.3;
+constexpr Real Q11 = E / (1 - NU * NU), Q12 = NU * Q11, G = E / (2 * (1 + NU));
+constexpr Real SY = 250e6, H = 2e9;
+
+Plasticity linear_hardening() {
+  Plasticity p;
+  p.yield_stress = {SY, SY + H * 1.0};
+  p.plastic_strain = {0.0, 1.0};
+  return p;
+}
+
+Plasticity perfectly_plastic() {
+  Plasticity p;
+  p.yield_stress = {SY};
+  p.plastic_strain = {0.0};
+  return p;
+}
+
+Plasticity johnson_cook_rate() {
+  Plasticity p;
+  p.hardening = Hardening::JohnsonCook;
+  p.jc_a = SY;
+  p.jc_b = 400e6;
+  p.jc_n = 0.3;
+  p.rate = RateDependence::JohnsonCook;
+  p.rate_c = 0.02;
+  p.rate_reference = 1.0;
+  return p;
+}
+
+Plasticity table_power_law() {
+  Plasticity p;
+  p.yield_stress = {SY, 300e6, 340e6, 360e6};
+  p.plastic_strain = {0.0, 0.01, 0.05, 0.2};
+  p.rate = RateDependence::PowerLaw;
+  p.power_d = 40.0;
+  p.power_n = 5.0;
+  return p;
+}
+
+Real mises2(Real sxx, Real syy, Real sxy) {
+  return sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy;
+}
+
+/// Residual of the backward-Euler plane-stress return σ_trial − σ − Δγ C P σ (C plane-stress
+/// elasticity on engineering shear, P the plane-stress projection), relative to ‖σ_trial‖,
+/// with Δγ = 3Δε̄ᵖ/(2‖σ‖_vM).
+Real return_residual(const PlaneStressReturn& r, Real txx, Real tyy, Real txy) {
+  const Real vm = std::sqrt(mises2(r.sxx, r.syy, r.sxy));
+  const Real dg = 1.5 * r.peeq_increment / vm;
+  const Real pxx = (2.0 * r.sxx - r.syy) / 3.0, pyy = (2.0 * r.syy - r.sxx) / 3.0;
+  const Real pxy = 2.0 * r.sxy;
+  const Real ex = txx - r.sxx - dg * (Q11 * pxx + Q12 * pyy);
+  const Real ey = tyy - r.syy - dg * (Q12 * pxx + Q11 * pyy);
+  const Real es = txy - r.sxy - dg * G * pxy;
+  return std::sqrt(ex * ex + ey * ey + es * es) / std::sqrt(txx * txx + tyy * tyy + txy * txy);
+}
+
+}  // namespace
+
+TEST_CASE("plane-stress return: a trial inside the yield surface is unchanged",
+          "[elements][plasticity][shell]") {
+  const Plasticity law = linear_hardening();
+  const PlaneStressReturn r = plane_stress_return(law, Q11, Q12, G, 100e6, -50e6, 60e6, 0.0, 1e-6);
+  CHECK(r.sxx == 100e6);
+  CHECK(r.syy == -50e6);
+  CHECK(r.sxy == 60e6);
+  CHECK(r.peeq_increment == 0.0);
+  CHECK(r.dissipation == 0.0);
+  CHECK(r.thickness_strain == 0.0);
+}
+
+TEST_CASE("plane-stress return: the returned stress is on the yield ellipse for every law",
+          "[elements][plasticity][shell]") {
+  const Real dt = 1e-6;
+  const Plasticity laws[] = {linear_hardening(), perfectly_plastic(), johnson_cook_rate(),
+                             table_power_law()};
+  // Biaxial tension, tension–compression, pure shear and a mixed state, 1.3–6 × yield.
+  const Real trials[][3] = {{600e6, 400e6, 0.0},    {500e6, -450e6, 0.0}, {0.0, 0.0, 500e6},
+                            {-300e6, 700e6, 250e6}, {1.5e9, 1.4e9, -1e8}, {450e6, 0.0, 0.0}};
+  for (const Plasticity& law : laws)
+    for (const auto& t : trials)
+      for (Real peeq : {0.0, 0.03}) {
+        const PlaneStressReturn r =
+            plane_stress_return(law, Q11, Q12, G, t[0], t[1], t[2], peeq, dt);
+        REQUIRE(r.peeq_increment > 0.0);
+        const Real sy = flow_stress(law, peeq + r.peeq_increment, r.peeq_increment / dt).stress;
+        // On the plane-stress ellipse σxx² − σxxσyy + σyy² + 3σxy² = σ_y²: the Newton
+        // tolerance is 1e-13 on ‖σ‖_vM; 1e-8 is the acceptance bound of issue 14.
+        CHECK(mises2(r.sxx, r.syy, r.sxy) / (sy * sy) == Approx(1.0).epsilon(1e-8));
+        CHECK(r.yield_stress == Approx(sy).epsilon(1e-14));
+        // The backward-Euler equations of the plane-stress return hold (not a 3D return
+        // with σ33 zeroed, which would violate them): round-off level.
+        CHECK(return_residual(r, t[0], t[1], t[2]) < 1e-10);
+        // Dissipation σ_y Δε̄ᵖ equals σ : Δεᵖ = Δγ σᵀPσ = ⅔Δγ‖σ‖²_vM.
+        CHECK(r.dissipation == Approx(sy * r.peeq_increment).epsilon(1e-14));
+        CHECK(r.static_yield ==
+              Approx(flow_stress(law, peeq + r.peeq_increment, 0.0).stress).epsilon(1e-14));
+      }
+}
+
+TEST_CASE(
+    "plane-stress return: pure shear matches the 3D radial return, equibiaxial has its "
+    "closed form",
+    "[elements][plasticity][shell]") {
+  const Plasticity law = linear_hardening();
+  SECTION("pure shear: no in-plane normal stress, identical to the radial return") {
+    const Real txy = 400e6;
+    const PlaneStressReturn r = plane_stress_return(law, Q11, Q12, G, 0.0, 0.0, txy, 0.0, 1e-6);
+    const Real vm_trial = std::sqrt(3.0) * txy;
+    const Real expected = (vm_trial - SY) / (3.0 * G + H);
+    CHECK(r.peeq_increment == Approx(expected).epsilon(1e-12));
+    CHECK(r.sxx == 0.0);
+    CHECK(r.syy == 0.0);
+    CHECK(std::sqrt(3.0) * r.sxy == Approx(SY + H * expected).epsilon(1e-12));
+    CHECK(r.thickness_strain == 0.0);  // deviatoric in-plane flow, no thinning
+  }
+  SECTION("equibiaxial: Δε̄ᵖ = 2(1−ν)(s_trial − σ_y)/E when perfectly plastic") {
+    const Plasticity pp = perfectly_plastic();
+    const Real s = 400e6;
+    const PlaneStressReturn r = plane_stress_return(pp, Q11, Q12, G, s, s, 0.0, 0.0, 1e-6);
+    const Real expected = 2.0 * (1.0 - NU) * (s - SY) / E;
+    CHECK(r.peeq_increment == Approx(expected).epsilon(1e-12));
+    CHECK(r.sxx == Approx(SY).epsilon(1e-12));
+    CHECK(r.syy == Approx(SY).epsilon(1e-12));
+    // Δε11ᵖ = Δε22ᵖ = Δε̄ᵖ/2, so Δε33ᵖ = −Δε̄ᵖ.
+    CHECK(r.thickness_strain == Approx(-expected).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("shell plastic state: one SIMD test, the return only in yielding plastic lanes",
+          "[elements][plasticity][shell]") {
+  const Plasticity law = perfectly_plastic();
+  // One batch: lanes 0–3 plastic, 4–7 elastic; one section point.
+  std::vector<const Plasticity*> lanes(simd::W, nullptr);
+  for (int l = 0; l < 4; ++l) lanes[l] = &law;
+  ShellPlasticState state(lanes, 1);
+  REQUIRE_FALSE(state.empty());
+  REQUIRE(state.batch_plastic(0));
+  simd::Vec sxx, syy = simd::splat(0.0), sxy = simd::splat(0.0), thick = simd::splat(0.0);
+  for (int l = 0; l < simd::W; ++l) sxx[l] = (l % 2 == 0) ? 400e6 : 100e6;  // even lanes yield
+  const simd::Vec w = simd::splat(0.5);
+  const simd::Vec d = state.point_return(0, 0, simd::splat(Q11), simd::splat(Q12), simd::splat(G),
+                                         1e-6, w, sxx, syy, sxy, thick);
+  for (std::size_t l = 0; l < simd::W; ++l) {
+    const bool yields = l < 4 && l % 2 == 0;
+    INFO("lane " << l);
+    if (yields) {
+      // Lanes that yield get the scalar return of their trial, weighted thinning.
+      const PlaneStressReturn r = plane_stress_return(law, Q11, Q12, G, 400e6, 0.0, 0.0, 0.0, 1e-6);
+      CHECK(sxx[l] == r.sxx);
+      CHECK(syy[l] == r.syy);
+      CHECK(state.peeq(0, 0, l) == r.peeq_increment);
+      CHECK(state.peeq_rate(0, 0, l) == Approx(r.peeq_increment / 1e-6).epsilon(1e-14));
+      CHECK(d[l] == r.dissipation);
+      CHECK(thick[l] == Approx(0.5 * r.thickness_strain).epsilon(1e-14));
+    } else {
+      CHECK(sxx[l] == ((l % 2 == 0) ? 400e6 : 100e6));
+      CHECK(state.peeq(0, 0, l) == 0.0);
+      CHECK(d[l] == 0.0);
+      CHECK(thick[l] == 0.0);
+    }
+  }
+  SECTION("an elastic block has no plastic state") {
+    const std::vector<const Plasticity*> none(simd::W, nullptr);
+    const ShellPlasticState empty(none, 5);
+    CHECK(empty.empty());
+    CHECK_FALSE(empty.batch_plastic(0));
+    CHECK(empty.peeq(0, 0, 0) == 0.0);
+  }
+}

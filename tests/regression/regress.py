@@ -1,0 +1,212 @@
+#!/usr/bin/python3
+"""Regression suite: every example deck against stored reference results (issue 16, item 5).
+
+Usage:
+  regress.py check XPL WORK NAME...   run the decks NAME (examples/**/NAME.inp) into WORK and
+                                      compare each with references/NAME.h5 by `xpl compare`;
+                                      exit 1 if any differs
+  regress.py bless XPL WORK [NAME...] run the decks (default: all of decks.txt) and rewrite
+                                      their references; then review `git diff --stat` and
+                                      commit the references with the change that moved them
+  regress.py decks                    check that decks.txt lists every examples/**/*.inp once
+                                      and that each has a reference
+
+A reference is a reduced copy of the run's JOB.h5, a few kB: the mesh ids and connectivity
+(for the mesh check), the history of every step at REFERENCE_ROWS times (xpl compare
+evaluates the new run on the reference's times, so fewer rows compare as well), and U and S
+of the last frame; floats rounded to MANTISSA_BITS bits so that gzip packs them.
+
+Tolerances (passed to xpl compare):
+  RTOL = 1e-6 relative and FTOL = 1e-6 of each dataset's largest |value|. On the machine that
+  blessed them the results are bitwise equal. Another CPU (or compiler) changes the rounding
+  of single operations (FMA contraction, vector width of reductions) by ~1e-16; in these short,
+  stable explicit runs that grows roughly with the increment count, to an estimated ~1e-12
+  after 10^4 increments (an estimate, not yet measured on a second CPU), so 1e-6 leaves about
+  six orders of margin; a deck with a bifurcation (tube_crush buckles) may amplify round-off
+  more and is the first to loosen, with a measurement, if another machine disagrees. A real change of the physics moves results by far more: a 0.1 % change of
+  an initial velocity changes ALLKE by 2e-3 and U by ~1e-3, a different contact penalty the
+  contact force history by percent. FTOL covers values near zero (stresses of 1e-3 Pa in a
+  field of 1e8 Pa, displacements of fixed nodes), where a relative tolerance means nothing.
+  The rounding of the stored references (2^-27 ≈ 7.5e-9 relative) is far below RTOL.
+"""
+
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+HERE = pathlib.Path(__file__).resolve().parent
+REPO = HERE.parents[1]
+REFERENCES = HERE / "references"
+DECKS = HERE / "decks.txt"
+RTOL = "1e-6"
+FTOL = "1e-6"
+REFERENCE_ROWS = 40   # history rows kept per step
+MANTISSA_BITS = 26    # of float64's 52: relative rounding 2^-27 ≈ 7.5e-9
+FIELDS = ("U", "S")   # of the last frame
+# Decks that start from another deck's result: (deck, the deck whose .h5 it imports).
+IMPORTS = {"import_target": "import_source"}
+
+
+def deck_names():
+    return [line.split("#")[0].strip() for line in DECKS.read_text().splitlines()
+            if line.split("#")[0].strip()]
+
+
+def deck_path(name):
+    found = sorted(REPO.glob(f"examples/**/{name}.inp"))
+    if len(found) != 1:
+        sys.exit(f"regress.py: {len(found)} decks named {name}.inp under examples/")
+    return found[0]
+
+
+def run(xpl, name, work):
+    out = work / name
+    shutil.rmtree(out, ignore_errors=True)
+    extra = []
+    if name in IMPORTS:
+        source = work / IMPORTS[name] / f"{IMPORTS[name]}.h5"
+        if not source.exists():
+            run(xpl, IMPORTS[name], work)
+        extra = ["--import", str(source)]
+    result = subprocess.run([xpl, "run", str(deck_path(name)), "-o", str(out), "--threads", "1",
+                             "--quiet", *extra], capture_output=True, text=True, timeout=300)
+    if result.returncode != 0:
+        sys.exit(f"regress.py: {name}: xpl run exited {result.returncode}:\n{result.stderr}")
+    return out / f"{name}.h5"
+
+
+def rounded(data):
+    """float64 data with the low mantissa bits cleared (round to nearest), ints unchanged."""
+    data = np.asarray(data)
+    if data.dtype != np.float64:
+        return data
+    bits = data.copy().view(np.uint64)
+    drop = np.uint64(52 - MANTISSA_BITS)
+    half = np.uint64(1) << (drop - np.uint64(1))
+    finite = np.isfinite(data)
+    bits[finite] = ((bits[finite] + half) >> drop) << drop
+    return bits.view(np.float64)
+
+
+def copy_dataset(dst, path, data, attrs=(), exact=False):
+    data = np.asarray(data) if exact else rounded(data)
+    if data.size * data.itemsize < 1024:  # small: contiguous, no filter overhead
+        dst.create_dataset(path, data=data)
+    else:  # one chunk (the newest format indexes it without a B-tree), gzip after shuffle
+        dst.create_dataset(path, data=data, chunks=data.shape, compression="gzip",
+                           compression_opts=9, shuffle=True)
+    for key, value in attrs:
+        dst[path].attrs[key] = value
+
+
+def reduce(src_path, dst_path):
+    """Writes the reference of a run: mesh ids, history at REFERENCE_ROWS times, U/S last frame."""
+    tmp = dst_path.with_suffix(".tmp")
+    with h5py.File(src_path, "r") as src, h5py.File(tmp, "w", libver="latest") as dst:
+        for key in ("status", "job", "xpl_version", "heading", "error"):
+            dst.attrs[key] = src.attrs[key]
+        mesh = src["mesh"]
+        for name in ("node_ids", "element_ids"):
+            copy_dataset(dst, f"mesh/{name}", mesh[name][:])
+        for element_type in ("C3D8R", "S4R"):
+            if element_type in mesh:
+                for name in ("element_ids", "connectivity"):
+                    copy_dataset(dst, f"mesh/{element_type}/{name}",
+                                 mesh[element_type][name][:])
+        for step_name, step in src.get("history", {}).items():
+            rows = len(step["time"])
+            keep = np.unique(np.linspace(0, rows - 1, min(rows, REFERENCE_ROWS)).round()
+                             .astype(int))
+
+            def visit(name, obj, step_name=step_name, keep=keep):
+                if isinstance(obj, h5py.Dataset):  # times exact: NEW is interpolated on them
+                    copy_dataset(dst, f"history/{step_name}/{name}", obj[:][keep],
+                                 obj.attrs.items(), exact=name == "time")
+
+            step.visititems(visit)
+        frames = sorted(src.get("frames", {}))
+        if frames:
+            last = src["frames"][frames[-1]]
+            group = dst.create_group(f"frames/{frames[-1]}")
+            for key, value in last.attrs.items():
+                group.attrs[key] = value
+            for name in FIELDS:
+                if name in last:
+                    copy_dataset(dst, f"frames/{frames[-1]}/{name}", last[name][:])
+    tmp.replace(dst_path)
+
+
+def check(xpl, work, names):
+    failed = []
+    for name in names:
+        new = run(xpl, name, work)
+        ref = REFERENCES / f"{name}.h5"
+        if not ref.exists():
+            print(f"regress.py: {name}: no reference {ref}; bless it (README, developer section)")
+            failed.append(name)
+            continue
+        result = subprocess.run([xpl, "compare", str(ref), str(new), "--history", "--fields",
+                                 ",".join(FIELDS), "--rtol", RTOL, "--ftol", FTOL],
+                                capture_output=True, text=True, timeout=120)
+        if result.returncode != 0:
+            print(result.stdout + result.stderr)
+            failed.append(name)
+        else:
+            print(f"regress.py: {name}: {result.stdout.strip().splitlines()[-1]}")
+    if failed:
+        print(f"regress.py: {len(failed)} deck(s) differ from their reference: "
+              f"{' '.join(failed)}.\nIf the change is intended, bless them:\n"
+              f"  /usr/bin/python3 tests/regression/regress.py bless {xpl} {work} "
+              f"{' '.join(failed)}")
+        return 1
+    return 0
+
+
+def bless(xpl, work, names):
+    REFERENCES.mkdir(exist_ok=True)
+    for name in names:
+        new = run(xpl, name, work)
+        reduce(new, REFERENCES / f"{name}.h5")
+        size = (REFERENCES / f"{name}.h5").stat().st_size
+        print(f"regress.py: blessed {name} ({size / 1024:.0f} kB)")
+    return 0
+
+
+def decks():
+    names = deck_names()
+    on_disk = sorted(p.stem for p in REPO.glob("examples/**/*.inp"))
+    problems = []
+    if sorted(names) != on_disk:
+        problems.append(f"decks.txt and examples/ differ: {sorted(set(names) ^ set(on_disk))}")
+    if len(set(names)) != len(names):
+        problems.append("decks.txt lists a deck twice")
+    problems += [f"no reference for {n}" for n in names if not (REFERENCES / f"{n}.h5").exists()]
+    total = sum(p.stat().st_size for p in REFERENCES.glob("*.h5"))
+    for problem in problems:
+        print(f"regress.py: {problem}")
+    print(f"regress.py: {len(names)} decks, references {total / 1024:.0f} kB in all")
+    return 1 if problems else 0
+
+
+def main():
+    args = sys.argv[1:]
+    if args[:1] == ["decks"] and len(args) == 1:
+        return decks()
+    if len(args) < 3 and not (args[:1] == ["bless"] and len(args) == 3):
+        sys.exit(__doc__)
+    command, xpl, work = args[0], args[1], pathlib.Path(args[2])
+    names = args[3:] or deck_names()
+    work.mkdir(parents=True, exist_ok=True)
+    if command == "check":
+        return check(xpl, work, names)
+    if command == "bless":
+        return bless(xpl, work, names)
+    sys.exit(__doc__)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
