@@ -277,12 +277,14 @@ void ExplicitSolver::Impl::run_step(int step) {
     m_nodes.update_nodes(m_state, m_elements, m_rigid, dt_prev, m_dt_half,
                          m_state.time + 0.5 * m_dt_half, m_state.time + m_dt_half);
     m_nodes.report_jump(step, m_sink);
-    m_energy.check(m_state, totals, m_dt_half, m_critical_id, m_sink);
+    // The contact check first: when contact creates the energy, its own cause is the one to
+    // report, not the balance it upset.
     if (m_contact.active()) {
       const std::string warning =
           m_contact_energy.check(m_state, m_contact.stored_energy(), m_critical_id);
       if (!warning.empty()) m_sink.message(Severity::Warning, warning);
     }
+    m_energy.check(m_state, totals, m_dt_half, m_critical_id, m_sink);
 
     // Output as it falls due; a status line every 1 % of the step.
     const FrameRequest frame = m_output.field_due(m_state.step_time, last);
