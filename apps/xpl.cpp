@@ -4,8 +4,11 @@
 
 #include <omp.h>
 
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -26,6 +29,7 @@ namespace {
 
 constexpr const char* USAGE =
     "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]\n"
+    "               [--energy-limit PERCENT]\n"
     "       xpl check DECK.inp [-o DIR]\n"
     "       xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
     "                   [--fields U,S,...] [--frames last|all] [--json]\n"
@@ -41,6 +45,9 @@ constexpr const char* USAGE =
     "  --import PREV.h5  start from the last frame of an earlier result of the same mesh\n"
     "               (positions, velocities, stresses); penetrations there become contact\n"
     "               offsets without force\n"
+    "  --energy-limit PERCENT  the run fails (exit 3) when ETOTAL drifts by more than\n"
+    "               PERCENT of the largest energy (default 10; a drift above 1 % is warned\n"
+    "               of once in JOB.msg and JOB.sta)\n"
     "  compare  compare two result files for a regression test: a value passes when\n"
     "          |new - ref| <= A + R |ref| + F max|ref of the dataset| (default 0);\n"
     "          history on REF's times\n"
@@ -55,8 +62,23 @@ constexpr const char* USAGE =
     "The job name is the deck's file name without its extension. A run holds DIR/JOB.lck;\n"
     "a second run of the job in DIR is refused. SIGINT/SIGTERM end the run after the\n"
     "current increment with its last frame written (status interrupted).\n"
+    "OpenMP threads wait passively (OMP_WAIT_POLICY=PASSIVE: they sleep instead of\n"
+    "spinning, so a second job on the machine keeps its core) unless OMP_WAIT_POLICY or\n"
+    "GOMP_SPINCOUNT is set; OMP_WAIT_POLICY=ACTIVE lets them spin (a little faster on a\n"
+    "machine with nothing else to run).\n"
     "Exit codes: 0 done, 1 deck or --import error, 2 usage, 3 the analysis failed,\n"
     "  4 I/O or internal error, 5 the job is already running, 130/143 SIGINT/SIGTERM.\n";
+
+/// Makes OpenMP threads sleep at barriers instead of spinning, unless the user chose
+/// (OMP_WAIT_POLICY or GOMP_SPINCOUNT set). libgomp reads its environment when it is loaded,
+/// before main, so xpl sets OMP_WAIT_POLICY=PASSIVE and executes itself again; the second
+/// time the variable is set and this returns. If the exec fails, the run goes on with the
+/// runtime's default.
+void default_to_passive_wait(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
+  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+}
 
 /// Exit code of a run refused because another run of the job holds its lock.
 constexpr int EXIT_LOCKED = 5;
@@ -91,6 +113,7 @@ struct Arguments {
   std::filesystem::path deck;
   std::filesystem::path out_dir = ".";
   int threads = 0;
+  double energy_limit = 10.0;  ///< --energy-limit, percent of the largest energy
   bool quiet = false;
   std::filesystem::path import;  ///< --import: a result file to start from
 };
@@ -125,6 +148,19 @@ bool parse(int argc, char** argv, Arguments& args) {
         if (used != v->size() || args.threads < 1) throw std::invalid_argument(*v);
       } catch (const std::exception&) {
         std::cerr << "xpl: --threads: '" << *v << "' is not a positive whole number\n";
+        return false;
+      }
+    } else if (w == "--energy-limit") {
+      const std::string* v = value("a percentage");
+      if (!v) return false;
+      try {
+        std::size_t used = 0;
+        args.energy_limit = std::stod(*v, &used);
+        if (used != v->size() || !(args.energy_limit > 0.0) || args.energy_limit > 1e6)
+          throw std::invalid_argument(*v);
+      } catch (const std::exception&) {
+        std::cerr << "xpl: --energy-limit: '" << *v
+                  << "' is not a percentage > 0 (such as 10 for 10 %)\n";
         return false;
       }
     } else if (w == "--import") {
@@ -173,6 +209,8 @@ void print_summary(const xpl::RunSummary& s, const xpl::Model& model, int thread
     std::printf("xpl: phase %s: %.3f s\n", std::string(xpl::phase_name(phase)).c_str(),
                 s.timers.seconds(phase));
   }
+  std::printf("xpl: largest energy balance drift: %.3g %% of the largest energy (t = %.6g s)\n",
+              100.0 * s.energy_drift, s.energy_drift_time);
   std::printf("xpl: peak memory: %.1f MB\n", peak_memory_mb());
 }
 
@@ -182,6 +220,7 @@ int run_job(const Arguments& args);
 }  // namespace
 
 int main(int argc, char** argv) {
+  default_to_passive_wait(argv);  // first of all: before anything starts OpenMP threads
   if (argc >= 2 && (std::string(argv[1]) == "compare" || std::string(argv[1]) == "history")) {
     const std::vector<std::string> rest(argv + 2, argv + argc);
     try {
@@ -283,6 +322,7 @@ int run_job(const Arguments& args) {
     files.emplace(args.out_dir, model.job_name, ropts);
     xpl::SolverOptions sopts;
     sopts.threads = args.threads;
+    sopts.energy_limit = args.energy_limit / 100.0;
     sopts.stop_signal = &g_stop_signal;
     if (!args.import.empty()) sopts.initial_state = &initial;
     xpl::ExplicitSolver solver(model, *files, sopts);
@@ -312,6 +352,9 @@ int run_job(const Arguments& args) {
     std::cerr << "xpl: " << e.what() << "\n";
     return EXIT_LOCKED;
   } catch (const xpl::SolverError& e) {
+    // The solver records its own failures; one outside the time loop (the data check, the
+    // setup) is recorded here, so the file never says less than the terminal.
+    if (files) files->fail(e.what());
     std::cerr << "xpl: " << e.what() << "\n"
               << "xpl: the run stopped; frames written so far are in the results file, "
                  "which records the error\n";

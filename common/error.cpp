@@ -1,8 +1,32 @@
 #include "common/error.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace xpl {
+
+std::string escape_control(const std::string& text) {
+  const auto is_control = [](unsigned char c) {
+    return (c < 0x20 && c != '\t' && c != '\n') || c == 0x7f;
+  };
+  if (std::none_of(text.begin(), text.end(),
+                   [&](char c) { return is_control(static_cast<unsigned char>(c)); }))
+    return text;
+  static constexpr char HEX[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(text.size() + 8);
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (!is_control(c)) {
+      out += ch;
+      continue;
+    }
+    out += "\\x";
+    out += HEX[c >> 4];
+    out += HEX[c & 0xf];
+  }
+  return out;
+}
 
 void InputErrors::add(const SourceLocation& where, const std::string& keyword,
                       const std::string& problem, const std::string& expected) {
@@ -11,11 +35,11 @@ void InputErrors::add(const SourceLocation& where, const std::string& keyword,
   if (!keyword.empty()) out << keyword << ": ";
   out << problem;
   if (!expected.empty()) out << "; " << expected;
-  m_messages.push_back(out.str());
+  m_messages.push_back(escape_control(out.str()));
 }
 
 void InputErrors::add_plain(const std::string& message) {
-  m_messages.push_back(message);
+  m_messages.push_back(escape_control(message));
 }
 
 std::string InputErrors::joined() const {

@@ -15,6 +15,11 @@ struct SourceLocation {
   int line = 0;
 };
 
+/// `text` with its control characters (bytes below 0x20 except tab and newline, and DEL)
+/// written as `\xHH`: deck text echoed in a message cannot move the terminal's cursor or
+/// change its colours.
+std::string escape_control(const std::string& text);
+
 /// Collects every input error of a deck so that all of them are reported at once.
 /// Each message reads `file:LINE: *KEYWORD: what is wrong; what is expected`.
 class InputErrors {

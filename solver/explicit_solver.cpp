@@ -8,6 +8,7 @@
 #include <csignal>
 #include <string>
 
+#include "common/error.hpp"
 #include "solver/central_difference.hpp"
 #include "solver/contact_energy_check.hpp"
 #include "solver/contact_stage.hpp"
@@ -65,6 +66,8 @@ struct ExplicitSolver::Impl {
   /// end_run with status failed and `cause`; a second failure there (a full disk) is dropped
   /// so that the first one reaches the caller.
   void end_failed(const std::string& cause) noexcept;
+  /// The largest ETOTAL drift of the run in the .msg and .sta files (before end_run).
+  void report_drift();
   /// The end message of an interrupted run: the signal and the time reached.
   std::string interrupted_text() const;
   /// Output through the driver, with the parts that fill the state for it.
@@ -101,7 +104,7 @@ ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions o
       m_elements(model, m_rigid, m_state, m_timers, options.dt_safety),
       m_nodes(model, m_timers, m_elements.has_shells()),
       m_contact(model, sink, m_timers, options.initial_state != nullptr),
-      m_energy(model, options.dt_floor_ratio),
+      m_energy(model, options.dt_floor_ratio, options.energy_limit),
       m_output(model, sink, m_timers) {
   const std::vector<std::string> rigid_messages = set_up_rigid_bodies();
   if (m_options.initial_state != nullptr) apply_initial_state(*m_options.initial_state);
@@ -168,7 +171,7 @@ void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_me
                        "); time starts at 0. Hourglass forces and contact state start at zero; "
                        "ALLSE counts the strain energy from here on");
   for (const DeckMessage& m : m_model.deck_messages)
-    m_sink.message(m.warning ? Severity::Warning : Severity::Note, m.text);
+    m_sink.message(m.warning ? Severity::Warning : Severity::Note, escape_control(m.text));
   for (const SectionControls& c : m_model.section_controls)
     if (c.hourglass == HourglassType::RelaxStiffness)
       m_sink.message(Severity::Note, "section controls " + c.name +
@@ -188,6 +191,7 @@ void ExplicitSolver::Impl::begin_step(int step) {
   m_nodes.report_step(step, m_sink);
   m_contact.begin_step(step, m_state, m_elements, m_rigid, m_nodes.prescribed());
   m_output.declare_history(m_contact);
+  m_output.report_notes();
 }
 
 void ExplicitSolver::Impl::start_run(int step, Real period) {
@@ -249,6 +253,7 @@ void ExplicitSolver::Impl::run_step(int step) {
     start_run(step, period);
   else
     m_dt_half = std::min(m_dt_half, period);
+  m_output.note_short_intervals(m_dt_half);
   if (m_output.has_history()) write_history();
   write_status();
 
@@ -275,12 +280,14 @@ void ExplicitSolver::Impl::run_step(int step) {
     m_nodes.update_nodes(m_state, m_elements, m_rigid, dt_prev, m_dt_half,
                          m_state.time + 0.5 * m_dt_half, m_state.time + m_dt_half);
     m_nodes.report_jump(step, m_sink);
-    m_energy.check(m_state, totals, m_dt_half, m_critical_id);
+    // The contact check first: when contact creates the energy, its own cause is the one to
+    // report, not the balance it upset.
     if (m_contact.active()) {
       const std::string warning =
           m_contact_energy.check(m_state, m_contact.stored_energy(), m_critical_id);
       if (!warning.empty()) m_sink.message(Severity::Warning, warning);
     }
+    m_energy.check(m_state, totals, m_dt_half, m_critical_id, m_sink);
 
     // Output as it falls due; a status line every 1 % of the step.
     const FrameRequest frame = m_output.field_due(m_state.step_time, last);
@@ -314,7 +321,20 @@ void ExplicitSolver::Impl::write_interrupted(bool frame_written, bool history_wr
   if (m_output.has_history() && !history_written) write_history();
 }
 
+void ExplicitSolver::Impl::report_drift() {
+  if (!m_started) return;
+  const EnergyDrift& d = m_energy.largest_drift();
+  const std::string text = d.fraction > 0.0 ? "largest energy balance drift: " + describe(d)
+                                            : "largest energy balance drift: none";
+  m_sink.message(Severity::Info, text);
+  m_sink.status_note(text);
+}
+
 void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
+  try {
+    report_drift();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): the failure itself matters more
+  }
   try {
     const RunSummary s = summary();
     m_sink.end_run(RunStatus::Failed, cause, s.timers, s.element_cycles_per_second);
@@ -335,7 +355,10 @@ void ExplicitSolver::Impl::write_status() {
 }
 
 RunSummary ExplicitSolver::Impl::summary() const {
-  return m_output.summary(m_state, m_elements.size(), m_loop_seconds);
+  RunSummary s = m_output.summary(m_state, m_elements.size(), m_loop_seconds);
+  s.energy_drift = m_energy.largest_drift().fraction;
+  s.energy_drift_time = m_energy.largest_drift().time;
+  return s;
 }
 
 RunSummary ExplicitSolver::Impl::run() {
@@ -352,6 +375,7 @@ RunSummary ExplicitSolver::Impl::run() {
     end_failed(e.what());
     throw;
   }
+  report_drift();
   RunSummary s = summary();
   if (m_stopped_by != 0) {
     s.stop_signal = m_stopped_by;

@@ -39,6 +39,9 @@ struct SolverOptions {
   Real dt_safety = 0.9;
   /// A run whose stable increment falls below this fraction of the first increment stops.
   Real dt_floor_ratio = 1e-4;
+  /// A run whose ETOTAL drifts by more than this fraction of the largest energy stops as
+  /// failed (`xpl run --energy-limit PERCENT`); above 1 % it is warned of once.
+  Real energy_limit = 0.1;
   /// Set to a signal number by a signal handler (not owned; may be null): the time loop
   /// checks it once per increment and ends the run there as interrupted, last frame written.
   const volatile std::sig_atomic_t* stop_signal = nullptr;
@@ -52,6 +55,9 @@ struct RunSummary {
   PhaseTimers timers;
   Energies energies;    ///< at the end
   int stop_signal = 0;  ///< the signal that interrupted the run (status interrupted), or 0
+  /// The largest |ETOTAL drift| of the run as a fraction of the largest energy, and when.
+  Real energy_drift = 0.0;
+  Real energy_drift_time = 0.0;  ///< s
 };
 
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.

@@ -16,6 +16,15 @@ void OutputDriver::declare_history(const ContactStage& contact) {
   m_sink.declare_history(series);
 }
 
+void OutputDriver::note_short_intervals(Real dt) {
+  m_schedule.note_short_intervals(dt);
+  report_notes();
+}
+
+void OutputDriver::report_notes() {
+  for (const std::string& note : m_schedule.take_notes()) m_sink.message(Severity::Note, note);
+}
+
 bool OutputDriver::history_due(Real step_time, bool last) {
   return m_schedule.has_history() && m_schedule.history_due(step_time, last);
 }

@@ -27,6 +27,11 @@ class OutputDriver {
   /// Declares the history columns of the step (requests, then the contact pairs' forces);
   /// nothing when the step has no history output.
   void declare_history(const ContactStage& contact);
+  /// Notes the output requests whose interval is shorter than the increment `dt` (s)
+  /// (OutputSchedule) and writes the notes to the .msg file.
+  void note_short_intervals(Real dt);
+  /// Writes the notes on merged requests of the step to the .msg file.
+  void report_notes();
 
   /// Whether the step has field / history output at all.
   bool has_field() const { return m_schedule.has_field(); }

@@ -4,6 +4,7 @@
 /// reaches the requested time; the last increment of a step always gets its output.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/types.hpp"
@@ -22,7 +23,23 @@ class OutputSchedule {
   /// the thickness on shell models and nothing otherwise. History UR1..RM3 read the
   /// rotational state on shell models; on a model without shells their columns are declared
   /// as usual and hold zeros (nodes have no rotational DOFs, so their rotation is zero).
+  /// The same variable asked for by two requests of the step is written once (as Abaqus
+  /// merges them): a field variable only by the request with the finer interval, a history
+  /// series once in the one history table (whose rows fall due at every request's times);
+  /// notes() says which.
   void begin_step(const Model& model, int step);
+
+  /// Notes the requests whose interval is shorter than the increment `dt` (s): output comes
+  /// at most once per increment (TIME INTERVAL=1e-20, a huge NUMBER INTERVAL; fire() jumps
+  /// over the skipped output times in one step). `dt` <= 0 notes nothing.
+  void note_short_intervals(Real dt);
+
+  /// Notes for the .msg file on merged and clamped requests, since the last take_notes().
+  std::vector<std::string> take_notes() {
+    std::vector<std::string> notes;
+    notes.swap(m_notes);
+    return notes;
+  }
 
   /// Whether any field/history output exists in the step (P2: nothing to do otherwise).
   bool has_field() const { return !m_field.empty(); }
@@ -43,8 +60,9 @@ class OutputSchedule {
 
  private:
   struct Timed {
-    Real interval = 0.0;  ///< step-time spacing of outputs
-    Real next = 0.0;      ///< next due step time
+    Real interval = 0.0;   ///< step-time spacing of outputs
+    Real next = 0.0;       ///< next due step time
+    SourceLocation where;  ///< the *OUTPUT keyword (for notes)
   };
   struct FieldRequest {
     Timed when;
@@ -58,6 +76,21 @@ class OutputSchedule {
     Index node = NO_INDEX;
   };
   static bool fire(Timed& t, Real step_time, bool last, Real period);
+  /// Leaves each frame flag in the field request of the finest interval only.
+  void merge_field_requests(int step);
+  /// Whether history series `path` of request `request` is new; notes a repeat.
+  bool first_series(const std::string& path, std::size_t request);
+
+  /// Per history series path, the request that declared it.
+  std::vector<std::pair<std::string, std::size_t>> m_series_owner;
+  /// Per (repeating request, first request), the names asked again.
+  struct Repeat {
+    std::size_t request = 0;
+    std::size_t owner = 0;
+    std::vector<std::string> names;
+  };
+  std::vector<Repeat> m_history_repeats;
+  std::vector<std::string> m_notes;
 
   Real m_period = 0.0;
   std::vector<FieldRequest> m_field;

@@ -2,17 +2,20 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <string>
 
+#include "io/deck/deck_file.hpp"
 #include "solver/model.hpp"
 
 namespace xpl::io {
 
 namespace {
 
-/// Deeper nesting is almost certainly a file including itself.
+/// Deeper nesting of *INCLUDE without a cycle is almost certainly a mistake.
 constexpr int MAX_INCLUDE_DEPTH = 16;
+/// Most included files one deck reads (a file may be included many times without a cycle:
+/// ten levels of a file including the next twice read 2^10 files).
+constexpr int MAX_INCLUDED_FILES = 10000;
 
 bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
@@ -88,29 +91,6 @@ struct LineCursor {
 
 }  // namespace
 
-bool read_text_file(const std::filesystem::path& path, std::string& content) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  content.clear();
-  // A regular file is read straight into a string of its size; anything else (a pipe, a
-  // directory) and whatever a file gained meanwhile is read as a stream.
-  std::error_code error;
-  if (std::filesystem::is_regular_file(path, error)) {
-    const std::uintmax_t size = std::filesystem::file_size(path, error);
-    if (!error && size > 0) {
-      content.resize(static_cast<std::size_t>(size));
-      in.read(content.data(), static_cast<std::streamsize>(size));
-      content.resize(static_cast<std::size_t>(in.gcount()));
-      if (in.peek() == std::char_traits<char>::eof()) return true;
-      in.clear();
-    }
-  }
-  std::ostringstream rest;
-  rest << in.rdbuf();
-  content += rest.str();
-  return true;
-}
-
 namespace {
 
 /// State shared by a deck and the files it includes.
@@ -120,10 +100,27 @@ struct Lexer {
   InputErrors& errors;
   bool open_block = false;  ///< whether data lines may still be added to blocks.back()
   bool reported_stray_data = false;
+  /// The files being read, outermost first: as named in messages, and as compared (their
+  /// canonical paths), to tell an *INCLUDE cycle.
+  std::vector<std::string> chain_names{};
+  std::vector<std::filesystem::path> chain{};
+  std::vector<std::string> reported_cycles{};  ///< each cycle is reported once
+  int included_files = 0;
+  std::uintmax_t included_bytes = 0;
 
   void read(std::string_view text, const std::string& file_name, int depth);
   void include(const DeckKeyword& keyword, const std::string& file_name, int depth);
+  /// Whether `path` is one of the files being read; reports the cycle (once) if so.
+  bool cycle(const DeckKeyword& keyword, const std::filesystem::path& path,
+             const std::string& name);
 };
+
+/// The path a file is compared by: canonical where it exists, else normalised.
+std::filesystem::path identity(const std::filesystem::path& path) {
+  std::error_code error;
+  std::filesystem::path canonical = std::filesystem::weakly_canonical(path, error);
+  return error ? path.lexically_normal() : canonical;
+}
 
 DeckKeyword parse_keyword(std::string_view line, const SourceLocation& where, InputErrors& errors) {
   std::vector<std::string_view> fields;
@@ -203,21 +200,62 @@ void Lexer::include(const DeckKeyword& keyword, const std::string& file_name, in
     return;
   }
   if (!ok) return;
+  const std::filesystem::path parent = std::filesystem::path(file_name).parent_path();
+  const std::filesystem::path path = (parent / input).lexically_normal();
+  if (cycle(keyword, path, path.string())) return;
   if (depth >= MAX_INCLUDE_DEPTH) {
     errors.add(keyword.where, keyword.label(),
                "includes nested deeper than " + std::to_string(MAX_INCLUDE_DEPTH) + " levels",
-               "expected no file that includes itself");
+               "expected at most " + std::to_string(MAX_INCLUDE_DEPTH) + " levels of *INCLUDE");
     return;
   }
-  const std::filesystem::path parent = std::filesystem::path(file_name).parent_path();
-  const std::filesystem::path path = (parent / input).lexically_normal();
+  if (++included_files > MAX_INCLUDED_FILES) {
+    if (included_files == MAX_INCLUDED_FILES + 1)
+      errors.add(keyword.where, keyword.label(),
+                 "more than " + std::to_string(MAX_INCLUDED_FILES) + " files included",
+                 "expected a deck that includes each file a few times at most");
+    return;
+  }
   std::string content;
-  if (!read_text_file(path, content)) {
-    errors.add(keyword.where, keyword.label(), "cannot open included file '" + path.string() + "'",
-               "expected an existing file, relative to the including file");
+  const DeckFileError refused = read_deck_file(path, content);
+  if (!refused.ok()) {
+    const std::string where = refused.line > 0 ? ":" + std::to_string(refused.line) : "";
+    errors.add(keyword.where, keyword.label(),
+               "included file '" + path.string() + "'" + where + " " + refused.problem,
+               refused.expected);
     return;
   }
+  included_bytes += content.size();
+  if (included_bytes > MAX_DECK_BYTES) {
+    errors.add(
+        keyword.where, keyword.label(),
+        "the included files hold more than " + std::to_string(MAX_DECK_BYTES) + " bytes together",
+        "expected a deck of at most 2 GiB with its includes");
+    return;
+  }
+  chain.push_back(identity(path));
+  chain_names.push_back(path.string());
   read(storage.keep(std::move(content)), path.string(), depth + 1);
+  chain.pop_back();
+  chain_names.pop_back();
+}
+
+bool Lexer::cycle(const DeckKeyword& keyword, const std::filesystem::path& path,
+                  const std::string& name) {
+  const std::filesystem::path id = identity(path);
+  const auto first = std::find(chain.begin(), chain.end(), id);
+  if (first == chain.end()) return false;
+  // "a.inp includes b.inp, which includes a.inp"
+  std::string text;
+  for (auto i = static_cast<std::size_t>(first - chain.begin()); i < chain_names.size(); ++i)
+    text += chain_names[i] + (text.empty() ? " includes " : ", which includes ");
+  text += name;
+  if (std::find(reported_cycles.begin(), reported_cycles.end(), text) == reported_cycles.end()) {
+    reported_cycles.push_back(text);
+    errors.add(keyword.where, keyword.label(), "cycle of includes: " + text,
+               "expected no file that includes itself, directly or through other files");
+  }
+  return true;
 }
 
 }  // namespace
@@ -272,6 +310,8 @@ std::vector<DeckBlock> read_deck_blocks(std::string_view text, const std::string
                                         DeckStorage& storage, InputErrors& errors) {
   std::vector<DeckBlock> blocks;
   Lexer lexer{blocks, storage, errors};
+  lexer.chain.push_back(identity(file_name));
+  lexer.chain_names.push_back(file_name);
   lexer.read(text, file_name, 0);
   return blocks;
 }

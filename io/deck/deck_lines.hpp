@@ -122,14 +122,12 @@ struct DeckBlock {
 
 /// Splits deck text into blocks, following *INCLUDE (relative to the directory of
 /// `file_name`; an included file may hold only data lines, which continue the open block).
+/// A file that includes itself, directly or through others, is one error naming the chain;
+/// included files are read with read_deck_file's limits.
 /// Problems are added to `errors`; the blocks that could be read are returned. They view
 /// `text` and `storage`, which must outlive them.
 std::vector<DeckBlock> read_deck_blocks(std::string_view text, const std::string& file_name,
                                         DeckStorage& storage, InputErrors& errors);
-
-/// Reads a whole file into `content` (one allocation of the file's size when it can be
-/// seeked); false if it cannot be opened.
-bool read_text_file(const std::filesystem::path& path, std::string& content);
 
 /// One `NAME=value` or flag field of a keyword line (quotes removed, value trimmed). Also used
 /// for data lines that a keyword reads as more parameters (*CONTACT CLEARANCE).

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "io/deck/deck_file.hpp"
 #include "io/deck/deck_handlers.hpp"
 #include "io/deck/deck_keywords.hpp"
 #include "io/deck/deck_lines.hpp"
@@ -43,9 +44,13 @@ Model build_model(std::string_view text, const std::string& file_name, ModelChec
 
 Model read_deck(const std::filesystem::path& path, ModelChecks checks) {
   std::string content;
-  if (!read_text_file(path, content)) {
+  const DeckFileError refused = read_deck_file(path, content);
+  if (!refused.ok()) {
     InputErrors errors;
-    errors.add_plain(path.string() + ": cannot open the deck; expected a readable file");
+    errors.add_plain(refused.line > 0 ? path.string() + ":" + std::to_string(refused.line) + ": " +
+                                            refused.problem + "; " + refused.expected
+                                      : path.string() + ": the deck " + refused.problem + "; " +
+                                            refused.expected);
     errors.throw_if_any();
   }
   return build_model(content, path.string(), checks, &content);

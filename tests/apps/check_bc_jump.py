@@ -96,7 +96,10 @@ def run(xpl, work, case, tolerance, increment=None):
     path = work / f"{job}.inp"
     path.write_text(deck(case.removesuffix("_fine"), increment))
     out = work / case
-    result = subprocess.run([xpl, "run", str(path), "-o", str(out), "--threads", "1"],
+    # The offset of the scheme on `face` (above) reaches 15-20 % of ALLKE, beyond the run's
+    # default drift limit of 10 %: the check allows the bound it tests, 50 %.
+    result = subprocess.run([xpl, "run", str(path), "-o", str(out), "--threads", "1",
+                             "--energy-limit", "50"],
                             capture_output=True, text=True, timeout=120)
     check(result.returncode == 0, f"{case}: exit code {result.returncode}, expected 0\n"
                                   f"stdout:\n{result.stdout}\nstderr:\n{result.stderr}")

@@ -43,7 +43,11 @@ def main():
     text = text.replace(step, "*DYNAMIC, EXPLICIT, DIRECT USER CONTROL\n4e-7, ")
     deck = work / "creates.inp"
     deck.write_text(text)
-    r = subprocess.run([xpl, "run", deck.name, "--threads", "1", "--quiet"], cwd=work,
+    # This tests the contact check alone: the ETOTAL watchdog (default 10 %, issue 15 item 5)
+    # stops this run too, at 14 % drift in the same increments; its old bound of 50 % keeps it
+    # out of the way.
+    r = subprocess.run([xpl, "run", deck.name, "--threads", "1", "--quiet", "--energy-limit",
+                        "50"], cwd=work,
                        capture_output=True, text=True, timeout=120)
     if r.returncode == 0:
         fail("the run completed: the energy created by contact was not caught")

@@ -21,9 +21,10 @@ import h5py
 import numpy as np
 
 
-def run(xpl, deck, out, command="run"):
+def run(xpl, deck, out, command="run", *extra):
     out.mkdir(parents=True, exist_ok=True)
-    r = subprocess.run([xpl, command, str(deck), "-o", str(out), "--threads", "1", "--quiet"],
+    r = subprocess.run([xpl, command, str(deck), "-o", str(out), "--threads", "1", "--quiet",
+                        *extra],
                        capture_output=True, text=True, env={"OMP_WAIT_POLICY": "PASSIVE"})
     return r.returncode, r.stdout + r.stderr
 
@@ -57,7 +58,10 @@ def main():
     deck = work / "one_element.inp"
     subprocess.run([sys.executable, str(repo / "benchmarks/make_block.py"), "-n", "1",
                     "--direction", "1", "--out", str(deck)], check=True, capture_output=True)
-    rc, text = run(xpl, deck, work / "one_element")
+    # One element at ω·Δt near 2: its whole-step energies are off by up to 31 % of the largest
+    # energy (a bounded offset of the scheme, oscillating with the motion), beyond the default
+    # drift limit of 10 %; this checks stability, so it allows the old bound of 50 %.
+    rc, text = run(xpl, deck, work / "one_element", "run", "--energy-limit", "50")
     if rc != 0:
         failures.append(f"one element: exit code {rc}: {text.strip()[-300:]}")
     rc, text = run(xpl, deck, work / "one_element_check", "check")

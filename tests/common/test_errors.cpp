@@ -18,3 +18,13 @@ TEST_CASE("input errors are collected and formatted file:line: keyword", "[commo
     CHECK(std::string(e.what()).find('\n') != std::string::npos);
   }
 }
+
+TEST_CASE("deck text echoed in errors has its control characters escaped", "[common][errors]") {
+  CHECK(xpl::escape_control("plain text, tab\tand\nnewline") == "plain text, tab\tand\nnewline");
+  CHECK(xpl::escape_control("\x1b[31mred\x07\x7f") == "\\x1b[31mred\\x07\\x7f");
+  xpl::InputErrors errors;
+  errors.add({"deck.inp", 3}, "*\x1b[2JBOGUS", "unknown keyword", "");
+  errors.add_plain("deck.inp: \r\x01");
+  CHECK(errors.messages()[0] == "deck.inp:3: *\\x1b[2JBOGUS: unknown keyword");
+  CHECK(errors.messages()[1] == "deck.inp: \\x0d\\x01");
+}

@@ -72,7 +72,12 @@ TEST_CASE("a displacement BC ramped from rest starts with a velocity jump",
   // u = 10 µm over 10 µs: the velocity jumps from 0 to 1 m/s at t = 0.
   const Model model = driven_box(BoundaryType::Displacement, 1e-5, true, false);
   test::CaptureSink sink;
-  ExplicitSolver solver(model, sink);
+  // The stop of the ramp in the step's last update keeps the trapezoidal rule: ETOTAL is off
+  // by ⅛mΔv² = 25 % of ALLKE there, above the run's 10 % drift limit (the driven box holds
+  // all the energy); this test checks the rows before it, so it allows the old bound.
+  SolverOptions options;
+  options.energy_limit = 0.5;
+  ExplicitSolver solver(model, sink, options);
   solver.run();
   CHECK(jump_messages(sink) == 1);
   const Index et = sink.column("energy/ETOTAL"), ke = sink.column("energy/ALLKE");

@@ -24,7 +24,13 @@ bool stable_at(test::BoxSpec spec, Real factor, Real& drift_ratio) {
     for (int c = 0; c < 3; ++c)
       if (!spec.fix_x0 || model.coordinates(n, 0) > 0.0) model.initial_velocity(n, c) += noise(rng);
   test::CaptureSink sink;
-  ExplicitSolver solver(model, sink);
+  // Stability is told by the growth of the energy, not by the drift bound of a run (10 %):
+  // on meshes of one or two layers the whole-step energies of modes at ω·Δt near 2 are off
+  // by tens of percent, a bounded offset each case below limits itself. Half the largest
+  // energy is the bound the check had before the watchdog of issue 15.
+  SolverOptions options;
+  options.energy_limit = 0.5;
+  ExplicitSolver solver(model, sink, options);
   try {
     solver.run();
   } catch (const SolverError&) {

@@ -1,7 +1,7 @@
 # Result files (JOB.h5, JOB.xdmf, JOB.sta, JOB.msg). Included from tests/io/CMakeLists.txt.
 xpl_add_test_executable(
   xpl_tests_io_results results/test_result_files.cpp results/test_result_errors.cpp
-  results/test_result_shells.cpp results/test_output_schedule_shells.cpp
+  results/test_result_shells.cpp results/test_output_schedule_shells.cpp results/test_output_schedule_merge.cpp
   results/test_results_python.cpp results/test_import_state.cpp
   results/test_output_variables.cpp)
 target_link_libraries(xpl_tests_io_results PRIVATE xpl::io_results hdf5::hdf5)
