@@ -73,6 +73,12 @@ inline constexpr Real OVERCLOSURE_TOLERANCE = 1e-10;
 /// errors, "ignored" and pushed out by the penalty instead.
 inline constexpr Real IGNORED_DEPTH_FRACTION = 0.15;
 
+/// Crossed-surface check (C5): a master face edge is a corner of its surface (a rim, or a fold
+/// such as a block's edge) unless a face across it has a normal within 60° of its own (cosine
+/// at least ½); a slave edge meeting a face within the depth limit (IGNORED_DEPTH_FRACTION of
+/// the facet) of such a corner edge grazes it and is not reported.
+inline constexpr Real CROSSED_FOLD_COSINE = 0.5;
+
 /// Two penetrated faces whose normals are more than 120° apart (cosine below −½) pinch the
 /// node: leaving one means entering the other, so it keeps an offset instead of moving.
 inline constexpr Real PINCH_COSINE = -0.5;

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "contact/closest_point.hpp"
+#include "contact/surface_corners.hpp"
 
 namespace xpl::contact {
 
@@ -69,7 +70,8 @@ struct Overclosure {
   void store_offsets(OverclosureReport& report);
   void find_crossed(OverclosureReport& report) const;
   std::vector<std::pair<Index, Index>> slave_edges() const;
-  Index crossed_face(Index p, Index q, const BroadPhase& reach) const;
+  Index crossed_face(Index p, Index q, const BroadPhase& reach,
+                     std::span<const std::uint8_t> corners) const;
 };
 
 /// 1. Classification on the mesh as read: ignored, pinched, held or free (header comment).
@@ -239,8 +241,9 @@ std::vector<std::pair<Index, Index>> Overclosure::slave_edges() const {
 }
 
 /// The first candidate face of node p in `reach` that edge p–q passes through with its two
-/// nodes on opposite sides (header comment), or NO_INDEX.
-Index Overclosure::crossed_face(Index p, Index q, const BroadPhase& reach) const {
+/// nodes on opposite sides (header comment), or NO_INDEX. `corners`: corner_edges() of the faces.
+Index Overclosure::crossed_face(Index p, Index q, const BroadPhase& reach,
+                                std::span<const std::uint8_t> corners) const {
   const Index sp = slaves.slot(p), sq = slaves.slot(q);
   const Vec3 xp = node_point(position, p), xq = node_point(position, q);
   const Real tol = OVERCLOSURE_TOLERANCE * (xq - xp).norm();
@@ -263,9 +266,19 @@ Index Overclosure::crossed_face(Index p, Index q, const BroadPhase& reach) const
       const Index inside = gp < 0.0 ? sp : sq;
       if (-std::min(gp, gq) <= settings.depth_fraction * size[inside]) continue;
     }
-    if (segment_meets_triangle(xp, xq, c[0], c[1], c[2]) ||
-        segment_meets_triangle(xp, xq, c[0], c[2], c[3]))
-      return f;
+    if (!segment_meets_triangle(xp, xq, c[0], c[1], c[2]) &&
+        !segment_meets_triangle(xp, xq, c[0], c[2], c[3]))
+      continue;
+    // An edge that meets the face near a corner edge of the master surface grazes it (the
+    // seed's "corner" case): the corner pokes into the slave facet by at most that distance,
+    // a mismatch of the size the adjustment is meant for, with no node on the wrong side.
+    const Vec3 meet = xp + (gp / (gp - gq)) * (xq - xp);
+    const Real graze = settings.depth_fraction * std::sqrt(quad_area(c));
+    bool grazes = false;
+    for (int a = 0; a < 4 && !grazes; ++a)
+      grazes =
+          ((corners[f] >> a) & 1u) != 0 && distance_to_segment(meet, c[a], c[(a + 1) % 4]) <= graze;
+    if (!grazes) return f;
   }
   return NO_INDEX;
 }
@@ -282,11 +295,12 @@ void Overclosure::find_crossed(OverclosureReport& report) const {
   if (!edges.empty() && longest > 0.0) {
     BroadPhase reach(1.001 * longest);
     reach.build(faces, slaves.nodes(), position, node_thickness);
+    const std::vector<std::uint8_t> corners = corner_edges(faces, position);
     const auto n_edges = static_cast<Index>(edges.size());
     std::vector<Index> hit(edges.size(), NO_INDEX);
 #pragma omp parallel for schedule(dynamic, 256)
     for (Index k = 0; k < n_edges; ++k)
-      hit[k] = crossed_face(edges[k].first, edges[k].second, reach);
+      hit[k] = crossed_face(edges[k].first, edges[k].second, reach, corners);
     for (Index k = 0; k < n_edges; ++k)
       if (hit[k] != NO_INDEX) report.crossed.push_back({edges[k].first, edges[k].second, hit[k]});
   }

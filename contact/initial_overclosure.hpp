@@ -39,8 +39,15 @@
 /// when it passes through a face (its segment meets the face's mid-surface) with its two nodes
 /// on opposite sides, unless the penetrating node is one the pass has handled (within the
 /// depth limit of a solid face). A shell face is tested at its mid-surface, so two nodes
-/// trapped on the two sides of a shell are found however far apart. A dedicated broad phase
-/// with the longest slave edge as margin finds every face an edge can meet; its cost is timed.
+/// trapped on the two sides of a shell are found however far apart. Corners (the seed's
+/// caveat: at a corner of a master surface, one face's two sides are not the surface's two
+/// sides): an edge that meets a face within `depth_fraction` of the facet size of a corner
+/// edge of the master surface (a rim, or a fold of more than 60°, CROSSED_FOLD_COSINE) only
+/// grazes it and is not reported. After an adjustment the edges leaving the other body's
+/// footprint meet its side faces there (on the rim with matching meshes, within ~1 % of the
+/// facet otherwise); an edge through a face's interior, or through an edge between two faces
+/// that continue the surface, is still reported. A dedicated broad phase with the longest
+/// slave edge as margin finds every face an edge can meet; its cost is timed.
 
 #include <cstdint>
 #include <span>

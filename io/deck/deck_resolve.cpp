@@ -329,6 +329,22 @@ void resolve_steps(DeckState& deck) {
                           (pending.node ? "*NSET, NSET=" : "*ELSET, ELSET=") + pending.set.token);
       continue;
     }
+    // An output request on an empty set would write a series of width 0. A set defined
+    // without data is reported here; one whose items all failed already has its errors.
+    const std::vector<NamedSet>& sets =
+        pending.node ? deck.model.node_sets : deck.model.element_sets;
+    const PendingSet& defined = pending.node
+                                    ? deck.node_sets[static_cast<std::size_t>(it->second)]
+                                    : deck.element_sets[static_cast<std::size_t>(it->second)];
+    if (sets[static_cast<std::size_t>(it->second)].members.empty() &&
+        (defined.items.empty() || deck.errors.empty())) {
+      deck.errors.add(pending.set.where, pending.set.keyword,
+                      std::string(pending.node ? "node" : "element") + " set " + pending.set.token +
+                          " is empty",
+                      std::string("expected a set with at least one ") +
+                          (pending.node ? "node" : "element") + " to write output for");
+      continue;
+    }
     (pending.node ? request.node_set : request.element_set) = it->second;
   }
 }

@@ -6,6 +6,7 @@
 #include "contact/contact_domain.hpp"
 #include "contact/contact_engine.hpp"
 #include "contact/initial_overclosure.hpp"
+#include "contact/surface_corners.hpp"
 #include "contact_fixtures.hpp"
 
 using namespace xpl;
@@ -229,5 +230,77 @@ TEST_CASE("crossed surfaces: edges of a column through a shell plate", "[contact
     const OverclosureReport report =
         contact::resolve_initial_overclosures(engine, mesh.topology(), x, thickness, {}, settings);
     CHECK(report.crossed.empty());
+  }
+}
+
+TEST_CASE("crossed surfaces: blocks overlapping by 4 % only graze each other's rims",
+          "[contact][overclosure]") {
+  // Issue 15: the adjustment moves the nodes inside the other block's footprint onto the
+  // common surface, so the facet edges leaving the footprint slope and meet the other block's
+  // side faces on (or, with non-matching meshes, within a fraction of a percent of the facet
+  // of) their bottom rim: a graze of a corner of the master surface, not a crossing. Before
+  // the rule each case below gave 4 (matching h) or 8 (non-matching) warnings.
+  struct Case {
+    const char* name;
+    int lower_n, upper_n;
+    Real upper_h, upper_origin;
+  };
+  const Case cases[] = {{"upper inside the lower footprint, rim mid-element", 4, 3, 1.0, 0.5},
+                        {"upper overhanging the lower block", 3, 4, 1.0, -0.5},
+                        {"non-matching meshes, overhanging", 3, 4, 0.7, -0.5}};
+  for (const Case& c : cases) {
+    DYNAMIC_SECTION(c.name) {
+      test::ContactMesh mesh;
+      test::add_hex_block(mesh, c.lower_n, c.lower_n, 2, 1.0, Vec3(0.0, 0.0, -2.0));  // top z=0
+      test::add_hex_block(mesh, c.upper_n, c.upper_n, 1, c.upper_h,
+                          Vec3(c.upper_origin, c.upper_origin, -0.04));  // 4 % of h below
+      NodalVectors x = mesh.coordinates;
+      ContactEngine engine = engine_for(mesh, x);
+      const OverclosureReport report =
+          contact::resolve_initial_overclosures(engine, mesh.topology(), x, {}, {}, {});
+      CHECK(report.max_overclosure == Approx(0.04).epsilon(1e-9));
+      CHECK(report.offsets.empty());
+      CHECK(report.ignored.empty());
+      CHECK(deepest(engine, x) <= 1e-9);  // nothing left penetrating: the adjustment worked
+      CHECK(report.crossed.empty());
+    }
+  }
+}
+
+TEST_CASE("crossed surfaces: a column through a solid plate still warns",
+          "[contact][overclosure]") {
+  // A 1 × 1 × 2 hex column (z = -0.5 … 1.5, its middle nodes inside the plate, 50 % deep: far
+  // beyond the 15 % limit) through a 4 × 4 × 1 hex plate (z = 0 … 1), its sides 0.25 from the
+  // plate's mesh lines. Both column edges of each vertical line pass through the interior of
+  // the plate's faces, and the plate's edges through the column's side faces.
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 4, 4, 1, 1.0);
+  const Index first_column = mesh.node_count();
+  test::add_hex_block(mesh, 1, 1, 2, 1.0, Vec3(1.25, 1.25, -0.5));
+  NodalVectors x = mesh.coordinates;
+  ContactEngine engine = engine_for(mesh, x);
+  const OverclosureReport report =
+      contact::resolve_initial_overclosures(engine, mesh.topology(), x, {}, {}, {});
+  int column_edges = 0;
+  for (const auto& c : report.crossed)
+    if (c.node_a >= first_column && c.node_b == c.node_a + 4) ++column_edges;  // vertical edges
+  CHECK(column_edges == 8);  // 4 lines × (bottom face, top face)
+}
+
+TEST_CASE("corner edges of master surfaces: rims and folds, not edges inside a flat surface",
+          "[contact][overclosure]") {
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 2, 1, 1, 1.0);  // two hexes side by side along x
+  const NodalVectors x = mesh.coordinates;
+  const std::vector<contact::ContactFace> faces = contact::exterior_faces(mesh.topology());
+  const std::vector<std::uint8_t> corners = contact::corner_edges(faces, x);
+  REQUIRE(corners.size() == faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Vec3 n = test::face_normal(faces[f], x);
+    int corner_count = 0;
+    for (int a = 0; a < 4; ++a) corner_count += (corners[f] >> a) & 1;
+    // A face normal to x is an end of the block: all four edges are 90° folds. A top,
+    // bottom or side face continues across x = 1 into its neighbour's: three corner edges.
+    CHECK(corner_count == (std::abs(n[0]) > 0.5 ? 4 : 3));
   }
 }
