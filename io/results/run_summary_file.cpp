@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "solver/output_variables.hpp"
+
 // Build description, set for this file by io/results/CMakeLists.txt.
 #ifndef XPL_BUILD_TYPE
 #define XPL_BUILD_TYPE ""
@@ -37,16 +39,10 @@ std::string key_of(std::string_view name) {
 }
 
 JsonValue energies_json(const Energies& e) {
+  // The one list of energies (solver/output_variables.hpp), every term present for every
+  // model so that the summary's layout does not depend on the model.
   JsonValue out = JsonValue::object();
-  out.set("ALLKE", e.kinetic);
-  out.set("ALLSE", e.strain);
-  out.set("ALLAE", e.artificial);
-  out.set("ALLVD", e.viscous);
-  out.set("ALLWK", e.external_work);
-  out.set("ALLFD", e.friction);
-  out.set("ALLPW", e.contact);
-  out.set("ALLIE", e.internal());
-  out.set("ETOTAL", e.total());
+  for (const EnergyVariable& v : ENERGIES) out.set(std::string(v.name), v.value(e));
   return out;
 }
 
