@@ -4,9 +4,9 @@
 For every case of cases.py and every mesh level, the deck is written for each solver and
 run at 1 and 2 threads; the solvers alternate (xpl, CalculiX, xpl, CalculiX, ... within a
 level) so that a change in the machine's load hits both. Each run's errors against the
-analytic answer go to RESULTS_DIR/CASE.csv, the fronts (each error against CPU time,
-log-log) to RESULTS_DIR/CASE.png, and the tables and equal-error speed ratios to
-RESULTS_DIR/fronts.md.
+analytic answer go to RESULTS_DIR/CASE.csv (date, machine and load in CASE.meta.txt), the fronts (each error
+against CPU time, log-log) to RESULTS_DIR/CASE.png, and the tables and equal-error speed
+ratios of every case with a CSV to RESULTS_DIR/fronts.md.
 
 Usage: fronts.py XPL [--ccx CCX] [--cases bar_wall,bar_bar,...] [--levels N ...]
                  [--repeat R] [--work DIR] [--results DIR] [--report-only]
@@ -260,7 +260,7 @@ def report(case, rows):
     out.append("At equal error (CPU time, 1 thread; CalculiX time / xpl time on the "
                "interpolated fronts):")
     out.append("")
-    for n in names:
+    for n in case.errors:  # not energy: the two solvers' energy errors measure different things
         ratio = speed_ratio(rows, n, 1)
         ratio2 = speed_ratio(rows, n, 2)
         if ratio is None:
@@ -305,24 +305,20 @@ def main(argv=None):
     def log(text):
         print(text, flush=True)
 
-    meta_path = args.results / "fronts_meta.txt"
     if not args.report_only:
-        meta = [f"date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC",
-                f"machine: {machine_line()}",
-                f"xpl: {args.xpl}",
-                f"calculix: {args.ccx} {solvers.ccx_version(args.ccx) if args.ccx else 'absent'}",
-                f"load before: {uptime()}"]
+        ccx_text = f"{args.ccx} {solvers.ccx_version(args.ccx)}" if args.ccx else "absent"
         for name in names:
             case = cases.CASES[name]
+            meta = [f"date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC",
+                    f"machine: {machine_line()}", f"xpl: {args.xpl}",
+                    f"calculix: {ccx_text}", f"load before: {uptime()}"]
             log(f"{name}: {case.title}")
             rows = run_case(case, args.xpl, args.ccx, args.levels or case.levels, args.repeat,
                             args.work, log)
             write_csv(args.results / f"{name}.csv", rows)
-            meta.append(f"load after {name}: {uptime()}")
-        meta_path.write_text("\n".join(meta) + "\n")
+            meta.append(f"load after: {uptime()}")
+            (args.results / f"{name}.meta.txt").write_text("\n".join(meta) + "\n")
     text = ["## Error against time, xpl and CalculiX 2.20 (issue 16, item 1)", ""]
-    if meta_path.exists():
-        text += ["```"] + meta_path.read_text().splitlines() + ["```", ""]
     for name in cases.CASES:
         path = args.results / f"{name}.csv"
         if not path.exists():
@@ -331,6 +327,9 @@ def main(argv=None):
         rows = read_csv(path)
         plot(case, rows, args.results / f"{name}.png")
         text += report(case, rows)
+        meta_path = args.results / f"{name}.meta.txt"
+        if meta_path.exists():
+            text += ["Run: " + "; ".join(meta_path.read_text().splitlines()) + ".", ""]
         text.append(f"![{name}](accuracy/results/{name}.png)")
         text.append("")
     (args.results / "fronts.md").write_text("\n".join(text) + "\n")

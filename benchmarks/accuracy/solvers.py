@@ -104,7 +104,7 @@ def run_ccx(ccx, deck, threads, work):
         raise RuntimeError(f"CalculiX failed on {deck} (exit {code}): {lines[:3]}; see {work}")
     dat = parse_dat(work / f"{job}.dat")
     return {"solver": "calculix", "threads": threads, "wall": wall, "cpu": cpu,
-            "increments": ccx_increments(dat), "dat": dat, "frd": work / f"{job}.frd"}
+            "increments": ccx_increments(dat), "dat": dat}
 
 
 def ccx_increments(dat):
@@ -118,25 +118,18 @@ def ccx_increments(dat):
     return len(times)
 
 
-def frd_last(frd_path, block="VELO"):
-    """{node: (v1, v2, v3)} of the last result block `block` (DISP, VELO, ...) of a .frd
-    file (ASCII: a ' -4  NAME' header, then ' -1' lines of I10 node and E12.5 values)."""
-    result, current = {}, None
-    for line in pathlib.Path(frd_path).read_text(errors="replace").splitlines():
-        if line.startswith(" -4"):
-            current = {} if line.split()[1] == block else None
-            if current is not None:
-                result = current
-        elif current is not None and line.startswith(" -1"):
-            node = int(line[3:13])
-            current[node] = tuple(float(line[13 + 12 * k:25 + 12 * k]) for k in range(3))
-        elif line.startswith(" -3"):
-            current = None
-    return result
+_FORTRAN_EXPONENT = re.compile(r"(\d)([+-]\d{3})$")
+
+
+def number(text):
+    """A .dat number; Fortran drops the E of three-digit exponents (-8.999678-100)."""
+    try:
+        return float(text)
+    except ValueError:
+        return float(_FORTRAN_EXPONENT.sub(r"\1E\2", text))
 
 
 _HEADER = re.compile(r"^\s*(.+?) for set (\S+) and time\s+(\S+)\s*$")
-_CONTACT = re.compile(r"^\s*statistics for slave set (\S+), master set (\S+) and time\s+(\S+)")
 _CSTR = re.compile(r"^\s*contact stress \(slave node,press,tang1,tang2\) for all contact "
                    r"elements and time\s*(\S+)")
 
@@ -146,10 +139,9 @@ def parse_dat(dat_path):
 
     what is the block's title ('total force (fx,fy,fz)', 'velocities (vx,vy,vz)', 'total
     internal energy', ...); values is (n_times x rows x columns) without the node or element
-    number column for per-node blocks (the ids are in {(what, set, 'ids'): ids}). Contact
-    statistics blocks give {('contact', slave): (times, [force x, y, z])}: the total contact
-    force on the slave surface (zero in CalculiX 2.20's explicit runs: use CSTR);
-    *CONTACT PRINT CSTR gives {('contact stress', 'all'): (times, [{slave node: pressure}])}.
+    number column for per-node blocks (the ids are in {(what, set, 'ids'): ids}).
+    *CONTACT PRINT CSTR gives {('contact stress', 'all'): (times, [{slave node: pressure}])}
+    (CF totals print as zero in CalculiX 2.20's explicit runs).
     """
     blocks = {}
     cstress = ([], [])
@@ -158,7 +150,6 @@ def parse_dat(dat_path):
     while i < len(lines):
         line = lines[i]
         match = _HEADER.match(line)
-        contact = _CONTACT.match(line)
         if match:
             what, nset, t = match.group(1).strip(), match.group(2), float(match.group(3))
             rows = []
@@ -166,7 +157,7 @@ def parse_dat(dat_path):
             while i < len(lines) and not lines[i].strip():
                 i += 1
             while i < len(lines) and lines[i].strip() and not _HEADER.match(lines[i]):
-                rows.append([float(v) for v in lines[i].split()])
+                rows.append([number(v) for v in lines[i].split()])
                 i += 1
             key = (what, nset)
             times, values = blocks.setdefault(key, ([], []))
@@ -185,29 +176,10 @@ def parse_dat(dat_path):
                 i += 1
             while i < len(lines) and len(lines[i].split()) == 4:
                 fields = lines[i].split()
-                pressures[int(fields[0])] = float(fields[1])
+                pressures[int(fields[0])] = number(fields[1])
                 i += 1
             cstress[0].append(float(cstr.group(1)))
             cstress[1].append(pressures)
-            continue
-        if contact:
-            slave, t = contact.group(1), float(contact.group(3))
-            force = None
-            j = i + 1
-            while j < len(lines) and j < i + 40:
-                if "normal force" in lines[j] or "force (fx,fy,fz)" in lines[j]:
-                    k = j + 1
-                    while not lines[k].strip():
-                        k += 1
-                    force = [float(v) for v in lines[k].split()]
-                    break
-                if _CONTACT.match(lines[j]) or _HEADER.match(lines[j]):
-                    break
-                j += 1
-            times, values = blocks.setdefault(("contact", slave), ([], []))
-            times.append(t)
-            values.append(force)
-            i = j
             continue
         i += 1
     out = {}
