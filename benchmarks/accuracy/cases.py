@@ -687,3 +687,138 @@ class Cantilever:
 
 
 CASES["cantilever"] = Cantilever()
+
+
+# ---------------------------------------------------------------------------------------------
+# Taylor bar (plasticity)
+
+
+class Taylor:
+    """Taylor bar: Wilkins and Guinan's copper bar (L0 = 32.4 mm, R0 = 3.2 mm, 227 m/s,
+    E = 117 GPa, nu = 0.35, yield 400 MPa, linear hardening 100 MPa) on a rigid frictionless
+    wall (U3 = 0 on the impact face), quarter model, examples/plasticity/make_taylor_bar.py
+    (O-grid of n x n and 2n x m per section, nz along), 80 us, finite strain (CalculiX:
+    *STEP, NLGEOM; xpl always).
+
+    No closed form: the reference is the Richardson extrapolation of xpl's three finest
+    meshes (h = 1/n; the order fitted), so xpl's own finest errors are not independent of it;
+    the experiment (21.45 mm, 7.15 mm) is quoted beside it. Errors: length = final length
+    (L0 + mean U3 of the far end), radius = the impact face's largest radius at the end.
+    Hourglass control: xpl runs the example's viscous form (examples/plasticity/README.md
+    says why), CalculiX its own C3D8R control (it reads no *SECTION CONTROLS).
+    """
+    name = "taylor"
+    title = "Taylor bar"
+    level_name = "inner-square divisions n"
+    errors = ("length", "radius")
+    levels = (2, 3, 4, 6)
+    meshes = {2: (2, 1, 20), 3: (3, 2, 40), 4: (4, 3, 60), 6: (6, 4, 80)}
+    ccx_max_level = 4  # CalculiX: about 70 s of CPU at 4, several minutes at 6
+
+    def mesh_size(self, n):
+        return 3.2e-3 / n
+
+    def deck(self, level, solver):
+        import argparse
+        sys.path.insert(0, str(REPO / "examples" / "plasticity"))
+        import make_taylor_bar as tb
+        n, m, nz = self.meshes[level]
+        args = argparse.Namespace(n=n, m=m, nz=nz, end_time=tb.END_TIME, frames=1,
+                                  hourglass="VISCOUS")
+        text = tb.build_deck(args)
+        head = text[:text.index("*OUTPUT, FIELD")]
+        if solver == "calculix":
+            head = head.replace("*SECTION CONTROLS, NAME=BAR_CONTROLS, HOURGLASS=VISCOUS\n", "")
+            head = head.replace(", CONTROLS=BAR_CONTROLS", "")
+            head = head.replace("*STEP, NAME=IMPACT\n*DYNAMIC, EXPLICIT\n, ",
+                                "*STEP, INC=100000000, NLGEOM\n*DYNAMIC, EXPLICIT\n1e-9, ")
+            # Prints at the end only (the .dat prints share one FREQUENCY).
+            out = head + ("*NODE PRINT, NSET=TOP, FREQUENCY=100000000\nU\n"
+                          "*NODE PRINT, NSET=WALL, FREQUENCY=100000000\nU\n"
+                          "*EL PRINT, ELSET=BAR, TOTALS=ONLY, FREQUENCY=100000000\nELSE, ELKE\n"
+                          "*END STEP\n")
+        else:
+            out = head + ("*OUTPUT, FIELD, NUMBER INTERVAL=1\n*NODE OUTPUT\nU\n"
+                          "*OUTPUT, HISTORY, TIME INTERVAL=1e-6\n*ENERGY OUTPUT\n*END STEP\n")
+        coords = {}
+        for line in text.split("*NODE\n", 1)[1].split("*ELEMENT", 1)[0].splitlines():
+            if line and line[0].isdigit():
+                fields = line.split(",")
+                coords[int(fields[0])] = tuple(float(v) for v in fields[1:4])
+        per_layer = len(coords) // (nz + 1)
+        volume = math.pi * tb.RADIUS ** 2 * tb.LENGTH / 4
+        return out, {"elements": len(tb.section_points(n, m)[1]) * nz,
+                     "wall": list(range(1, per_layer + 1)), "coords": coords,
+                     "top": list(range(1 + per_layer * nz, 1 + per_layer * (nz + 1))),
+                     "L0": tb.LENGTH, "e0": 0.5 * tb.DENSITY * volume * tb.VELOCITY ** 2,
+                     "end_time": tb.END_TIME}
+
+    def final_shape(self, run, ref):
+        if run["solver"] == "xpl":
+            ids, u = solvers.xpl_last_frame(run["h5"], "U")
+            disp = dict(zip(ids.tolist(), map(tuple, u.tolist())))
+        else:
+            disp = {}
+            for name in ("TOP", "WALL"):
+                _, values = run["dat"][("displacements (vx,vy,vz)", name)]
+                ids = run["dat"][("displacements (vx,vy,vz)", name, "ids")]
+                disp.update(zip(ids, map(tuple, values[-1].tolist())))
+        length = ref["L0"] + float(np.mean([disp[n][2] for n in ref["top"]]))
+        radius = max(math.hypot(ref["coords"][n][0] + disp[n][0], ref["coords"][n][1] + disp[n][1])
+                     for n in ref["wall"])
+        return length, radius
+
+    def measure(self, run, ref):
+        length, radius = self.final_shape(run, ref)
+        if run["solver"] == "xpl":
+            energy = energy_error_xpl(run)
+        else:
+            energy = energy_error_ccx(run["dat"], ["BAR"], ref["e0"], final=True)
+        if run["solver"] == "calculix":  # prints at the end only: count from the increment
+            run["increments"] = math.ceil(ref["end_time"] / run["dt"] - 1e-9)
+        return {"energy": energy, "length_value": length, "radius_value": radius}
+
+    def finish(self, rows):
+        """The errors against the Richardson reference of xpl's three finest meshes (1
+        thread); returns the reference as a line for the run's notes."""
+        xpl = sorted((r for r in rows if r["solver"] == "xpl" and r["threads"] == 1),
+                     key=lambda r: r["level"])[-3:]
+        if len(xpl) < 3:
+            raise ValueError("the Taylor reference needs xpl runs on the three finest meshes")
+        notes = []
+        for name in ("length", "radius"):
+            value, order = richardson([r["mesh_size"] for r in xpl],
+                                      [r[f"{name}_value"] for r in xpl])
+            if value is None:
+                value, order = xpl[-1][f"{name}_value"], math.nan
+                notes.append(f"{name}: not monotone on xpl's finest meshes, reference = the "
+                             f"finest value {value * 1e3:.4f} mm")
+            else:
+                notes.append(f"{name}: Richardson reference {value * 1e3:.4f} mm (order "
+                             f"{order:.2f}, from xpl levels {', '.join(str(r['level']) for r in xpl)})")
+            for r in rows:
+                r[name] = relative(r[f"{name}_value"], value)
+        return "; ".join(notes)
+
+
+def richardson(h, f):
+    """Extrapolated f(0) from three (h, f) with f = f0 + C h^p (p fitted by bisection);
+    None when the three are not monotone (no consistent order)."""
+    (h1, f1), (h2, f2), (h3, f3) = sorted(zip(h, f))  # h1 finest
+    if (f2 - f1) * (f3 - f2) <= 0:
+        return None, None
+
+    def residual(p):
+        return (f3 - f2) / (f2 - f1) - (h3 ** p - h2 ** p) / (h2 ** p - h1 ** p)
+    lo, hi = 0.05, 8.0
+    if residual(lo) * residual(hi) > 0:
+        return None, None
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if residual(lo) * residual(mid) > 0 else (lo, mid)
+    p = 0.5 * (lo + hi)
+    c = (f2 - f1) / (h2 ** p - h1 ** p)
+    return f1 - c * h1 ** p, p
+
+
+CASES["taylor"] = Taylor()

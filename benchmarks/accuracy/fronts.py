@@ -92,8 +92,12 @@ def run_case(case, xpl, ccx, levels, repeat, work, log):
                     rows.append(row)
                     log(f"  {case.name} {level:>4} {solver:8} t{threads} inc {run['increments']:>6}"
                         f" wall {run['wall']:8.3f} s cpu {run['cpu']:8.3f} s  " +
-                        " ".join(f"{k} {errors[k]:.3g}" for k in (*case.errors, "energy")))
-    return rows
+                        " ".join(f"{k} {v:.4g}" for k, v in errors.items()))
+    note = ""
+    if hasattr(case, "finish"):  # errors against a reference made from the runs
+        note = case.finish(rows)
+        log(f"  {case.name}: {note}")
+    return rows, note
 
 
 def write_csv(path, rows):
@@ -313,10 +317,12 @@ def main(argv=None):
                     f"machine: {machine_line()}", f"xpl: {args.xpl}",
                     f"calculix: {ccx_text}", f"load before: {uptime()}"]
             log(f"{name}: {case.title}")
-            rows = run_case(case, args.xpl, args.ccx, args.levels or case.levels, args.repeat,
-                            args.work, log)
+            rows, note = run_case(case, args.xpl, args.ccx, args.levels or case.levels,
+                                  args.repeat, args.work, log)
             write_csv(args.results / f"{name}.csv", rows)
             meta.append(f"load after: {uptime()}")
+            if note:
+                meta.append(f"reference: {note}")
             (args.results / f"{name}.meta.txt").write_text("\n".join(meta) + "\n")
     text = ["## Error against time, xpl and CalculiX 2.20 (issue 16, item 1)", ""]
     for name in cases.CASES:

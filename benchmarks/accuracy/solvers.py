@@ -11,6 +11,7 @@ wall time), the increment count and the solver's own output, read into numpy arr
             per print request and increment; the increment count from the .sta file
 """
 import json
+import math
 import os
 import pathlib
 import re
@@ -103,8 +104,10 @@ def run_ccx(ccx, deck, threads, work):
         lines = [line for line in text.splitlines() if "ERROR" in line]
         raise RuntimeError(f"CalculiX failed on {deck} (exit {code}): {lines[:3]}; see {work}")
     dat = parse_dat(work / f"{job}.dat")
+    match = re.search(r"SELECTED time increment:\s*(\S+)", text)
     return {"solver": "calculix", "threads": threads, "wall": wall, "cpu": cpu,
-            "increments": ccx_increments(dat), "dat": dat}
+            "increments": ccx_increments(dat), "dat": dat,
+            "dt": float(match.group(1)) if match else math.nan}
 
 
 def ccx_increments(dat):
