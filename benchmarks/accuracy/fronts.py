@@ -54,7 +54,7 @@ def uptime():
 
 
 def run_case(case, xpl, ccx, levels, repeat, work, log):
-    rows = []
+    rows, failures = [], []
     for level in levels:
         decks = {}
         for solver in ("xpl", "calculix"):
@@ -81,6 +81,8 @@ def run_case(case, xpl, ccx, levels, repeat, work, log):
                         errors = case.measure(run, ref)
                     except (RuntimeError, KeyError, IndexError, ValueError) as error:
                         log(f"  {case.name} {level} {solver} t{threads}: FAILED: {error}")
+                        failures.append(f"{solver} {case.level_name} {level}, {threads} "
+                                        f"thread(s) failed: {str(error).split('; see')[0]}")
                         continue
                     row = {"case": case.name, "solver": solver, "threads": threads,
                            "level": level, "mesh_size": case.mesh_size(level),
@@ -93,11 +95,11 @@ def run_case(case, xpl, ccx, levels, repeat, work, log):
                     log(f"  {case.name} {level:>4} {solver:8} t{threads} inc {run['increments']:>6}"
                         f" wall {run['wall']:8.3f} s cpu {run['cpu']:8.3f} s  " +
                         " ".join(f"{k} {v:.4g}" for k, v in errors.items()))
-    note = ""
+    notes = []
     if hasattr(case, "finish"):  # errors against a reference made from the runs
-        note = case.finish(rows)
-        log(f"  {case.name}: {note}")
-    return rows, note
+        notes.append(case.finish(rows))
+        log(f"  {case.name}: {notes[-1]}")
+    return rows, "; ".join(notes + failures)
 
 
 def write_csv(path, rows):
@@ -322,7 +324,7 @@ def main(argv=None):
             write_csv(args.results / f"{name}.csv", rows)
             meta.append(f"load after: {uptime()}")
             if note:
-                meta.append(f"reference: {note}")
+                meta.append(f"notes: {note}")
             (args.results / f"{name}.meta.txt").write_text("\n".join(meta) + "\n")
     text = ["## Error against time, xpl and CalculiX 2.20 (issue 16, item 1)", ""]
     for name in cases.CASES:
