@@ -4,7 +4,8 @@
 # builds xpl, runs every case of benchmarks/accuracy/cases.py (each mesh level with both
 # solvers, alternating, at 1 and 2 threads) and writes benchmarks/accuracy/results/:
 # CASE.csv, CASE.png and fronts.md (the tables for benchmarks/RESULTS.md).
-# Takes about 15 minutes on the 2-core team machine (mostly CalculiX).
+# Takes about 8 minutes of CPU (three quarters of it CalculiX's); on the shared 2-core
+# machine under a load average of 20 that was 40 minutes of wall time.
 # Environment overrides: CASES (comma list, default all), REPEAT (runs per configuration,
 # 1), SKIP_BUILD=1 (use the existing build), XPL (binary, build/release/apps/xpl),
 # CCX (CalculiX binary; CCX=none: xpl only), WORK_DIR (build/accuracy),
