@@ -288,9 +288,9 @@ class BarBar:
     (xpl: CFN of the pair's history; CalculiX: the slave nodes' CSTR pressures times their
     tributary areas);
     duration from the first to the last sample of nonzero force (above 1e-3 of the
-    peak; quantised to the increment) and at half the plateau (crossings interpolated), against 2L/c0;
-    velocities after: mean V1 of each bar at the end of the step (of a node line along it), |v_A|/v and
-    |v_B - v|/v (their sum is the error column 'velocity').
+    peak; quantised to the increment) and at half the plateau (crossings interpolated),
+    against 2L/c0; velocities after: mean V1 of each bar at the end of the step (of a node
+    line along it), |v_A|/v and |v_B - v|/v (their sum is the error column 'velocity').
     """
     name = "bar_bar"
     level_name = "elements along each bar"
@@ -410,9 +410,9 @@ class Hertz:
     Exact (Hertz, quasi-static): peak force 4/3 E* sqrt(R) delta^1.5 (a quarter of it in
     this model), contact time 2.943 delta/v. Errors: peak = the largest plane reaction
     (sum of RF3) against F/4; duration = first to last sample of nonzero force (above 1e-3 of
-    the peak) of the first contact against t_c. Levels: elements along half a cube face of the sphere mesh (12 is
-    the example deck's mesh); the radial layers, the surface layer and the pole edge scale
-    with it.
+    the peak) of the first contact against t_c. Levels: elements along half a cube face of
+    the sphere mesh (12 is the example deck's mesh); the radial layers, the surface layer
+    and the pole edge scale with it.
     """
     name = "hertz"
     title = "Hertz sphere on a rigid plane"
@@ -628,7 +628,9 @@ class Cantilever:
         f_eb = BETA1 ** 2 / (2 * math.pi * self.length ** 2) * math.sqrt(
             E_STEEL * inertia / (RHO_STEEL * area))
         r2 = inertia / area
-        correction = 0.5 * BETA1 ** 2 * r2 / self.length ** 2 * (1.0 + E_STEEL / (5 / 6 * E_STEEL / 2))
+        shear_modulus = E_STEEL / 2.0  # nu = 0
+        correction = 0.5 * BETA1 ** 2 * r2 / self.length ** 2 * (
+            1.0 + E_STEEL / (5.0 / 6.0 * shear_modulus))
         return f_eb * (1.0 - correction), f_eb, correction
 
     def mode(self, x):
@@ -794,8 +796,9 @@ class Taylor:
                 notes.append(f"{name}: not monotone on xpl's finest meshes, reference = the "
                              f"finest value {value * 1e3:.4f} mm")
             else:
+                levels = ", ".join(str(r["level"]) for r in xpl)
                 notes.append(f"{name}: Richardson reference {value * 1e3:.4f} mm (order "
-                             f"{order:.2f}, from xpl levels {', '.join(str(r['level']) for r in xpl)})")
+                             f"{order:.2f}, from xpl levels {levels})")
             for r in rows:
                 r[name] = relative(r[f"{name}_value"], value)
         return "; ".join(notes)

@@ -4,9 +4,9 @@
 For every case of cases.py and every mesh level, the deck is written for each solver and
 run at 1 and 2 threads; the solvers alternate (xpl, CalculiX, xpl, CalculiX, ... within a
 level) so that a change in the machine's load hits both. Each run's errors against the
-analytic answer go to RESULTS_DIR/CASE.csv (date, machine and load in CASE.meta.txt), the fronts (each error
-against CPU time, log-log) to RESULTS_DIR/CASE.png, and the tables and equal-error speed
-ratios of every case with a CSV to RESULTS_DIR/fronts.md.
+analytic answer go to RESULTS_DIR/CASE.csv (date, machine and load in CASE.meta.txt), the
+fronts (each error against CPU time, log-log) to RESULTS_DIR/CASE.png, and the tables and
+equal-error speed ratios of every case with a CSV to RESULTS_DIR/fronts.md.
 
 Usage: fronts.py XPL [--ccx CCX] [--cases bar_wall,bar_bar,...] [--levels N ...]
                  [--repeat R] [--work DIR] [--results DIR] [--report-only]
@@ -248,7 +248,7 @@ def report(case, rows):
     names = list(case.errors) + ["energy"]
     out = [f"### {case.title} (`{case.name}`)", "", case.__doc__.strip().split("\n\n")[0]
            .replace("\n    ", " ").replace("\n", " "), ""]
-    out.append("| solver | thr | " + case.level_name + " | elements | increments | wall s | CPU s | "
+    out.append(f"| solver | thr | {case.level_name} | elements | increments | wall s | CPU s | "
                + " | ".join(names) + " |")
     out.append("|---" * (7 + len(names)) + "|")
     for solver in ("xpl", "calculix"):

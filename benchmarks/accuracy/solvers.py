@@ -40,8 +40,9 @@ def run_xpl(xpl, deck, threads, work):
     job = pathlib.Path(deck).stem
     env = dict(os.environ)
     env.pop("OMP_NUM_THREADS", None)
-    code, wall, cpu = _run([str(xpl), "run", str(pathlib.Path(deck).resolve()), "-o", str(work.resolve()), "--threads",
-                            str(threads), "--quiet"], work, env, work / f"{job}.stdout")
+    command = [str(xpl), "run", str(pathlib.Path(deck).resolve()), "-o", str(work.resolve()),
+               "--threads", str(threads), "--quiet"]
+    code, wall, cpu = _run(command, work, env, work / f"{job}.stdout")
     summary_path = work / f"{job}.summary.json"
     summary = json.loads(summary_path.read_text()) if summary_path.exists() else {}
     if code != 0 or summary.get("status") != "completed":
