@@ -549,7 +549,10 @@ class Plate:
 
     Errors: peak = the first peak of the centre deflection against Navier's (0.4436 mm at
     10.42 ms); history = the largest |w - w_Navier| over the 12 ms step / Navier's peak.
-    xpl only: CalculiX has no explicit S4R (it expands shells into 20-node solids).
+    xpl only. CalculiX 2.20 expands each S4R into a 20-node solid (C3D20R) and runs the deck
+    explicitly, but on the 4 x 4 mesh (18 328 increments, 67 s of CPU: its increment is set
+    by the 10 mm thickness) the centre moved 4.2e-7 m, 0.1 % of Navier's 0.44 mm: no usable
+    CalculiX front without work on that deck, which was not done.
     """
     name = "plate"
     title = "Simply supported plate under a step pressure"
