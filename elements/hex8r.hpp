@@ -186,6 +186,7 @@ class Hex8rBlock {
   std::vector<Real> m_stress;          ///< [b][6][W]
   std::vector<Real> m_hourglass;       ///< [b][4 modes × 3][W] accumulated stiffness forces
   std::vector<Real> m_volume;          ///< [b][W]
+  std::vector<Real> m_viscous_before;  ///< [b][W] bulk-viscosity pressure of the last call
   std::vector<Index> m_slot;           ///< block element -> batch*W + lane
   std::vector<Index> m_color_batches;  ///< batches of colour c: [m_color_batches[c], [c+1])
   // Plasticity (all empty when no element is plastic):

@@ -156,9 +156,11 @@ void CentralDifference::sync_rotation(State& state) {
 namespace {
 
 /// The free central-difference update of nodes [first, last) of one field component block;
-/// returns Σ m v². Accelerations are stored only where the field keeps them.
+/// returns Σ m v_before v_{n+1/2} (ALLKE, see kinetic_before). Accelerations are stored only
+/// where the field keeps them.
 template <bool STORE_ACCELERATION, class Field>
-Real update_range(const Field& d, Index off, Index first, Index last, Real dt_avg, Real w_new) {
+Real update_range(const Field& d, Index off, Index first, Index last, Real dt_avg, Real w_new,
+                  Real w_before) {
   Real* v = d.velocity_half + off;
   Real* vw = d.velocity + off;
   Real* a = STORE_ACCELERATION ? d.acceleration + off : nullptr;
@@ -171,7 +173,8 @@ Real update_range(const Field& d, Index off, Index first, Index last, Real dt_av
     const Real acc = (scale * fe[i] - fi[i]) * d.inverse_mass[i];
     const Real v_new = v[i] + dt_avg * acc;
     const Real v_whole = v[i] + w_new * (v_new - v[i]);
-    ke += d.mass[i] * v_whole * v_whole;
+    const Real v_before = v[i] + w_before * (v_new - v[i]);
+    ke += d.mass[i] * v_before * v_new;
     if constexpr (STORE_ACCELERATION) a[i] = acc;
     v[i] = v_new;
     vw[i] = v_whole;
@@ -181,7 +184,7 @@ Real update_range(const Field& d, Index off, Index first, Index last, Real dt_av
 
 }  // namespace
 
-Real CentralDifference::free_update(const Field& d, Real dt_avg, Real w_new, Real* sums) const {
+Real CentralDifference::free_update(const Field& d, const Increment& inc, Real* sums) const {
   const Index n = m_model.node_count();
   const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
@@ -189,8 +192,9 @@ Real CentralDifference::free_update(const Field& d, Real dt_avg, Real w_new, Rea
     const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
     Real ke = 0.0;
     for (int c = 0; c < 3; ++c)
-      ke += d.acceleration ? update_range<true>(d, c * n, first, last, dt_avg, w_new)
-                           : update_range<false>(d, c * n, first, last, dt_avg, w_new);
+      ke += d.acceleration
+                ? update_range<true>(d, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before)
+                : update_range<false>(d, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before);
     sums[chunk] = 0.5 * ke;
   }
   Real ke = 0.0;
@@ -209,6 +213,11 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   inc.dt_avg = 0.5 * (dt_prev + dt_next);
   // At t = 0 the whole-step velocity is the initial velocity itself.
   inc.w_new = dt_prev > 0.0 ? 0.5 : 0.0;
+  // ALLKE pairs v_{n+1/2} = v(t_n + dt_next/2) with the velocity at the mirror time
+  // t_n - dt_next/2 under the acceleration at t_n: v_{n-1/2} + (dt_prev - dt_next)/2 a_n, so
+  // w_before = (dt_prev - dt_next) / (dt_prev + dt_next): 0 at a constant increment, -1 at
+  // t = 0 (v_0 - dt_next/2 a_0 = 2 v_0 - v_{1/2}). README, "What ALLKE measures".
+  inc.w_before = dt_prev + dt_next > 0.0 ? (dt_prev - dt_next) / (dt_prev + dt_next) : 0.0;
   inc.t_next_half = t_next_half;
   inc.t_next_end = t_next_end;
   const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
@@ -238,13 +247,13 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   for (std::size_t k = 0; k < m_free_loads.size(); ++k)
     m_v_old_loaded[k] = state.velocity_half(m_free_loads[k].node, m_free_loads[k].component);
 
-  Real ke = free_update(translation, inc.dt_avg, inc.w_new, m_chunk_sums.data());
-  if (m_shells) ke += free_update(rotation, inc.dt_avg, inc.w_new, m_chunk_sums.data() + n_chunks);
+  Real ke = free_update(translation, inc, m_chunk_sums.data());
+  if (m_shells) ke += free_update(rotation, inc, m_chunk_sums.data() + n_chunks);
   Real work = 0.0;
   if (!rigid.empty())
     ke += rigid.update(
         m_model, m_boundary, state, elements.force_internal(), loaded ? &m_force_external : nullptr,
-        dt_prev, dt_next, inc.w_new,
+        dt_prev, dt_next, inc.w_new, inc.w_before,
         {state.step_time + 0.5 * dt_next, t_next_half, state.step_time + dt_next, t_next_end},
         work);
   // Jumps of the prescribed motion: found before the update, their work corrected after it
@@ -254,8 +263,8 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
     m_jump_work_pending = 0.0;
   }
   if (m_first_update) find_jumps(state, inc);
-  const Real ke_fix = update_prescribed(state, translation, rotation, inc, work);
-  if (!m_jumps.empty()) count_jump_work(translation, rotation, inc, work);
+  Real ke_fix = update_prescribed(state, translation, rotation, inc, work);
+  if (!m_jumps.empty()) ke_fix += count_jump_work(translation, rotation, inc, work);
   add_load_work(dt_prev, work);
   state.energies.kinetic = ke + ke_fix;
   state.energies.external_work += work;
@@ -291,16 +300,19 @@ Real CentralDifference::update_prescribed(State& state, const Field& translation
             (m_boundary.target(m_model, d, step_next_end, inc.t_next_end) - current) / inc.dt_next;
     }
     const Real m = field.mass[i];
-    const Real wrong = field.velocity[at];  // what the free update counted
-    const Real right = v_old + inc.w_new * (v_new - v_old);
-    ke_fix += 0.5 * m * (right * right - wrong * wrong);
+    // ALLKE: what the free update counted for the DOF, replaced by the prescribed motion's.
+    const Real v_free = field.velocity_half[at];
+    const Real counted = 0.5 * m * (v_old + inc.w_before * (v_free - v_old)) * v_free;
+    const Real kinetic = 0.5 * m * (v_old + inc.w_before * (v_new - v_old)) * v_new;
+    ke_fix += kinetic - counted;
+    const Real v_whole = v_old + inc.w_new * (v_new - v_old);
     const Real acc = inc.dt_avg > 0.0 ? (v_new - v_old) / inc.dt_avg : 0.0;
     const Real f_ext = field.external_scale * field.force_external[at];
     const Real r = m * acc - (f_ext - field.force_internal[at]);
     (turn ? state.reaction_moment : state.reaction)(i, c) = r;
     if (field.acceleration) field.acceleration[at] = acc;
     field.velocity_half[at] = v_new;
-    field.velocity[at] = right;
+    field.velocity[at] = v_whole;
     const Real f_now = f_ext + r;
     Real& f_before = (turn ? m_previous_moment : m_previous_force)(i, c);
     work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
@@ -359,17 +371,21 @@ void CentralDifference::find_jumps(const State& state, const Increment& inc) {
   }
 }
 
-void CentralDifference::count_jump_work(const Field& translation, const Field& rotation,
+Real CentralDifference::count_jump_work(const Field& translation, const Field& rotation,
                                         const Increment& inc, Real& work) {
   // The BC's force at a jump is the impulse J = m (v_new - v_old) plus the internal force the
   // node passes on to the elements. The impulse does J (v_old + v_new) / 2 = ½m(v_new² -
-  // v_old²), counted exactly and split at the reported whole-step velocity v_n, so that ETOTAL
-  // balances at t_n too: ½m(v_n² - v_old²) now, the rest with the next increment. The
-  // trapezoidal rule of update_prescribed weighed J by (dt_prev v_old + dt_next v_new) / 2 over
-  // dt_avg: off by ¼ m (v_new - v_old)² (dt_next - dt_prev) / dt_avg, ½mΔv² at t = 0. Its
-  // term is replaced; the internal force keeps the trapezoidal rule, the impulse leaves
-  // f_before.
+  // v_old²), counted exactly and split at the DOF's kinetic energy at t_n, so that ETOTAL
+  // balances at t_n too: ALLKE pairs v_old with v_new there (½m v_old v_new; at t = 0 the
+  // state before the jump, ½m v_old², instead of the product with 2 v_old - v_new that
+  // update_prescribed counted), so ½m v_old (v_new - v_old) is counted now and ½m v_new
+  // (v_new - v_old) with the next increment. The trapezoidal rule of update_prescribed weighed
+  // J by (dt_prev v_old + dt_next v_new) / 2 over dt_avg: off by ¼ m (v_new - v_old)²
+  // (dt_next - dt_prev) / dt_avg, ½mΔv² at t = 0. Its term is replaced; the internal force
+  // keeps the trapezoidal rule, the impulse leaves f_before. Returns the kinetic-energy
+  // correction at t = 0.
   const Index n = m_model.node_count();
+  Real ke_fix = 0.0;
   for (const PendingJump& j : m_jumps) {
     const PrescribedDof& d = m_prescribed[j.dof];
     const bool turn = d.component >= 3;
@@ -379,14 +395,16 @@ void CentralDifference::count_jump_work(const Field& translation, const Field& r
     const Real m = field.mass[d.node];
     const Real v_old = m_v_old_prescribed[j.dof];
     const Real v_new = field.velocity_half[at];
-    const Real v_whole = field.velocity[at];
+    const Real counted = 0.5 * m * (v_old + inc.w_before * (v_new - v_old)) * v_new;
+    const Real kinetic = 0.5 * m * v_old * (inc.dt_prev > 0.0 ? v_new : v_old);
+    ke_fix += kinetic - counted;
     Real& f_before = (turn ? m_previous_moment : m_previous_force)(d.node, c);
     const Real f_now = f_before;  // what update_prescribed stored: f_ext + reaction
     const Real f_smooth = field.force_internal[at];
     const Real trapezoid = 0.5 * (j.f_before + f_now) * inc.dt_prev * v_old;
     const Real smooth = 0.5 * (j.f_before + f_smooth) * inc.dt_prev * v_old;
-    const Real now = 0.5 * m * (v_whole * v_whole - v_old * v_old);
-    const Real later = 0.5 * m * (v_new * v_new - v_whole * v_whole);
+    const Real now = kinetic - 0.5 * m * v_old * v_old;
+    const Real later = 0.5 * m * v_new * v_new - kinetic;
     work += (smooth + now) - trapezoid;
     m_jump_work_pending += later;
     f_before = f_smooth;
@@ -395,6 +413,7 @@ void CentralDifference::count_jump_work(const Field& translation, const Field& r
     m_jump.largest = std::max(m_jump.largest, std::abs(v_new - v_old));
   }
   m_jumps.clear();
+  return ke_fix;
 }
 
 void CentralDifference::report_jump(int step, OutputSink& sink) {

@@ -62,6 +62,10 @@ class CentralDifference {
     Real dt_prev, dt_next;
     Real dt_avg;  ///< (dt_prev + dt_next) / 2
     Real w_new;   ///< weight of v_{n+1/2} in the whole-step velocity (0 at t = 0)
+    /// v_before = v_{n-1/2} + w_before (v_{n+1/2} - v_{n-1/2}) is the velocity that ALLKE
+    /// pairs with v_{n+1/2}: the velocity at t_n - dt_next/2, (dt_prev - dt_next) / (dt_prev
+    /// + dt_next); 0 at a constant increment (v_{n-1/2}), -1 at t = 0 (2 v_0 - v_{1/2}).
+    Real w_before;
     Real t_next_half, t_next_end;
   };
   /// Keeps only the prescribed DOFs of `active` that act on something (rotations need
@@ -71,8 +75,9 @@ class CentralDifference {
   /// free_loads are those that are not prescribed.
   void collect_loads();
   /// Central-difference update of the free DOFs of a field; returns its kinetic energy
-  /// (summed per chunk in chunk order: independent of the thread count).
-  Real free_update(const Field& d, Real dt_avg, Real w_new, Real* sums) const;
+  /// ½ Σ m v_before v_{n+1/2} (summed per chunk in chunk order: independent of the thread
+  /// count).
+  Real free_update(const Field& d, const Increment& inc, Real* sums) const;
   /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
   /// `work`); returns the kinetic-energy correction to what the free update counted.
   Real update_prescribed(State& state, const Field& translation, const Field& rotation,
@@ -86,8 +91,10 @@ class CentralDifference {
   /// their force of the previous increment, into m_jumps.
   void find_jumps(const State& state, const Increment& inc);
   /// After update_prescribed: the work of the jumps in m_jumps counted as impulses (their
-  /// trapezoidal term replaced), into `work` and the pending work of the next increment.
-  void count_jump_work(const Field& translation, const Field& rotation, const Increment& inc,
+  /// trapezoidal term replaced), into `work` and the pending work of the next increment;
+  /// returns the kinetic-energy correction (at t = 0 a DOF that jumps counts its state
+  /// before the jump).
+  Real count_jump_work(const Field& translation, const Field& rotation, const Increment& inc,
                        Real& work);
   /// Work of the loads on the free loaded DOFs over the increment just taken, into `work`.
   void add_load_work(Real dt_prev, Real& work);

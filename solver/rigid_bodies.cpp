@@ -146,8 +146,8 @@ Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed) {
 
 Real RigidBodies::update(const Model& model, const BoundaryState& boundary, State& state,
                          const NodalVectors& force_internal, const NodalVectors* force_external,
-                         Real dt_prev, Real dt_next, Real w_new, const std::array<Real, 4>& times,
-                         Real& work) {
+                         Real dt_prev, Real dt_next, Real w_new, Real w_before,
+                         const std::array<Real, 4>& times, Real& work) {
   const Real dt_avg = 0.5 * (dt_prev + dt_next);
   const bool rotations = state.angular_velocity_half.rows() > 0;
   Real ke_correction = 0.0;
@@ -155,7 +155,7 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
     const Index r = body.reference;
     const Eigen::Vector3d x_r = row(state.position, r);
     // Forces on the body and their moment about the reference node; the kinetic energy the
-    // free update counted for these nodes.
+    // free update counted for these nodes (½ m v_{n-1/2}², their inverse mass being 0).
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
     Real counted = 0.0;
     auto gather = [&](Index i) {
@@ -230,12 +230,14 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
         state.reaction_moment(r, k - 3) = reaction[k];
     }
 
-    // Whole-step velocities, kinetic energy, the reference node.
+    // Whole-step velocities, the reference node; the kinetic energy ½ v_before·M·v_{n+1/2}
+    // with the 6×6 matrix at t_n, as for the free DOFs (CentralDifference::Increment).
     const Eigen::Vector3d v_whole = v_old + w_new * (v_new - v_old);
     const Eigen::Vector3d w_whole = w_old + w_new * (w_new_half - w_old);
-    Vector6 vw;
-    vw << v_whole, w_whole;
-    ke_correction += 0.5 * vw.dot(mass_matrix * vw) - counted;
+    Vector6 v_after, v_before;
+    v_after << v_new, w_new_half;
+    v_before << v_old + w_before * (v_new - v_old), w_old + w_before * (w_new_half - w_old);
+    ke_correction += 0.5 * v_before.dot(mass_matrix * v_after) - counted;
     for (int k = 0; k < 3; ++k) {
       state.velocity_half(r, k) = v_new[k];
       state.velocity(r, k) = v_whole[k];

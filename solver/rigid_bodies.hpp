@@ -18,7 +18,7 @@
 /// advanced by the exact rotation of ω_{n+1/2} Δt, and every member node is placed exactly at
 /// x_ref + R (X − X_ref) by giving it the half-step velocity that lands it there, so the
 /// body never deforms. The members' inverse mass is 0 in the nodal update; the kinetic energy
-/// of a body is ½ vᵀ M v with the 6×6 matrix above.
+/// of a body is ½ v_{n-1/2}ᵀ M v_{n+1/2} with the 6×6 matrix above (ALLKE, README).
 ///
 /// PIN and TIE nodes join the body with their translations; a TIE node's rotations (shells)
 /// are not coupled yet and keep their own dynamics (said in the .msg file).
@@ -62,13 +62,16 @@ class RigidBodies {
 
   /// One central-difference update of every body, called after the free nodal update with
   /// the forces at t_n (internal n_nodes × 3; external may be null), the increments dt_prev
-  /// and dt_next, the whole-step weight w_new (0 at t = 0) and the times at which the BCs
-  /// are evaluated. Writes velocities (half and whole step), accelerations, reactions and the
-  /// reference node rotation into `state`; returns the kinetic-energy correction (body
-  /// energy minus what the free update counted for its nodes) and adds the reactions' work.
+  /// and dt_next, the whole-step weight w_new (0 at t = 0), the weight w_before of the
+  /// velocity that the kinetic energy pairs with v_{n+1/2} (CentralDifference::Increment) and
+  /// the times at which the BCs are evaluated. Writes velocities (half and whole step),
+  /// accelerations, reactions and the reference node rotation into `state`; returns the
+  /// kinetic-energy correction (body energy minus what the free update counted for its nodes) and
+  /// adds the reactions' work.
   Real update(const Model& model, const BoundaryState& boundary, State& state,
               const NodalVectors& force_internal, const NodalVectors* force_external, Real dt_prev,
-              Real dt_next, Real w_new, const std::array<Real, 4>& times, Real& work);
+              Real dt_next, Real w_new, Real w_before, const std::array<Real, 4>& times,
+              Real& work);
 
  private:
   struct Body {

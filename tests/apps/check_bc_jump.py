@@ -12,16 +12,15 @@ second step (PULL).
   work of the two impulses is exactly the kinetic energy ½mv² = 1.256e-4 J, so ETOTAL must
   stay at 0 to round-off: |drift| < 1e-9 of ALLKE.
 - `face`: only the face z = 0 prescribed, in z. The block deforms: the jump rings the highest
-  modes of this two-layer mesh (ω Δt close to 2), and the whole-step kinetic energy of the
-  central-difference scheme misses its shadow energy by about (ω Δt)² / 4 of the energy in
-  them: at the stable increment ETOTAL sits off by some 20 % of ALLKE, a bounded offset of the
-  scheme, not of the BC's work. The run must complete with |drift| < 0.5 of ALLKE (the bound
-  of the energy check itself).
-- `face_fine`: the same at a fixed increment of PERIOD / 128, about 1/9 of the stable one.
-  The scheme's offset shrinks with Δt² (1.65e-6 J here), the work of the jumps is exact, so
-  |drift| < 1 % of ALLKE. Counted by the trapezoidal reaction rule, the start alone was off by
-  ½mΔv² of the face nodes, 3.14e-5 J = 7 % of ALLKE, whatever the increment.
-
+  modes of this two-layer mesh (ω Δt close to 2). Measured with the whole-step velocity, their
+  kinetic energy was off by about (ω Δt)² / 4 (ETOTAL some 20 % off ALLKE, beyond the default
+  --energy-limit); ALLKE = ½ v(n-½)·M·v(n+½) is what the scheme conserves, and what is left is
+  the increment following the element shapes (0.8 % measured): |drift| < 3 % of ALLKE, under
+  the default energy limit.
+- `face_fine`: the same at a fixed increment of PERIOD / 128, about 1/9 of the stable one:
+  |drift| < 1e-5 of ALLKE (1.7e-7 measured; 1.65e-6 J, 0.4 %, with the whole-step velocity).
+  Counted by the trapezoidal reaction rule, the start alone was off by ½mΔv² of the face
+  nodes, 3.14e-5 J = 7 % of ALLKE, whatever the increment.
 Both runs must complete (exit code 0, status "completed"), and JOB.msg must name the jump of
 each step: "prescribed velocity jump at t = ..." with the energy it put in.
 """
@@ -96,10 +95,7 @@ def run(xpl, work, case, tolerance, increment=None):
     path = work / f"{job}.inp"
     path.write_text(deck(case.removesuffix("_fine"), increment))
     out = work / case
-    # The offset of the scheme on `face` (above) reaches 15-20 % of ALLKE, beyond the run's
-    # default drift limit of 10 %: the check allows the bound it tests, 50 %.
-    result = subprocess.run([xpl, "run", str(path), "-o", str(out), "--threads", "1",
-                             "--energy-limit", "50"],
+    result = subprocess.run([xpl, "run", str(path), "-o", str(out), "--threads", "1"],
                             capture_output=True, text=True, timeout=120)
     check(result.returncode == 0, f"{case}: exit code {result.returncode}, expected 0\n"
                                   f"stdout:\n{result.stdout}\nstderr:\n{result.stderr}")
@@ -141,8 +137,8 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
     run(xpl, work, "rigid", 1e-9)
-    run(xpl, work, "face", 0.5)
-    run(xpl, work, "face_fine", 1e-2, PERIOD / 128)
+    run(xpl, work, "face", 3e-2)
+    run(xpl, work, "face_fine", 1e-5, PERIOD / 128)
 
 
 if __name__ == "__main__":

@@ -10,13 +10,12 @@ plate) and shell-shell, lower body fixed or free, at 1 m/s, and the hex-hex sing
 at 0.1 and 10 m/s: 12 decks. Each must
 - complete at scale factor 1 and at 1.05 (the target first failing factor is >= 1.05; the
   full table with the bisected factor is benchmarks/RESULTS.md, benchmarks/contact_stability.py);
-- keep |ETOTAL drift| (largest over the run) below 5 % of ALLKE(0), and ALLPW after the
-  rebound within 4 % of ALLKE(0) of zero. These are bounds on the default penalty's own
-  stepping error, not the issue's targets (0.5 %, ~0), which are not met yet: measured 0.5 to
-  3.4 % drift and -2 to +2.3 % ALLPW on these decks. The error does not come from the element
-  increment: on the single-layer hex-hex deck it stays at 1.5 % for scale factors 1, 0.5 and
-  0.25 and falls with the penalty (0.37 % at a quarter, 0.15 % at a sixteenth), as the
-  spring's (omega_c dt)^2 does (RESULTS.md).
+- keep |ETOTAL drift| (largest over the run) below 0.5 % of ALLKE(0), the issue's target
+  (measured 0.05 to 0.21 %; 0.5 to 3.4 % before ALLKE was measured as ½ v(n-½)·M·v(n+½) and
+  ALLVD by the trapezoidal rule), and ALLPW after the rebound within 4 % of ALLKE(0) of zero.
+  The latter bounds the default penalty's own stepping error (a spring that closes or opens
+  inside an increment: -0.1 to +1.8 % measured), not the issue's target (~0), which is not met
+  yet.
 """
 
 import pathlib
@@ -26,7 +25,7 @@ import sys
 import h5py
 import numpy as np
 
-DRIFT_BOUND = 0.05
+DRIFT_BOUND = 0.005
 ALLPW_BOUND = 0.04
 
 

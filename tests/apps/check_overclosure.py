@@ -102,14 +102,13 @@ def blocks_deep(d):
     h = f["history/step_1"]
     ke = h["energy"]["ALLKE"][:]
     check(ke.max() > 1.0, f"the plain penalty pushes the blocks apart (ALLKE reaches {ke.max():.2f} J)")
-    # The push-out creates energy (ALLKE + ALLIE + ALLVD outgrow the penalty work ALLPW): the
-    # energy watchdog ends the run as failed above its default limit of 10 %.
-    check(f.attrs["status"] == "failed" and "energy balance lost" in f.attrs["error"]
-          and "the limit is 10 %" in f.attrs["error"] and "ALLPW moved most" in f.attrs["error"],
-          f"the energy watchdog stops the push-out (status {f.attrs['status']!r}, "
-          f"error {f.attrs['error']!r})")
+    # The push-out's stepping loses 3.3 % of the energy (before ALLKE = ½ v(n-½)·M·v(n+½)
+    # and the trapezoidal ALLVD it showed as +27 % and the watchdog failed the run): the run
+    # completes, the drift past 1 % warned of in the .sta file.
+    check(f.attrs["status"] == "completed", f"the push-out completes (status "
+          f"{f.attrs['status']!r}, error {f.attrs['error']!r})")
     check("WARNING: energy balance" in (d / "blocks_deep.sta").read_text(),
-          "the 1 % drift was warned of in the .sta file first")
+          "the 1 % drift was warned of in the .sta file")
 
 
 def blocks_bc(d):
