@@ -253,6 +253,13 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       const InteractionLaw law =
           ia != NO_INDEX && ia < static_cast<Index>(m_laws.size()) ? m_laws[ia] : InteractionLaw{};
       const ContactFace& face = faces[t.face];
+      Vec3 v_rel = node_point(velocity_half, node);
+      for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
+      // A touch the increment's motion cannot have made starts without force (file comment).
+      if (m_updated && face.shell && !c.offset_permanent)
+        c.offset = std::max(c.offset, onset_offset(c, t.face, t.gap, t.normal, v_rel, dt));
+      c.gap = t.gap;
+      c.normal = t.normal;
       const Real master_mass = master_mass_at_point(t.shape, face.nodes, mass, inverse_mass);
       Real k = penalty_stiffness(law, slaves.areas()[s], mass[node], master_mass, dt_penalty,
                                  m_options.penalty_scale);
@@ -265,16 +272,12 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       f = fn * t.normal;
       if (law.pressure_slope > 0.0) {
         // Counted while closed, or when the approach closes it within the look-ahead.
-        Vec3 v_rel = node_point(velocity_half, node);
-        for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
         const Real ahead = t.gap + PENALTY_LOOKAHEAD_INCREMENTS * dt_penalty * v_rel.dot(t.normal);
         const bool acts = fn > 0.0 || penalty_force(ahead, c.offset, k) > 0.0;
         m_user_k[s] = acts ? k : 0.0;
         m_user_law[s] = ia;
       }
       if (law.friction > 0.0 && dt > 0.0) {
-        Vec3 v_rel = node_point(velocity_half, node);
-        for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
         const FrictionUpdate fr =
             friction_update(c.tangential_force, v_rel, t.normal, fn, law.friction, k, dt);
         c.tangential_force = fr.force;
@@ -296,6 +299,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   m_assembly.assemble(slaves, faces, m_touch, m_slave_force, m_normal_force, m_constraints,
                       m_dissipation, velocity_half, dt, force_internal, totals);
   for (Index s = 0; s < n_slave; ++s) totals.stored_energy += m_stored[s];
+  m_updated = true;
   if (m_user_stiffness) {
     m_penalty_sum.reset(static_cast<Index>(mass.size()));
     for (Index s = 0; s < n_slave; ++s)

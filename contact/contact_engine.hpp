@@ -30,6 +30,20 @@
 /// Shell sides are at ±t/2 of the mid-surface (ContactFace), and a shell slave node carries
 /// half its own thickness: its gap is the distance to the face's contact surface minus t/2.
 ///
+/// Onset of a touch on a shell face: every rule above turns a face admissible for a node at
+/// some instant, and a node can be inside the face's slab at that instant (a folding wall
+/// turning a face towards a node beside its edge, the lateral rule admitting a node beside
+/// an edge a shell thickness behind the face's plane, a node past a shell's mid-surface
+/// seeing the other side). From the second update of the step on, a touch on another face
+/// than last increment's is only as deep as the relative approach of the increment made it
+/// (plus the penetration carried from a face on the same side); the rest becomes the node's
+/// offset (onset_offset, penalty.hpp), which shrinks as the node comes out (SPEC C3). So no
+/// spring starts with energy the motion did not put in, and a node that has crossed a wall is
+/// not pushed on through it by the other side (what a user of double-sided shell contact
+/// expects: a node found deep in a wall is not shot out of it). The first update of an
+/// engine takes its touches as they are: the deep ones the overclosure pass left to the
+/// penalty ("ignored", C4) are pushed out as before.
+///
 /// Force: f = w·k·max(0, d − d0) along the contact normal with w the view weight (½ for each
 /// view of a balanced pair) and k the penalty stiffness: k = slope·A (tributary area A) for a
 /// LINEAR pressure–overclosure slope, else the default k = ½·s·m_eff/Δt² (penalty.hpp), which
@@ -160,6 +174,7 @@ class ContactEngine {
   bool m_user_stiffness = false;  // some law has its own stiffness (a LINEAR slope)
   std::vector<Real> m_user_k;     // (n_slave) user-stiffness spring counted this update, N/m
   std::vector<Index> m_user_law;  // (n_slave) its interaction
+  bool m_updated = false;         // an update() has run: constraints hold last increment's touches
   PenaltyStiffnessSum m_penalty_sum;
   PenaltyLimit m_penalty_limit;
 };

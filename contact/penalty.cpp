@@ -12,6 +12,16 @@ Real normal_contact_update(ContactConstraint& constraint, Real gap, Real stiffne
   return f;
 }
 
+Real onset_offset(const ContactConstraint& before, Index face, Real gap, const Vec3& normal,
+                  const Vec3& relative_velocity, Real dt) {
+  if (face == before.master_face) return 0.0;
+  const bool same_side = before.master_face != NO_INDEX && before.normal.dot(normal) > 0.0;
+  const Real carried = same_side ? std::max(0.0, -before.gap) : 0.0;
+  const Real approach = std::max(0.0, -relative_velocity.dot(normal)) * dt;
+  const Real excess = -gap - carried - approach;
+  return excess > (ONSET_REACH_FACTOR - 1.0) * approach ? excess : 0.0;
+}
+
 Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>& corner_mass) {
   Real m = 0.0;
   for (int a = 0; a < 4; ++a) m += weights[a] * corner_mass[a];

@@ -38,6 +38,10 @@ struct ContactConstraint {
   bool offset_permanent = false;
   ContactStatus status = ContactStatus::Inactive;
   Vec3 tangential_force = Vec3::Zero();  ///< friction force on the slave node, N
+  /// Gap (m) and unit contact normal of the touch on `master_face` at the last update, for
+  /// the onset rule of a touch on another face (ContactEngine).
+  Real gap = 0.0;
+  Vec3 normal = Vec3::Zero();
 };
 
 /// Normal force magnitude f = k·max(0, d − d0) for gap g (d = −g, m), offset d0 (m) and
@@ -66,6 +70,24 @@ inline Real updated_offset(Real penetration, Real offset) {
 /// (N/m): applies the offset rule (unless the offset is permanent), then returns the normal
 /// force (N) and sets the status to Closed or Open.
 Real normal_contact_update(ContactConstraint& constraint, Real gap, Real stiffness);
+
+/// The offset (m) a touch needs at its onset: the penetration beyond what the last increment
+/// can have produced, or 0.
+///
+/// A touch on face `face` (gap `gap`, m, unit contact normal `normal`) that is not the face of
+/// last increment's constraint `before` is as deep as the relative approach of the increment
+/// along the normal, −v_rel·n Δt (relative velocity of the slave node to the face point
+/// `relative_velocity`, m/s, over the increment dt, s), plus the penetration `before` carried
+/// when its face is on the same side (normals less than 90° apart: sliding on to the next
+/// face). Deeper than that (more than ONSET_REACH_FACTOR times the approach), the node was
+/// already inside when the face turned admissible for it: a fold turning a face towards it,
+/// a node coming within the lateral rule of a face's edge, a node past a shell's mid-surface
+/// seeing the other side. The spring then holds only what the approach made (its energy is
+/// the work the approach took), and the rest becomes offset, so that a touch never starts
+/// with a force the motion did not build (energy from nowhere) and never pushes a node on
+/// through a wall it has crossed. Zero for the face of `before` (a continuing touch).
+Real onset_offset(const ContactConstraint& before, Index face, Real gap, const Vec3& normal,
+                  const Vec3& relative_velocity, Real dt);
 
 /// The master mass of a face with a rigid corner (a corner of zero inverse mass): infinite, so
 /// that m_eff is the slave node's own mass.

@@ -73,6 +73,7 @@ def measure(path):
             "ALLSE": float(energy["ALLSE"][-1]),
             "ALLKE": float(energy["ALLKE"][-1]),
             "ALLPW": float(energy["ALLPW"][-1]) if "ALLPW" in energy else 0.0,
+            "ALLPW_min": float(energy["ALLPW"][()].min()) if "ALLPW" in energy else 0.0,
             "balance": float(np.abs(etotal).max()),
             "lobes": lobes(reference, current),
             "peeq_max": float(last["PEEQ"][()].max()),
@@ -91,7 +92,7 @@ def main():
           f"{r['reference_force'] / 1e3:.2f} kN; peak {r['peak_force'] / 1e3:.2f} kN")
     print(f"ALLWK {r['ALLWK']:.5g} J, ALLIE {r['ALLIE']:.5g} (ALLPD {r['ALLPD']:.5g}, ALLSE "
           f"{r['ALLSE']:.4g}, ALLAE {r['ALLAE']:.4g}), ALLKE {r['ALLKE']:.4g}, ALLPW "
-          f"{r['ALLPW']:.4g}; largest |ETOTAL| {r['balance']:.4g} J = "
+          f"{r['ALLPW']:.4g} (lowest {r['ALLPW_min']:.4g}); largest |ETOTAL| {r['balance']:.4g} J = "
           f"{100 * r['balance'] / r['ALLWK']:.3f} % of ALLWK")
     print(f"outward lobes per wall (+x, -x, +y, -y): {r['lobes']}; largest PEEQ "
           f"{r['peeq_max']:.3g}")

@@ -208,3 +208,88 @@ TEST_CASE(
   for (Index node : {low[1], high[1], low[2], high[2]})
     CHECK(engine.touch(domain.slaves().slot(node)).face == NO_INDEX);
 }
+
+TEST_CASE(
+    "a shell face that turns admissible for a node already a thickness behind its plane "
+    "starts without force; one met in the first update is pushed as before",
+    "[contact][engine][onset]") {
+  // Face F: a shell in z = 0 (x, y in [0, 1]), t = 0.2, its SNEG surface at z = −0.1. Strip S
+  // (y in [0.4, 0.6], z = −0.05) beside F's edge x = 1 by L: its nodes q0, q3 are 0.05 behind
+  // F's SNEG plane, gap −0.15 with their own half thickness, and the lateral rule admits them
+  // once L < 0.15. S moves from L = 0.2 to L = 0.1 in one increment, along x: the approach
+  // along F's normal is zero, so the whole 0.15 was there before F turned admissible (the
+  // crash tube's 2715 J at 5.4 ms were four such nodes beside the corner edge of a folding
+  // wall). Then S sinks 0.01 deeper: that part acts.
+  const Real t = 0.2, dt = 1e-3;
+  auto build = [&](Real lateral) {
+    test::ContactMesh mesh;
+    const Index f0 = mesh.add_node(0, 0, 0), f1 = mesh.add_node(1, 0, 0),
+                f2 = mesh.add_node(1, 1, 0), f3 = mesh.add_node(0, 1, 0);
+    mesh.add_element(contact::ElementKind::Shell, {f0, f1, f2, f3});
+    const Real x0 = 1.0 + lateral, z = -0.05;
+    const Index q0 = mesh.add_node(x0, 0.4, z), q1 = mesh.add_node(x0 + 1, 0.4, z),
+                q2 = mesh.add_node(x0 + 1, 0.6, z), q3 = mesh.add_node(x0, 0.6, z);
+    mesh.add_element(contact::ElementKind::Shell, {q0, q1, q2, q3});
+    return mesh;
+  };
+  const test::ContactMesh start = build(0.2);
+  const Index n = start.node_count();
+  const std::vector<Real> thickness(static_cast<std::size_t>(n), t), mass(n, 1.0),
+      inverse_mass(n, 1.0);
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  const Index q0 = 4;
+  auto moved = [&](const NodalVectors& from, const Vec3& step) {
+    NodalVectors x = from;
+    for (Index i = 4; i < n; ++i)
+      for (int d = 0; d < 3; ++d) x(i, d) += step[d];
+    return x;
+  };
+  auto velocity = [&](const Vec3& step) {
+    NodalVectors v = NodalVectors::Zero(n, 3);
+    for (Index i = 4; i < n; ++i)
+      for (int d = 0; d < 3; ++d) v(i, d) = step[d] / dt;
+    return v;
+  };
+  const Real k = contact::default_penalty_stiffness(1.0, 1.0, dt);
+  PhaseTimers timers;
+
+  SECTION("turned admissible between two updates: no force, no stored energy") {
+    contact::ContactEngine engine(
+        ContactDomain(all_exterior(), start.topology(), start.coordinates), {}, options,
+        start.coordinates, thickness);
+    NodalVectors force = NodalVectors::Zero(n, 3);
+    engine.update(start.coordinates, NodalVectors::Zero(n, 3), 0.0, dt, thickness, mass,
+                  inverse_mass, force, timers);
+    const Index s = engine.domain().slaves().slot(q0);
+    REQUIRE(engine.normal_force(s) == 0.0);
+    const Vec3 slide(-0.1, 0, 0);
+    const NodalVectors x1 = moved(start.coordinates, slide);
+    const contact::ContactTotals in =
+        engine.update(x1, velocity(slide), dt, dt, thickness, mass, inverse_mass, force, timers);
+    const contact::SlaveTouch& touch = engine.touch(s);
+    REQUIRE(touch.face != NO_INDEX);
+    CHECK(engine.domain().faces()[touch.face].element == 0);
+    CHECK(touch.gap == Approx(-0.15).margin(1e-12));
+    CHECK(engine.normal_force(s) == 0.0);
+    CHECK(engine.constraints()[s].offset == Approx(0.15).margin(1e-12));
+    CHECK(in.stored_energy == 0.0);
+    // Sinking 0.01 deeper along F's normal (−z for SNEG, so +z here) is resisted.
+    const Vec3 sink(0, 0, 0.01);
+    const NodalVectors x2 = moved(x1, sink);
+    engine.update(x2, velocity(sink), dt, dt, thickness, mass, inverse_mass, force, timers);
+    CHECK(engine.touch(s).face == touch.face);
+    CHECK(engine.normal_force(s) == Approx(touch.weight * k * 0.01).epsilon(1e-9));
+  }
+  SECTION("the first update of an engine takes the touch as it is (C4)") {
+    const test::ContactMesh near = build(0.1);
+    contact::ContactEngine engine(ContactDomain(all_exterior(), near.topology(), near.coordinates),
+                                  {}, options, near.coordinates, thickness);
+    NodalVectors force = NodalVectors::Zero(n, 3);
+    engine.update(near.coordinates, NodalVectors::Zero(n, 3), 0.0, dt, thickness, mass,
+                  inverse_mass, force, timers);
+    const Index s = engine.domain().slaves().slot(q0);
+    REQUIRE(engine.touch(s).face != NO_INDEX);
+    CHECK(engine.normal_force(s) == Approx(engine.touch(s).weight * k * 0.15).epsilon(1e-9));
+  }
+}

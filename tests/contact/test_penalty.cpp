@@ -62,6 +62,41 @@ TEST_CASE("one increment of the normal law applies the offset rule first", "[con
   CHECK(contact::normal_contact_update(permanent, -3e-3, k) == Approx(100.0).epsilon(1e-12));
 }
 
+TEST_CASE("a touch on a new face keeps what the approach made and offsets the rest",
+          "[contact][penalty][onset]") {
+  // Last increment: pressed 2 µm into face 3 (normal +z). Now face 5; dt = 1e-6 s.
+  ContactConstraint before;
+  before.master_face = 3;
+  before.gap = -2e-6;
+  before.normal = Vec3(0, 0, 1);
+  const Real dt = 1e-6;
+  const Vec3 up(0, 0, 1), down(0, 0, -1);
+  const Vec3 approaching(0.3, 0, -1.0);  // 1 m/s towards a face of normal +z: 1 µm
+  SECTION("the same face continues whatever its depth") {
+    CHECK(contact::onset_offset(before, 3, -1e-3, up, Vec3::Zero(), dt) == 0.0);
+  }
+  SECTION("sliding on to the next face of the same side: the carried depth and the approach") {
+    CHECK(contact::onset_offset(before, 5, -3e-6, up, approaching, dt) == 0.0);
+    // Up to ONSET_REACH_FACTOR × the approach beyond the carried depth is still taken as is.
+    CHECK(contact::onset_offset(before, 5, -3.9e-6, up, approaching, dt) == 0.0);
+  }
+  SECTION("a thickness deep on the next face: only the approach acts") {
+    const Real off = contact::onset_offset(before, 5, -1.4e-3, up, approaching, dt);
+    CHECK(off == Approx(1.4e-3 - 2e-6 - 1e-6).epsilon(1e-12));
+  }
+  SECTION("the other side (a crossed mid-surface) carries nothing") {
+    // Same depth as the carried one, but on a face looking the other way.
+    const Real off = contact::onset_offset(before, 5, -1e-4, down, Vec3::Zero(), dt);
+    CHECK(off == Approx(1e-4).epsilon(1e-12));
+  }
+  SECTION("no touch last increment: a node in the open that was not approaching") {
+    ContactConstraint none;
+    CHECK(contact::onset_offset(none, 5, -5e-4, up, Vec3(1, 0, 0), dt) ==
+          Approx(5e-4).epsilon(1e-12));
+    CHECK(contact::onset_offset(none, 5, 2e-4, up, Vec3::Zero(), dt) == 0.0);  // open
+  }
+}
+
 TEST_CASE("default penalty stiffness", "[contact][penalty][stiffness]") {
   const Real dt = 1e-6;
   // Equal masses: m_eff = m/2.

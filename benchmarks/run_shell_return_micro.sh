@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The S4R plane-stress return alone (benchmarks/shell_return_micro.cpp) built against
+# elements/shell_plasticity.cpp of two revisions, run alternately REPS times per case; prints
+# the user CPU seconds (best / median), which a loaded machine disturbs far less than wall
+# time. Usage: bash benchmarks/run_shell_return_micro.sh OLD_REV [NEW_REV (working tree)]
+# Environment: REPS (7), N (4000 increments), MARCH (native).
+set -euo pipefail
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+old_rev=$1
+new_rev=${2:-}
+reps=${REPS:-7}
+n=${N:-4000}
+work=build/bench/shell_return
+mkdir -p "$work"
+git show "$old_rev:elements/shell_plasticity.cpp" >"$work/old.cpp"
+if [[ -n $new_rev ]]; then git show "$new_rev:elements/shell_plasticity.cpp" >"$work/new.cpp"
+else cp elements/shell_plasticity.cpp "$work/new.cpp"; fi
+for v in old new; do
+  g++ -O3 -march="${MARCH:-native}" -std=c++20 -w -DNDEBUG -I. -isystem /usr/include/eigen3 \
+    benchmarks/shell_return_micro.cpp "$work/$v.cpp" elements/plasticity.cpp -o "$work/$v"
+done
+for case in "0 0" "1 50"; do
+  for v in old new; do "$work/$v" $case "$n"; done
+  rows=()
+  for rep in $(seq 1 "$reps"); do
+    order="old new"; ((rep % 2)) || order="new old"
+    for v in $order; do
+      t=$({ /usr/bin/time -f "%U" "$work/$v" $case "$n" >/dev/null; } 2>&1)
+      rows+=("$v $t")
+    done
+  done
+  printf '%s\n' "${rows[@]}" | /usr/bin/python3 -c "
+import statistics, sys
+t = {}
+for line in sys.stdin:
+    v, s = line.split(); t.setdefault(v, []).append(float(s))
+print('case $case:', '; '.join(f'{v} best {min(x):.2f} s median {statistics.median(x):.2f} s'
+                              for v, x in sorted(t.items(), reverse=True)),
+      f\"; new/old median {statistics.median(t['new']) / statistics.median(t['old']):.3f}\")"
+done
