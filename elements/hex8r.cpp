@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/parallel_error.hpp"
 #include "elements/element_coloring.hpp"
 #include "elements/hex8_geometry.hpp"
 #include "elements/hex8r_gather.hpp"
@@ -84,18 +85,21 @@ void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVector
   Real* fx = force.data();
   for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
     const Index first = m_color_batches[c], last = m_color_batches[c + 1];
+    ParallelErrors errors;
 #pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
-    for (Index b = first; b < last; ++b) {
-      // P2: batches of elastic lanes compile without any plasticity work.
-      if (!m_batch_plastic.empty() && m_batch_plastic[b])
-        compute_batch<true>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
-                            vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
-                            fx + 2 * n_nodes);
-      else
-        compute_batch<false>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
-                             vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
-                             fx + 2 * n_nodes);
-    }
+    for (Index b = first; b < last; ++b)
+      errors.guard(ParallelSite::HexForces, b, [&] {
+        // P2: batches of elastic lanes compile without any plasticity work.
+        if (!m_batch_plastic.empty() && m_batch_plastic[b])
+          compute_batch<true>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
+                              vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
+                              fx + 2 * n_nodes);
+        else
+          compute_batch<false>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
+                               vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
+                               fx + 2 * n_nodes);
+      });
+    errors.rethrow_if_any();
   }
   // Serial reduction in batch order: independent of the thread count.
   const Index n_batches = m_color_batches.back();

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/parallel_error.hpp"
 #include "elements/element_coloring.hpp"
 #include "elements/quad_shell_geometry.hpp"
 
@@ -186,13 +187,16 @@ void Shell4rBlock::internal_forces(const NodalVectors& position, const NodalVect
   Real* const m[3] = {moment.data(), moment.data() + nn, moment.data() + 2 * nn};
   for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
     const Index first = m_color_batches[c], last = m_color_batches[c + 1];
+    ParallelErrors errors;
 #pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
-    for (Index b = first; b < last; ++b) {
-      if (m_plastic.batch_plastic(static_cast<std::size_t>(b)))
-        compute_batch<true>(b, p, v, w, dt, f, m);
-      else
-        compute_batch<false>(b, p, v, w, dt, f, m);
-    }
+    for (Index b = first; b < last; ++b)
+      errors.guard(ParallelSite::ShellForces, b, [&] {
+        if (m_plastic.batch_plastic(static_cast<std::size_t>(b)))
+          compute_batch<true>(b, p, v, w, dt, f, m);
+        else
+          compute_batch<false>(b, p, v, w, dt, f, m);
+      });
+    errors.rethrow_if_any();
   }
   const Index n_batches = m_color_batches.back();
   for (Index b = 0; b < n_batches; ++b) {
