@@ -19,6 +19,7 @@
 #include "io/results/job_lock.hpp"
 #include "io/results/result_files.hpp"
 #include "solver/explicit_solver.hpp"
+#include "solver/thread_team.hpp"
 
 namespace xpl::apps {
 
@@ -114,7 +115,8 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
   if (stopped() != 0) return 128 + stopped();  // stopped before anything was written
   std::optional<io::ResultFiles> files;
   try {
-    const int threads = args.threads > 0 ? args.threads : omp_get_max_threads();
+    // The solver's choice (one thread for a small model unless --threads insists).
+    const int threads = team_size(model, args.threads, omp_get_max_threads());
     io::ResultOptions ropts;
     ropts.progress = !args.quiet;
     ropts.threads = threads;

@@ -2,6 +2,8 @@
 // `xpl check DECK.inp`; the result-file tools `xpl compare` and `xpl history` are in
 // compare.cpp and history.cpp.
 
+#include <omp.h>
+
 #include <unistd.h>
 
 #include <csignal>
@@ -29,7 +31,8 @@ constexpr const char* USAGE =
     "  check   data check: read the deck, build the model, write frame 0 and the logs,\n"
     "          stop before the first increment\n"
     "  -o DIR  directory for the result files (default: the current directory)\n"
-    "  --threads N  OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+    "  --threads N  OpenMP threads (default: OMP_NUM_THREADS or all cores; one thread for\n"
+    "               models of fewer than 2000 elements); more than the cores is warned of\n"
     "  --quiet      no progress line and no summary on the terminal\n"
     "  --import PREV.h5  start from the last frame of an earlier result of the same mesh\n"
     "               (positions, velocities, stresses); penetrations there become contact\n"
@@ -187,6 +190,11 @@ int main(int argc, char** argv) {
     std::cerr << "xpl: unknown command '" << args.command << "'\n" << USAGE;
     return 2;
   }
+  if (args.threads > omp_get_num_procs())
+    std::cerr << "xpl: warning: --threads " << args.threads << " is more than the "
+              << omp_get_num_procs()
+              << " core(s) available: the threads take turns on the cores and every barrier "
+                 "waits for a descheduled one (slower; the results are the same)\n";
   install_stop_handlers();
   args.check = args.command == "check";
   return xpl::apps::run_job(args, &g_stop_signal);

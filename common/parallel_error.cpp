@@ -10,8 +10,8 @@ namespace xpl {
 namespace {
 
 constexpr std::array<std::string_view, static_cast<int>(ParallelSite::COUNT)> SITE_NAMES = {
-    "none",           "hex-forces",  "hex-stiffness", "shell-forces", "contact-search",
-    "contact-forces", "broad-phase", "overclosure",   "clearance"};
+    "none",           "element-forces", "element-boundary", "hex-stiffness", "contact-search",
+    "contact-forces", "broad-phase",    "overclosure",      "clearance"};
 
 struct FaultPoint {
   ParallelSite site = ParallelSite::None;

@@ -23,18 +23,18 @@ namespace xpl {
 /// The guarded OpenMP regions, named for fault injection in tests.
 enum class ParallelSite : int {
   None = 0,
-  HexForces,      ///< C3D8R internal forces (elements/hex8r.cpp)
-  HexStiffness,   ///< C3D8R stiffness product (elements/hex8r_stiffness.cpp)
-  ShellForces,    ///< S4R internal forces (elements/shell4r.cpp)
-  ContactSearch,  ///< closest master face per slave node (contact/contact_engine.cpp)
-  ContactForces,  ///< penalty and friction forces (contact/contact_engine.cpp)
-  BroadPhase,     ///< candidate faces per slave node (contact/broad_phase.cpp)
-  Overclosure,    ///< initial overclosure moves and crossed edges (initial_overclosure.cpp)
-  Clearance,      ///< contact clearance moves (contact/contact_clearance.cpp)
+  ElementForces,    ///< element forces of a thread's part (elements/thread_partition.hpp)
+  ElementBoundary,  ///< sums at nodes two parts share (elements/thread_partition.hpp)
+  HexStiffness,     ///< C3D8R stiffness product (elements/hex8r_stiffness.cpp)
+  ContactSearch,    ///< closest master face per slave node (contact/contact_engine.cpp)
+  ContactForces,    ///< penalty and friction forces (contact/contact_engine.cpp)
+  BroadPhase,       ///< candidate faces per slave node (contact/broad_phase.cpp)
+  Overclosure,      ///< initial overclosure moves and crossed edges (initial_overclosure.cpp)
+  Clearance,        ///< contact clearance moves (contact/contact_clearance.cpp)
   COUNT
 };
 
-/// The name of a site as XPL_TEST_FAULT takes it ("hex-forces", "contact-search", ...).
+/// The name of a site as XPL_TEST_FAULT takes it ("element-forces", "contact-search", ...).
 std::string_view parallel_site_name(ParallelSite site);
 
 /// Fault injection for tests: the environment variable XPL_TEST_FAULT=SITE:INDEX (read once,

@@ -22,8 +22,9 @@ import h5py
 
 LIMIT = 60
 CASES = [
-    ("hex-forces", "examples/bar_impact/bar_impact.inp"),
-    ("shell-forces", "examples/plate_pressure/plate_pressure.inp"),
+    ("element-forces", "examples/bar_impact/bar_impact.inp"),
+    ("element-forces", "examples/plate_pressure/plate_pressure.inp"),
+    ("element-boundary", "examples/plate_pressure/plate_pressure.inp"),
     ("contact-search", "examples/contact/friction_block/friction_block.inp"),
     ("contact-forces", "examples/contact/friction_block/friction_block.inp"),
     ("broad-phase", "examples/contact/friction_block/friction_block.inp"),
@@ -44,7 +45,7 @@ def main():
     for site, deck_name in CASES:
         deck = source / deck_name
         job = deck.stem
-        results = out / site
+        results = out / f"{site}_{job}"
         env = dict(os.environ, XPL_TEST_FAULT=f"{site}:0", OMP_WAIT_POLICY="PASSIVE")
         try:
             r = subprocess.run([xpl, "run", str(deck), "-o", str(results), "--threads", "2",

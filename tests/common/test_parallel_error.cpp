@@ -48,9 +48,9 @@ TEST_CASE("a region without exceptions rethrows nothing", "[common][parallel]") 
   ParallelErrors errors;
   double sum = 0.0;
 #pragma omp parallel for reduction(+ : sum) num_threads(2)
-  for (Index i = 0; i < 100; ++i) errors.guard(ParallelSite::HexForces, i, [&] { sum += i; });
+  for (Index i = 0; i < 100; ++i) errors.guard(ParallelSite::ElementForces, i, [&] { sum += i; });
   CHECK_NOTHROW(errors.rethrow_if_any());
   CHECK(sum == 4950.0);
-  CHECK(xpl::parallel_site_name(ParallelSite::HexForces) == "hex-forces");
+  CHECK(xpl::parallel_site_name(ParallelSite::ElementForces) == "element-forces");
   CHECK(xpl::parallel_site_name(ParallelSite::Clearance) == "clearance");
 }
