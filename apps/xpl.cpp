@@ -7,23 +7,13 @@
 #include <unistd.h>
 
 #include <csignal>
-#include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <new>
-#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "common/error.hpp"
-#include "io/deck/deck_reader.hpp"
-#include "io/results/import_state.hpp"
-#include "io/results/job_lock.hpp"
-#include "io/results/result_files.hpp"
-#include "solver/explicit_solver.hpp"
-#include "solver/thread_team.hpp"
+#include "job.hpp"
 #include "subcommands.hpp"
 
 namespace {
@@ -82,9 +72,6 @@ void default_to_passive_wait(char** argv) {
   execv("/proc/self/exe", argv);
 }
 
-/// Exit code of a run refused because another run of the job holds its lock.
-constexpr int EXIT_LOCKED = 5;
-
 /// The signal that asks the run to stop (SIGINT/SIGTERM), 0 until one arrives. The handler
 /// only sets it; the time loop looks at it once per increment.
 volatile std::sig_atomic_t g_stop_signal = 0;
@@ -103,21 +90,8 @@ void install_stop_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-/// What an exception says, for the terminal and the result files.
-std::string cause_of(const std::exception& e) {
-  if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr)
-    return std::string("out of memory (") + e.what() + ")";
-  return e.what();
-}
-
-struct Arguments {
+struct Arguments : xpl::apps::JobArguments {
   std::string command;
-  std::filesystem::path deck;
-  std::filesystem::path out_dir = ".";
-  int threads = 0;
-  double energy_limit = 10.0;  ///< --energy-limit, percent of the largest energy
-  bool quiet = false;
-  std::filesystem::path import;  ///< --import: a result file to start from
 };
 
 /// Parses argv; returns false (after printing why) on a usage error.
@@ -188,37 +162,6 @@ bool parse(int argc, char** argv, Arguments& args) {
   return true;
 }
 
-/// Peak resident memory of this process in MB (VmHWM), or 0 if unknown.
-double peak_memory_mb() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmHWM:") {
-      double kb = 0.0;
-      status >> kb;
-      return kb / 1024.0;
-    }
-    status.ignore(1 << 20, '\n');
-  }
-  return 0.0;
-}
-
-void print_summary(const xpl::RunSummary& s, const xpl::Model& model, int threads) {
-  std::printf("xpl: element cycles per second: %.6e (%d elements x %ld increments, %d threads)\n",
-              s.element_cycles_per_second, model.element_count(), s.increments, threads);
-  for (int p = 0; p < static_cast<int>(xpl::Phase::COUNT); ++p) {
-    const auto phase = static_cast<xpl::Phase>(p);
-    std::printf("xpl: phase %s: %.3f s\n", std::string(xpl::phase_name(phase)).c_str(),
-                s.timers.seconds(phase));
-  }
-  std::printf("xpl: largest energy balance drift: %.3g %% of the largest energy (t = %.6g s)\n",
-              100.0 * s.energy_drift, s.energy_drift_time);
-  std::printf("xpl: peak memory: %.1f MB\n", peak_memory_mb());
-}
-
-/// Reads the deck (and --import), then runs or checks it; returns the exit code.
-int run_job(const Arguments& args);
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -229,8 +172,8 @@ int main(int argc, char** argv) {
       return std::string(argv[1]) == "compare" ? xpl::apps::compare_main(rest)
                                                : xpl::apps::history_main(rest);
     } catch (const std::exception& e) {
-      std::cerr << "xpl " << argv[1] << ": error: " << cause_of(e) << "\n";
-      return 4;
+      std::cerr << "xpl " << argv[1] << ": error: " << xpl::apps::cause_of(e) << "\n";
+      return xpl::apps::EXIT_INTERNAL;
     }
   }
   if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
@@ -253,126 +196,6 @@ int main(int argc, char** argv) {
               << " core(s) available: the threads take turns on the cores and every barrier "
                  "waits for a descheduled one (slower; the results are the same)\n";
   install_stop_handlers();
-  // Whatever escapes (std::bad_alloc reading a deck included) ends with a message and exit
-  // code 4, never std::terminate.
-  try {
-    return run_job(args);
-  } catch (const std::exception& e) {
-    std::cerr << "xpl: error: " << cause_of(e) << "\n";
-  } catch (...) {
-    std::cerr << "xpl: error: an unknown internal error\n";
-  }
-  return 4;
+  args.check = args.command == "check";
+  return xpl::apps::run_job(args, &g_stop_signal);
 }
-
-namespace {
-
-int run_job(const Arguments& args) {
-  xpl::Model model;
-  try {
-    // A data check reports what only the element kernels cannot run yet as warnings.
-    model = xpl::io::read_deck(args.deck, args.command == "check" ? xpl::io::ModelChecks::DataCheck
-                                                                  : xpl::io::ModelChecks::Run);
-  } catch (const xpl::InputError& e) {
-    for (const auto& m : e.messages()) std::cerr << m << "\n";
-    std::cerr << "xpl: " << e.messages().size() << " error(s) in " << args.deck.string()
-              << "; nothing was written\n";
-    return 1;
-  }
-
-  // --import: read and check the earlier result before anything is written.
-  xpl::InitialState initial;
-  if (!args.import.empty()) {
-    std::vector<std::string> refusals;
-    if (!model.rigid_bodies.empty())
-      refusals.push_back(args.import.string() +
-                         ": --import: the model has rigid bodies, whose orientation a result "
-                         "file does not hold; expected a model without *RIGID BODY");
-    // Clearances by adjustment move nodes strain free, which only the first step of a new
-    // analysis may do (C7); an imported state takes them as permanent offsets.
-    if (const auto& first = model.steps.front().contact; first)
-      for (const xpl::ClearanceAssignment& a : first->clearances) {
-        const xpl::ContactClearance& c = model.contact_clearances[a.clearance];
-        if (c.adjust)
-          refusals.push_back(a.where.file + ":" + std::to_string(a.where.line) +
-                             ": *CONTACT CLEARANCE ASSIGNMENT: clearance " + c.name +
-                             " has ADJUST=YES, but the run starts from --import " +
-                             args.import.string() +
-                             " (no node may move in an imported state); expected ADJUST=NO "
-                             "(permanent contact offsets)");
-      }
-    if (!refusals.empty()) {
-      for (const std::string& m : refusals) std::cerr << m << "\n";
-      std::cerr << "xpl: " << refusals.size() << " error(s) in " << args.import.string()
-                << "; nothing was written\n";
-      return 1;
-    }
-    try {
-      xpl::io::ImportedState imported = xpl::io::read_imported_state(args.import, model);
-      for (const std::string& note : imported.notes)
-        model.deck_messages.push_back({false, args.import.string() + ": --import: " + note});
-      initial = std::move(static_cast<xpl::InitialState&>(imported));
-    } catch (const xpl::InputError& e) {
-      for (const auto& m : e.messages()) std::cerr << m << "\n";
-      std::cerr << "xpl: " << e.messages().size() << " error(s) in " << args.import.string()
-                << "; nothing was written\n";
-      return 1;
-    }
-  }
-
-  if (g_stop_signal != 0) return 128 + g_stop_signal;  // stopped before anything was written
-  std::optional<xpl::io::ResultFiles> files;
-  try {
-    xpl::io::ResultOptions ropts;
-    ropts.progress = !args.quiet;
-    // The solver's choice (one thread for a small model unless --threads insists).
-    const int threads = xpl::team_size(model, args.threads, omp_get_max_threads());
-    ropts.threads = threads;
-    files.emplace(args.out_dir, model.job_name, ropts);
-    xpl::SolverOptions sopts;
-    sopts.threads = args.threads;
-    sopts.energy_limit = args.energy_limit / 100.0;
-    sopts.stop_signal = &g_stop_signal;
-    if (!args.import.empty()) sopts.initial_state = &initial;
-    xpl::ExplicitSolver solver(model, *files, sopts);
-    if (args.command == "check") {
-      solver.check();
-      if (!args.quiet)
-        std::printf("xpl: data check of %s completed; results in %s\n", model.job_name.c_str(),
-                    files->h5_path().string().c_str());
-      return 0;
-    }
-    const xpl::RunSummary summary = solver.run();
-    if (summary.stop_signal != 0) {
-      std::fprintf(stderr, "xpl: %s interrupted by signal %d at t = %.6g s; results in %s\n",
-                   model.job_name.c_str(), summary.stop_signal, summary.final_time,
-                   files->h5_path().string().c_str());
-      return 128 + summary.stop_signal;
-    }
-    if (!args.quiet) {
-      std::printf("xpl: %s completed: %ld increments to t = %.6g s; results in %s\n",
-                  model.job_name.c_str(), summary.increments, summary.final_time,
-                  files->h5_path().string().c_str());
-      print_summary(summary, model, threads);
-    }
-    return 0;
-  } catch (const xpl::io::JobLocked& e) {
-    std::cerr << "xpl: " << e.what() << "\n";
-    return EXIT_LOCKED;
-  } catch (const xpl::SolverError& e) {
-    // The solver records its own failures; one outside the time loop (the data check, the
-    // setup) is recorded here, so the file never says less than the terminal.
-    if (files) files->fail(e.what());
-    std::cerr << "xpl: " << e.what() << "\n"
-              << "xpl: the run stopped; frames written so far are in the results file, "
-                 "which records the error\n";
-    return 3;
-  } catch (const std::exception& e) {
-    const std::string cause = cause_of(e);
-    if (files) files->fail(cause);
-    std::cerr << "xpl: error: " << cause << "\n";
-    return 4;
-  }
-}
-
-}  // namespace

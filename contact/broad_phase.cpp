@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "common/parallel_error.hpp"
+
 namespace xpl::contact {
 
 namespace {
@@ -106,20 +108,26 @@ void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index
   // Candidates: count per slave node, prefix sum, fill (both passes parallel, no races).
   m_offsets.resize(static_cast<std::size_t>(n_slave) + 1);
   m_offsets[0] = 0;
+  ParallelErrors count_errors;
 #pragma omp parallel for schedule(dynamic, 256)
-  for (Index s = 0; s < n_slave; ++s) {
-    const Index n = slave_nodes[s];
-    m_offsets[s + 1] =
-        scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)), faces, nullptr);
-  }
+  for (Index s = 0; s < n_slave; ++s)
+    count_errors.guard(ParallelSite::BroadPhase, s, [&] {
+      const Index n = slave_nodes[s];
+      m_offsets[s + 1] =
+          scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)), faces, nullptr);
+    });
+  count_errors.rethrow_if_any();
   for (Index s = 0; s < n_slave; ++s) m_offsets[s + 1] += m_offsets[s];
   m_candidates.resize(static_cast<std::size_t>(m_offsets[n_slave]));
+  ParallelErrors fill_errors;
 #pragma omp parallel for schedule(dynamic, 256)
-  for (Index s = 0; s < n_slave; ++s) {
-    const Index n = slave_nodes[s];
-    scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)), faces,
-                m_candidates.data() + m_offsets[s]);
-  }
+  for (Index s = 0; s < n_slave; ++s)
+    fill_errors.guard(ParallelSite::BroadPhase, s, [&] {
+      const Index n = slave_nodes[s];
+      scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)), faces,
+                  m_candidates.data() + m_offsets[s]);
+    });
+  fill_errors.rethrow_if_any();
 
   // Nodes to watch: every face corner and every slave node, ascending.
   m_is_tracked.assign(static_cast<std::size_t>(n_nodes), 0);

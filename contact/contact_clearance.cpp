@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "common/parallel_error.hpp"
 #include "contact/broad_phase.hpp"
 #include "contact/closest_point.hpp"
 
@@ -312,19 +313,22 @@ class ClearanceMoves final : public AdjustmentMoves {
     const auto n_records = static_cast<Index>(m.records.size());
     bool any = false;
     Real worst = 0.0;
+    ParallelErrors errors;
 #pragma omp parallel for schedule(static) reduction(|| : any) reduction(max : worst)
-    for (Index k = 0; k < n_records; ++k) {
-      const Record& r = m.records[k];
-      m_moving[k] = 0;
-      if (!r.adjust || r.held) continue;
-      Vec3 normal;
-      const Real delta = m.residual(r, normal);
-      if (std::abs(delta) <= r.tolerance) continue;
-      m_moving[k] = 1;
-      any = true;
-      worst = std::max(worst, std::abs(delta));
-      for (int d = 0; d < 3; ++d) m_move[3 * k + d] = delta * normal[d];
-    }
+    for (Index k = 0; k < n_records; ++k)
+      errors.guard(ParallelSite::Clearance, k, [&] {
+        const Record& r = m.records[k];
+        m_moving[k] = 0;
+        if (!r.adjust || r.held) return;
+        Vec3 normal;
+        const Real delta = m.residual(r, normal);
+        if (std::abs(delta) <= r.tolerance) return;
+        m_moving[k] = 1;
+        any = true;
+        worst = std::max(worst, std::abs(delta));
+        for (int d = 0; d < 3; ++d) m_move[3 * k + d] = delta * normal[d];
+      });
+    errors.rethrow_if_any();
     if (!any) return false;
     m_worst_of_pass.push_back(worst);
     if (pass >= 1 && worst > CLEARANCE_CONVERGENCE_RATIO * m_worst_of_pass[pass - 1]) return false;

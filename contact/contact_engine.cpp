@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/parallel_error.hpp"
 #include "contact/closest_point.hpp"
 
 namespace xpl::contact {
@@ -166,23 +167,26 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
 
 void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
   const Index n_slave = m_domain.slaves().size();
+  ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 256)
-  for (Index s = 0; s < n_slave; ++s) {
-    SlaveTouch best;
-    if (!m_domain.slave_rigid(s)) {
-      Real best_distance = std::numeric_limits<Real>::max();
-      SlaveTouch candidate;
-      Real distance = 0.0;
-      const SlaveView view = slave_view(s, position, node_thickness);
-      for (Index f : m_broad.candidates(s))
-        if (admissible(view, f, position, node_thickness, candidate, distance) &&
-            distance < best_distance) {
-          best_distance = distance;
-          best = candidate;
-        }
-    }
-    m_touch[s] = best;
-  }
+  for (Index s = 0; s < n_slave; ++s)
+    errors.guard(ParallelSite::ContactSearch, s, [&] {
+      SlaveTouch best;
+      if (!m_domain.slave_rigid(s)) {
+        Real best_distance = std::numeric_limits<Real>::max();
+        SlaveTouch candidate;
+        Real distance = 0.0;
+        const SlaveView view = slave_view(s, position, node_thickness);
+        for (Index f : m_broad.candidates(s))
+          if (admissible(view, f, position, node_thickness, candidate, distance) &&
+              distance < best_distance) {
+            best_distance = distance;
+            best = candidate;
+          }
+      }
+      m_touch[s] = best;
+    });
+  errors.rethrow_if_any();
 }
 
 void ContactEngine::widen_search(Real extra) {
@@ -233,67 +237,72 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   }
 
   ScopedTimer timer(timers, Phase::ContactForce);
+  ParallelErrors errors;
 #pragma omp parallel for schedule(static)
-  for (Index s = 0; s < n_slave; ++s) {
-    ContactConstraint& c = m_constraints[s];
-    const SlaveTouch& t = m_touch[s];
-    m_dissipation[s] = 0.0;
-    m_stored[s] = 0.0;
-    Vec3 f = Vec3::Zero();
-    Real fn = 0.0;
-    OutputStatus status = OutputStatus::Open;
-    if (m_user_stiffness) m_user_k[s] = 0.0;
-    if (t.face == NO_INDEX) {
-      c.master_face = NO_INDEX;
-      c.status = ContactStatus::Inactive;
-      c.tangential_force = Vec3::Zero();
-    } else {
-      const Index node = slaves.nodes()[s];
-      const Index ia = m_domain.interaction(s, t.face);
-      const InteractionLaw law =
-          ia != NO_INDEX && ia < static_cast<Index>(m_laws.size()) ? m_laws[ia] : InteractionLaw{};
-      const ContactFace& face = faces[t.face];
-      Vec3 v_rel = node_point(velocity_half, node);
-      for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
-      // A touch the increment's motion cannot have made starts without force (file comment).
-      if (m_updated && face.shell && !c.offset_permanent)
-        c.offset = std::max(c.offset, onset_offset(c, t.face, t.gap, t.normal, v_rel, dt));
-      c.gap = t.gap;
-      c.normal = t.normal;
-      const Real master_mass = master_mass_at_point(t.shape, face.nodes, mass, inverse_mass);
-      Real k = penalty_stiffness(law, slaves.areas()[s], mass[node], master_mass, dt_penalty,
-                                 m_options.penalty_scale);
-      k *= t.weight;
-      c.master_face = t.face;
-      c.xi = t.xi;
-      c.eta = t.eta;
-      fn = normal_contact_update(c, t.gap, k);
-      m_stored[s] = penalty_energy(t.gap, c.offset, k);
-      f = fn * t.normal;
-      if (law.pressure_slope > 0.0) {
-        // Counted while closed, or when the approach closes it within the look-ahead.
-        const Real ahead = t.gap + PENALTY_LOOKAHEAD_INCREMENTS * dt_penalty * v_rel.dot(t.normal);
-        const bool acts = fn > 0.0 || penalty_force(ahead, c.offset, k) > 0.0;
-        m_user_k[s] = acts ? k : 0.0;
-        m_user_law[s] = ia;
-      }
-      if (law.friction > 0.0 && dt > 0.0) {
-        const FrictionUpdate fr =
-            friction_update(c.tangential_force, v_rel, t.normal, fn, law.friction, k, dt);
-        c.tangential_force = fr.force;
-        m_dissipation[s] = fr.dissipation;
-        if (k > 0.0) m_stored[s] += 0.5 * fr.force.dot(fr.force) / k;
-        f += fr.force;
-        if (fn > 0.0) status = fr.slipping ? OutputStatus::Slip : OutputStatus::Stick;
-      } else {
+  for (Index s = 0; s < n_slave; ++s)
+    errors.guard(ParallelSite::ContactForces, s, [&] {
+      ContactConstraint& c = m_constraints[s];
+      const SlaveTouch& t = m_touch[s];
+      m_dissipation[s] = 0.0;
+      m_stored[s] = 0.0;
+      Vec3 f = Vec3::Zero();
+      Real fn = 0.0;
+      OutputStatus status = OutputStatus::Open;
+      if (m_user_stiffness) m_user_k[s] = 0.0;
+      if (t.face == NO_INDEX) {
+        c.master_face = NO_INDEX;
+        c.status = ContactStatus::Inactive;
         c.tangential_force = Vec3::Zero();
-        if (fn > 0.0) status = OutputStatus::Slip;
+      } else {
+        const Index node = slaves.nodes()[s];
+        const Index ia = m_domain.interaction(s, t.face);
+        const InteractionLaw law = ia != NO_INDEX && ia < static_cast<Index>(m_laws.size())
+                                       ? m_laws[ia]
+                                       : InteractionLaw{};
+        const ContactFace& face = faces[t.face];
+        Vec3 v_rel = node_point(velocity_half, node);
+        for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
+        // A touch the increment's motion cannot have made starts without force (file comment).
+        if (m_updated && face.shell && !c.offset_permanent)
+          c.offset = std::max(c.offset, onset_offset(c, t.face, t.gap, t.normal, v_rel, dt));
+        c.gap = t.gap;
+        c.normal = t.normal;
+        const Real master_mass = master_mass_at_point(t.shape, face.nodes, mass, inverse_mass);
+        Real k = penalty_stiffness(law, slaves.areas()[s], mass[node], master_mass, dt_penalty,
+                                   m_options.penalty_scale);
+        k *= t.weight;
+        c.master_face = t.face;
+        c.xi = t.xi;
+        c.eta = t.eta;
+        fn = normal_contact_update(c, t.gap, k);
+        m_stored[s] = penalty_energy(t.gap, c.offset, k);
+        f = fn * t.normal;
+        if (law.pressure_slope > 0.0) {
+          // Counted while closed, or when the approach closes it within the look-ahead.
+          const Real ahead =
+              t.gap + PENALTY_LOOKAHEAD_INCREMENTS * dt_penalty * v_rel.dot(t.normal);
+          const bool acts = fn > 0.0 || penalty_force(ahead, c.offset, k) > 0.0;
+          m_user_k[s] = acts ? k : 0.0;
+          m_user_law[s] = ia;
+        }
+        if (law.friction > 0.0 && dt > 0.0) {
+          const FrictionUpdate fr =
+              friction_update(c.tangential_force, v_rel, t.normal, fn, law.friction, k, dt);
+          c.tangential_force = fr.force;
+          m_dissipation[s] = fr.dissipation;
+          if (k > 0.0) m_stored[s] += 0.5 * fr.force.dot(fr.force) / k;
+          f += fr.force;
+          if (fn > 0.0) status = fr.slipping ? OutputStatus::Slip : OutputStatus::Stick;
+        } else {
+          c.tangential_force = Vec3::Zero();
+          if (fn > 0.0) status = OutputStatus::Slip;
+        }
       }
-    }
-    m_normal_force[s] = fn;
-    m_output_status[s] = status;
-    for (int d = 0; d < 3; ++d) m_slave_force[3 * s + d] = f[d];
-  }
+      m_normal_force[s] = fn;
+      m_output_status[s] = status;
+      for (int d = 0; d < 3; ++d) m_slave_force[3 * s + d] = f[d];
+    });
+  errors.rethrow_if_any();
 
   // Assembly, sums and work, in slot order (independent of the thread count).
   m_assembly.assemble(slaves, faces, m_touch, m_slave_force, m_normal_force, m_constraints,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/parallel_error.hpp"
 #include "contact/closest_point.hpp"
 #include "contact/surface_corners.hpp"
 
@@ -136,22 +137,25 @@ class OverclosureMoves final : public AdjustmentMoves {
     }
     if (!any) return false;
     const SlaveNodes& slaves = m.slaves;
+    ParallelErrors errors;
 #pragma omp parallel for schedule(static)
-    for (Index s = 0; s < m.n_slave; ++s) {
-      if (!m_moving[s]) continue;
-      const SlaveTouch& t = m.engine.touch(s);
-      // Half when the face moves too in this pass (the other view of a balanced pair).
-      Real w = 1.0;
-      for (Index c : m.faces[t.face].nodes) {
-        const Index cs = slaves.slot(c);
-        if (cs != NO_INDEX && m_moving[cs]) w = std::min(1.0, t.weight);
-      }
-      const Vec3 delta = w * (-t.gap) * t.normal;
-      // A DOF with a boundary condition does not move at all (its share of the direction is
-      // below LOCK_COMPONENT, or the node would be held).
-      const std::uint8_t lock = m.node_lock.empty() ? 0 : m.node_lock[slaves.nodes()[s]];
-      for (int d = 0; d < 3; ++d) m_move[3 * s + d] = ((lock >> d) & 1u) != 0 ? 0.0 : delta[d];
-    }
+    for (Index s = 0; s < m.n_slave; ++s)
+      errors.guard(ParallelSite::Overclosure, s, [&] {
+        if (!m_moving[s]) return;
+        const SlaveTouch& t = m.engine.touch(s);
+        // Half when the face moves too in this pass (the other view of a balanced pair).
+        Real w = 1.0;
+        for (Index c : m.faces[t.face].nodes) {
+          const Index cs = slaves.slot(c);
+          if (cs != NO_INDEX && m_moving[cs]) w = std::min(1.0, t.weight);
+        }
+        const Vec3 delta = w * (-t.gap) * t.normal;
+        // A DOF with a boundary condition does not move at all (its share of the direction is
+        // below LOCK_COMPONENT, or the node would be held).
+        const std::uint8_t lock = m.node_lock.empty() ? 0 : m.node_lock[slaves.nodes()[s]];
+        for (int d = 0; d < 3; ++d) m_move[3 * s + d] = ((lock >> d) & 1u) != 0 ? 0.0 : delta[d];
+      });
+    errors.rethrow_if_any();
     for (Index s = 0; s < m.n_slave; ++s) {
       if (!m_moving[s]) continue;
       const Index node = slaves.nodes()[s];
@@ -298,9 +302,12 @@ void Overclosure::find_crossed(OverclosureReport& report) const {
     const std::vector<std::uint8_t> corners = corner_edges(faces, position);
     const auto n_edges = static_cast<Index>(edges.size());
     std::vector<Index> hit(edges.size(), NO_INDEX);
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 256)
     for (Index k = 0; k < n_edges; ++k)
-      hit[k] = crossed_face(edges[k].first, edges[k].second, reach, corners);
+      errors.guard(ParallelSite::Overclosure, k,
+                   [&] { hit[k] = crossed_face(edges[k].first, edges[k].second, reach, corners); });
+    errors.rethrow_if_any();
     for (Index k = 0; k < n_edges; ++k)
       if (hit[k] != NO_INDEX) report.crossed.push_back({edges[k].first, edges[k].second, hit[k]});
   }

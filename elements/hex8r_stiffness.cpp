@@ -1,5 +1,6 @@
 // The linear stiffness product of the C3D8R block (Hex8rBlock::add_stiffness_product): what
 // the global estimate of the highest frequency needs (solver/global_increment.*).
+#include "common/parallel_error.hpp"
 #include "elements/hex8_geometry.hpp"
 #include "elements/hex8r.hpp"
 #include "elements/hex8r_gather.hpp"
@@ -17,10 +18,14 @@ void Hex8rBlock::add_stiffness_product(const NodalVectors& position, const Nodal
   // Colours as in internal_forces(): the lanes and batches of a colour share no node.
   for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
     const Index first = m_color_batches[c], last = m_color_batches[c + 1];
+    ParallelErrors errors;
 #pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
     for (Index b = first; b < last; ++b)
-      stiffness_batch(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes, ux + 2 * n_nodes, yx,
-                      yx + n_nodes, yx + 2 * n_nodes);
+      errors.guard(ParallelSite::HexStiffness, b, [&] {
+        stiffness_batch(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes, ux + 2 * n_nodes,
+                        yx, yx + n_nodes, yx + 2 * n_nodes);
+      });
+    errors.rethrow_if_any();
   }
 }
 

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/parallel_error.hpp"
 #include "common/types.hpp"
 
 namespace xpl::elements {
@@ -95,13 +96,19 @@ void partitioned_pass(int parts, Index n_boundary, ComputePart&& compute_part,
     for (Index k = 0; k < n_boundary; ++k) add_boundary(k);
     return;
   }
+  // An exception may not leave the region: kept per loop, rethrown after it.
+  ParallelErrors part_errors, boundary_errors;
 #pragma omp parallel num_threads(parts)
   {
 #pragma omp for schedule(static, 1)
-    for (int p = 0; p < parts; ++p) compute_part(p);
+    for (int p = 0; p < parts; ++p)
+      part_errors.guard(ParallelSite::ElementForces, p, [&] { compute_part(p); });
 #pragma omp for schedule(static) nowait
-    for (Index k = 0; k < n_boundary; ++k) add_boundary(k);
+    for (Index k = 0; k < n_boundary; ++k)
+      boundary_errors.guard(ParallelSite::ElementBoundary, k, [&] { add_boundary(k); });
   }
+  part_errors.rethrow_if_any();
+  boundary_errors.rethrow_if_any();
 }
 
 }  // namespace xpl::elements

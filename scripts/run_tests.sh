@@ -2,9 +2,13 @@
 # Install missing dependencies, build xpl with a preset and run its test suite, then fuzz the
 # deck reader under address+undefined sanitizers.
 # Usage: scripts/run_tests.sh [preset]    (release by default)
-#   XPL_FUZZ_DECKS=N  mutated decks for the sanitizer fuzz stage (default 1000, 0 skips it;
-#                     about 0.25 s of CPU per deck under the sanitizers, so 1000 keep CI short);
-#                     the stage builds only the xpl program with the sanitize preset.
+#   XPL_FUZZ_DECKS=N  mutated decks checked in process (tests/fuzz/xpl_fuzz_check: batches of
+#                     decks through the code of `xpl check`, each isolated) under address+
+#                     undefined sanitizers (default 3000, 0 skips them)
+#   XPL_FUZZ_PROCESS_DECKS=N  mutated decks checked by `xpl check` as a process each under the
+#                     sanitizers, the whole command line (default 300, 0 skips them; about
+#                     0.25 s of CPU per deck, most of it starting the process)
+#                     The fuzz stage builds only xpl and xpl_fuzz_check with the sanitize preset.
 # Exit code: ctest's, else the fuzzer's (1 when it found a crash, hang or sanitizer report).
 set -euo pipefail
 
@@ -27,9 +31,19 @@ status=$?
 set -e
 if [[ $status -ne 0 ]]; then exit "$status"; fi
 
-fuzz_decks="${XPL_FUZZ_DECKS:-1000}"
-if [[ $fuzz_decks -gt 0 ]]; then
-  [[ $preset == sanitize ]] || bash scripts/build.sh sanitize xpl
-  python3 tests/fuzz/fuzz_decks.py --xpl build/sanitize/apps/xpl --count "$fuzz_decks" \
-    --seed 1 --timeout 10 --keep build/sanitize/fuzz-findings
+fuzz_decks="${XPL_FUZZ_DECKS:-3000}"
+fuzz_process_decks="${XPL_FUZZ_PROCESS_DECKS:-300}"
+if [[ $fuzz_decks -gt 0 || $fuzz_process_decks -gt 0 ]]; then
+  [[ $preset == sanitize ]] || bash scripts/build.sh sanitize xpl xpl_fuzz_check
+  fuzz_status=0
+  if [[ $fuzz_decks -gt 0 ]]; then
+    python3 tests/fuzz/fuzz_decks.py --in-process build/sanitize/tests/fuzz/xpl_fuzz_check \
+      --count "$fuzz_decks" --seed 1 --timeout 10 --keep build/sanitize/fuzz-findings ||
+      fuzz_status=1
+  fi
+  if [[ $fuzz_process_decks -gt 0 ]]; then
+    python3 tests/fuzz/fuzz_decks.py --xpl build/sanitize/apps/xpl --count "$fuzz_process_decks" \
+      --seed 2 --timeout 10 --keep build/sanitize/fuzz-findings-process || fuzz_status=1
+  fi
+  exit "$fuzz_status"
 fi

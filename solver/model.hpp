@@ -380,7 +380,7 @@ struct DeckMessage {
 
 /// The whole analysis as read from a deck.
 struct Model {
-  std::string heading;
+  std::string heading;  ///< the *HEADING lines joined by newlines, control characters escaped
   std::vector<DeckMessage> deck_messages;  ///< written to .msg by the solver at the start
   std::string job_name;                    ///< deck stem
 

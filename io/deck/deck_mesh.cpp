@@ -4,6 +4,7 @@
 #include <array>
 #include <string>
 
+#include "common/error.hpp"
 #include "io/deck/deck_handlers.hpp"
 #include "io/deck/deck_numbers.hpp"
 
@@ -27,9 +28,11 @@ void reserve_more(Container& container, std::size_t capacity, std::size_t extra)
 
 void read_heading(DeckState& deck, const DeckBlock& block) {
   check_parameters(deck, block.keyword, {});
+  // The title is echoed in JOB.msg and stored in JOB.h5: control characters escaped as in
+  // every message, so that it cannot move the terminal's cursor or change its colours.
   for (const DeckDataLine& line : block.data) {
     if (!deck.model.heading.empty()) deck.model.heading += '\n';
-    deck.model.heading += line.text;
+    deck.model.heading += escape_control(std::string(line.text));
   }
 }
 

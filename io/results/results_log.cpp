@@ -4,6 +4,7 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "common/error.hpp"
 #include "io/results/results_mesh.hpp"
 
 #ifndef XPL_VERSION
@@ -30,8 +31,8 @@ std::string now_text() {
 }
 
 void write_header(std::ofstream& out, const char* kind, const std::string& job) {
-  out << " xpl " << XPL_VERSION << " " << kind << "\n JOB  " << job << "\n DATE " << now_text()
-      << "\n\n";
+  out << " xpl " << XPL_VERSION << " " << kind << "\n JOB  " << escape_control(job) << "\n DATE "
+      << now_text() << "\n\n";
   out.flush();
 }
 
@@ -119,7 +120,7 @@ StaFile::StaFile(const std::filesystem::path& path, const std::string& job)
 }
 
 void StaFile::begin_step(int step, const std::string& name) {
-  m_out << "\n STEP " << step << "  " << name << "\n\n"
+  m_out << "\n STEP " << step << "  " << escape_control(name) << "\n\n"
         << "  STEP  INCREMENT   TOTAL TIME    STEP TIME       STABLE     CRITICAL      KINETIC"
            "        TOTAL\n"
         << "                                              INCREMENT      ELEMENT       ENERGY"
@@ -128,7 +129,7 @@ void StaFile::begin_step(int step, const std::string& name) {
 }
 
 void StaFile::note(const std::string& text) {
-  m_out << " " << text << "\n";
+  m_out << " " << escape_control(text) << "\n";
   m_out.flush();
 }
 
@@ -152,7 +153,7 @@ void StaFile::line(int step, const StatusLine& line) {
 void StaFile::finish(RunStatus status, const std::string& error, const PhaseTimers& timers,
                      double element_cycles_per_second) {
   m_out << "\n " << completion_text(status) << "\n";
-  if (!error.empty()) m_out << " " << error << "\n";
+  if (!error.empty()) m_out << " " << escape_control(error) << "\n";
   write_timings(m_out, timers, element_cycles_per_second);
   m_out.flush();
 }
@@ -164,7 +165,7 @@ MsgFile::MsgFile(const std::filesystem::path& path, const std::string& job)
 
 void MsgFile::summary(const Model& model) {
   m_out << " MODEL SUMMARY\n";
-  if (!model.heading.empty()) m_out << "   heading: " << model.heading << "\n";
+  if (!model.heading.empty()) m_out << "   heading: " << escape_control(model.heading) << "\n";
   m_out << format("   %-28s %10d\n", "nodes", model.node_count());
   m_out << format("   %-28s %10d\n", "elements", model.element_count());
   for (ElementType type : {ElementType::C3D8R, ElementType::S4R}) {
@@ -201,7 +202,8 @@ void MsgFile::begin_step(const Model& model, int step) {
   const auto index = static_cast<std::size_t>(step);
   if (index < model.steps.size()) {
     const Step& s = model.steps[index];
-    m_out << "  " << s.name << "\n" << format("   time period %12.4E s\n", s.time_period);
+    m_out << "  " << escape_control(s.name) << "\n"
+          << format("   time period %12.4E s\n", s.time_period);
     if (s.fixed_increment) m_out << format("   fixed increment %12.4E s\n", *s.fixed_increment);
     m_out << format("   time scale factor %g, bulk viscosity %g %g\n", s.time_scale_factor,
                     s.bulk_linear, s.bulk_quadratic);
@@ -212,7 +214,8 @@ void MsgFile::begin_step(const Model& model, int step) {
   m_out.flush();
 }
 
-void MsgFile::message(Severity severity, const std::string& text) {
+void MsgFile::message(Severity severity, const std::string& message) {
+  const std::string text = escape_control(message);
   switch (severity) {
     case Severity::Info:
       m_out << " " << text << "\n";
@@ -234,7 +237,8 @@ void MsgFile::finish(RunStatus status, const std::string& error, const PhaseTime
                      double element_cycles_per_second) {
   m_out << "\n " << completion_text(status) << "\n";
   if (!error.empty())
-    m_out << (status == RunStatus::Interrupted ? "***NOTE: " : "***ERROR: ") << error << "\n";
+    m_out << (status == RunStatus::Interrupted ? "***NOTE: " : "***ERROR: ")
+          << escape_control(error) << "\n";
   write_timings(m_out, timers, element_cycles_per_second);
   m_out.flush();
 }

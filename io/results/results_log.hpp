@@ -1,6 +1,8 @@
 #pragma once
 /// \file The text logs of a job: JOB.sta (one line per status report, like Abaqus' status
-/// file) and JOB.msg (model summary, step headers, notes, warnings, errors, timings).
+/// file) and JOB.msg (model summary, step headers, notes, warnings, errors, timings). Text
+/// that can come from a deck (names, messages, the heading) is written with its control
+/// characters escaped (escape_control, common/error.hpp).
 
 #include <filesystem>
 #include <fstream>

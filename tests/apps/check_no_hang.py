@@ -12,7 +12,8 @@ Usage: check_no_hang.py CASE XPL BAR_DECK OUT_DIR, CASE one of
               file, a 2 MiB line: exit 1, one line-numbered error each
   cycles      a deck including itself twice, three times, and through a second file: one
               error naming the chain, at once
-  control     control characters (an ANSI escape) in deck text are echoed escaped
+  control     control characters (an ANSI escape) in deck text are echoed escaped, in
+              messages, and the *HEADING and a step name in JOB.msg, JOB.sta and JOB.h5
 Each xpl call has a 10 s limit (it finishes in well under a second).
 """
 
@@ -143,7 +144,7 @@ def cycles(xpl, out):
                  f"{r.stderr}")
 
 
-def control(xpl, out):
+def control(xpl, bar_deck, out):
     deck = out / "escape.inp"
     deck.write_bytes(b"*HEADING\nx\n*\x1b[31mBOGUS\x07, A=\x1b[0m\n")
     r = xpl_run(xpl, "check", deck, "-o", out / "escape")
@@ -151,6 +152,35 @@ def control(xpl, out):
         fail(f"raw control characters echoed: {r.stderr!r}")
     if "*\\x1b[31MBOGUS\\x07" not in r.stderr:
         fail(f"the keyword is not echoed escaped: {r.stderr!r}")
+
+    # *HEADING text is echoed in JOB.msg and kept in JOB.h5: escaped there too.
+    bar = bar_deck.read_bytes()
+    title = b"Steel bar 100 x 10 x 10 mm"
+    if bar.count(title) != 1:
+        fail("the bar example changed: no heading line starting with the title")
+    deck = out / "heading.inp"
+    step = b"*STEP, NAME=IMPACT"
+    if bar.count(step) != 1:
+        fail("the bar example changed: no *STEP, NAME=IMPACT")
+    deck.write_bytes(bar.replace(title, b"\x1b[31mred\x07 bar\x7f " + title)
+                     .replace(step, b"*STEP, NAME=IMP\x1bACT"))
+    r = xpl_run(xpl, "check", deck, "-o", out / "heading")
+    if r.returncode != 0:
+        fail(f"the deck with a coloured heading: exit {r.returncode}\n{r.stderr}")
+    msg = (out / "heading" / "heading.msg").read_bytes()
+    sta = (out / "heading" / "heading.sta").read_bytes()
+    for name, text in (("heading.msg", msg), ("heading.sta", sta)):
+        if any(c in text for c in (b"\x1b", b"\x07", b"\x7f")):
+            fail(f"raw control characters of *HEADING or the step name in {name}")
+    if b"heading: \\x1b[31mred\\x07 bar\\x7f Steel bar" not in msg:
+        fail(f"the heading is not echoed escaped in heading.msg:\n{msg.decode(errors='replace')}")
+    if b"IMP\\x1bACT" not in msg or b"IMP\\x1bACT" not in sta:
+        fail("the step name is not echoed escaped in heading.msg and heading.sta")
+    with h5py.File(out / "heading" / "heading.h5", "r") as f:
+        stored = f.attrs["heading"]
+        stored = stored.decode() if isinstance(stored, bytes) else str(stored)
+    if not stored.startswith("\\x1b[31mred\\x07 bar\\x7f Steel bar"):
+        fail(f"heading attribute of heading.h5 not escaped: {stored!r}")
 
 
 def main():
@@ -170,7 +200,7 @@ def main():
     elif case == "cycles":
         cycles(xpl, out)
     elif case == "control":
-        control(xpl, out)
+        control(xpl, bar, out)
     else:
         sys.exit(__doc__)
     print(f"ok: {case}")

@@ -7,10 +7,23 @@ error on bad input, exit 4, included) is a finding. Findings are written to the 
 directory as `finding-NNNN.inp` with the mutation and the output beside them, so that each
 can be turned into a regression deck (tests/fuzz/regressions/).
 
+Two ways to check a deck:
+- process per deck (--xpl): `xpl check` as a process of its own, the whole command line
+  (exit codes, signals, the re-exec for the OpenMP wait policy); about 0.25 s of CPU per deck
+  under the sanitizers, most of it starting the process.
+- in process (--in-process): tests/fuzz/xpl_fuzz_check checks a batch of decks in one process
+  through the same code (xpl::apps::run_job, as `xpl check --quiet`), each deck isolated
+  (exceptions, captured messages, a watchdog for the time limit, a leak check per deck under
+  ASan); a deck that kills the process is attributed from the driver's "start K" line and the
+  batch goes on in a new process. There, deck text echoed with raw control bytes (on the
+  terminal, in .msg or .sta) is a finding too.
+The mutations are the same in both modes (the same seed gives the same decks).
+
 The mutations are deck-aware (lines, keyword parameters, numbers, ids) plus raw byte damage,
 driven by one seed so that a run is reproducible:
 
-    fuzz_decks.py --xpl build/sanitize/apps/xpl --count 3000 --seed 1
+    fuzz_decks.py --xpl build/sanitize/apps/xpl --count 300 --seed 1
+    fuzz_decks.py --in-process build/sanitize/tests/fuzz/xpl_fuzz_check --count 3000 --seed 1
     fuzz_decks.py --xpl build/release/apps/xpl --replay tests/fuzz/regressions
 
 Exit code: 0 when no finding, 1 otherwise, 2 on a usage error.
@@ -39,7 +52,7 @@ EXTREME_NUMBERS = ["0", "-0", "-1", "1e308", "-1e308", "1e-320", "nan", "inf", "
                    "99999999999999999999999", "1e999", "0x10", "1,", "", "abc", "1.5.5",
                    "1e", "+", "-", "."]
 EXTREME_PARAMETERS = ["", "=", "==", "ALL", "-1", "0", "1e-20", "1e20", "NAN", "YES",
-                      "NO", "X" * 300, "\"", "'"]
+                      "NO", "X" * 300, "\"", "'", "A\x1b[31mB", "\x07"]
 RAW_BYTES = [b"\x00", b"\x1b[31m", b"\x07", b"\xff\xfe", b"\r", b"\t", b"**", b"*",
              b",,,,", b"\n*\n", b"\xc3\x28", b"\x7f"]
 NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?")
@@ -138,10 +151,14 @@ def mutate(text, rng, vocabulary, other_seeds):
     return text + b"\n" + rng.choice(RAW_BYTES), "append bytes"
 
 
+def check_environment():
+    return dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="PASSIVE",
+                ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:exitcode=86",
+                UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87")
+
+
 def run_check(xpl, deck_path, out_dir, timeout):
-    env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="PASSIVE",
-               ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:exitcode=86",
-               UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87")
+    env = check_environment()
     start = time.monotonic()
     try:
         p = subprocess.run([str(xpl), "check", str(deck_path), "-o", str(out_dir)],
@@ -171,7 +188,8 @@ def prepare_workspace(seed, work_root, index):
     return work / "deck" / seed.name, work / "out"
 
 
-def fuzz_one(args, index, seeds, vocabulary, work_root):
+def mutated_deck(args, index, seeds, vocabulary):
+    """Mutated deck number `index` of the run: its seed deck, the mutations and the text."""
     rng = random.Random(args.seed * 1_000_003 + index)
     seed = rng.choice(seeds)
     text = seed.read_bytes()
@@ -179,11 +197,112 @@ def fuzz_one(args, index, seeds, vocabulary, work_root):
     for _ in range(rng.choice([1, 1, 2, 3])):
         text, what = mutate(text, rng, vocabulary, seeds)
         steps.append(what)
+    return seed, steps, text
+
+
+def fuzz_one(args, index, seeds, vocabulary, work_root):
+    seed, steps, text = mutated_deck(args, index, seeds, vocabulary)
     deck_path, out_dir = prepare_workspace(seed, work_root, index)
     deck_path.write_bytes(text)
     outcome, rc, err, elapsed = run_check(args.xpl, deck_path, out_dir, args.timeout)
     shutil.rmtree(deck_path.parent.parent, ignore_errors=True)
     return index, seed, steps, text, outcome, rc, err, elapsed
+
+
+def seed_copies(seeds, work_root):
+    """One private copy of each seed deck's directory (for its *INCLUDE files), shared by the
+    mutated decks of that seed: {seed directory: copy}."""
+    copies = {}
+    for seed in seeds:
+        if seed.parent not in copies:
+            copy = work_root / "seeds" / str(len(copies))
+            shutil.copytree(seed.parent, copy,
+                            ignore=shutil.ignore_patterns("*.h5", "*.xdmf", "*.sta", "*.msg"))
+            copies[seed.parent] = copy
+    return copies
+
+
+def sanitizer_or_signal(returncode, err):
+    text = err.decode("utf-8", "replace")
+    if any(mark in text for mark in SANITIZER_MARKS):
+        return "sanitizer"
+    if returncode < 0:
+        return "signal"
+    return f"driver exit {returncode}"
+
+
+def run_batch(args, batch, seeds, vocabulary, copies, work_root, number):
+    """Checks the decks `batch` (indices) with xpl_fuzz_check; returns one result per deck
+    as fuzz_one does. A deck that ends the driver is the finding; the rest of the batch goes
+    on in a new driver process."""
+    decks = []
+    for index in batch:
+        seed, steps, text = mutated_deck(args, index, seeds, vocabulary)
+        path = copies[seed.parent] / f"fuzz{index:06d}.inp"
+        path.write_bytes(text)
+        decks.append((index, seed, steps, text, path))
+    results = []
+    out_dir = work_root / f"out{number}"
+    env = check_environment()
+    pending = decks
+    while pending:
+        listing = work_root / f"batch{number}.txt"
+        listing.write_text("".join(f"{d[4]}\n" for d in pending))
+        # The driver's watchdog ends a deck at the limit; this is the backstop.
+        limit = args.timeout * len(pending) + 60
+        with open(work_root / f"batch{number}.err", "w+b") as err_file:
+            try:
+                p = subprocess.run([str(args.in_process), str(listing), str(out_dir),
+                                    "--timeout", str(args.timeout)],
+                                   stdout=subprocess.PIPE, stderr=err_file, env=env,
+                                   timeout=limit, stdin=subprocess.DEVNULL)
+                returncode, out = p.returncode, p.stdout
+            except subprocess.TimeoutExpired as e:
+                returncode, out = -9, e.stdout or b""
+            err_file.seek(0)
+            err = err_file.read()[-8000:]
+        done = {}
+        started = None
+        hung = None
+        for line in out.decode("utf-8", "replace").splitlines():
+            words = line.split()
+            if len(words) >= 2 and words[0] == "start":
+                started = int(words[1])
+            elif len(words) >= 4 and words[0] == "done":
+                done[int(words[1])] = (int(words[2]), float(words[3]), words[4:])
+            elif len(words) >= 2 and words[0] == "hang":
+                hung = int(words[1])
+        for k, (rc, elapsed, flags) in done.items():
+            index, seed, steps, text, path = pending[k]
+            outcome = "ok"
+            if rc not in ACCEPTED_EXIT:
+                outcome = f"exit {rc}"
+            elif "leak" in flags:
+                outcome = "leak"
+            elif "raw-control" in flags:
+                outcome = "raw control"
+            stderr_path = Path(str(path) + ".stderr")
+            text_err = stderr_path.read_bytes() if stderr_path.exists() else b""
+            results.append((index, seed, steps, text, outcome, rc, text_err, elapsed))
+        if len(done) == len(pending) and returncode == 0:
+            break
+        # The driver ended early (or not cleanly): the deck it had started is the finding.
+        culprit = started if started is not None and started not in done else None
+        if culprit is None:
+            # Every deck reported, then the process failed (a report at exit).
+            index, seed, steps, text, path = pending[-1]
+            results.append((index, seed, steps, text, sanitizer_or_signal(returncode, err),
+                            returncode, err, 0.0))
+            break
+        index, seed, steps, text, path = pending[culprit]
+        outcome = "hang" if hung == culprit else sanitizer_or_signal(returncode, err)
+        results.append((index, seed, steps, text, outcome, returncode, err,
+                         args.timeout if outcome == "hang" else 0.0))
+        pending = pending[culprit + 1:]
+    for index, seed, steps, text, path in decks:
+        for p in (path, Path(str(path) + ".stderr")):
+            p.unlink(missing_ok=True)
+    return results
 
 
 def keep_finding(keep, number, seed, steps, text, outcome, err):
@@ -213,7 +332,12 @@ def replay(args):
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--xpl", required=True, type=Path, help="the xpl program")
+    parser.add_argument("--xpl", type=Path, help="the xpl program: one process per deck")
+    parser.add_argument("--in-process", type=Path, metavar="XPL_FUZZ_CHECK",
+                        help="the in-process driver (tests/fuzz/xpl_fuzz_check): decks in "
+                             "batches, one process per batch")
+    parser.add_argument("--batch", type=int, default=250,
+                        help="decks per driver process in --in-process mode")
     parser.add_argument("--seeds", nargs="*", type=Path, default=DEFAULT_SEEDS,
                         help="seed decks or directories (default: examples, tests/data/decks)")
     parser.add_argument("--count", type=int, default=3000, help="mutated decks to run")
@@ -224,8 +348,12 @@ def main():
                         help="directory for findings")
     parser.add_argument("--replay", type=Path, help="run the decks of a directory instead")
     args = parser.parse_args()
-    if not args.xpl.exists():
-        print(f"fuzz_decks: {args.xpl} does not exist", file=sys.stderr)
+    program = args.in_process or args.xpl
+    if (args.xpl is None) == (args.in_process is None) or (args.replay and args.in_process):
+        print("fuzz_decks: give --xpl or --in-process (--replay needs --xpl)", file=sys.stderr)
+        return 2
+    if not program.exists():
+        print(f"fuzz_decks: {program} does not exist", file=sys.stderr)
         return 2
     if args.replay:
         return replay(args)
@@ -243,10 +371,19 @@ def main():
     with tempfile.TemporaryDirectory(prefix="xpl-fuzz-") as tmp:
         work_root = Path(tmp)
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-            futures = [pool.submit(fuzz_one, args, i, seeds, vocabulary, work_root)
-                       for i in range(args.count)]
-            for future in concurrent.futures.as_completed(futures):
-                index, seed, steps, text, outcome, rc, err, elapsed = future.result()
+            if args.in_process:
+                copies = seed_copies(seeds, work_root)
+                batches = [range(i, min(args.count, i + args.batch))
+                           for i in range(0, args.count, args.batch)]
+                futures = [pool.submit(run_batch, args, b, seeds, vocabulary, copies, work_root,
+                                       n) for n, b in enumerate(batches)]
+            else:
+                futures = [pool.submit(lambda i: [fuzz_one(args, i, seeds, vocabulary,
+                                                           work_root)], i)
+                           for i in range(args.count)]
+            results = (r for future in concurrent.futures.as_completed(futures)
+                       for r in future.result())
+            for index, seed, steps, text, outcome, rc, err, elapsed in results:
                 outcomes[outcome] = outcomes.get(outcome, 0) + 1
                 exit_codes[rc] = exit_codes.get(rc, 0) + 1
                 slowest = max(slowest, elapsed)
@@ -256,8 +393,9 @@ def main():
                     print(f"finding {index}: {outcome} from {seed.name} ({'; '.join(steps)})")
     wall = time.monotonic() - start
     codes = ", ".join(f"{k}: {v}" for k, v in sorted(exit_codes.items(), key=lambda kv: str(kv[0])))
-    print(f"fuzz_decks: {args.count} mutated decks from {len(seeds)} seeds (seed {args.seed}) "
-          f"in {wall:.0f} s, slowest {slowest:.1f} s; exit codes {{{codes}}}; "
+    mode = "in process" if args.in_process else "one process each"
+    print(f"fuzz_decks: {args.count} mutated decks ({mode}) from {len(seeds)} seeds "
+          f"(seed {args.seed}) in {wall:.0f} s, slowest {slowest:.1f} s; exit codes {{{codes}}}; "
           f"findings: {findings} "
           f"({', '.join(f'{k} {v}' for k, v in sorted(outcomes.items()) if k != 'ok') or 'none'})")
     if findings:
