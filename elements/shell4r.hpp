@@ -8,8 +8,8 @@
 /// in-plane patterns take the Flanagan–Belytschko stiffness form and the bending and
 /// transverse-shear patterns a physical stabilisation that stores no energy under constant
 /// curvature or twist (shell4r_hourglass.hpp); the older stiffness form of all five patterns
-/// (two in-plane, one transverse, two rotational) is kept as an option. Warped elements are evaluated
-/// on their projected plane, with each node joined to its projection by a rigid link of
+/// (two in-plane, one transverse, two rotational) is kept as an option. Warped elements are
+/// evaluated on their projected plane, with each node joined to its projection by a rigid link of
 /// length z_h Γ_I along the normal (velocities projected, forces and moments transferred
 /// back), so rigid rotations of warped elements stay strain and hourglass free.
 ///
@@ -225,20 +225,20 @@ class Shell4rBlock {
   std::vector<Index> m_element_index;
   int m_points = 1;  ///< integration points of the block (max over elements)
   // Batched (AoSoA) data, batch b lane l.
-  std::vector<Index> m_conn;           ///< [b][4][W]
-  std::vector<Index> m_lane_owner;     ///< [b][W]
-  std::vector<Real> m_const;           ///< [b][N_CONST][W]
-  std::vector<Real> m_zeta;            ///< [b][m_points][W] point position in [−1, 1]
-  std::vector<Real> m_weight;          ///< [b][m_points][W] weight, Σ = 1 (0: unused point)
-  std::vector<Real> m_thickness;       ///< [b][W] current thickness
-  std::vector<Real> m_stress;          ///< [b][m_points][3][W] σxx σyy σxy, local frame
-  std::vector<Real> m_shear;           ///< [b][2][W] τxz τyz
-  std::vector<Real> m_hourglass;       ///< [b][N_HOURGLASS][W]
-  std::vector<Index> m_slot;           ///< block element -> b*W + l
-  std::vector<Index> m_color_batches;  ///< batches of colour c: [c], [c+1]
+  std::vector<Index> m_conn;                 ///< [b][4][W]
+  std::vector<Index> m_lane_owner;           ///< [b][W]
+  std::vector<Real> m_const;                 ///< [b][N_CONST][W]
+  std::vector<Real> m_zeta;                  ///< [b][m_points][W] point position in [−1, 1]
+  std::vector<Real> m_weight;                ///< [b][m_points][W] weight, Σ = 1 (0: unused point)
+  std::vector<Real> m_thickness;             ///< [b][W] current thickness
+  std::vector<Real> m_stress;                ///< [b][m_points][3][W] σxx σyy σxy, local frame
+  std::vector<Real> m_shear;                 ///< [b][2][W] τxz τyz
+  std::vector<Real> m_hourglass;             ///< [b][N_HOURGLASS][W]
+  std::vector<Index> m_slot;                 ///< block element -> b*W + l
+  std::vector<Index> m_color_batches;        ///< batches of colour c: [c], [c+1]
   std::vector<unsigned char> m_batch_forms;  ///< [b]: FORM_OLD | FORM_PHYS of its lanes
-  ShellPlasticState m_plastic;         ///< section-point plasticity (empty when elastic)
-  std::vector<Real> m_batch_energy;    ///< [b][3]: strain, hourglass, plastic
+  ShellPlasticState m_plastic;               ///< section-point plasticity (empty when elastic)
+  std::vector<Real> m_batch_energy;          ///< [b][3]: strain, hourglass, plastic
   std::vector<Real> m_batch_dt;
   std::vector<Index> m_batch_critical;
   std::vector<Index> m_batch_failed;

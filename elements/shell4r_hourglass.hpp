@@ -92,7 +92,7 @@ inline void edge_shear_rates(const QuadEdges<T>& e, const T w[4], const T thx[4]
 /// g_η = (s12 − s03)/4 − γ̄·X_h (zero for a constant shear on any quad).
 template <class T>
 struct EdgeShear {
-  T gxz, gyz;   ///< centre shear γ̄ (local axes)
+  T gxz, gyz;  ///< centre shear γ̄ (local axes)
   T g_xi, g_eta;
 };
 
@@ -114,9 +114,8 @@ inline EdgeShear<T> edge_shear(const QuadFrame<T>& f, const QuadNatural<T>& n, c
 /// frame f, natural gradients n and edges e: the energy rate A q·γ̄ + Q_ξ g_ξ + Q_η g_η is
 /// written as Σ C_k s_k and each edge shear is spread on its nodes.
 template <class T>
-inline void edge_shear_forces(const QuadFrame<T>& f, const QuadNatural<T>& n,
-                              const QuadEdges<T>& e, T qx, T qy, T q_xi, T q_eta, T fz[4], T bx[4],
-                              T by[4]) {
+inline void edge_shear_forces(const QuadFrame<T>& f, const QuadNatural<T>& n, const QuadEdges<T>& e,
+                              T qx, T qy, T q_xi, T q_eta, T fz[4], T bx[4], T by[4]) {
   // ∂γ̄/∂γ̄_ξ = a, ∂γ̄/∂γ̄_η = c: the conjugate of γ̄_ξ is (A q − (Q_ξ + Q_η) X_h)·a.
   const T sum = q_xi + q_eta;
   const T vx = f.area * qx - 0.25 * sum * f.hx, vy = f.area * qy - 0.25 * sum * f.hy;

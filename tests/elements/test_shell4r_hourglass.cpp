@@ -64,9 +64,10 @@ ShellStepTotals quadratic_rate(Shell4rBlock& block, const Quad& q, Real k11, Rea
 
 }  // namespace
 
-TEST_CASE("S4R physical hourglass: a pure twist or a constant curvature stores no hourglass "
-          "energy",
-          "[elements][shell][hourglass]") {
+TEST_CASE(
+    "S4R physical hourglass: a pure twist or a constant curvature stores no hourglass "
+    "energy",
+    "[elements][shell][hourglass]") {
   const Real h = 0.05, t = 0.004, dt = 1e-6;
   for (bool distorted : {false, true}) {
     const Quad q = make_quad(h, distorted);
@@ -82,8 +83,8 @@ TEST_CASE("S4R physical hourglass: a pure twist or a constant curvature stores n
       CHECK(std::abs(totals.hourglass_energy_increment) < 1e-12 * totals.strain_energy_increment);
       // The assumed-strain shear is exact: no transverse shear stress either.
       const ShellSectionOutput out = block.section_output(q.x, 0);
-      const Real bending = std::abs(out.stress[2][0]) + std::abs(out.stress[2][1]) +
-                           std::abs(out.stress[2][3]);
+      const Real bending =
+          std::abs(out.stress[2][0]) + std::abs(out.stress[2][1]) + std::abs(out.stress[2][3]);
       CHECK(std::abs(out.stress[1][4]) < 1e-9 * bending);
       CHECK(std::abs(out.stress[1][5]) < 1e-9 * bending);
     }
@@ -154,7 +155,8 @@ TEST_CASE("S4R element frequencies stay below the membrane frequency of the stab
           // increment covers that); the other modes must not go above them.
           Eigen::MatrixXd membrane(8, 8);
           for (int i = 0; i < 8; ++i)
-            for (int j = 0; j < 8; ++j) membrane(i, j) = A(6 * (i / 2) + i % 2, 6 * (j / 2) + j % 2);
+            for (int j = 0; j < 8; ++j)
+              membrane(i, j) = A(6 * (i / 2) + i % 2, 6 * (j / 2) + j % 2);
           const Real lambda_m =
               Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(membrane).eigenvalues().maxCoeff();
           INFO("nu " << nu << " t " << t << " distorted " << distorted << " form "
