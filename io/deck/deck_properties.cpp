@@ -234,11 +234,11 @@ void read_rotating_velocity(DeckState& deck, const DeckBlock& block) {
       "expected node or node set, angular velocity, x, y, z of axis point a, then a line "
       "x, y, z of axis point b (or all eight values on one line)";
   for (std::size_t i = 0; i < block.data.size(); ++i) {
-    const DeckDataLine& line = block.data[i];
-    const DeckDataLine* second = nullptr;
+    const DeckDataLine line = block.data[i];
+    std::optional<DeckDataLine> second;
     if (line.fields.size() == 5 && i + 1 < block.data.size() &&
         block.data[i + 1].fields.size() == 3) {
-      second = &block.data[++i];
+      second = block.data[++i];
     } else if (line.fields.size() != 8) {
       error(deck, line.where(), keyword,
             "found " + std::to_string(line.fields.size()) + " values" +
