@@ -100,7 +100,6 @@ def run(xpl, nx, ny, mode, out_dir, rotations=True):
         time = h["time"][()]
         u = h["node/TIP/" + ("UR1" if mode == "torsion" else "U3")][()].ravel()
     summary = json.loads((out_dir / f"{name}.summary.json").read_text())
-    dt = summary.get("increments", {}).get("dt_min") if isinstance(summary, dict) else None
     bounds = (300.0, 1500.0) if mode == "torsion" else (10.0, 120.0)
     return fit_frequency(time, u, *bounds), summary
 
@@ -124,8 +123,7 @@ def main():
             ft, summary = run(xpl, nx, ny, "torsion", out_dir, rotations=label == "new")
             fb, _ = run(xpl, nx, ny, "bending", out_dir)
             rows.append({"binary": label, "mesh": mesh, "torsion_hz": ft, "bending_hz": fb,
-                         "summary_dt": json.dumps(summary.get("increment", summary.get("dt", "")))
-                         if isinstance(summary, dict) else ""})
+                         "increments": summary.get("increments", "")})
             print(f"{label} {mesh:>6}: torsion {ft:.2f} Hz, bending {fb:.3f} Hz")
     for label, _ in binaries:
         mine = [r for r in rows if r["binary"] == label]
