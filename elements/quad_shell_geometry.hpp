@@ -29,6 +29,7 @@ struct QuadFrame {
   T b1a, b1b;        ///< B1 = ∂N/∂x̂ = (b1a, b1b, −b1a, −b1b), 1/m
   T b2a, b2b;        ///< B2 = ∂N/∂ŷ = (b2a, b2b, −b2a, −b2b), 1/m
   T sa, sb;          ///< hourglass vector γ = (1 − sa, −1 − sb, 1 + sa, −1 + sb)
+  T hx, hy;          ///< Σ Γ_I x̂_I, Σ Γ_I ŷ_I: 4 × the taper X_h of x = … + X_h ξη, m
   T warp;            ///< z_h: node I lies z_h Γ_I above the projected plane, m
   T diagonal;        ///< longer diagonal, m
 };
@@ -57,6 +58,8 @@ inline QuadFrame<T> quad_frame(const V3<T> p[4]) {
   f.b2b = -dot(f.e1, d13) * inv_2a;
   const V3<T> h = p[0] - p[1] + p[2] - p[3];  // Σ Γ_I x_I
   const T gx = dot(f.e1, h), gy = dot(f.e2, h);
+  f.hx = gx;
+  f.hy = gy;
   f.sa = gx * f.b1a + gy * f.b2a;
   f.sb = gx * f.b1b + gy * f.b2b;
   f.warp = 0.25 * dot(f.e3, h);

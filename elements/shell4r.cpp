@@ -9,6 +9,7 @@
 
 #include "elements/element_coloring.hpp"
 #include "elements/quad_shell_geometry.hpp"
+#include "elements/shell4r_hourglass.hpp"
 
 namespace xpl::elements {
 
@@ -62,6 +63,13 @@ constexpr Real GAMMA[4] = {1.0, -1.0, 1.0, -1.0};
 
 }  // namespace
 
+Real shell_rotary_radius2(Real thickness, Real length, Real poisson) {
+  const Real nu = poisson;
+  const Real ratio = 2.0 * (1.0 + nu) / (SHELL_SHEAR_FACTOR * (1.0 - nu)) - 1.0;
+  return std::max(thickness * thickness / 12.0,
+                  SHELL_ROTARY_MARGIN * length * length / (4.0 * ratio));
+}
+
 Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
                            const std::vector<ShellProperties>& properties, Index node_count)
     : m_element_index(std::move(element_index)) {
@@ -80,6 +88,7 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
   m_stress.assign(n_batches * m_points * 3 * W, 0.0);
   m_shear.assign(n_batches * 2 * W, 0.0);
   m_hourglass.assign(n_batches * N_HOURGLASS * W, 0.0);
+  m_batch_forms.assign(n_batches, 0);
   m_slot.assign(n, NO_INDEX);
   m_batch_energy.assign(n_batches * 3, 0.0);
   m_batch_dt.assign(n_batches, 0.0);
@@ -105,6 +114,12 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
       c[NU_RATIO * W] = nu / (1.0 - nu);
       c[DT_SPEED * W] = std::sqrt(q11 / p.density) * std::sqrt(1.0 + std::max(nu, 0.0));
       c[HG_MODULUS * W] = SHELL_HOURGLASS_STIFFNESS * p.hourglass_scale * p.young;
+      const bool physical = p.hourglass == ShellHourglass::Physical;
+      c[HG_OLD * W] = physical ? 0.0 : c[HG_MODULUS * W];
+      c[HG_PHYS * W] = physical ? p.hourglass_scale : 0.0;
+      c[PHYS_ON * W] = physical ? 1.0 : 0.0;
+      c[POISSON * W] = nu;
+      m_batch_forms[b] |= physical ? FORM_PHYS : FORM_OLD;
       c[OFFSET * W] = p.offset;
       c[DENSITY * W] = p.density;
       c[THICKNESS0 * W] = p.thickness;
@@ -133,10 +148,13 @@ void Shell4rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Re
     for (int a = 0; a < 4; ++a) nodes[a] = m_conn[(b * 4 + a) * W + l];
     V3<Real> p[4];
     gather_corners(reference, nodes, p);
-    const Real area = quad_frame(p).area;
+    const QuadFrame<Real> frame = quad_frame(p);
+    const Real area = frame.area;
     const Real t = m_const[(b * N_CONST + THICKNESS0) * W + l];
     const Real share = m_const[(b * N_CONST + DENSITY) * W + l] * t * area / 4.0;
-    const Real inertia = share * std::max(t * t / 12.0, area / 8.0);
+    const Real length = 1.41421356237309515 * area / frame.diagonal;
+    const Real inertia =
+        share * shell_rotary_radius2(t, length, m_const[(b * N_CONST + POISSON) * W + l]);
     for (Index node : nodes) {
       mass[node] += share;
       rotary_inertia[node] += inertia;
@@ -261,12 +279,9 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   }
 
   // Rates on the mid-increment geometry: exactly strain free for rigid rotations.
-  QuadFrame<Vec> fm;
-  {
-    V3<Vec> xm[4];
-    for (int a = 0; a < 4; ++a) xm[a] = x[a] - (0.5 * dt) * vel[a];
-    fm = quad_frame(xm);
-  }
+  V3<Vec> xm[4];
+  for (int a = 0; a < 4; ++a) xm[a] = x[a] - (0.5 * dt) * vel[a];
+  const QuadFrame<Vec> fm = quad_frame(xm);
   QuadCombos<Vec> vx, vy, vz, tx, ty, tz;
   local_combos(fm, vel, vx, vy, vz);
   local_combos(fm, om, tx, ty, tz);
@@ -281,7 +296,29 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   const Vec gxy = grad_x(fm, uy) + grad_y(fm, ux);
   const Vec kxx = grad_x(fm, ty), kyy = -grad_y(fm, tx);
   const Vec kxy = grad_y(fm, ty) - grad_x(fm, tx);
-  const Vec gxz = grad_x(fm, vz) + tby, gyz = grad_y(fm, vz) - tbx;
+  Vec gxz = grad_x(fm, vz) + tby, gyz = grad_y(fm, vz) - tbx;
+  // Physical form: the transverse shear is the assumed strain of the edge shears
+  // (shell4r_hourglass.hpp) instead of the one-point value; PHYS_ON selects it per lane.
+  const unsigned char forms = m_batch_forms[b];
+  EdgeShear<Vec> edge{};
+  if (forms & FORM_PHYS) {
+    Vec wz[4], thx[4], thy[4], s[4];
+    for (int a = 0; a < 4; ++a) {
+      wz[a] = dot(fm.e3, vel[a]);
+      thx[a] = dot(fm.e1, om[a]);
+      thy[a] = dot(fm.e2, om[a]);
+    }
+    edge_shear_rates(quad_edges(fm, xm), wz, thx, thy, s);
+    edge = edge_shear(fm, quad_natural(fm), s);
+    if (forms == FORM_PHYS) {
+      gxz = edge.gxz;
+      gyz = edge.gyz;
+    } else {
+      const Vec on = constant(PHYS_ON);
+      gxz += on * (edge.gxz - gxz);
+      gyz += on * (edge.gyz - gyz);
+    }
+  }
 
   // Plane stress: the thickness follows the in-plane dilatation of the reference surface,
   // ε̇_zz = −ν/(1−ν)(d_xx + d_yy + z_ref(κ_xx + κ_yy)). It is advanced before the resultants:
@@ -354,29 +391,67 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   work += (0.5 * dt) * t_mid * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
   const Vec qx = t * txz_n, qy = t * tyz_n;
 
-  // Hourglass resultants (stiffness form, accumulated in the corotational frame).
+  // Hourglass resultants (accumulated in the corotational frame). In-plane patterns: stiffness
+  // form in both forms; bending and transverse shear: the form of the lane (the other form's
+  // coefficients are zero on it), each evaluated only when a lane of the batch uses it.
   const Vec bb = 2.0 * (fm.b1a * fm.b1a + fm.b1b * fm.b1b + fm.b2a * fm.b2a + fm.b2b * fm.b2b);
-  const Vec hg_e = constant(HG_MODULUS);
-  const Vec bend = hg_e * t * t * t * (1.0 / 12.0);
-  const Vec c_plane = hg_e * t * fm.area * bb * 0.25;
-  const Vec c_rot = bend * fm.area * bb * 0.25;
-  const Vec c_w = bend * bb;
-  const Vec rate[N_HOURGLASS] = {hourglass_rate(fm, ux), hourglass_rate(fm, uy),
-                                 hourglass_rate(fm, vz), hourglass_rate(fm, tx),
-                                 hourglass_rate(fm, ty)};
-  const Vec stiff[N_HOURGLASS] = {c_plane, c_plane, c_w, c_rot, c_rot};
-  Vec hq[N_HOURGLASS];
-  Vec hg_work = simd::splat(0.0);
+  const Vec c_plane = constant(HG_MODULUS) * t * fm.area * bb * 0.25;
   Real* hstore = &m_hourglass[b * N_HOURGLASS * W];
-  for (int h = 0; h < N_HOURGLASS; ++h) {
+  Vec hq[N_HOURGLASS];
+  for (Vec& h : hq) h = simd::splat(0.0);
+  Vec hg_work = simd::splat(0.0);
+  // Advances resultant h by Δ = dt·(its rate of change) and adds its work over `rate`.
+  auto store = [&](int h, Vec increment, Vec rate) {
     const Vec old = simd::load(hstore + h * W);
-    hq[h] = old + (stiff[h] * dt) * rate[h];
+    hq[h] = old + increment;
     simd::store(hstore + h * W, hq[h]);
-    hg_work += (0.5 * dt) * (old + hq[h]) * rate[h];
+    hg_work += (0.5 * dt) * (old + hq[h]) * rate;
+  };
+  auto advance = [&](int h, Vec stiffness, Vec rate) { store(h, (stiffness * dt) * rate, rate); };
+  advance(0, c_plane, hourglass_rate(fm, ux));
+  advance(1, c_plane, hourglass_rate(fm, uy));
+  const Vec rate_tx = hourglass_rate(fm, tx), rate_ty = hourglass_rate(fm, ty);
+  if (forms & FORM_OLD) {
+    const Vec bend = constant(HG_OLD) * t * t * t * (1.0 / 12.0);
+    const Vec c_rot = bend * fm.area * bb * 0.25;
+    advance(2, bend * bb, hourglass_rate(fm, vz));
+    advance(3, c_rot, rate_tx);
+    advance(4, c_rot, rate_ty);
+  }
+  const QuadFrame<Vec> fe = quad_frame(x);
+  // Shear resultants acting through the one-point shear (stiffness-form lanes) and through
+  // the edge shears (physical lanes, with the linear-part resultants).
+  Vec qx_point = qx, qy_point = qy;
+  Vec hz[4], hbx[4], hby[4];  // physical form: normal forces and β-forces per node
+  for (int a = 0; a < 4; ++a) hz[a] = hbx[a] = hby[a] = simd::splat(0.0);
+  if (forms & FORM_PHYS) {
+    const Vec scale = constant(HG_PHYS);
+    const QuadNatural<Vec> nat = quad_natural(fm);
+    const Vec shear_k = (scale * constant(SHEAR_T)) * t * fm.area * (1.0 / 3.0);
+    advance(5, shear_k * nat.aa, edge.g_xi);
+    advance(6, shear_k * nat.cc, edge.g_eta);
+    // Bending: q̇ = (γ·θy, −γ·θx)/4, Ṁ = K_b q̇.
+    const Vec q1 = 0.25 * rate_ty, q2 = -0.25 * rate_tx;
+    Vec k1, k2;
+    bending_hourglass_apply(nat, constant(POISSON), q1, q2, k1, k2);
+    const Vec bend_k = (scale * q11) * t * t * t * (1.0 / 36.0) * fm.area;
+    store(7, (bend_k * dt) * k1, q1);
+    store(8, (bend_k * dt) * k2, q2);
+    Vec qx_edge = qx, qy_edge = qy;
+    if (forms == FORM_PHYS) {
+      qx_point = qy_point = simd::splat(0.0);
+    } else {
+      const Vec on = constant(PHYS_ON);
+      qx_edge = on * qx;
+      qy_edge = on * qy;
+      qx_point = qx - qx_edge;
+      qy_point = qy - qy_edge;
+    }
+    edge_shear_forces(fe, quad_natural(fe), quad_edges(fe, x), qx_edge, qy_edge, hq[5], hq[6], hz,
+                      hbx, hby);
   }
 
   // Forces and moments on x_{n+1}.
-  const QuadFrame<Vec> fe = quad_frame(x);
   const Vec area = fe.area;
   const Vec ba[2] = {fe.b1a, fe.b1b}, bc[2] = {fe.b2a, fe.b2b};
   const Vec gam[4] = {1.0 - fe.sa, -1.0 - fe.sb, 1.0 + fe.sa, -1.0 + fe.sb};
@@ -385,10 +460,24 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     const Vec b1 = B_SIGN[a] * ba[a % 2], b2 = B_SIGN[a] * bc[a % 2];
     const Vec fbx = area * (b1 * nxx + b2 * nxy) + gam[a] * hq[0];
     const Vec fby = area * (b2 * nyy + b1 * nxy) + gam[a] * hq[1];
-    const Vec fz = area * (b1 * qx + b2 * qy) + gam[a] * hq[2];
+    Vec fz = area * (b1 * qx_point + b2 * qy_point);
     const Vec za = GAMMA[a] * fe.warp;
-    const Vec mx = area * (-b2 * myy - b1 * mxy - 0.25 * qy) + gam[a] * hq[3] + za * fby;
-    const Vec my = area * (b1 * mxx + b2 * mxy + 0.25 * qx) + gam[a] * hq[4] - za * fbx;
+    Vec mx = area * (-b2 * myy - b1 * mxy - 0.25 * qy_point);
+    Vec my = area * (b1 * mxx + b2 * mxy + 0.25 * qx_point);
+    if (forms & FORM_OLD) {
+      fz = fz + gam[a] * hq[2];
+      mx = mx + gam[a] * hq[3];
+      my = my + gam[a] * hq[4];
+    }
+    mx = mx + za * fby;
+    my = my - za * fbx;
+    if (forms & FORM_PHYS) {
+      // β = (θy, −θx): a β-force (bx, by) is the moment (−by, bx).
+      const Vec quarter = 0.25 * gam[a];
+      fz += hz[a];
+      mx -= hby[a] + quarter * hq[8];
+      my += hbx[a] + quarter * hq[7];
+    }
     fn[a] = fbx * fe.e1 + fby * fe.e2 + fz * fe.e3;
     mn[a] = mx * fe.e1 + my * fe.e2;
   }

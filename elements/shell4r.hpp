@@ -4,9 +4,12 @@
 /// Corotational local frame per element (see quad_shell_geometry.hpp); Mindlin kinematics
 /// with nodal translations and rotations; membrane + bending integrated through the
 /// thickness (Simpson's rule), plane-stress linear elasticity; transverse shear with the
-/// shear correction factor 5/6; stiffness-form hourglass control of the five hourglass
-/// patterns (two in-plane, one transverse, two rotational); warped elements are evaluated
-/// on their projected plane, with each node joined to its projection by a rigid link of
+/// shear correction factor 5/6. Hourglass control (ShellHourglass): by default the two
+/// in-plane patterns take the Flanagan–Belytschko stiffness form and the bending and
+/// transverse-shear patterns a physical stabilisation that stores no energy under constant
+/// curvature or twist (shell4r_hourglass.hpp); the older stiffness form of all five patterns
+/// (two in-plane, one transverse, two rotational) is kept as an option. Warped elements are
+/// evaluated on their projected plane, with each node joined to its projection by a rigid link of
 /// length z_h Γ_I along the normal (velocities projected, forces and moments transferred
 /// back), so rigid rotations of warped elements stay strain and hourglass free.
 ///
@@ -15,9 +18,15 @@
 /// the transverse shear stays elastic (as in Belytschko–Tsay codes). Blocks without plastic
 /// material carry no plastic state and run the elastic kernel alone.
 ///
-/// Rotary inertia is lumped and scaled: each node gets (m_e/4)·max(t²/12, A/8) from each
-/// element, so the rotational and transverse-shear frequencies stay below the membrane
-/// frequency and the stable increment is set by the membrane wave.
+/// Rotary inertia is lumped and scaled only as far as the stable increment needs: each node
+/// gets (m_e/4)·r² from each element, r² = max(t²/12, c_ν L²) with L the element's
+/// stable-increment length (√2 A / longer diagonal) and c_ν = SHELL_ROTARY_MARGIN /
+/// (4 (2(1+ν)/(κ_s(1−ν)) − 1)): the smallest value for which the fastest transverse-shear
+/// mode of the element (a tilt of the normal against a rotation, ω² = κ_s G (4/L² + 1/r²)/ρ)
+/// stays below the membrane breathing mode ω² = 4 c² (1+ν)/L² that sets the increment.
+/// Thick elements (t²/12 above it) keep their physical inertia. (Before issue 21 the scale
+/// was A/8 on every element, which added ~19 % to the polar inertia of a strip 4 elements
+/// wide and made its torsion frequency low.)
 ///
 /// Elements are coloured and batched like the C3D8R block: race-free, deterministic.
 
@@ -41,6 +50,19 @@ namespace xpl::elements {
 inline constexpr Real SHELL_HOURGLASS_STIFFNESS = 0.05;
 /// Transverse shear correction factor.
 inline constexpr Real SHELL_SHEAR_FACTOR = 5.0 / 6.0;
+/// Safety factor on the smallest rotary inertia scale c_ν (see the file comment).
+inline constexpr Real SHELL_ROTARY_MARGIN = 1.25;
+
+/// Hourglass control of the S4R bending and transverse-shear patterns.
+enum class ShellHourglass {
+  /// Physical stabilisation (default): the exactly integrated energy of the linear
+  /// curvature and (assumed-strain) transverse-shear parts the one-point rule misses, zero
+  /// for constant curvature and twist (shell4r_hourglass.hpp). Scaled by hourglass_scale.
+  Physical,
+  /// The older Flanagan–Belytschko stiffness form on the transverse and rotational patterns
+  /// with the coefficient SHELL_HOURGLASS_STIFFNESS (resists part of a twist field).
+  Stiffness,
+};
 /// Largest number of through-thickness integration points.
 inline constexpr int SHELL_MAX_POINTS = 15;
 
@@ -52,11 +74,17 @@ struct ShellProperties {
   Real thickness = 0.0;        ///< initial thickness, m
   int integration_points = 5;  ///< through the thickness (Simpson, odd), 1 = membrane only
   Real offset = 0.0;           ///< reference surface above the mid-surface / thickness
-  Real hourglass_scale = 1.0;  ///< scales SHELL_HOURGLASS_STIFFNESS
+  Real hourglass_scale = 1.0;  ///< scales the hourglass control (both forms)
   /// J2 plasticity of the material, or nullptr for an elastic one. Not owned: read (and
   /// copied, once per distinct law) by the block's constructor only.
   const Plasticity* plastic = nullptr;
+  /// Form of the bending and transverse-shear hourglass control.
+  ShellHourglass hourglass = ShellHourglass::Physical;
 };
+
+/// Rotary inertia per unit translational mass (m²) of a shell element of thickness t,
+/// stable-increment length L (m) and Poisson's ratio ν (see the file comment).
+Real shell_rotary_radius2(Real thickness, Real length, Real poisson);
 
 /// What one shell internal-force pass reports (sums over the block in a fixed order).
 struct ShellStepTotals : IncrementLimit {
@@ -198,14 +226,21 @@ class Shell4rBlock {
     SHEAR_T,     ///< κ_s G (transverse)
     NU_RATIO,    ///< ν / (1 − ν): thickness strain per unit in-plane dilatation
     DT_SPEED,    ///< √(E/ρ(1−ν²)) · √(1+ν): the one-point quad's breathing-mode speed
-    HG_MODULUS,  ///< κ E
+    HG_MODULUS,  ///< κ E (in-plane patterns, both forms)
+    HG_OLD,      ///< κ E on the transverse/rotational patterns (stiffness form), else 0
+    HG_PHYS,     ///< hourglass scale of the physical form, else 0
+    PHYS_ON,     ///< 1 on physical-form lanes, else 0
+    POISSON,     ///< ν
     OFFSET,      ///< reference surface above the mid-surface / thickness
     DENSITY,
     THICKNESS0,  ///< initial thickness
     N_CONST
   };
-  /// Hourglass resultants: in-plane x, y, transverse, rotational x, y.
-  static constexpr int N_HOURGLASS = 5;
+  /// Hourglass resultants: in-plane x, y; stiffness form: transverse, rotational x, y;
+  /// physical form: shear Q_ξ, Q_η, bending M_1, M_2 (conjugate to q = Σ γ_I β_I / 4).
+  static constexpr int N_HOURGLASS = 9;
+  /// Forms present in a batch (bits of m_batch_forms).
+  static constexpr unsigned char FORM_OLD = 1, FORM_PHYS = 2;
 
   template <bool PLASTIC>
   void compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
@@ -218,19 +253,20 @@ class Shell4rBlock {
   std::vector<Index> m_element_index;
   int m_points = 1;  ///< integration points of the block (max over elements)
   // Batched (AoSoA) data, batch b lane l.
-  std::vector<Index> m_conn;           ///< [b][4][W]
-  std::vector<Index> m_lane_owner;     ///< [b][W]
-  std::vector<Real> m_const;           ///< [b][N_CONST][W]
-  std::vector<Real> m_zeta;            ///< [b][m_points][W] point position in [−1, 1]
-  std::vector<Real> m_weight;          ///< [b][m_points][W] weight, Σ = 1 (0: unused point)
-  std::vector<Real> m_thickness;       ///< [b][W] current thickness
-  std::vector<Real> m_stress;          ///< [b][m_points][3][W] σxx σyy σxy, local frame
-  std::vector<Real> m_shear;           ///< [b][2][W] τxz τyz
-  std::vector<Real> m_hourglass;       ///< [b][N_HOURGLASS][W]
-  std::vector<Index> m_slot;           ///< block element -> b*W + l
-  std::vector<Index> m_color_batches;  ///< batches of colour c: [c], [c+1]
-  ShellPlasticState m_plastic;         ///< section-point plasticity (empty when elastic)
-  std::vector<Real> m_batch_energy;    ///< [b][3]: strain, hourglass, plastic
+  std::vector<Index> m_conn;                 ///< [b][4][W]
+  std::vector<Index> m_lane_owner;           ///< [b][W]
+  std::vector<Real> m_const;                 ///< [b][N_CONST][W]
+  std::vector<Real> m_zeta;                  ///< [b][m_points][W] point position in [−1, 1]
+  std::vector<Real> m_weight;                ///< [b][m_points][W] weight, Σ = 1 (0: unused point)
+  std::vector<Real> m_thickness;             ///< [b][W] current thickness
+  std::vector<Real> m_stress;                ///< [b][m_points][3][W] σxx σyy σxy, local frame
+  std::vector<Real> m_shear;                 ///< [b][2][W] τxz τyz
+  std::vector<Real> m_hourglass;             ///< [b][N_HOURGLASS][W]
+  std::vector<Index> m_slot;                 ///< block element -> b*W + l
+  std::vector<Index> m_color_batches;        ///< batches of colour c: [c], [c+1]
+  std::vector<unsigned char> m_batch_forms;  ///< [b]: FORM_OLD | FORM_PHYS of its lanes
+  ShellPlasticState m_plastic;               ///< section-point plasticity (empty when elastic)
+  std::vector<Real> m_batch_energy;          ///< [b][3]: strain, hourglass, plastic
   std::vector<Real> m_batch_dt;
   std::vector<Index> m_batch_critical;
   std::vector<Index> m_batch_failed;

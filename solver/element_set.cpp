@@ -43,8 +43,13 @@ elements::ShellProperties shell_properties(const Model& model, Index element) {
   p.integration_points = section.integration_points;
   p.offset = section.offset;
   if (m.plastic) p.plastic = &*m.plastic;
-  if (section.controls != NO_INDEX)
-    p.hourglass_scale = model.section_controls[section.controls].stiffness_scale;
+  if (section.controls != NO_INDEX) {
+    const SectionControls& c = model.section_controls[section.controls];
+    p.hourglass_scale = c.stiffness_scale;
+    // HOURGLASS=STIFFNESS, VISCOUS, RELAX STIFFNESS: the older stiffness form.
+    if (c.hourglass_given && c.hourglass != HourglassType::Enhanced)
+      p.hourglass = elements::ShellHourglass::Stiffness;
+  }
   return p;
 }
 
@@ -103,8 +108,11 @@ void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
   // Rotational DOFs exist only in shell models (P2).
   m_shell = std::make_unique<elements::Shell4rBlock>(shell_elements, connectivity, shell_props, n);
   state.rotation = NodalVectors::Zero(n, 3);
-  state.angular_velocity = NodalVectors::Zero(n, 3);
-  state.angular_velocity_half = NodalVectors::Zero(n, 3);
+  // *INITIAL CONDITIONS: dofs 4–6 and rigid spins (zero unless given).
+  state.angular_velocity = m_model.initial_angular_velocity.rows() == n
+                               ? m_model.initial_angular_velocity
+                               : NodalVectors::Zero(n, 3);
+  state.angular_velocity_half = state.angular_velocity;
   state.reaction_moment = NodalVectors::Zero(n, 3);
   state.rotary_inertia.assign(n, 0.0);
   m_moment_internal = NodalVectors::Zero(n, 3);
@@ -167,13 +175,13 @@ void ElementSet::report_setup(const NodalVectors& reference, OutputSink& sink) c
   sink.message(Severity::Info,
                "S4R elements: " + std::to_string(m_shell->size()) + " in " +
                    std::to_string(m_shell->color_count()) +
-                   " colours; rotary inertia scaled to (m/4)·max(t²/12, A/8) per node so "
+                   " colours; rotary inertia scaled to (m/4)·max(t²/12, c_nu L²) per node so "
                    "that the membrane wave sets the stable increment");
   report_warped_shells(reference, sink);
   for (const SectionControls& c : m_model.section_controls)
     if (c.hourglass == HourglassType::Viscous)
       sink.message(Severity::Note, "section controls " + c.name +
-                                       ": S4R elements use the stiffness hourglass form "
+                                       ": S4R elements use the older stiffness hourglass form "
                                        "(HOURGLASS=VISCOUS applies to C3D8R only)");
   // One section point is a membrane: it carries no bending moment, elastic or plastic, so
   // a plastic hinge cannot form. Legitimate for membranes, a mistake for a crash part.

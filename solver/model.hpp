@@ -70,12 +70,18 @@ enum class HourglassType {
   Stiffness,       ///< Flanagan–Belytschko stiffness form (the xpl default)
   Viscous,         ///< Flanagan–Belytschko viscous form
   RelaxStiffness,  ///< Abaqus' integral-viscoelastic form; xpl runs it as Stiffness (noted in .msg)
+  /// S4R: the physical stabilisation of the bending and transverse-shear patterns (also the
+  /// S4R default when HOURGLASS= is not given); C3D8R run it as Stiffness (noted in .msg).
+  Enhanced,
 };
 
 /// `*SECTION CONTROLS, NAME=...`.
 struct SectionControls {
   std::string name;
   HourglassType hourglass = HourglassType::Stiffness;
+  /// Whether HOURGLASS= was given: S4R use the physical form unless STIFFNESS, VISCOUS or
+  /// RELAX STIFFNESS asks for the older stiffness form.
+  bool hourglass_given = false;
   Real stiffness_scale = 1.0;  ///< multiplies the default hourglass stiffness coefficient
   Real viscous_scale = 1.0;    ///< multiplies the default hourglass viscosity coefficient
   SourceLocation where;
@@ -424,6 +430,9 @@ struct Model {
 
   // --- initial conditions and history --------------------------------------------------------
   NodalVectors initial_velocity;  ///< (n_nodes × 3), zero unless given, m/s
+  /// (n_nodes × 3), rad/s: dofs 4–6 of `*INITIAL CONDITIONS, TYPE=VELOCITY` and the spin of
+  /// `TYPE=ROTATING VELOCITY` on shell nodes (the only nodes with rotations); zero unless given.
+  NodalVectors initial_angular_velocity;
   std::vector<Step> steps;
 
   /// Whether any element is a shell (then nodes carry rotations; P2: otherwise nothing

@@ -117,11 +117,14 @@ void read_section_controls(DeckState& deck, const DeckBlock& block) {
     controls.hourglass = HourglassType::Viscous;
   } else if (hourglass == "RELAX STIFFNESS") {
     controls.hourglass = HourglassType::RelaxStiffness;
+  } else if (hourglass == "ENHANCED") {
+    controls.hourglass = HourglassType::Enhanced;
   } else if (!hourglass.empty() && hourglass != "STIFFNESS") {
     error(deck, keyword.where, keyword, "hourglass control " + hourglass + " is not supported",
-          "expected HOURGLASS=STIFFNESS, VISCOUS or RELAX STIFFNESS");
+          "expected HOURGLASS=ENHANCED, STIFFNESS, VISCOUS or RELAX STIFFNESS");
     return;
   }
+  controls.hourglass_given = !hourglass.empty();
   // Abaqus/Explicit puts several scale factors on the data line. The first scales the
   // hourglass resistance of the displacement dofs, whichever form (stiffness or viscous) is
   // active, so it goes to both scales. The others (rotational and out-of-plane hourglass,
@@ -221,14 +224,74 @@ void read_amplitude(DeckState& deck, const DeckBlock& block) {
   deck.model.amplitudes.push_back(std::move(amplitude));
 }
 
+namespace {
+
+/// `TYPE=ROTATING VELOCITY`: "node or set, ω, a_x, a_y, a_z" and a second line
+/// "b_x, b_y, b_z" (Abaqus' two-line form), or all eight values on one line.
+void read_rotating_velocity(DeckState& deck, const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  const char* expected =
+      "expected node or node set, angular velocity, x, y, z of axis point a, then a line "
+      "x, y, z of axis point b (or all eight values on one line)";
+  for (std::size_t i = 0; i < block.data.size(); ++i) {
+    const DeckDataLine line = block.data[i];
+    std::optional<DeckDataLine> second;
+    if (line.fields.size() == 5 && i + 1 < block.data.size() &&
+        block.data[i + 1].fields.size() == 3) {
+      second = block.data[++i];
+    } else if (line.fields.size() != 8) {
+      error(deck, line.where(), keyword,
+            "found " + std::to_string(line.fields.size()) + " values" +
+                (line.fields.size() == 5 ? " and no line with point b" : ""),
+            expected);
+      continue;
+    }
+    PendingVelocity pending;
+    pending.rotating = true;
+    bool ok = true;
+    const std::optional<Real> omega = real_field(deck, line, keyword, 1, "angular velocity");
+    ok = ok && omega.has_value();
+    const char* names[3] = {"x", "y", "z"};
+    for (int c = 0; c < 3; ++c) {
+      const std::optional<Real> a =
+          real_field(deck, line, keyword, 2 + c, std::string("axis point a ") + names[c]);
+      const std::optional<Real> b =
+          second ? real_field(deck, *second, keyword, c, std::string("axis point b ") + names[c])
+                 : real_field(deck, line, keyword, 5 + c, std::string("axis point b ") + names[c]);
+      if (!a || !b) {
+        ok = false;
+        continue;
+      }
+      pending.a[c] = *a;
+      pending.b[c] = *b;
+    }
+    if (!ok) continue;
+    if (pending.a == pending.b) {
+      error(deck, (second ? *second : line).where(), keyword,
+            "axis points a and b coincide, so there is no axis",
+            "expected two different points on the axis of rotation");
+      continue;
+    }
+    pending.omega = *omega;
+    pending.target = reference(line, keyword, 0);
+    deck.velocities.push_back(pending);
+  }
+}
+
+}  // namespace
+
 void read_initial_conditions(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(deck, keyword, {{"TYPE"}});
   const std::optional<std::string> type = required_name(deck, keyword, "TYPE");
   if (!type) return;
+  if (*type == "ROTATING VELOCITY") {
+    read_rotating_velocity(deck, block);
+    return;
+  }
   if (*type != "VELOCITY") {
     error(deck, keyword.where, keyword, "initial condition type " + *type + " is not supported yet",
-          "supported: TYPE=VELOCITY");
+          "supported: TYPE=VELOCITY, TYPE=ROTATING VELOCITY");
     return;
   }
   for (const DeckDataLine& line : block.data) {
@@ -236,12 +299,17 @@ void read_initial_conditions(DeckState& deck, const DeckBlock& block) {
     const std::optional<long long> dof = integer_field(deck, line, keyword, 1, "dof");
     const std::optional<Real> value = real_field(deck, line, keyword, 2, "velocity");
     if (!dof || !value) continue;
-    if (*dof < 1 || *dof > 3) {
+    if (*dof < 1 || *dof > 6) {
       error(deck, line.where(), keyword, "dof " + std::to_string(*dof) + " is out of range",
-            "expected dof 1, 2 or 3");
+            "expected dof 1, 2 or 3 (translation, m/s) or 4, 5 or 6 (rotation of a shell node, "
+            "rad/s)");
       continue;
     }
-    deck.velocities.push_back({reference(line, keyword, 0), static_cast<int>(*dof), *value});
+    PendingVelocity pending;
+    pending.target = reference(line, keyword, 0);
+    pending.dof = static_cast<int>(*dof);
+    pending.value = *value;
+    deck.velocities.push_back(pending);
   }
 }
 

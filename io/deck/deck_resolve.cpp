@@ -6,6 +6,7 @@
 /// deck_clearance.cpp, element shapes checked in deck_geometry.cpp.
 
 #include <algorithm>
+#include <cmath>
 
 #include "io/deck/deck_handlers.hpp"
 #include "io/deck/deck_numbers.hpp"
@@ -39,6 +40,7 @@ Model finish(DeckState& deck) {
     for (int c = 0; c < 3; ++c)
       deck.model.coordinates(i, c) = deck.coordinates[static_cast<std::size_t>(3 * i + c)];
   deck.model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
+  deck.model.initial_angular_velocity = NodalVectors::Zero(n_nodes, 3);
 
   resolve_element_nodes(deck);
   resolve_sets(deck, false);  // element sets first: *NSET, ELSET= needs them
@@ -283,9 +285,61 @@ Index resolve_amplitude(DeckState& deck, const std::string& name, const SourceLo
 }
 
 void resolve_initial_velocity(DeckState& deck) {
-  for (const PendingVelocity& pending : deck.velocities)
-    for (Index node : resolve_nodes(deck, pending.target))
-      deck.model.initial_velocity(node, pending.dof - 1) = pending.value;
+  Model& model = deck.model;
+  // Rotational dofs exist on shell nodes only (rigid-body reference nodes take their motion
+  // from the body's members, not from initial conditions).
+  std::vector<char> rotates(static_cast<std::size_t>(model.node_count()), 0);
+  for (Index e = 0; e < model.element_count(); ++e) {
+    if (!is_shell(model.element_types[e])) continue;
+    const Index* nodes = model.nodes_of(e);
+    for (Index k = 0; k < model.element_offsets[e + 1] - model.element_offsets[e]; ++k)
+      if (nodes[k] >= 0 && nodes[k] < model.node_count()) rotates[nodes[k]] = 1;
+  }
+  for (const PendingVelocity& pending : deck.velocities) {
+    const std::vector<Index> nodes = resolve_nodes(deck, pending.target);
+    const bool rotational = pending.rotating || pending.dof > 3;
+    if (!pending.rotating && pending.dof > 3) {
+      Index without = NO_INDEX;
+      for (Index node : nodes)
+        if (!rotates[node]) {
+          without = node;
+          break;
+        }
+      if (without != NO_INDEX) {
+        deck.errors.add(pending.target.where, pending.target.keyword,
+                        "dof " + std::to_string(pending.dof) + " on node " +
+                            std::to_string(model.node_ids[without]) +
+                            ", which has no rotational dofs (it is on no shell element)",
+                        "expected dofs 4-6 on shell nodes only; dofs 1-3 for other nodes");
+        continue;
+      }
+    }
+    if (!pending.rotating) {
+      for (Index node : nodes) {
+        if (pending.dof <= 3)
+          model.initial_velocity(node, pending.dof - 1) = pending.value;
+        else
+          model.initial_angular_velocity(node, pending.dof - 4) = pending.value;
+      }
+      continue;
+    }
+    // Rigid spin ω ê about the axis through a along ê = (b − a)/|b − a|: v = ω ê × (x − a),
+    // added to what TYPE=VELOCITY gives; shell nodes also get the angular velocity ω ê.
+    Real axis[3] = {pending.b[0] - pending.a[0], pending.b[1] - pending.a[1],
+                    pending.b[2] - pending.a[2]};
+    const Real length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    for (Real& c : axis) c *= pending.omega / length;
+    for (Index node : nodes) {
+      const Real r[3] = {model.coordinates(node, 0) - pending.a[0],
+                         model.coordinates(node, 1) - pending.a[1],
+                         model.coordinates(node, 2) - pending.a[2]};
+      model.initial_velocity(node, 0) += axis[1] * r[2] - axis[2] * r[1];
+      model.initial_velocity(node, 1) += axis[2] * r[0] - axis[0] * r[2];
+      model.initial_velocity(node, 2) += axis[0] * r[1] - axis[1] * r[0];
+      if (rotational && rotates[node])
+        for (int c = 0; c < 3; ++c) model.initial_angular_velocity(node, c) += axis[c];
+    }
+  }
 }
 
 void resolve_steps(DeckState& deck) {

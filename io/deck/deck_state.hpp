@@ -6,6 +6,7 @@
 /// set, material, amplitude and controls names) are recorded while reading and resolved once
 /// the whole deck is known, so definition order does not matter within the model data.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -97,10 +98,15 @@ struct PendingGravity {
   GravityLoad load;
   std::string amplitude;
 };
+/// `*INITIAL CONDITIONS, TYPE=VELOCITY` (dof 1–6, value) or `TYPE=ROTATING VELOCITY`
+/// (rotating: ω about the axis from a to b).
 struct PendingVelocity {
   DeckReference target;
   int dof = 1;
   Real value = 0.0;
+  bool rotating = false;
+  Real omega = 0.0;
+  std::array<Real, 3> a{}, b{};
 };
 struct PendingOutputSet {
   Index step = NO_INDEX, output = NO_INDEX;
