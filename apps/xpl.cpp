@@ -23,6 +23,7 @@
 #include "io/results/job_lock.hpp"
 #include "io/results/result_files.hpp"
 #include "solver/explicit_solver.hpp"
+#include "solver/thread_team.hpp"
 #include "subcommands.hpp"
 
 namespace {
@@ -40,7 +41,8 @@ constexpr const char* USAGE =
     "  check   data check: read the deck, build the model, write frame 0 and the logs,\n"
     "          stop before the first increment\n"
     "  -o DIR  directory for the result files (default: the current directory)\n"
-    "  --threads N  OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+    "  --threads N  OpenMP threads (default: OMP_NUM_THREADS or all cores; one thread for\n"
+    "               models of fewer than 2000 elements); more than the cores is warned of\n"
     "  --quiet      no progress line and no summary on the terminal\n"
     "  --import PREV.h5  start from the last frame of an earlier result of the same mesh\n"
     "               (positions, velocities, stresses); penetrations there become contact\n"
@@ -245,6 +247,11 @@ int main(int argc, char** argv) {
     std::cerr << "xpl: unknown command '" << args.command << "'\n" << USAGE;
     return 2;
   }
+  if (args.threads > omp_get_num_procs())
+    std::cerr << "xpl: warning: --threads " << args.threads << " is more than the "
+              << omp_get_num_procs()
+              << " core(s) available: the threads take turns on the cores and every barrier "
+                 "waits for a descheduled one (slower; the results are the same)\n";
   install_stop_handlers();
   // Whatever escapes (std::bad_alloc reading a deck included) ends with a message and exit
   // code 4, never std::terminate.
@@ -318,7 +325,9 @@ int run_job(const Arguments& args) {
   try {
     xpl::io::ResultOptions ropts;
     ropts.progress = !args.quiet;
-    ropts.threads = args.threads > 0 ? args.threads : omp_get_max_threads();
+    // The solver's choice (one thread for a small model unless --threads insists).
+    const int threads = xpl::team_size(model, args.threads, omp_get_max_threads());
+    ropts.threads = threads;
     files.emplace(args.out_dir, model.job_name, ropts);
     xpl::SolverOptions sopts;
     sopts.threads = args.threads;
@@ -326,7 +335,6 @@ int run_job(const Arguments& args) {
     sopts.stop_signal = &g_stop_signal;
     if (!args.import.empty()) sopts.initial_state = &initial;
     xpl::ExplicitSolver solver(model, *files, sopts);
-    const int threads = args.threads > 0 ? args.threads : omp_get_max_threads();
     if (args.command == "check") {
       solver.check();
       if (!args.quiet)

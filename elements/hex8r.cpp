@@ -1,5 +1,7 @@
 #include "elements/hex8r.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -78,13 +80,47 @@ void Hex8rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Real
 void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
                                  Real dt, Real bulk_linear, Real bulk_quadratic,
                                  NodalVectors& force, HexStepTotals& totals) {
+  const int parts = std::max(1, omp_get_max_threads());
+  own_partition(parts, static_cast<Index>(position.rows()));
+  partitioned_pass(
+      parts, static_cast<Index>(m_boundary_nodes.size()),
+      [&](int p) {
+        forces_of_part(p, position, velocity_half, dt, bulk_linear, bulk_quadratic, force);
+      },
+      [&](Index k) { add_boundary_forces(k, m_boundary_nodes[k], force); });
+  add_totals(totals);
+}
+
+void Hex8rBlock::own_partition(int parts, Index node_count) {
+  if (m_own_partition && m_parts == parts) return;
+  std::vector<Index> node_part(node_count, UNTOUCHED);
+  mark_nodes(parts, node_part);
+  const BoundaryNodes boundary = boundary_nodes(node_part);
+  set_partition(parts, boundary);
+  m_boundary_nodes = boundary.nodes;
+  m_own_partition = true;
+}
+
+void Hex8rBlock::mark_nodes(int parts, std::vector<Index>& node_part) const {
+  mark_part_nodes(m_conn, m_lane_owner, m_color_batches, 8, W, parts, node_part);
+}
+
+void Hex8rBlock::set_partition(int parts, const BoundaryNodes& boundary) {
+  m_parts = parts;
+  m_own_partition = false;
+  m_exchange = CornerExchange(m_conn, m_lane_owner, 8, W, boundary);
+  m_exchange_force.assign(static_cast<std::size_t>(m_exchange.size()) * 3, 0.0);
+}
+
+void Hex8rBlock::forces_of_part(int part, const NodalVectors& position,
+                                const NodalVectors& velocity_half, Real dt, Real bulk_linear,
+                                Real bulk_quadratic, NodalVectors& force) {
   const Index n_nodes = static_cast<Index>(position.rows());
   const Real* px = position.data();
   const Real* vx = velocity_half.data();
   Real* fx = force.data();
-  for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
-    const Index first = m_color_batches[c], last = m_color_batches[c + 1];
-#pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
+  for (int c = 0; c < color_count(); ++c) {
+    const auto [first, last] = part_batches(m_color_batches, c, part, m_parts);
     for (Index b = first; b < last; ++b) {
       // P2: batches of elastic lanes compile without any plasticity work.
       if (!m_batch_plastic.empty() && m_batch_plastic[b])
@@ -97,6 +133,9 @@ void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVector
                              fx + 2 * n_nodes);
     }
   }
+}
+
+void Hex8rBlock::add_totals(HexStepTotals& totals) const {
   // Serial reduction in batch order: independent of the thread count.
   const Index n_batches = m_color_batches.back();
   for (Index b = 0; b < n_batches; ++b) {
@@ -273,10 +312,19 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, e_plastic = 0.0,
        best_dt = std::numeric_limits<Real>::infinity();
   Index critical = NO_INDEX, failed = NO_INDEX;
+  // Corners at nodes another thread also writes go to the exchange buffer instead.
+  const Index* slots = m_exchange.batch_slots(batch);
   for (int l = 0; l < W; ++l) {
     const Index owner = m_lane_owner[batch * W + l];
     if (owner == NO_INDEX) continue;
     for (int a = 0; a < 8; ++a) {
+      if (slots != nullptr && slots[a * W + l] != NO_INDEX) {
+        Real* e = &m_exchange_force[3 * static_cast<std::size_t>(slots[a * W + l])];
+        e[0] = fnx[a][l];
+        e[1] = fny[a][l];
+        e[2] = fnz[a][l];
+        continue;
+      }
       const Index node = conn[a * W + l];
       fx[node] += fnx[a][l];
       fy[node] += fny[a][l];

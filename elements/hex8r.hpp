@@ -4,8 +4,10 @@
 ///
 /// Elements are coloured (no two elements of a colour share a node) and packed into
 /// batches of simd::W elements of one colour; a batch is computed as one SIMD value per
-/// quantity and scatters its forces directly, so assembly is race-free and every node sums
-/// its contributions in colour order whatever the number of threads.
+/// quantity. Threads take per-thread ranges of every colour (thread_partition.hpp): a batch
+/// scatters its forces directly except at the nodes two threads share, which are summed
+/// after the pass, so assembly is race-free and every node sums its contributions in colour
+/// order whatever the number of threads.
 
 #include <array>
 #include <limits>
@@ -16,6 +18,7 @@
 #include "elements/increment_limit.hpp"
 #include "elements/plasticity.hpp"
 #include "elements/simd.hpp"
+#include "elements/thread_partition.hpp"
 
 namespace xpl::elements {
 
@@ -78,9 +81,35 @@ class Hex8rBlock {
   /// (0 at the start of the analysis). The strain increment is taken on the mid-increment
   /// geometry (exactly zero for rigid rotations), forces on x_{n+1}. Adds the internal
   /// forces into `force` (n_nodes × 3, N) and updates the element state.
+  /// The block alone is split into omp_get_max_threads() parts (one parallel region).
   void internal_forces(const NodalVectors& position, const NodalVectors& velocity_half, Real dt,
                        Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
                        HexStepTotals& totals);
+
+  /// \name The pieces of internal_forces() for a pass over several blocks (ElementSet).
+  /// Marks the nodes each of `parts` parts touches (mark_part_nodes()).
+  void mark_nodes(int parts, std::vector<Index>& node_part) const;
+  /// Takes the partition into `parts` parts whose boundary nodes (over every block of the
+  /// pass) are `boundary`.
+  void set_partition(int parts, const BoundaryNodes& boundary);
+  /// Number of parts of the partition held (0: none yet).
+  int parts() const { return m_parts; }
+  /// Part `part` of the force pass (same arguments as internal_forces()): its batches of every
+  /// colour, forces at boundary nodes into the exchange buffer, the rest into `force`.
+  void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
+                      Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force);
+  /// Adds the exchanged corner forces of boundary node k (rank), `node`, into `force`.
+  void add_boundary_forces(Index k, Index node, NodalVectors& force) const {
+    const Index n = static_cast<Index>(force.rows());
+    Real* f = force.data() + node;
+    for (Index s = m_exchange.first(k); s < m_exchange.first(k + 1); ++s) {
+      f[0] += m_exchange_force[3 * s];
+      f[n] += m_exchange_force[3 * s + 1];
+      f[2 * n] += m_exchange_force[3 * s + 2];
+    }
+  }
+  /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
+  void add_totals(HexStepTotals& totals) const;
 
   /// Writes stress (row e·6.., S11 S22 S33 S12 S13 S23) and current volume of every element
   /// of the block at its model index into model-sized arrays.
@@ -137,6 +166,8 @@ class Hex8rBlock {
   void compute_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* vx,
                      const Real* vy, const Real* vz, Real dt, Real b1, Real b2, Real* fx, Real* fy,
                      Real* fz);
+  /// Partition of the block alone into `parts` parts, unless it holds that one already.
+  void own_partition(int parts, Index node_count);
   /// J2 return of the trial stresses `sn` (6 × W) of a batch with plastic lanes over the
   /// increment `dt`: scales the deviatoric part of yielding lanes onto the yield surface,
   /// updates PEEQ, its rate and the yield stress, and returns σ_y Δε̄ᵖ per lane (Pa; 0 in
@@ -169,6 +200,12 @@ class Hex8rBlock {
   std::vector<Real> m_batch_dt;
   std::vector<Index> m_batch_critical;
   std::vector<Index> m_batch_failed;
+  // Partition of the force pass (thread_partition.hpp).
+  int m_parts = 0;
+  bool m_own_partition = false;  ///< built by internal_forces() for the block alone
+  CornerExchange m_exchange;
+  std::vector<Real> m_exchange_force;   ///< [slot][3], N
+  std::vector<Index> m_boundary_nodes;  ///< of the partition of the block alone
 };
 
 }  // namespace xpl::elements

@@ -1,5 +1,7 @@
 #include "elements/shell4r.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -176,6 +178,42 @@ void Shell4rBlock::internal_forces(const NodalVectors& position, const NodalVect
                                    const NodalVectors& angular_velocity_half, Real dt,
                                    NodalVectors& force, NodalVectors& moment,
                                    ShellStepTotals& totals) {
+  const int parts = std::max(1, omp_get_max_threads());
+  own_partition(parts, static_cast<Index>(position.rows()));
+  partitioned_pass(
+      parts, static_cast<Index>(m_boundary_nodes.size()),
+      [&](int p) {
+        forces_of_part(p, position, velocity_half, angular_velocity_half, dt, force, moment);
+      },
+      [&](Index k) { add_boundary_forces(k, m_boundary_nodes[k], force, moment); });
+  add_totals(totals);
+}
+
+void Shell4rBlock::own_partition(int parts, Index node_count) {
+  if (m_own_partition && m_parts == parts) return;
+  std::vector<Index> node_part(node_count, UNTOUCHED);
+  mark_nodes(parts, node_part);
+  const BoundaryNodes boundary = boundary_nodes(node_part);
+  set_partition(parts, boundary);
+  m_boundary_nodes = boundary.nodes;
+  m_own_partition = true;
+}
+
+void Shell4rBlock::mark_nodes(int parts, std::vector<Index>& node_part) const {
+  mark_part_nodes(m_conn, m_lane_owner, m_color_batches, 4, W, parts, node_part);
+}
+
+void Shell4rBlock::set_partition(int parts, const BoundaryNodes& boundary) {
+  m_parts = parts;
+  m_own_partition = false;
+  m_exchange = CornerExchange(m_conn, m_lane_owner, 4, W, boundary);
+  m_exchange_force.assign(static_cast<std::size_t>(m_exchange.size()) * 6, 0.0);
+}
+
+void Shell4rBlock::forces_of_part(int part, const NodalVectors& position,
+                                  const NodalVectors& velocity_half,
+                                  const NodalVectors& angular_velocity_half, Real dt,
+                                  NodalVectors& force, NodalVectors& moment) {
   const Index nn = static_cast<Index>(position.rows());
   const Real* const p[3] = {position.data(), position.data() + nn, position.data() + 2 * nn};
   const Real* const v[3] = {velocity_half.data(), velocity_half.data() + nn,
@@ -184,9 +222,8 @@ void Shell4rBlock::internal_forces(const NodalVectors& position, const NodalVect
                             angular_velocity_half.data() + 2 * nn};
   Real* const f[3] = {force.data(), force.data() + nn, force.data() + 2 * nn};
   Real* const m[3] = {moment.data(), moment.data() + nn, moment.data() + 2 * nn};
-  for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
-    const Index first = m_color_batches[c], last = m_color_batches[c + 1];
-#pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
+  for (int c = 0; c < color_count(); ++c) {
+    const auto [first, last] = part_batches(m_color_batches, c, part, m_parts);
     for (Index b = first; b < last; ++b) {
       if (m_plastic.batch_plastic(static_cast<std::size_t>(b)))
         compute_batch<true>(b, p, v, w, dt, f, m);
@@ -194,6 +231,9 @@ void Shell4rBlock::internal_forces(const NodalVectors& position, const NodalVect
         compute_batch<false>(b, p, v, w, dt, f, m);
     }
   }
+}
+
+void Shell4rBlock::add_totals(ShellStepTotals& totals) const {
   const Index n_batches = m_color_batches.back();
   for (Index b = 0; b < n_batches; ++b) {
     totals.strain_energy_increment += m_batch_energy[b * 3 + 0];
@@ -366,10 +406,22 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
 
   Real e_strain = 0.0, e_hg = 0.0, e_plastic = 0.0, best_dt = std::numeric_limits<Real>::infinity();
   Index critical = NO_INDEX, failed = NO_INDEX;
+  // Corners at nodes another thread also writes go to the exchange buffer instead.
+  const Index* slots = m_exchange.batch_slots(batch);
   for (int l = 0; l < W; ++l) {
     const Index owner = m_lane_owner[b * W + l];
     if (owner == NO_INDEX) continue;
     for (int a = 0; a < 4; ++a) {
+      if (slots != nullptr && slots[a * W + l] != NO_INDEX) {
+        Real* e = &m_exchange_force[6 * static_cast<std::size_t>(slots[a * W + l])];
+        e[0] = fn[a].x[l];
+        e[1] = fn[a].y[l];
+        e[2] = fn[a].z[l];
+        e[3] = mn[a].x[l];
+        e[4] = mn[a].y[l];
+        e[5] = mn[a].z[l];
+        continue;
+      }
       const Index node = conn[a * W + l];
       f[0][node] += fn[a].x[l];
       f[1][node] += fn[a].y[l];

@@ -30,6 +30,7 @@
 #include "elements/increment_limit.hpp"
 #include "elements/shell_plasticity.hpp"
 #include "elements/simd.hpp"
+#include "elements/thread_partition.hpp"
 
 namespace xpl::elements {
 
@@ -106,9 +107,35 @@ class Shell4rBlock {
   /// v_{n+1/2}, angular velocities ω_{n+1/2} (n_nodes × 3 each), dt = t_{n+1} − t_n. Strain
   /// increments are taken on the mid-increment geometry, forces on x_{n+1}. Adds forces and
   /// moments into `force` and `moment` (n_nodes × 3).
+  /// The block alone is split into omp_get_max_threads() parts (thread_partition.hpp).
   void internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
                        const NodalVectors& angular_velocity_half, Real dt, NodalVectors& force,
                        NodalVectors& moment, ShellStepTotals& totals);
+
+  /// \name The pieces of internal_forces() for a pass over several blocks (ElementSet); as
+  /// those of Hex8rBlock.
+  void mark_nodes(int parts, std::vector<Index>& node_part) const;
+  void set_partition(int parts, const BoundaryNodes& boundary);
+  int parts() const { return m_parts; }
+  void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
+                      const NodalVectors& angular_velocity_half, Real dt, NodalVectors& force,
+                      NodalVectors& moment);
+  /// Adds the exchanged corner forces and moments of boundary node k (rank), `node`.
+  void add_boundary_forces(Index k, Index node, NodalVectors& force, NodalVectors& moment) const {
+    const Index n = static_cast<Index>(force.rows());
+    Real* f = force.data() + node;
+    Real* m = moment.data() + node;
+    for (Index s = m_exchange.first(k); s < m_exchange.first(k + 1); ++s) {
+      const Real* e = &m_exchange_force[6 * static_cast<std::size_t>(s)];
+      f[0] += e[0];
+      f[n] += e[1];
+      f[2 * n] += e[2];
+      m[0] += e[3];
+      m[n] += e[4];
+      m[2 * n] += e[5];
+    }
+  }
+  void add_totals(ShellStepTotals& totals) const;
 
   /// Section output of block element i in the configuration `position`.
   ShellSectionOutput section_output(const NodalVectors& position, Index i) const;
@@ -183,6 +210,7 @@ class Shell4rBlock {
   template <bool PLASTIC>
   void compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
                      const Real* const w[3], Real dt, Real* const f[3], Real* const m[3]);
+  void own_partition(int parts, Index node_count);
   std::size_t slot_of(Index i) const { return static_cast<std::size_t>(m_slot[i]); }
   /// Number of through-thickness points of the element in batch b, lane l.
   int points_of(std::size_t b, std::size_t l) const;
@@ -206,6 +234,12 @@ class Shell4rBlock {
   std::vector<Real> m_batch_dt;
   std::vector<Index> m_batch_critical;
   std::vector<Index> m_batch_failed;
+  // Partition of the force pass (thread_partition.hpp).
+  int m_parts = 0;
+  bool m_own_partition = false;
+  CornerExchange m_exchange;
+  std::vector<Real> m_exchange_force;   ///< [slot][6]: force N, moment N·m
+  std::vector<Index> m_boundary_nodes;  ///< of the partition of the block alone
 };
 
 }  // namespace xpl::elements

@@ -1,5 +1,7 @@
 #include "solver/element_set.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -249,13 +251,45 @@ void ElementSet::set_plastic_strain(std::span<const Real> peeq, std::span<const 
   if (m_shell && !middle.empty()) m_shell->set_plastic_strain(middle, bottom, top);
 }
 
+void ElementSet::use_partition(int parts) {
+  if (m_parts == parts) return;
+  // The boundary nodes are those two parts share over both blocks, so that a node's hex and
+  // shell contributions keep their order (hex colours, then shell colours) too.
+  std::vector<Index> node_part(static_cast<std::size_t>(m_model.node_count()), elements::UNTOUCHED);
+  if (m_hex) m_hex->mark_nodes(parts, node_part);
+  if (m_shell) m_shell->mark_nodes(parts, node_part);
+  const elements::BoundaryNodes boundary = elements::boundary_nodes(node_part);
+  if (m_hex) m_hex->set_partition(parts, boundary);
+  if (m_shell) m_shell->set_partition(parts, boundary);
+  m_boundary_nodes = boundary.nodes;
+  m_parts = parts;
+}
+
 void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& totals) {
   ScopedTimer timer(m_timers, Phase::InternalForce);
   const Step& s = m_model.steps[state.step];
+  // One parallel region for every block and colour (thread_partition.hpp).
+  const int parts = std::max(1, omp_get_max_threads());
+  use_partition(parts);
+  elements::partitioned_pass(
+      parts, static_cast<Index>(m_boundary_nodes.size()),
+      [&](int p) {
+        if (m_hex)
+          m_hex->forces_of_part(p, state.position, state.velocity_half, dt, s.bulk_linear,
+                                s.bulk_quadratic, m_force_internal);
+        if (m_shell)
+          m_shell->forces_of_part(p, state.position, state.velocity_half,
+                                  state.angular_velocity_half, dt, m_force_internal,
+                                  m_moment_internal);
+      },
+      [&](Index k) {
+        const Index node = m_boundary_nodes[k];
+        if (m_hex) m_hex->add_boundary_forces(k, node, m_force_internal);
+        if (m_shell) m_shell->add_boundary_forces(k, node, m_force_internal, m_moment_internal);
+      });
   if (m_hex) {
     elements::HexStepTotals t;
-    m_hex->internal_forces(state.position, state.velocity_half, dt, s.bulk_linear, s.bulk_quadratic,
-                           m_force_internal, t);
+    m_hex->add_totals(t);
     totals.add(t);
     totals.viscous_energy_increment += t.viscous_energy_increment;
   }
@@ -268,8 +302,7 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
   }
   if (m_shell) {
     elements::ShellStepTotals t;
-    m_shell->internal_forces(state.position, state.velocity_half, state.angular_velocity_half, dt,
-                             m_force_internal, m_moment_internal, t);
+    m_shell->add_totals(t);
     totals.add(t);
   }
   // Shell-only models pass their own stress test; the global estimate covers the hexes.

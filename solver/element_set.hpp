@@ -132,6 +132,8 @@ class ElementSet {
   void set_node_thickness(const RigidBodies& rigid, const NodalVectors& reference);
   void set_inverse_mass(const RigidBodies& rigid, const std::vector<Real>& mass);
   void report_warped_shells(const NodalVectors& reference, OutputSink& sink) const;
+  /// Splits the blocks into `parts` per-thread parts for the force pass, unless they are.
+  void use_partition(int parts);
 
   const Model& m_model;
   PhaseTimers& m_timers;
@@ -145,9 +147,11 @@ class ElementSet {
   std::vector<Real> m_inverse_inertia;
   std::vector<Real> m_node_thickness;
   std::vector<contact::ElementKind> m_element_kinds;
-  Index m_massless = 0;              ///< nodes that belong to no element and have no mass
-  GlobalIncrementLimit m_global;     ///< bound on the element estimate from ω_max
-  MassScalingReport m_mass_scaling;  ///< `*FIXED MASS SCALING` done in the constructor
+  Index m_massless = 0;                 ///< nodes that belong to no element and have no mass
+  GlobalIncrementLimit m_global;        ///< bound on the element estimate from ω_max
+  int m_parts = 0;                      ///< parts of the blocks' partition (0: none yet)
+  std::vector<Index> m_boundary_nodes;  ///< nodes two parts share (thread_partition.hpp)
+  MassScalingReport m_mass_scaling;     ///< `*FIXED MASS SCALING` done in the constructor
 };
 
 }  // namespace xpl

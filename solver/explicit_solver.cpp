@@ -17,6 +17,7 @@
 #include "solver/message_text.hpp"
 #include "solver/output_driver.hpp"
 #include "solver/rigid_bodies.hpp"
+#include "solver/thread_team.hpp"
 
 namespace xpl {
 
@@ -433,13 +434,22 @@ ExplicitSolver::ExplicitSolver(const Model& model, OutputSink& sink, SolverOptio
   PhaseTimers setup;
   {
     ScopedTimer timer(setup, Phase::Setup);
-    if (options.threads > 0) omp_set_num_threads(options.threads);
-    m_impl = std::make_unique<Impl>(model, sink, options);
+    m_saved_threads = omp_get_max_threads();
+    m_threads = team_size(model, options.threads, m_saved_threads);
+    if (m_threads != m_saved_threads) omp_set_num_threads(m_threads);
+    try {
+      m_impl = std::make_unique<Impl>(model, sink, options);
+    } catch (...) {
+      omp_set_num_threads(m_saved_threads);  // no destructor runs for a failed constructor
+      throw;
+    }
   }
   m_impl->add_setup_time(setup.seconds(Phase::Setup));
 }
 
-ExplicitSolver::~ExplicitSolver() = default;
+ExplicitSolver::~ExplicitSolver() {
+  if (m_threads != m_saved_threads) omp_set_num_threads(m_saved_threads);
+}
 
 const State& ExplicitSolver::state() const {
   return m_impl->state();

@@ -31,7 +31,10 @@ struct InitialState {
 };
 
 struct SolverOptions {
-  int threads = 0;  ///< OpenMP threads, 0 = the OpenMP default
+  /// OpenMP threads; 0: one on small models, the OpenMP default on others (team_size(),
+  /// solver/thread_team.hpp). The solver sets the team for its lifetime and restores the
+  /// caller's afterwards.
+  int threads = 0;
   /// Start from this state instead of the deck's initial conditions (not owned; must outlive
   /// the solver). Penetrations found then become offsets (C6).
   const InitialState* initial_state = nullptr;
@@ -78,9 +81,13 @@ class ExplicitSolver {
   RunSummary check();
 
   const State& state() const;
+  /// The number of OpenMP threads the run uses.
+  int threads() const { return m_threads; }
 
  private:
   struct Impl;
+  int m_saved_threads = 0;  ///< the caller's omp_get_max_threads(), restored at the end
+  int m_threads = 0;
   std::unique_ptr<Impl> m_impl;
 };
 
