@@ -15,11 +15,12 @@ namespace xpl {
 
 namespace {
 
-elements::HexMaterial hex_material(const Model& model, Index element) {
+/// `mass_factor`: the element's *FIXED MASS SCALING factor (1: none), applied to the density.
+elements::HexMaterial hex_material(const Model& model, Index element, Real mass_factor) {
   const SolidSection& section = model.solid_sections[model.element_section[element]];
   const Material& m = model.materials[section.material];
   elements::HexMaterial h;
-  h.density = m.density;
+  h.density = m.density * mass_factor;
   h.young = m.young;
   h.poisson = m.poisson;
   if (m.plastic) h.plastic = &*m.plastic;
@@ -33,11 +34,11 @@ elements::HexMaterial hex_material(const Model& model, Index element) {
   return h;
 }
 
-elements::ShellProperties shell_properties(const Model& model, Index element) {
+elements::ShellProperties shell_properties(const Model& model, Index element, Real mass_factor) {
   const ShellSection& section = model.shell_sections[model.element_section[element]];
   const Material& m = model.materials[section.material];
   elements::ShellProperties p;
-  p.density = m.density;
+  p.density = m.density * mass_factor;
   p.young = m.young;
   p.poisson = m.poisson;
   p.thickness = section.thickness;
@@ -59,11 +60,10 @@ ElementSet::ElementSet(const Model& model, const RigidBodies& rigid, State& stat
                        PhaseTimers& timers, Real dt_safety)
     : m_model(model), m_timers(timers), m_dt_safety(dt_safety) {
   m_force_internal = NodalVectors::Zero(model.node_count(), 3);
+  m_mass_scaling = fixed_mass_scaling(model, rigid, state.reference);
   build_hex_block(rigid, state);
   build_shell_block(rigid, state);
   add_other_masses(rigid, state);
-  m_mass_scaling =
-      apply_fixed_mass_scaling(model, rigid, state.reference, state.mass, state.rotary_inertia);
   if (m_shell) {
     m_inverse_inertia.assign(model.node_count(), 0.0);
     for (Index i = 0; i < model.node_count(); ++i)
@@ -90,7 +90,7 @@ void ElementSet::build_hex_block(const RigidBodies& rigid, State& state) {
     std::vector<Index>& conn = full ? full_connectivity : connectivity;
     (full ? full_elements : hex_elements).push_back(e);
     conn.insert(conn.end(), m_model.nodes_of(e), m_model.nodes_of(e) + 8);
-    (full ? full_materials : materials).push_back(hex_material(m_model, e));
+    (full ? full_materials : materials).push_back(hex_material(m_model, e, mass_factor(e)));
   }
   if (!hex_elements.empty()) {
     m_hex = std::make_unique<elements::Hex8rBlock>(hex_elements, connectivity, materials,
@@ -114,7 +114,7 @@ void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
     shell_elements.push_back(e);
     const Index* nodes = m_model.nodes_of(e);
     connectivity.insert(connectivity.end(), nodes, nodes + 4);
-    shell_props.push_back(shell_properties(m_model, e));
+    shell_props.push_back(shell_properties(m_model, e, mass_factor(e)));
   }
   if (shell_elements.empty()) return;
   // Rotational DOFs exist only in shell models (P2).
@@ -162,6 +162,10 @@ void ElementSet::set_inverse_mass(const RigidBodies& rigid, const std::vector<Re
     else
       ++m_massless;
   }
+}
+
+Real ElementSet::mass_factor(Index e) const {
+  return m_mass_scaling.factor.empty() ? 1.0 : m_mass_scaling.factor[e];
 }
 
 Index ElementSet::size() const {

@@ -126,6 +126,8 @@ class ElementSet {
 
  private:
   void build_hex_block(const RigidBodies& rigid, State& state);
+  /// The `*FIXED MASS SCALING` factor of element e (1 without scaling).
+  Real mass_factor(Index e) const;
   void build_shell_block(const RigidBodies& rigid, State& state);
   /// Masses of the rigid elements and point masses into state.mass.
   void add_other_masses(const RigidBodies& rigid, State& state) const;

@@ -64,9 +64,8 @@ Real element_stable_increment(const Model& model, Index e, const NodalVectors& r
          (std::sqrt(1.0 + bulk_linear * bulk_linear) - bulk_linear);
 }
 
-MassScalingReport apply_fixed_mass_scaling(const Model& model, const RigidBodies& rigid,
-                                           const NodalVectors& reference, std::vector<Real>& mass,
-                                           std::vector<Real>& rotary_inertia) {
+MassScalingReport fixed_mass_scaling(const Model& model, const RigidBodies& rigid,
+                                     const NodalVectors& reference) {
   MassScalingReport report;
   if (model.steps.empty() || model.steps.front().mass_scaling.empty()) return report;
   const Step& step = model.steps.front();
@@ -81,8 +80,11 @@ MassScalingReport apply_fixed_mass_scaling(const Model& model, const RigidBodies
     element_mass[e] =
         element_node_mass(model, e, reference) * nodes_per_element(model.element_types[e]);
   }
-  Real model_mass = 0.0;
-  for (Real m : mass) model_mass += m;
+  Real model_mass = 0.0;  // elements (rigid ones too) and point masses
+  for (Index e = 0; e < n; ++e)
+    model_mass +=
+        element_node_mass(model, e, reference) * nodes_per_element(model.element_types[e]);
+  for (const PointInertia& p : model.point_inertias) model_mass += p.mass;
   Real dt_before = std::numeric_limits<Real>::infinity();
   for (Index e : all) dt_before = std::min(dt_before, dt[e]);
 
@@ -132,27 +134,12 @@ MassScalingReport apply_fixed_mass_scaling(const Model& model, const RigidBodies
                               " %); smallest element increment " + format_real(set_dt_before) +
                               " s -> " + format_real(set_dt_after) + " s");
   }
-  // The added mass goes to the nodes as the element's own lumped mass does.
   Real dt_after = std::numeric_limits<Real>::infinity();
   for (Index e : all) {
     dt_after = std::min(dt_after, dt[e] * std::sqrt(factor[e]));
-    if (factor[e] == 1.0) continue;
-    const Real node_mass = element_node_mass(model, e, reference);
-    const Real extra = (factor[e] - 1.0) * node_mass;
-    report.added_mass += extra * nodes_per_element(model.element_types[e]);
-    const Index* nodes = model.nodes_of(e);
-    for (int a = 0; a < nodes_per_element(model.element_types[e]); ++a) mass[nodes[a]] += extra;
-    if (is_shell(model.element_types[e]) && !rotary_inertia.empty()) {
-      // Rotary inertia as Shell4rBlock lumps it, (m/4)·max(t²/12, A/8), scaled alike.
-      elements::V3<Real> p[4];
-      for (int a = 0; a < 4; ++a)
-        p[a] = {reference(nodes[a], 0), reference(nodes[a], 1), reference(nodes[a], 2)};
-      const Real area = elements::quad_frame(p).area;
-      const Real t = model.shell_sections[model.element_section[e]].thickness;
-      for (int a = 0; a < 4; ++a)
-        rotary_inertia[nodes[a]] += extra * std::max(t * t / 12.0, area / 8.0);
-    }
+    report.added_mass += (factor[e] - 1.0) * element_mass[e];
   }
+  report.factor = factor;
   const Real percent = model_mass > 0.0 ? 100.0 * report.added_mass / model_mass : 0.0;
   report.messages.push_back("fixed mass scaling: model mass " + format_real(model_mass) +
                             " kg, added " + format_real(report.added_mass) + " kg (+" +

@@ -24,6 +24,10 @@ struct MassScalingReport {
   std::vector<std::string> messages;  ///< one per definition, then the total
   std::string summary;                ///< one line for the .sta file; empty without scaling
   Real added_mass = 0.0;              ///< kg
+  /// Mass factor of each element (n_elements; empty without scaling): the element blocks take
+  /// density × factor, so that the lumped mass, the wave speed of the stable-increment estimate
+  /// and the bulk viscosity are those of the heavier element.
+  std::vector<Real> factor;
 };
 
 /// Stable increment estimate of deformable element e at rest in the configuration
@@ -31,10 +35,9 @@ struct MassScalingReport {
 Real element_stable_increment(const Model& model, Index e, const NodalVectors& reference,
                               Real bulk_linear);
 
-/// Applies the first step's `*FIXED MASS SCALING` definitions to `mass` (n_nodes, kg) and, on
-/// shell models, `rotary_inertia` (n_nodes, kg·m²; empty otherwise) of the deformable elements.
-MassScalingReport apply_fixed_mass_scaling(const Model& model, const RigidBodies& rigid,
-                                           const NodalVectors& reference, std::vector<Real>& mass,
-                                           std::vector<Real>& rotary_inertia);
+/// The mass factors of the first step's `*FIXED MASS SCALING` definitions for the deformable
+/// elements in the configuration `reference`, with their report.
+MassScalingReport fixed_mass_scaling(const Model& model, const RigidBodies& rigid,
+                                     const NodalVectors& reference);
 
 }  // namespace xpl

@@ -145,7 +145,7 @@ def main():
     added = 2.0 * RHO * (4 * H) * (4 * H) * (2 * H) - RHO * (4 * H) * (4 * H) * (2 * H)
     check("*FIXED MASS SCALING (ELSET=TOP): 32 of 32 elements scaled" in msg,
           "the .msg has no mass-scaling line for ELSET=TOP")
-    check(f"mass added {added:.6g} kg" in msg, f"added mass {added:.6g} kg not in the .msg")
+    check(f"mass added {added:.4g} kg" in msg, f"added mass {added:.4g} kg not in the .msg")
     check("initial time increment 1e-08 ignored" in msg, "no note on the initial increment")
     check("C3D8 elements: 32" in msg, "no C3D8 block line in the .msg")
     sta = (out / "t1" / "mixed.sta").read_text()

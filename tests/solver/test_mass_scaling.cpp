@@ -69,10 +69,10 @@ TEST_CASE("fixed mass scaling: FACTOR=4 doubles the increment, adds 3 rho V, kee
   CHECK(std::abs(2.0 * static_cast<Real>(b.summary.increments) -
                  static_cast<Real>(a.summary.increments)) <= 2.0);
   const Real rho_v = spec.density * spec.lx * spec.ly * spec.lz;
-  // Reported with 6 significant digits: the added mass 3 ρV and the model mass ρV.
-  CHECK(number_after(b.sink.messages, "model mass ") == Approx(rho_v).epsilon(1e-5));
-  CHECK(number_after(b.sink.messages, "kg, added ") == Approx(3.0 * rho_v).epsilon(1e-5));
-  CHECK(number_after(b.sink.messages, "kg (+") == Approx(300.0).epsilon(1e-5));
+  // Reported with 4 significant digits: the added mass 3 ρV and the model mass ρV.
+  CHECK(number_after(b.sink.messages, "model mass ") == Approx(rho_v).epsilon(1e-3));
+  CHECK(number_after(b.sink.messages, "kg, added ") == Approx(3.0 * rho_v).epsilon(1e-3));
+  CHECK(number_after(b.sink.messages, "kg (+") == Approx(300.0).epsilon(1e-3));
   // The added mass moves with the nodes: four times the kinetic energy at the start.
   CHECK(b.ke0 == Approx(4.0 * a.ke0).epsilon(1e-12));
   CHECK(b.summary.energy_drift < 0.01);
@@ -88,14 +88,14 @@ TEST_CASE("fixed mass scaling: DT= UNIFORM lifts the smallest element increment 
   REQUIRE(number_after(a.sink.messages, "smallest element increment ") < 0.0);
   Model scaled = base;
   FixedMassScaling s;
-  s.dt = 1e-7;  // about 1.6 × the element estimate of a 1 mm steel cube
+  s.dt = 3e-7;  // about 1.9 × the element estimate of a 1 mm steel cube (1.608e-7 s)
   s.type = FixedMassScaling::Type::Uniform;
   scaled.steps[0].mass_scaling.push_back(s);
   Run b;
   run(scaled, b);
   const Real before = number_after(b.sink.messages, "smallest element increment ");
   const Real after = number_after(b.sink.messages, " s -> ");
-  CHECK(after == Approx(1e-7).epsilon(1e-5));
+  CHECK(after == Approx(3e-7).epsilon(1e-3));
   const Real gain = after / before;
   CHECK(gain > 1.3);
   // The increment of the run rises by the same factor.
