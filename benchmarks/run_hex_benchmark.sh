@@ -3,7 +3,7 @@
 # and 2 threads, best of REPS runs each. Writes benchmarks/results/hex_block.csv (appends)
 # and hex_block.png and prints a markdown table for benchmarks/RESULTS.md.
 # Environment overrides: N (elements per edge, 46), INCREMENTS (300), REPS (3),
-# THREADS ("1 2"), SKIP_BUILD=1 (use the existing build), XPL (binary,
+# THREADS ("1 2"), ELEMENT_TYPE (C3D8R or C3D8), SKIP_BUILD=1 (use the existing build), XPL (binary,
 # build/release/apps/xpl), RESULTS_DIR (benchmarks/results).
 set -euo pipefail
 
@@ -27,7 +27,8 @@ log_dir="$bench_dir/logs"
 mkdir -p "$log_dir"
 rm -f "$log_dir"/run_t*_r*.log "$log_dir"/run_t*_r*.summary.json
 deck="$bench_dir/block_$n.inp"
-"$python" benchmarks/make_block.py -n "$n" --increments "$increments" --out "$deck"
+"$python" benchmarks/make_block.py -n "$n" --increments "$increments" --out "$deck" \
+  --element-type "${ELEMENT_TYPE:-C3D8R}"
 
 logs=()
 for threads in $threads_list; do

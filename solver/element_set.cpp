@@ -8,17 +8,19 @@
 #include <string>
 
 #include "solver/gravity_loads.hpp"
+#include "solver/mass_scaling.hpp"
 #include "solver/message_text.hpp"
 
 namespace xpl {
 
 namespace {
 
-elements::HexMaterial hex_material(const Model& model, Index element) {
+/// `mass_factor`: the element's *FIXED MASS SCALING factor (1: none), applied to the density.
+elements::HexMaterial hex_material(const Model& model, Index element, Real mass_factor) {
   const SolidSection& section = model.solid_sections[model.element_section[element]];
   const Material& m = model.materials[section.material];
   elements::HexMaterial h;
-  h.density = m.density;
+  h.density = m.density * mass_factor;
   h.young = m.young;
   h.poisson = m.poisson;
   if (m.plastic) h.plastic = &*m.plastic;
@@ -32,11 +34,11 @@ elements::HexMaterial hex_material(const Model& model, Index element) {
   return h;
 }
 
-elements::ShellProperties shell_properties(const Model& model, Index element) {
+elements::ShellProperties shell_properties(const Model& model, Index element, Real mass_factor) {
   const ShellSection& section = model.shell_sections[model.element_section[element]];
   const Material& m = model.materials[section.material];
   elements::ShellProperties p;
-  p.density = m.density;
+  p.density = m.density * mass_factor;
   p.young = m.young;
   p.poisson = m.poisson;
   p.thickness = section.thickness;
@@ -63,14 +65,20 @@ ElementSet::ElementSet(const Model& model, const RigidBodies& rigid, State& stat
                        PhaseTimers& timers, Real dt_safety)
     : m_model(model), m_timers(timers), m_dt_safety(dt_safety) {
   m_force_internal = NodalVectors::Zero(model.node_count(), 3);
+  m_mass_scaling = fixed_mass_scaling(model, rigid, state.reference);
   build_hex_block(rigid, state);
   build_shell_block(rigid, state);
   add_other_masses(rigid, state);
+  if (m_shell) {
+    m_inverse_inertia.assign(model.node_count(), 0.0);
+    for (Index i = 0; i < model.node_count(); ++i)
+      if (state.rotary_inertia[i] > 0.0) m_inverse_inertia[i] = 1.0 / state.rotary_inertia[i];
+  }
   m_element_kinds.resize(static_cast<std::size_t>(model.element_count()));
   for (Index e = 0; e < model.element_count(); ++e)
-    m_element_kinds[e] = model.element_types[e] == ElementType::C3D8R ? contact::ElementKind::Hex
-                         : is_shell(model.element_types[e])           ? contact::ElementKind::Shell
-                                                                      : contact::ElementKind::Other;
+    m_element_kinds[e] = is_hex(model.element_types[e])     ? contact::ElementKind::Hex
+                         : is_shell(model.element_types[e]) ? contact::ElementKind::Shell
+                                                            : contact::ElementKind::Other;
   set_node_thickness(rigid, state.reference);
   set_inverse_mass(rigid, state.mass);
 }
@@ -79,17 +87,26 @@ void ElementSet::build_hex_block(const RigidBodies& rigid, State& state) {
   std::vector<Index> hex_elements;
   std::vector<Index> connectivity;
   std::vector<elements::HexMaterial> materials;
+  std::vector<Index> full_elements, full_connectivity;  // C3D8
+  std::vector<elements::HexMaterial> full_materials;
   for (Index e = 0; e < m_model.element_count(); ++e) {
-    if (m_model.element_types[e] != ElementType::C3D8R || !deformable(rigid, e)) continue;
-    hex_elements.push_back(e);
-    const Index* nodes = m_model.nodes_of(e);
-    connectivity.insert(connectivity.end(), nodes, nodes + 8);
-    materials.push_back(hex_material(m_model, e));
+    if (!is_hex(m_model.element_types[e]) || !deformable(rigid, e)) continue;
+    const bool full = m_model.element_types[e] == ElementType::C3D8;
+    std::vector<Index>& conn = full ? full_connectivity : connectivity;
+    (full ? full_elements : hex_elements).push_back(e);
+    conn.insert(conn.end(), m_model.nodes_of(e), m_model.nodes_of(e) + 8);
+    (full ? full_materials : materials).push_back(hex_material(m_model, e, mass_factor(e)));
   }
-  if (hex_elements.empty()) return;
-  m_hex = std::make_unique<elements::Hex8rBlock>(hex_elements, connectivity, materials,
-                                                 m_model.node_count());
-  m_hex->add_lumped_mass(state.reference, state.mass);
+  if (!hex_elements.empty()) {
+    m_hex = std::make_unique<elements::Hex8rBlock>(hex_elements, connectivity, materials,
+                                                   m_model.node_count());
+    m_hex->add_lumped_mass(state.reference, state.mass);
+  }
+  if (!full_elements.empty()) {
+    m_hex8 = std::make_unique<elements::Hex8Block>(full_elements, full_connectivity, full_materials,
+                                                   m_model.node_count());
+    m_hex8->add_lumped_mass(state.reference, state.mass);
+  }
 }
 
 void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
@@ -102,7 +119,7 @@ void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
     shell_elements.push_back(e);
     const Index* nodes = m_model.nodes_of(e);
     connectivity.insert(connectivity.end(), nodes, nodes + 4);
-    shell_props.push_back(shell_properties(m_model, e));
+    shell_props.push_back(shell_properties(m_model, e, mass_factor(e)));
   }
   if (shell_elements.empty()) return;
   // Rotational DOFs exist only in shell models (P2).
@@ -117,9 +134,6 @@ void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
   state.rotary_inertia.assign(n, 0.0);
   m_moment_internal = NodalVectors::Zero(n, 3);
   m_shell->add_lumped_mass(state.reference, state.mass, state.rotary_inertia);
-  m_inverse_inertia.assign(n, 0.0);
-  for (Index i = 0; i < n; ++i)
-    if (state.rotary_inertia[i] > 0.0) m_inverse_inertia[i] = 1.0 / state.rotary_inertia[i];
 }
 
 void ElementSet::add_other_masses(const RigidBodies& rigid, State& state) const {
@@ -158,11 +172,18 @@ void ElementSet::set_inverse_mass(const RigidBodies& rigid, const std::vector<Re
   }
 }
 
+Real ElementSet::mass_factor(Index e) const {
+  return m_mass_scaling.factor.empty() ? 1.0 : m_mass_scaling.factor[e];
+}
+
 Index ElementSet::size() const {
-  return (m_hex ? m_hex->size() : 0) + (m_shell ? m_shell->size() : 0);
+  return (m_hex ? m_hex->size() : 0) + (m_hex8 ? m_hex8->size() : 0) +
+         (m_shell ? m_shell->size() : 0);
 }
 
 void ElementSet::report_setup(const NodalVectors& reference, OutputSink& sink) const {
+  for (const std::string& m : m_mass_scaling.messages) sink.message(Severity::Info, m);
+  if (!m_mass_scaling.summary.empty()) sink.status_note(m_mass_scaling.summary);
   if (m_massless > 0)
     sink.message(Severity::Warning, std::to_string(m_massless) +
                                         " node(s) belong to no element and have no mass; "
@@ -171,6 +192,11 @@ void ElementSet::report_setup(const NodalVectors& reference, OutputSink& sink) c
     sink.message(Severity::Info, "C3D8R elements: " + std::to_string(m_hex->size()) + " in " +
                                      std::to_string(m_hex->color_count()) +
                                      " colours (race-free parallel assembly)");
+  if (m_hex8)
+    sink.message(Severity::Info, "C3D8 elements: " + std::to_string(m_hex8->size()) + " in " +
+                                     std::to_string(m_hex8->color_count()) +
+                                     " colours; 2x2x2 points, mean dilatation (selectively "
+                                     "reduced), no hourglass control");
   if (!m_shell) return;
   sink.message(Severity::Info,
                "S4R elements: " + std::to_string(m_shell->size()) + " in " +
@@ -226,12 +252,14 @@ void ElementSet::report_warped_shells(const NodalVectors& reference, OutputSink&
 void ElementSet::set_stress(const NodalVectors& position, std::span<const Real> middle,
                             std::span<const Real> bottom, std::span<const Real> top) {
   if (m_hex) m_hex->set_stress(middle);
+  if (m_hex8) m_hex8->set_stress(middle);
   if (m_shell) m_shell->set_output_stress(position, middle, bottom, top);
 }
 
 void ElementSet::set_plastic_strain(std::span<const Real> peeq, std::span<const Real> middle,
                                     std::span<const Real> bottom, std::span<const Real> top) {
   if (m_hex && !peeq.empty()) m_hex->set_plastic_strain(peeq);
+  if (m_hex8 && !peeq.empty()) m_hex8->set_plastic_strain(peeq);
   if (m_shell && !middle.empty()) m_shell->set_plastic_strain(middle, bottom, top);
 }
 
@@ -277,14 +305,26 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
     totals.add(t);
     totals.viscous_energy_increment += t.viscous_energy_increment;
   }
+  if (m_hex8) {
+    elements::HexStepTotals t;
+    m_hex8->internal_forces(state.position, state.velocity_half, dt, s.bulk_linear,
+                            s.bulk_quadratic, m_force_internal, t);
+    totals.add(t);
+    totals.viscous_energy_increment += t.viscous_energy_increment;
+  }
   if (m_shell) {
     elements::ShellStepTotals t;
     m_shell->add_totals(t);
     totals.add(t);
   }
   // Shell-only models pass their own stress test; the global estimate covers the hexes.
-  if (m_hex && !s.fixed_increment)
-    m_global.apply(*m_hex, state.position, m_inverse_mass, s.bulk_linear, totals);
+  if ((m_hex || m_hex8) && !s.fixed_increment) {
+    const auto product = [this, &state](const NodalVectors& u, NodalVectors& y) {
+      if (m_hex) m_hex->add_stiffness_product(state.position, u, y);
+      if (m_hex8) m_hex8->add_stiffness_product(state.position, u, y);
+    };
+    m_global.apply(product, state.position.rows(), m_inverse_mass, s.bulk_linear, totals);
+  }
 }
 
 void ElementSet::report_increment_limit(OutputSink& sink) {
@@ -311,8 +351,9 @@ Real ElementSet::stable_increment(const State& state, int step) {
 
 Real ElementSet::stable_step(const ElementTotals& totals, int step) const {
   const Step& s = m_model.steps[step];
-  return s.fixed_increment ? *s.fixed_increment
-                           : totals.stable_dt * s.time_scale_factor * m_dt_safety;
+  if (s.fixed_increment) return *s.fixed_increment;
+  const Real dt = totals.stable_dt * s.time_scale_factor * m_dt_safety;
+  return s.max_increment ? std::min(dt, *s.max_increment) : dt;
 }
 
 Real ElementSet::next_increment(const ElementTotals& totals, Real remaining, int step,
@@ -329,6 +370,7 @@ void ElementSet::gather_output(State& state, const FrameRequest& what) const {
     // PEEQ of every element (0 where elastic); each block writes the rows of its elements.
     state.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);
     if (m_hex) m_hex->gather_plastic_strain(state.peeq);
+    if (m_hex8) m_hex8->gather_plastic_strain(state.peeq);
     if (m_shell) m_shell->gather_plastic_strain(state.peeq);
     if (m_model.has_plastic_shells()) {
       // Per section point: NaN rows for solids and rigid elements, like S_SNEG and S_SPOS.
@@ -348,6 +390,7 @@ void ElementSet::gather_output(State& state, const FrameRequest& what) const {
   state.stress.resize(n_elements * 6, 0.0);
   state.volume.resize(n_elements, 0.0);
   if (m_hex) m_hex->gather_output(state.stress, state.volume);
+  if (m_hex8) m_hex8->gather_output(state.stress, state.volume);
   if (m_shell) {
     const Real nan = std::numeric_limits<Real>::quiet_NaN();
     state.stress_bottom.resize(n_elements * 6, nan);

@@ -1,5 +1,5 @@
 #pragma once
-/// \file The deformable elements of a model as one set: the C3D8R and S4R blocks, the lumped
+/// \file The deformable elements of a model as one set: the C3D8R, C3D8 and S4R blocks, the lumped
 /// nodal masses and rotary inertias they make, their internal forces and the stable
 /// increment they allow.
 
@@ -10,10 +10,12 @@
 
 #include "common/timer.hpp"
 #include "contact/contact_faces.hpp"
+#include "elements/hex8.hpp"
 #include "elements/hex8r.hpp"
 #include "elements/increment_limit.hpp"
 #include "elements/shell4r.hpp"
 #include "solver/global_increment.hpp"
+#include "solver/mass_scaling.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/rigid_bodies.hpp"
@@ -60,7 +62,8 @@ class ElementSet {
   /// Number of deformable elements (the element cycles of the run summary).
   Index size() const;
 
-  /// The setup messages, in this order: nodes without mass, the C3D8R block, the S4R block,
+  /// The setup messages, in this order: fixed mass scaling (also a .sta note), nodes without
+  /// mass, the C3D8R block, the C3D8 block, the S4R block,
   /// its warped elements (measured on `reference`, n_nodes × 3) and section-control notes.
   void report_setup(const NodalVectors& reference, OutputSink& sink) const;
 
@@ -123,6 +126,8 @@ class ElementSet {
 
  private:
   void build_hex_block(const RigidBodies& rigid, State& state);
+  /// The `*FIXED MASS SCALING` factor of element e (1 without scaling).
+  Real mass_factor(Index e) const;
   void build_shell_block(const RigidBodies& rigid, State& state);
   /// Masses of the rigid elements and point masses into state.mass.
   void add_other_masses(const RigidBodies& rigid, State& state) const;
@@ -136,6 +141,7 @@ class ElementSet {
   PhaseTimers& m_timers;
   Real m_dt_safety;
   std::unique_ptr<elements::Hex8rBlock> m_hex;
+  std::unique_ptr<elements::Hex8Block> m_hex8;  ///< the C3D8 elements
   std::unique_ptr<elements::Shell4rBlock> m_shell;
   NodalVectors m_force_internal;   ///< (n_nodes × 3), zeroed after each use
   NodalVectors m_moment_internal;  ///< (n_nodes × 3) on shell models, else 0 rows
@@ -147,6 +153,7 @@ class ElementSet {
   GlobalIncrementLimit m_global;        ///< bound on the element estimate from ω_max
   int m_parts = 0;                      ///< parts of the blocks' partition (0: none yet)
   std::vector<Index> m_boundary_nodes;  ///< nodes two parts share (thread_partition.hpp)
+  MassScalingReport m_mass_scaling;     ///< `*FIXED MASS SCALING` done in the constructor
 };
 
 }  // namespace xpl

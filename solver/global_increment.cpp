@@ -61,6 +61,15 @@ Real global_increment(Real omega, Real element_dt, Real b1) {
 void GlobalIncrementLimit::apply(const elements::Hex8rBlock& hex, const NodalVectors& position,
                                  const std::vector<Real>& inverse_mass, Real bulk_linear,
                                  elements::IncrementLimit& limit) {
+  const auto product = [&hex, &position](const NodalVectors& u, NodalVectors& y) {
+    hex.add_stiffness_product(position, u, y);
+  };
+  apply(product, position.rows(), inverse_mass, bulk_linear, limit);
+}
+
+void GlobalIncrementLimit::apply(const StiffnessProduct& product, Index n_nodes,
+                                 const std::vector<Real>& inverse_mass, Real bulk_linear,
+                                 elements::IncrementLimit& limit) {
   const Real element_dt = limit.stable_dt;
   if (!std::isfinite(element_dt) || !(element_dt > 0.0) || limit.failed_element != NO_INDEX) return;
   ++m_since;
@@ -69,7 +78,7 @@ void GlobalIncrementLimit::apply(const elements::Hex8rBlock& hex, const NodalVec
   if (m_due || moved) {
     const auto start = std::chrono::steady_clock::now();
     FrequencyEstimate e;
-    const Real lambda = largest_eigenvalue(hex, position, inverse_mass, e.products);
+    const Real lambda = largest_eigenvalue(product, n_nodes, inverse_mass, e.products);
     e.omega_max = std::sqrt(std::max(lambda, 0.0));
     e.global_dt = global_increment(e.omega_max, element_dt, bulk_linear);
     e.element_dt = element_dt;
@@ -91,8 +100,7 @@ bool GlobalIncrementLimit::take_new_estimate(FrequencyEstimate& out) {
   return true;
 }
 
-Real GlobalIncrementLimit::largest_eigenvalue(const elements::Hex8rBlock& hex,
-                                              const NodalVectors& position,
+Real GlobalIncrementLimit::largest_eigenvalue(const StiffnessProduct& product, Index n_nodes,
                                               const std::vector<Real>& inverse_mass,
                                               int& products) const {
   // Lanczos on S = D K D (symmetric, same spectrum as M⁻¹K); DOFs without mass drop out.
@@ -100,7 +108,7 @@ Real GlobalIncrementLimit::largest_eigenvalue(const elements::Hex8rBlock& hex,
   // frequency (interlacing), so the unconstrained operator bounds every support condition. Without
   // reorthogonalisation: the largest Ritz value converges first and from below, which is all the
   // estimate needs.
-  const Index n = position.rows();
+  const Index n = n_nodes;
   NodalVectors d = NodalVectors::Zero(n, 3), q(n, 3);
   for (int c = 0; c < 3; ++c)
     for (Index i = 0; i < n; ++i) {
@@ -115,7 +123,7 @@ Real GlobalIncrementLimit::largest_eigenvalue(const elements::Hex8rBlock& hex,
   Real theta = 0.0, beta_prev = 0.0;
   for (int j = 0; j < MAX_ITERATIONS; ++j) {
     w.setZero();
-    hex.add_stiffness_product(position, d.cwiseProduct(q), w);
+    product(d.cwiseProduct(q), w);
     ++products;
     w = d.cwiseProduct(w) - beta_prev * q_prev;
     const Real a = dot(q, w);

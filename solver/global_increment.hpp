@@ -1,9 +1,10 @@
 #pragma once
 /// \file The global stable-increment limit: the model's highest frequency ω_max, estimated by
-/// Lanczos iterations on the linearised operator M⁻¹K of the C3D8R elements, bounds the
+/// Lanczos iterations on the linearised operator M⁻¹K of the hex elements, bounds the
 /// element-by-element estimate where that is not conservative (elements with few
 /// neighbours: single elements, single element layers, bars one element thick).
 
+#include <functional>
 #include <vector>
 
 #include "common/types.hpp"
@@ -49,12 +50,19 @@ class GlobalIncrementLimit {
   /// Starts a step: the next apply() estimates anew.
   void begin_step() { m_due = true; }
 
+  /// y += K u of the elements at the current positions (u, y: n_nodes × 3; m, N).
+  using StiffnessProduct = std::function<void(const NodalVectors& u, NodalVectors& y)>;
+
   /// Applies the limit to `limit.stable_dt` (element estimate, s), estimating ω_max with
   /// `hex` at `position` (n_nodes × 3) and `inverse_mass` (n_nodes, 1/kg) when due;
   /// `bulk_linear` is the step's b1.
   void apply(const elements::Hex8rBlock& hex, const NodalVectors& position,
              const std::vector<Real>& inverse_mass, Real bulk_linear,
              elements::IncrementLimit& limit);
+  /// The same with the stiffness product of any set of elements (C3D8R and C3D8 blocks) over
+  /// `n_nodes` nodes.
+  void apply(const StiffnessProduct& product, Index n_nodes, const std::vector<Real>& inverse_mass,
+             Real bulk_linear, elements::IncrementLimit& limit);
 
   /// The estimate made since the last call, if any (for the .msg); false if none.
   bool take_new_estimate(FrequencyEstimate& out);
@@ -64,7 +72,7 @@ class GlobalIncrementLimit {
  private:
   /// Largest eigenvalue of M⁻¹K (1/s²) by Lanczos on D K D, D = M^{-1/2} (0 at nodes
   /// without mass of their own: rigid-body and massless nodes).
-  Real largest_eigenvalue(const elements::Hex8rBlock& hex, const NodalVectors& position,
+  Real largest_eigenvalue(const StiffnessProduct& product, Index n_nodes,
                           const std::vector<Real>& inverse_mass, int& products) const;
 
   bool m_due = true;

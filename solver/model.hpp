@@ -20,6 +20,7 @@ namespace xpl {
 enum class ElementType : std::uint8_t {
   C3D8R,  ///< 8-node hex, one-point integration, hourglass control
   S4R,    ///< 4-node shell, one in-plane point, hourglass control (S4 is read as S4R)
+  C3D8,   ///< 8-node hex, 2×2×2 points, selectively reduced (mean dilatation), no hourglass
 };
 
 /// Abaqus name of an element type ("C3D8R", "S4R"), as in decks and result files.
@@ -29,6 +30,8 @@ constexpr const char* element_type_name(ElementType type) {
       return "C3D8R";
     case ElementType::S4R:
       return "S4R";
+    case ElementType::C3D8:
+      return "C3D8";
   }
   return "UNKNOWN";
 }
@@ -38,10 +41,17 @@ constexpr bool is_shell(ElementType type) {
   return type == ElementType::S4R;
 }
 
+/// Whether elements of a type are 8-node hexahedra (C3D8R, C3D8): same nodes, faces S1..S6,
+/// sections, surfaces and loads; they differ only in their element kernel.
+constexpr bool is_hex(ElementType type) {
+  return type == ElementType::C3D8R || type == ElementType::C3D8;
+}
+
 /// Number of nodes of an element type.
 constexpr int nodes_per_element(ElementType type) {
   switch (type) {
     case ElementType::C3D8R:
+    case ElementType::C3D8:
       return 8;
     case ElementType::S4R:
       return 4;
@@ -339,16 +349,33 @@ struct Diagnostics {
   SourceLocation where;
 };
 
+/// `*FIXED MASS SCALING, FACTOR=, DT=, TYPE=, ELSET=` (SPEC S4): the masses of the elements of a
+/// set (all deformable elements without ELSET=) scaled once, at the start of the analysis (xpl
+/// accepts it in the first step only), FACTOR first, then DT.
+struct FixedMassScaling {
+  /// How DT= scales: BelowMin brings every element whose stable increment is below DT up to it
+  /// (factor (DT/Δt_e)²); Uniform scales the whole set by one factor so that its smallest
+  /// element increment becomes DT (no scaling where it is already above).
+  enum class Type { BelowMin, Uniform };
+  Real factor = 1.0;       ///< FACTOR=, > 0 (1: none)
+  std::optional<Real> dt;  ///< DT=, s: the element stable increment (before the scale factor)
+  Type type = Type::BelowMin;
+  Index element_set = NO_INDEX;  ///< NO_INDEX: every deformable element
+  SourceLocation where;
+};
+
 /// One `*STEP ... *END STEP` block with `*DYNAMIC, EXPLICIT`.
 struct Step {
   std::string name;
   SourceLocation where;
   Real time_period = 0.0;               ///< s
   std::optional<Real> fixed_increment;  ///< `*DYNAMIC, EXPLICIT, DIRECT USER CONTROL`
-  Real time_scale_factor = 1.0;         ///< multiplies the stable increment (S2)
-  Real bulk_linear = 0.06;              ///< `*BULK VISCOSITY` b1 (Abaqus default)
-  Real bulk_quadratic = 1.2;            ///< `*BULK VISCOSITY` b2 (Abaqus default)
-  bool ramp_amplitude = false;          ///< `*STEP, AMPLITUDE=RAMP`; default STEP for explicit
+  /// Fourth value of the `*DYNAMIC, EXPLICIT` data line: the increment never exceeds it, s.
+  std::optional<Real> max_increment;
+  Real time_scale_factor = 1.0;  ///< multiplies the stable increment (S2)
+  Real bulk_linear = 0.06;       ///< `*BULK VISCOSITY` b1 (Abaqus default)
+  Real bulk_quadratic = 1.2;     ///< `*BULK VISCOSITY` b2 (Abaqus default)
+  bool ramp_amplitude = false;   ///< `*STEP, AMPLITUDE=RAMP`; default STEP for explicit
   /// Boundary conditions given in this step. Those of earlier steps stay active unless this
   /// step has `*BOUNDARY, OP=NEW` (then `boundaries_reset`). Later entries for the same
   /// node and DOF replace earlier ones.
@@ -376,6 +403,8 @@ struct Step {
   /// otherwise (Model::diagnostics_of).
   std::optional<Diagnostics> diagnostics;
   std::vector<OutputRequest> outputs;
+  /// `*FIXED MASS SCALING` definitions (first step only), applied in this order.
+  std::vector<FixedMassScaling> mass_scaling;
 };
 
 /// Something the deck reader wants the user to see in the .msg file (not an error).

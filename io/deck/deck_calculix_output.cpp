@@ -47,6 +47,7 @@ void read_file_output(DeckState& deck, const DeckBlock& block, bool node) {
   else
     check_parameters(deck, keyword,
                      {{"ELSET"},
+                      {"NSET"},  // CalculiX: nodes of the extrapolated output; noted, not used
                       {"FREQUENCY"},
                       {"FREQUENCYF"},
                       {"OUTPUT"},

@@ -130,7 +130,7 @@ bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pen
   };
   const auto solid = [&](Index s) {
     return std::any_of(surface(s).faces.begin(), surface(s).faces.end(), [&](const ElementFace& f) {
-      return deck.model.element_types[static_cast<std::size_t>(f.element)] == ElementType::C3D8R;
+      return is_hex(deck.model.element_types[static_cast<std::size_t>(f.element)]);
     });
   };
   const std::string expected =

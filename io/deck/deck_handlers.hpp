@@ -113,6 +113,8 @@ void read_end_step(DeckState& deck, const DeckBlock& block);
 void read_dynamic(DeckState& deck, const DeckBlock& block);
 /// `*BULK VISCOSITY`.
 void read_bulk_viscosity(DeckState& deck, const DeckBlock& block);
+/// *FIXED MASS SCALING (deck_mass_scaling.cpp).
+void read_fixed_mass_scaling(DeckState& deck, const DeckBlock& block);
 /// `*BOUNDARY`.
 void read_boundary(DeckState& deck, const DeckBlock& block);
 /// OP= of *CLOAD, *DLOAD, *DSLOAD: false (reported) if bad; sets `reset` for OP=NEW.

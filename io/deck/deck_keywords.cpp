@@ -73,6 +73,7 @@ constexpr KeywordSpec KEYWORDS[] = {
     {"STEP", Anywhere, None, read_step},
     {"DYNAMIC", Step, None, read_dynamic},
     {"BULK VISCOSITY", Step, None, read_bulk_viscosity},
+    {"FIXED MASS SCALING", Step, None, read_fixed_mass_scaling},
     {"CLOAD", Step, None, read_cload},
     {"DLOAD", Step, None, read_dload},
     {"DSLOAD", Step, None, read_dsload},

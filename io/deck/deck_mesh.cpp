@@ -90,9 +90,17 @@ void read_element(DeckState& deck, const DeckBlock& block) {
   }
   if (*type == "S4R" || *type == "S4") {
     element_type = ElementType::S4R;
+  } else if (*type == "C3D8") {
+    element_type = ElementType::C3D8;
+  } else if (*type == "C3D8I") {
+    error(deck, keyword.where, keyword, "element type C3D8I (incompatible modes) is not supported",
+          "expected C3D8 (fully integrated, selectively reduced: no volumetric locking) or "
+          "C3D8R; in bending with one element through the thickness C3D8R needs a few more "
+          "elements, C3D8 is stiffer (shear locking)");
+    return;
   } else if (*type != "C3D8R") {
     error(deck, keyword.where, keyword, "element type " + *type + " is not supported yet",
-          "supported: C3D8R, S4R (S4 is run as S4R), MASS, ROTARYI");
+          "supported: C3D8R, C3D8, S4R (S4 is run as S4R), MASS, ROTARYI");
     return;
   }
   if (*type == "S4")

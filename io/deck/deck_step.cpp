@@ -79,10 +79,34 @@ void read_end_step(DeckState& deck, const DeckBlock& block) {
   deck.in_step = false;
 }
 
+namespace {
+
+/// An optional positive time field of the *DYNAMIC data line: nullopt when blank; a bad or
+/// non-positive value is reported with `expected`.
+std::optional<Real> optional_positive(DeckState& deck, const DeckDataLine& line,
+                                      const DeckKeyword& keyword, std::size_t i,
+                                      const std::string& what, const std::string& expected) {
+  if (i >= line.fields.size() || line.fields[i].empty()) return std::nullopt;
+  const std::optional<Real> value = real_field(deck, line, keyword, i, what);
+  if (!value) return std::nullopt;
+  if (!(*value > 0.0)) {
+    error(deck, line.where(), keyword, what + " " + number_text(*value) + " is not positive",
+          expected);
+    return std::nullopt;
+  }
+  return value;
+}
+
+}  // namespace
+
 void read_dynamic(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
+  // EXPLICIT=2|3 is CalculiX's explicit structural computation; ELEMENT BY ELEMENT is Abaqus'.
   check_parameters(deck, keyword,
-                   {{"EXPLICIT", false}, {"DIRECT USER CONTROL", false}, {"SCALE FACTOR"}});
+                   {{"EXPLICIT", false, true},
+                    {"DIRECT USER CONTROL", false},
+                    {"SCALE FACTOR"},
+                    {"ELEMENT BY ELEMENT", false}});
   Step& step = deck.model.steps.back();
   if (deck.step_has_dynamic) {
     error(deck, keyword.where, keyword, "second procedure in step " + step.name,
@@ -90,11 +114,25 @@ void read_dynamic(DeckState& deck, const DeckBlock& block) {
     return;
   }
   deck.step_has_dynamic = true;
-  if (find_parameter(keyword, "EXPLICIT") == nullptr) {
+  const DeckParameter* explicit_flag = find_parameter(keyword, "EXPLICIT");
+  if (explicit_flag == nullptr) {
     error(deck, keyword.where, keyword, "implicit dynamics is not supported",
           "expected *DYNAMIC, EXPLICIT");
     return;
   }
+  if (explicit_flag->has_value && !explicit_flag->value.empty() && explicit_flag->value != "2" &&
+      explicit_flag->value != "3") {
+    error(deck, keyword.where, keyword,
+          "EXPLICIT=" + explicit_flag->value +
+              " (CalculiX: implicit structural computation) is "
+              "not supported",
+          "expected EXPLICIT, EXPLICIT=2 or EXPLICIT=3");
+    return;
+  }
+  if (find_parameter(keyword, "ELEMENT BY ELEMENT") != nullptr)
+    note(deck, keyword.where, keyword,
+         "ELEMENT BY ELEMENT: the stable increment is xpl's element-by-element estimate, which a "
+         "global estimate only ever shortens (meshes with few neighbours)");
   const bool direct = find_parameter(keyword, "DIRECT USER CONTROL") != nullptr;
   if (const DeckParameter* factor = find_parameter(keyword, "SCALE FACTOR");
       factor != nullptr && factor->has_value && !factor->value.empty()) {
@@ -108,38 +146,61 @@ void read_dynamic(DeckState& deck, const DeckBlock& block) {
   if (block.data.size() != 1) {
     error(deck, keyword.where, keyword,
           "found " + std::to_string(block.data.size()) + " data lines",
-          "expected one data line: [time increment], time period");
+          "expected one data line: [time increment], time period[, , maximum increment]");
     return;
   }
-  // Abaqus/Explicit data line: (1) blank, or the fixed increment with DIRECT USER CONTROL,
-  // (2) time period, (3) blank, (4) maximum increment (not supported).
+  // The data line as Abaqus/Explicit writes it: (1) blank, or the fixed increment with DIRECT
+  // USER CONTROL, (2) time period, (3) blank, (4) maximum time increment. CalculiX writes
+  // (1) initial increment, (2) time period, (3) minimum increment, (4) maximum increment,
+  // (5) initial CFD increment; its explicit solver sets the increment itself, so (1) is ignored.
   const DeckDataLine& line = block.data.front();
-  check_field_count(deck, line, keyword, 4, "[time increment], time period");
+  check_field_count(deck, line, keyword, 5,
+                    "[time increment], time period[, minimum increment][, maximum increment]");
   const std::optional<Real> period = real_field(deck, line, keyword, 1, "time period");
   if (period && *period <= 0.0)
     error(deck, line.where(), keyword, "time period " + number_text(*period) + " is not positive",
           "expected a time period > 0");
   else if (period)
     step.time_period = *period;
-  const bool has_increment = !line.fields.empty() && !line.fields[0].empty();
-  if (direct) {
-    const std::optional<Real> increment = real_field(deck, line, keyword, 0, "time increment");
-    if (increment && *increment <= 0.0)
-      error(deck, line.where(), keyword,
-            "time increment " + number_text(*increment) + " is not positive",
-            "expected a fixed time increment > 0");
-    else if (increment)
-      step.fixed_increment = *increment;
-  } else if (has_increment) {
-    error(deck, line.where(), keyword, "a time increment is given without DIRECT USER CONTROL",
-          "expected the first value blank, or *DYNAMIC, EXPLICIT, DIRECT USER CONTROL");
+  const std::optional<Real> increment = optional_positive(
+      deck, line, keyword, 0, "time increment",
+      direct ? "expected a fixed time increment > 0" : "expected a time increment > 0 or blank");
+  if (direct && !increment && (line.fields.empty() || line.fields[0].empty()))
+    error(deck, line.where(), keyword, "DIRECT USER CONTROL without a time increment",
+          "expected the fixed time increment as the first value");
+  if (direct && increment) {
+    step.fixed_increment = *increment;
+  } else if (increment) {
+    note(deck, line.where(), keyword,
+         "initial time increment " + number_text(*increment) +
+             " ignored: without DIRECT USER CONTROL every increment is the stable one (as "
+             "CalculiX's explicit solver does)");
   }
-  if (line.fields.size() > 2 && !line.fields[2].empty())
-    error(deck, line.where(), keyword,
-          "unexpected third value '" + std::string(line.fields[2]) + "'", "expected it blank");
-  if (line.fields.size() > 3 && !line.fields[3].empty())
-    error(deck, line.where(), keyword, "a maximum time increment is not supported yet",
-          "expected the fourth value blank");
+  if (const std::optional<Real> minimum =
+          optional_positive(deck, line, keyword, 2, "minimum time increment",
+                            "expected it blank, or a minimum increment > 0 (CalculiX)")) {
+    deck.model.deck_messages.push_back(
+        {true, location_text(line.where()) + ": " + keyword.label() + ": minimum time increment " +
+                   number_text(*minimum) +
+                   " (CalculiX's third value) ignored: xpl never cuts an explicit increment back "
+                   "and does no selective mass scaling to reach it (*FIXED MASS SCALING, DT= "
+                   "scales the mass to a target increment)"});
+  }
+  if (const std::optional<Real> maximum =
+          optional_positive(deck, line, keyword, 3, "maximum time increment",
+                            "expected it blank, or a maximum increment > 0")) {
+    if (direct)
+      note(deck, line.where(), keyword,
+           "maximum time increment " + number_text(*maximum) +
+               " not used: DIRECT USER CONTROL fixes the increment");
+    else
+      step.max_increment = *maximum;
+  }
+  if (const std::optional<Real> cfd =
+          optional_positive(deck, line, keyword, 4, "initial CFD time increment",
+                            "expected it blank, or an increment > 0 (CalculiX)"))
+    note(deck, line.where(), keyword,
+         "initial CFD time increment " + number_text(*cfd) + " ignored (xpl has no fluid)");
 }
 
 void read_bulk_viscosity(DeckState& deck, const DeckBlock& block) {

@@ -73,7 +73,7 @@ void resolve_surfaces(DeckState& deck) {
 
 std::vector<ElementFace> exposed_hex_faces(DeckState& deck, const std::vector<Index>& elements) {
   const auto is_hex = [&](Index e) {
-    return deck.model.element_types[static_cast<std::size_t>(e)] == ElementType::C3D8R;
+    return xpl::is_hex(deck.model.element_types[static_cast<std::size_t>(e)]);
   };
   // A face with an undefined node (reported already) cannot be matched: skip its element.
   const auto complete = [&](Index e) {

@@ -32,7 +32,7 @@ const char* const XPL_FILE = "expected the .h5 result file of an earlier xpl run
 constexpr Real COORDINATE_TOLERANCE = 1e-9;
 
 /// Element types a result file can hold, as /mesh/TYPE groups.
-constexpr ElementType ELEMENT_TYPES[] = {ElementType::C3D8R, ElementType::S4R};
+constexpr ElementType ELEMENT_TYPES[] = {ElementType::C3D8R, ElementType::C3D8, ElementType::S4R};
 
 std::string format_reals(const Real* values, int count) {
   std::string out = "(";
@@ -184,9 +184,10 @@ void check_element_types(hid_t file, const Model& model, const std::vector<std::
   }
   for (Index e = 0; e < model.element_count(); ++e) {
     if (typed[static_cast<std::size_t>(e)]) continue;
-    refuse("element " + std::to_string(model.element_ids[static_cast<std::size_t>(e)]) +
-               " has no element type in the file (no /mesh/C3D8R or /mesh/S4R lists it)",
-           XPL_FILE);
+    refuse(
+        "element " + std::to_string(model.element_ids[static_cast<std::size_t>(e)]) +
+            " has no element type in the file (no /mesh/C3D8R, /mesh/C3D8 or /mesh/S4R lists it)",
+        XPL_FILE);
   }
 }
 

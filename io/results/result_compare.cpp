@@ -83,7 +83,7 @@ std::vector<std::size_t> map_ids(const ResultFile& ref, const ResultFile& cand,
 
 /// Element types and connectivity (as node ids) must agree element by element.
 void check_topology(const ResultFile& ref, const ResultFile& cand) {
-  for (const char* type : {"C3D8R", "S4R"}) {
+  for (const char* type : {"C3D8R", "C3D8", "S4R"}) {
     const std::string group = std::string("/mesh/") + type;
     const bool in_ref = h5::has_link(ref.file.get(), group);
     if (in_ref != h5::has_link(cand.file.get(), group))

@@ -168,7 +168,7 @@ void MsgFile::summary(const Model& model) {
   if (!model.heading.empty()) m_out << "   heading: " << escape_control(model.heading) << "\n";
   m_out << format("   %-28s %10d\n", "nodes", model.node_count());
   m_out << format("   %-28s %10d\n", "elements", model.element_count());
-  for (ElementType type : {ElementType::C3D8R, ElementType::S4R}) {
+  for (ElementType type : {ElementType::C3D8R, ElementType::C3D8, ElementType::S4R}) {
     long count = 0;
     for (ElementType t : model.element_types) count += t == type ? 1 : 0;
     if (count > 0) {

@@ -9,7 +9,7 @@ namespace xpl::io {
 namespace {
 
 /// Every element type, in the order their groups are written.
-constexpr ElementType ELEMENT_TYPES[] = {ElementType::C3D8R, ElementType::S4R};
+constexpr ElementType ELEMENT_TYPES[] = {ElementType::C3D8R, ElementType::C3D8, ElementType::S4R};
 
 /// The element types that occur in the model, in ELEMENT_TYPES order.
 std::vector<ElementType> types_present(const Model& model) {
@@ -84,6 +84,7 @@ void write_sets(hid_t mesh, const char* group_name, const std::vector<NamedSet>&
 const char* xdmf_cell_name(ElementType type) {
   switch (type) {
     case ElementType::C3D8R:
+    case ElementType::C3D8:
       return "Hexahedron";
     case ElementType::S4R:
       return "Quadrilateral";
@@ -94,6 +95,7 @@ const char* xdmf_cell_name(ElementType type) {
 std::int64_t xdmf_cell_code(ElementType type) {
   switch (type) {
     case ElementType::C3D8R:
+    case ElementType::C3D8:
       return 9;
     case ElementType::S4R:
       return 5;

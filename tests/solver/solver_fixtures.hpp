@@ -68,6 +68,7 @@ struct BoxSpec {
   Real history_dt = 2e-7;
   Real scale_factor = 1.0;
   bool fix_x0 = true;
+  ElementType type = ElementType::C3D8R;  ///< C3D8R or C3D8
 };
 
 inline Model make_box(const BoxSpec& spec) {
@@ -105,7 +106,7 @@ inline Model make_box(const BoxSpec& spec) {
                             node(i + 1, j + 1, k + 1),
                             node(i, j + 1, k + 1)};
         m.element_ids.push_back(static_cast<ExternalId>(m.element_ids.size()) * 3 + 5);
-        m.element_types.push_back(ElementType::C3D8R);
+        m.element_types.push_back(spec.type);
         m.element_nodes.insert(m.element_nodes.end(), c, c + 8);
         m.element_offsets.push_back(static_cast<Index>(m.element_nodes.size()));
         m.element_section.push_back(0);

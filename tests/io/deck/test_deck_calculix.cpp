@@ -130,7 +130,8 @@ TEST_CASE("CalculiX output keywords: sets and errors", "[io][deck][contact][calc
       at(deck, "*NODE PRINT, NSET=ALLN", "*NODE PRINT") +
           "no output variables; expected a data line such as U, RF",
       at(deck, "*EL FILE, FREQ", "*EL FILE") +
-          "unknown parameter FREQ; accepted parameters: ELSET=, FREQUENCY=, FREQUENCYF=, OUTPUT=, "
+          "unknown parameter FREQ; accepted parameters: ELSET=, NSET=, FREQUENCY=, FREQUENCYF=, "
+          "OUTPUT=, "
           "POSITION=, GLOBAL=, TIME POINTS=, LAST ITERATIONS, CONTACT ELEMENTS, SECTION FORCES",
       at(deck, "*NODE FILE\nU", "*NODE FILE") +
           "history data outside a step; expected it between *STEP and *END STEP",
