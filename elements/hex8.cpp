@@ -26,6 +26,7 @@ Hex8Block::Hex8Block(std::vector<Index> element_index, const std::vector<Index>&
   m_stress.assign(nb * HEX8_POINTS * 6 * W, 0.0);
   m_point_volume.assign(nb * HEX8_POINTS * W, 0.0);
   m_volume.assign(nb * W, 0.0);
+  m_viscous_before.assign(nb * W, 0.0);
   m_slot.assign(static_cast<std::size_t>(size()), NO_INDEX);
   m_batch_energy.assign(nb * 3, 0.0);
   m_batch_dt.assign(nb, 0.0);
@@ -228,7 +229,11 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
     plastic_inc = dissipation;
     strain_inc -= plastic_inc;
   }
-  const Vec visc_inc = dt * volm * sv * tr;
+  // Bulk-viscosity work by the trapezoidal rule, as Hex8rBlock books it (see there): the
+  // pressure of the last call acted over this increment too.
+  Real* sv_store = &m_viscous_before[static_cast<std::size_t>(batch) * W];
+  const Vec visc_inc = dt * volm * (0.5 * (simd::load(sv_store) + sv)) * tr;
+  simd::store(sv_store, sv);
 
   Real e_strain = 0.0, e_visc = 0.0, e_plastic = 0.0,
        best_dt = std::numeric_limits<Real>::infinity();

@@ -109,6 +109,7 @@ class Hex8Block {
   std::vector<Real> m_stress;          ///< [b][point 8][6][W]
   std::vector<Real> m_point_volume;    ///< [b][point 8][W] det J at x_{n+1} (weight 1), m^3
   std::vector<Real> m_volume;          ///< [b][W]
+  std::vector<Real> m_viscous_before;  ///< [b][W] bulk-viscosity pressure of the last call
   std::vector<Index> m_slot;           ///< block element -> batch*W + lane
   std::vector<Index> m_color_batches;  ///< batches of colour c: [m_color_batches[c], [c+1])
   // Plasticity (all empty when no element is plastic):

@@ -49,9 +49,12 @@ TEST_CASE("c3d8 stability: nearly incompressible block (nu = 0.45) stable at fac
 TEST_CASE("c3d8 stability: meshes with few neighbours are stable at factor 1",
           "[solver][stability][global][c3d8]") {
   SECTION("one element, fixed face") {
-    // As for C3D8R: the few modes of one element pushed onto its fixed face take the kinetic
-    // energy within an increment or two; their full-step energies are off by tens of percent.
-    test::check_limit("c3d8 1x1x1 fixed face", c3d8(test::deficient_mesh(1, 1, 1, true)), 0.3);
+    // With ALLKE = ½ v(n−½)·M·v(n+½) and the trapezoidal ALLVD the drift is 2.4 % at factor 1
+    // (bound 0.05, as C3D8R's). The first failure is at 1.55: one fully integrated element
+    // has no hourglass modes, so the C3D8R-like estimate is conservative here by that much
+    // (an accepted waste on a one-element model; every larger mesh below fails at 1.10).
+    test::check_limit("c3d8 1x1x1 fixed face", c3d8(test::deficient_mesh(1, 1, 1, true)), 0.05,
+                      1.6);
   }
   SECTION("one element, free") {
     test::check_limit("c3d8 1x1x1 free", c3d8(test::deficient_mesh(1, 1, 1, false)));
