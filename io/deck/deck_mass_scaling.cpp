@@ -42,9 +42,12 @@ void read_fixed_mass_scaling(DeckState& deck, const DeckBlock& block) {
           "expected TYPE=BELOW MIN (default) or TYPE=UNIFORM");
     ok = false;
   }
-  if (!type.empty() && !scaling.dt && ok)
+  if (!type.empty() && !scaling.dt && ok) {
+    // One error for the cause: "no scaling given" below would report the missing DT= again.
     error(deck, keyword.where, keyword,
           "TYPE=" + type + " without DT=", "expected DT=target increment with TYPE=");
+    ok = false;
+  }
   if (ok && !factor && !scaling.dt && find_parameter(keyword, "FACTOR") == nullptr &&
       find_parameter(keyword, "DT") == nullptr) {
     error(deck, keyword.where, keyword, "no scaling given", "expected FACTOR=, DT= or both");

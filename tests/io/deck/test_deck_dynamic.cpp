@@ -160,5 +160,6 @@ TEST_CASE("*FIXED MASS SCALING: errors", "[io][deck][mass-scaling][errors]") {
   CHECK(has_error(errors, at(deck, "SCALING\n*END", k) + "no scaling given"));
   CHECK(has_error(errors, at(deck, "FACTOR=2\n*END", k) + "fixed mass scaling in step 2",
                   "first step only"));
+  for (const std::string& e : errors) UNSCOPED_INFO(e);
   CHECK(errors.size() == 6);
 }
