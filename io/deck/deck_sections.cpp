@@ -207,9 +207,12 @@ void assign_section(DeckState& deck, Index set, Index section, bool shell,
     if (is_shell(deck.model.element_types[static_cast<std::size_t>(e)]) != shell) {
       capped_error(
           deck, deck.error_counts[WRONG_SECTION_KIND], where, keyword,
-          shell ? element + " is a C3D8R solid element" : element + " is an S4R shell element",
+          shell ? element + " is a " +
+                      element_type_name(deck.model.element_types[static_cast<std::size_t>(e)]) +
+                      " solid element"
+                : element + " is an S4R shell element",
           shell ? "expected a *SOLID SECTION for it (*SHELL SECTION is for S4R elements)"
-                : "expected a *SHELL SECTION for it (*SOLID SECTION is for C3D8R "
+                : "expected a *SHELL SECTION for it (*SOLID SECTION is for C3D8R and C3D8 "
                   "elements)");
       deck.section_reported.resize(static_cast<std::size_t>(deck.model.element_count()), 0);
       deck.section_reported[static_cast<std::size_t>(e)] = 1;

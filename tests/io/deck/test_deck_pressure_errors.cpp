@@ -125,11 +125,11 @@ TEST_CASE("every shell error of a deck is reported together", "[io][deck][shell]
           "expected an odd number of points from 1 to 99 "
           "(Simpson's rule through the thickness), e.g. 5",
       at(deck, "*ELEMENT, TYPE=S3R", "*ELEMENT") +
-          "element type S3R is not supported yet; supported: C3D8R, S4R (S4 is run as S4R), "
+          "element type S3R is not supported yet; supported: C3D8R, C3D8, S4R (S4 is run as S4R), "
           "MASS, ROTARYI",
       at(deck, "*SOLID SECTION", "*SOLID SECTION") +
           "element 11 is an S4R shell element; expected a *SHELL SECTION for it (*SOLID SECTION "
-          "is for C3D8R elements)",
+          "is for C3D8R and C3D8 elements)",
       at(deck, "5000002,", "*ELEMENT") +
           "element 5000002 has no section; expected a *SOLID SECTION covering it",
       at(deck, "PLATE, S2", "*SURFACE") +

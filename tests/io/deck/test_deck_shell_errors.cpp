@@ -124,10 +124,12 @@ TEST_CASE("a section of the wrong kind names the element", "[io][deck][shell][er
   const std::string solid = at(deck, "*SOLID SECTION", "*SOLID SECTION");
   const std::string shell = at(deck, "*SHELL SECTION", "*SHELL SECTION");
   REQUIRE(errors.size() == 4);
-  CHECK(has_message(errors, solid + "element 11 is an S4R shell element; expected a *SHELL "
-                                    "SECTION for it (*SOLID SECTION is for C3D8R elements)"));
-  CHECK(has_message(errors, solid + "element 12 is an S4R shell element; expected a *SHELL "
-                                    "SECTION for it (*SOLID SECTION is for C3D8R elements)"));
+  CHECK(has_message(errors, solid +
+                                "element 11 is an S4R shell element; expected a *SHELL "
+                                "SECTION for it (*SOLID SECTION is for C3D8R and C3D8 elements)"));
+  CHECK(has_message(errors, solid +
+                                "element 12 is an S4R shell element; expected a *SHELL "
+                                "SECTION for it (*SOLID SECTION is for C3D8R and C3D8 elements)"));
   CHECK(has_message(errors, shell + "element 5000001 is a C3D8R solid element; expected a *SOLID "
                                     "SECTION for it (*SHELL SECTION is for S4R elements)"));
   CHECK(has_message(errors, shell + "element 5000002 is a C3D8R solid element; expected a *SOLID "
