@@ -12,13 +12,20 @@
 using namespace xpl;
 using namespace xpl::elements;
 int main(int argc, char** argv) {
-  const int mode = argc > 1 ? std::atoi(argv[1]) : 0;  // 0 perfect, 1 linear hardening
+  const int mode = argc > 1 ? std::atoi(argv[1]) : 0;           // 0 perfect, 1 linear hardening
   const int elastic_share = argc > 2 ? std::atoi(argv[2]) : 0;  // % of lanes unloading
-  const std::size_t B = 64; const int P = 5; const int N = argc > 3 ? std::atoi(argv[3]) : 400;
+  const std::size_t B = 64;
+  const int P = 5;
+  const int N = argc > 3 ? std::atoi(argv[3]) : 400;
   const Real E = 210e9, nu = 0.3, q11 = E / (1 - nu * nu), q12 = nu * q11, G = E / (2 * (1 + nu));
   Plasticity law;
-  if (mode == 0) { law.yield_stress = {250e6}; law.plastic_strain = {0.0}; }
-  else { law.yield_stress = {250e6, 250e6 + 1e9}; law.plastic_strain = {0.0, 1.0}; }
+  if (mode == 0) {
+    law.yield_stress = {250e6};
+    law.plastic_strain = {0.0};
+  } else {
+    law.yield_stress = {250e6, 250e6 + 1e9};
+    law.plastic_strain = {0.0, 1.0};
+  }
   std::vector<const Plasticity*> lanes(B * simd::W, &law);
   ShellPlasticState st(lanes, P);
   std::mt19937 rng(7);
@@ -39,19 +46,25 @@ int main(int argc, char** argv) {
           const std::size_t i = ((b * P + k) * simd::W + l) * 3;
           // Unloading lanes reverse after 200 increments (elastic for a while).
           const Real sign = unload[b * simd::W + l] && n >= N / 2 ? -1.0 : 1.0;
-          const Real ex = sign * rate * dir[i], ey = sign * rate * dir[i + 1], gxy = sign * rate * dir[i + 2];
+          const Real ex = sign * rate * dir[i], ey = sign * rate * dir[i + 1],
+                     gxy = sign * rate * dir[i + 2];
           sxx[l] = s[i] + q11 * ex + q12 * ey;
           syy[l] = s[i + 1] + q12 * ex + q11 * ey;
           sxy[l] = s[i + 2] + G * gxy;
         }
-        const simd::Vec d = st.point_return(b, k, vq11, vq12, vg, 1e-7, simd::splat(0.2), sxx, syy, sxy, th);
+        const simd::Vec d =
+            st.point_return(b, k, vq11, vq12, vg, 1e-7, simd::splat(0.2), sxx, syy, sxy, th);
         for (int l = 0; l < simd::W; ++l) {
           const std::size_t i = ((b * P + k) * simd::W + l) * 3;
-          s[i] = sxx[l]; s[i + 1] = syy[l]; s[i + 2] = sxy[l];
+          s[i] = sxx[l];
+          s[i + 1] = syy[l];
+          s[i + 2] = sxy[l];
           dissipation += d[l];
         }
       }
   Real peeq = 0.0;
-  for (std::size_t b = 0; b < B; ++b) for (int k = 0; k < P; ++k) for (std::size_t l = 0; l < simd::W; ++l) peeq += st.peeq(b, k, l);
+  for (std::size_t b = 0; b < B; ++b)
+    for (int k = 0; k < P; ++k)
+      for (std::size_t l = 0; l < simd::W; ++l) peeq += st.peeq(b, k, l);
   std::printf("dissipation %.15e peeq %.15e\n", dissipation, peeq);
 }
