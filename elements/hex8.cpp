@@ -111,7 +111,7 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
   const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
   const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
   V3<Vec> ax[8], av[8];
-  hex8_gather_modes(conn, px, py, pz, vx, vy, vz, ax, av);
+  gather_modes(conn, px, py, pz, vx, vy, vz, ax, av);
 
   // Element geometry at x_{n+1} (forces, volume, stable increment) and x_{n+1/2} (rates).
   V3<Vec> am[8], g[8], gm[8];

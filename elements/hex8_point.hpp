@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "elements/hex8_geometry.hpp"
+#include "elements/hex8r_gather.hpp"
 #include "elements/simd.hpp"
 #include "elements/vec3.hpp"
 
@@ -68,25 +69,6 @@ inline void add_deviatoric_forces(const T s[6], const PointFrame<T>& f, const Ga
   F[5] = F[5] + (p.zeta * u[1] + p.eta * u[2]);
   F[6] = F[6] + (p.zeta * u[0] + p.xi * u[2]);
   F[7] = F[7] + ((p.eta * p.zeta) * u[0] + (p.xi * p.zeta) * u[1] + (p.xi * p.eta) * u[2]);
-}
-
-/// Gathers the 8 corners of a batch (connectivity `conn`, corner-major, simd::W lanes) of two
-/// nodal fields given by component arrays and transforms both into modes.
-inline void hex8_gather_modes(const Index* conn, const Real* px, const Real* py, const Real* pz,
-                              const Real* vx, const Real* vy, const Real* vz, V3<simd::Vec> ap[8],
-                              V3<simd::Vec> av[8]) {
-  simd::Vec cx[8], cy[8], cz[8], wx[8], wy[8], wz[8];
-  for (int a = 0; a < 8; ++a) {
-    const Index* idx = conn + a * simd::W;
-    cx[a] = simd::gather(px, idx);
-    cy[a] = simd::gather(py, idx);
-    cz[a] = simd::gather(pz, idx);
-    wx[a] = simd::gather(vx, idx);
-    wy[a] = simd::gather(vy, idx);
-    wz[a] = simd::gather(vz, idx);
-  }
-  to_modes(cx, cy, cz, ap);
-  to_modes(wx, wy, wz, av);
 }
 
 }  // namespace xpl::elements

@@ -29,7 +29,7 @@ void Hex8Block::stiffness_batch(Index batch, const Real* px, const Real* py, con
   const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
   const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
   V3<Vec> ax[8], au[8], g[8];
-  hex8_gather_modes(conn, px, py, pz, ux, uy, uz, ax, au);
+  gather_modes(conn, px, py, pz, ux, uy, uz, ax, au);
   Vec vol;
   volume_gradient(ax, g, vol);
   Vec tr = simd::splat(0.0);

@@ -1,6 +1,6 @@
 #pragma once
-/// \file Gather of one batch of C3D8R elements into mode space, shared by the force pass
-/// (hex8r.cpp) and the linear stiffness product (hex8r_stiffness.cpp).
+/// \file Gather of one batch of hexes into mode space, shared by the C3D8R and C3D8 force
+/// passes (hex8r.cpp, hex8.cpp) and their linear stiffness products.
 
 #include "elements/hex8_geometry.hpp"
 #include "elements/simd.hpp"
