@@ -155,7 +155,7 @@ TEST_CASE("c3d8: nearly incompressible block under a punch: no volumetric lockin
   // nearly isochoric deformation): with ν = 0.499 the punch displacement of C3D8 agrees with
   // the C3D8R result of the same fine mesh within 2 %, while a locking element would be
   // many times stiffer. Static solution, as the cantilever test.
-  const int n = 8;
+  const int n = 12;  // 12³ elements: 0.5 s for four static solves
   Beam b;  // reused as a general mesh holder
   const Real edge = 0.01;
   const int m = n + 1;
@@ -197,10 +197,11 @@ TEST_CASE("c3d8: nearly incompressible block under a punch: no volumetric lockin
     std::printf("punch, nu = %.3f: C3D8 %.6g m, C3D8R %.6g m, ratio %.4f\n", nus[v], result[v][0],
                 result[v][1], result[v][0] / result[v][1]);
   }
-  // On this 8³ mesh the two elements differ by about 2 % whatever ν (C3D8R's hourglass
-  // stiffness is softer): 1.9 % at ν = 0.3, 2.1 % at 0.499. Locking would show as a ratio that
-  // falls with ν; it stays within 0.5 %.
-  CHECK(result[1][0] == Approx(result[1][1]).epsilon(0.025));
+  // The two elements differ by discretisation error, which the load edge's singularity makes
+  // large on coarse meshes (C3D8R's hourglass stiffness is softer): 2.1 % at 8³, 1.1 % at 12³,
+  // 0.7 % at 16³ (ν = 0.499). 12³ is the fine mesh of the acceptance (2 %). Locking would show
+  // as a ratio that falls with ν; it stays within 0.5 %.
+  CHECK(result[1][0] == Approx(result[1][1]).epsilon(0.02));
   CHECK(result[1][0] / result[1][1] == Approx(result[0][0] / result[0][1]).epsilon(0.005));
   // And the near-incompressible punch is not far stiffer than the compressible one (a locking
   // element drops by an order of magnitude): the shear modulus changes by 13 %.
