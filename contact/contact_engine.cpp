@@ -172,7 +172,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
-      if (!m_domain.slave_rigid(s)) {
+      if (!m_broad.candidates(s).empty() && !m_domain.slave_rigid(s)) {
         Real best_distance = std::numeric_limits<Real>::max();
         SlaveTouch candidate;
         Real distance = 0.0;
@@ -194,11 +194,25 @@ void ContactEngine::widen_search(Real extra) {
   m_broad = BroadPhase(m_broad.margin() + extra, m_broad.rebuild_motion());
 }
 
-bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {
+bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
+                                        std::span<const Real> node_thickness) {
   SlaveNodes& slaves = m_domain.slaves();
-  const bool rebuild = m_broad.needs_rebuild(position);
-  if (rebuild) m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness);
-  slaves.update_areas(m_domain.faces(), position);
+  if (!m_broad.needs_rebuild(position)) return false;
+  m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness);
+  const Index n_slave = slaves.size();
+  m_active_slot.assign(static_cast<std::size_t>(n_slave), 0);
+  m_active_face.assign(m_domain.faces().size(), 0);
+  for (Index s = 0; s < n_slave; ++s) {
+    if (m_broad.candidates(s).empty()) continue;
+    m_active_slot[s] = 1;
+    for (Index f : slaves.faces_of(s)) m_active_face[f] = 1;
+  }
+  return true;
+}
+
+bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {
+  const bool rebuild = refresh_broad_phase(position, node_thickness);
+  m_domain.slaves().update_areas(m_domain.faces(), position);
   search(position, node_thickness);
   return rebuild;
 }
@@ -233,7 +247,14 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   const Index n_slave = slaves.size();
   {
     ScopedTimer timer(timers, Phase::ContactSearch);
-    totals.rebuilt = probe(position, node_thickness);
+    totals.rebuilt = refresh_broad_phase(position, node_thickness);
+    // Only the search of a slot with candidates reads its area and normal, and so does a
+    // user-stiffness law's spring (same slots); a LINEAR law's increment estimate reads all.
+    if (m_user_stiffness)
+      slaves.update_areas(faces, position);
+    else
+      slaves.update_areas(faces, position, m_active_slot, m_active_face);
+    search(position, node_thickness);
   }
 
   ScopedTimer timer(timers, Phase::ContactForce);
@@ -308,6 +329,26 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   m_assembly.assemble(slaves, faces, m_touch, m_slave_force, m_normal_force, m_constraints,
                       m_dissipation, velocity_half, dt, force_internal, totals);
   for (Index s = 0; s < n_slave; ++s) totals.stored_energy += m_stored[s];
+  // A face corner without candidates of its own that carries force: its area and normal
+  // (read by the contact output) as the full pass would have made them.
+  if (!m_user_stiffness) {
+    bool extra = false;
+    for (Index s = 0; s < n_slave && !extra; ++s) {
+      const Vec3 f = m_assembly.nodal_force(s);
+      extra = !m_active_slot[s] && f.dot(f) != 0.0;
+    }
+    if (extra) {
+      m_extra_slot.assign(static_cast<std::size_t>(n_slave), 0);
+      m_extra_face.assign(faces.size(), 0);
+      for (Index s = 0; s < n_slave; ++s) {
+        const Vec3 f = m_assembly.nodal_force(s);
+        if (m_active_slot[s] || f.dot(f) == 0.0) continue;
+        m_extra_slot[s] = 1;
+        for (Index g : slaves.faces_of(s)) m_extra_face[g] = 1;
+      }
+      slaves.update_areas(faces, position, m_extra_slot, m_extra_face);
+    }
+  }
   m_updated = true;
   if (m_user_stiffness) {
     m_penalty_sum.reset(static_cast<Index>(mass.size()));

@@ -132,8 +132,12 @@ class ContactEngine {
   void widen_search(Real extra);
 
  private:
-  /// Closest admissible face of every slave node (parallel over slots).
+  /// Closest admissible face of every slave node (parallel over slots); a slot without
+  /// candidate faces has none, without a look at the node.
   void search(const NodalVectors& position, std::span<const Real> node_thickness);
+  /// Rebuilds the broad phase when due (then also the lists of slots with candidates and of
+  /// their faces); returns whether it did.
+  bool refresh_broad_phase(const NodalVectors& position, std::span<const Real> node_thickness);
   /// What the admissibility test needs of a slave node, gathered once per node and search
   /// (not once per candidate face): position, normal, sidedness, half thickness, and the shell
   /// face it is held on (side memory) or null.
@@ -175,6 +179,12 @@ class ContactEngine {
   std::vector<Real> m_user_k;     // (n_slave) user-stiffness spring counted this update, N/m
   std::vector<Index> m_user_law;  // (n_slave) its interaction
   bool m_updated = false;         // an update() has run: constraints hold last increment's touches
+  // Slots with candidate faces at the last broad-phase build (n_slave) and the faces around
+  // them (n_faces): update() refreshes the areas and normals of these slots only, the only
+  // ones its search reads; probe() refreshes all. Scratch masks for the force-carrying corners
+  // outside them.
+  std::vector<char> m_active_slot, m_active_face;
+  std::vector<char> m_extra_slot, m_extra_face;
   PenaltyStiffnessSum m_penalty_sum;
   PenaltyLimit m_penalty_limit;
 };

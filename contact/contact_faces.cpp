@@ -169,11 +169,19 @@ SlaveNodes::SlaveNodes(std::span<const ContactFace> faces, Index node_count)
 }
 
 void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVectors& position) {
+  update_areas(faces, position, {}, {});
+}
+
+void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVectors& position,
+                              std::span<const char> slot_needed,
+                              std::span<const char> face_needed) {
   if (faces.size() != m_face_area.size())
     throw std::invalid_argument("SlaveNodes::update_areas: not the faces it was built from");
   const auto n_faces = static_cast<Index>(faces.size());
+  const bool all_faces = face_needed.empty();
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n_faces; ++i) {
+    if (!all_faces && !face_needed[i]) continue;
     Vec3 corner[4];
     face_corners(faces[i], position, {}, corner);
     const Vec3 n = 0.5 * cross_diagonals(corner);
@@ -181,8 +189,10 @@ void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVec
     for (int d = 0; d < 3; ++d) m_face_normal[3 * i + d] = n[d];
   }
   const Index n_slave = size();
+  const bool all_slots = slot_needed.empty();
 #pragma omp parallel for schedule(static)
   for (Index s = 0; s < n_slave; ++s) {
+    if (!all_slots && !slot_needed[s]) continue;
     Real a = 0.0;
     Vec3 n = Vec3::Zero();
     for (Index k = m_face_offsets[s]; k < m_face_offsets[s + 1]; ++k) {

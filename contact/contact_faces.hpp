@@ -112,6 +112,13 @@ class SlaveNodes {
   /// Tributary areas and node normals on the configuration `position` (n_nodes × 3, m) of
   /// the mid-surface.
   void update_areas(std::span<const ContactFace> faces, const NodalVectors& position);
+  /// update_areas for the slots with slot_needed[s] != 0 only, from the faces with
+  /// face_needed[f] != 0, which must include every face around those slots (both n_slave
+  /// and n_faces long; empty: all): those slots get bitwise the values update_areas gives
+  /// them (the same loops, skipping), every other slot keeps what it had. The contact
+  /// engine's per-increment pass, for the slave nodes that have candidate faces.
+  void update_areas(std::span<const ContactFace> faces, const NodalVectors& position,
+                    std::span<const char> slot_needed, std::span<const char> face_needed);
 
   /// Slave node indices, ascending (n_slave).
   const std::vector<Index>& nodes() const { return m_nodes; }

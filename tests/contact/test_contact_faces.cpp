@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "contact/contact_faces.hpp"
@@ -188,4 +189,37 @@ TEST_CASE("a double-sided shell counts its area once", "[contact][faces][area][s
   one_side.update_areas(one, mesh.coordinates);
   CHECK(one_side.areas()[0] == Approx(0.25).epsilon(1e-14));
   CHECK_THROWS_AS(one_side.update_areas(faces, mesh.coordinates), std::invalid_argument);
+}
+
+TEST_CASE("areas of selected slots are bitwise those of the full pass, the rest untouched",
+          "[contact][faces][area]") {
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 3, 2, 2, 1.0);
+  const auto faces = contact::exterior_faces(mesh.topology());
+  contact::SlaveNodes full(faces, mesh.node_count());
+  contact::SlaveNodes part(faces, mesh.node_count());
+  // A warped configuration, so that areas and normals carry rounding.
+  NodalVectors moved = mesh.coordinates;
+  for (Index n = 0; n < moved.rows(); ++n)
+    for (int d = 0; d < 3; ++d) moved(n, d) += 0.013 * std::sin(1.7 * n + 0.9 * d);
+  full.update_areas(faces, moved);
+  part.update_areas(faces, mesh.coordinates);
+  const std::vector<Real> before = part.areas();
+  // Every third slot, with the faces around it.
+  std::vector<char> slot_needed(static_cast<std::size_t>(part.size()), 0);
+  std::vector<char> face_needed(faces.size(), 0);
+  for (Index s = 0; s < part.size(); s += 3) {
+    slot_needed[s] = 1;
+    for (Index f : part.faces_of(s)) face_needed[f] = 1;
+  }
+  part.update_areas(faces, moved, slot_needed, face_needed);
+  for (Index s = 0; s < part.size(); ++s) {
+    if (slot_needed[s]) {
+      CHECK(part.areas()[s] == full.areas()[s]);
+      for (int d = 0; d < 3; ++d) CHECK(part.normal(s)[d] == full.normal(s)[d]);
+    } else {
+      CHECK(part.areas()[s] == before[s]);
+    }
+  }
+  CHECK(part.areas()[1] != full.areas()[1]);  // slot 1 kept the undeformed area
 }
