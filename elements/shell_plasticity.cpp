@@ -152,17 +152,41 @@ Segment segment_at(const Plasticity& law, Real peeq) {
           upper == eps.end() ? std::numeric_limits<Real>::infinity() : *upper};
 }
 
+/// Index of the table segment holding ε̄ᵖ = peeq: the last i with ε_i ≤ peeq (n − 1 on the
+/// constant part after the last point), as segment_at finds it.
+int segment_index(const Plasticity& law, Real peeq) {
+  const std::vector<Real>& eps = law.plastic_strain;
+  const auto upper = std::upper_bound(eps.begin(), eps.end(), peeq);
+  return upper == eps.begin() ? 0 : static_cast<int>(upper - eps.begin()) - 1;
+}
+
+/// segment_at from a known segment index i and the segments' slopes: the same numbers
+/// without the search (the flow_stress of a rate-free table, term for term).
+Segment segment_from(const Plasticity& law, const std::vector<Real>& slopes, int i, Real peeq) {
+  const std::vector<Real>& eps = law.plastic_strain;
+  const std::vector<Real>& sig = law.yield_stress;
+  const auto last = static_cast<int>(sig.size()) - 1;
+  if (i >= last)
+    return {sig[static_cast<std::size_t>(last)], 0.0, std::numeric_limits<Real>::infinity()};
+  const auto k = static_cast<std::size_t>(i);
+  const Real slope = slopes[k];
+  return {sig[k] + slope * (std::max(peeq, eps[0]) - eps[k]), slope, eps[k + 1]};
+}
+
 /// The return of the lanes in `active`: rate-free tables on the segment of ε̄ᵖ_n in SIMD
 /// arithmetic, and again through flow_stress in the lanes whose ε̄ᵖ passed the segment's
 /// end (a table break crossed within the increment); other laws through flow_stress.
+/// `segment_of(l)` gives lane l's segment (piecewise-linear lanes only).
+template <class SegmentOf>
 LaneReturn solve_lanes(const Plasticity* const* laws, simd::Mask active, Vec q11, Vec q12,
-                       Vec shear, Vec sxx, Vec syy, Vec sxy, Vec peeq, Real dt) {
+                       Vec shear, Vec sxx, Vec syy, Vec sxy, Vec peeq, Real dt,
+                       SegmentOf segment_of) {
   simd::Mask linear = active & (active == 0);  // all clear
   Vec seg_stress = simd::splat(0.0), seg_slope = seg_stress;
   Vec seg_end = simd::splat(std::numeric_limits<Real>::infinity());
   for (int l = 0; l < simd::W; ++l) {
     if (!active[l] || !piecewise_linear(*laws[l])) continue;
-    const Segment segment = segment_at(*laws[l], peeq[l]);
+    const Segment segment = segment_of(l);
     linear[l] = -1;
     seg_stress[l] = segment.stress;
     seg_slope[l] = segment.slope;
@@ -202,7 +226,8 @@ PlaneStressReturn plane_stress_return(const Plasticity& law, Real q11, Real q12,
   active[0] = -1;
   const LaneReturn lanes =
       solve_lanes(laws, active, simd::splat(q11), simd::splat(q12), simd::splat(shear),
-                  simd::splat(sxx), simd::splat(syy), simd::splat(sxy), simd::splat(peeq), dt);
+                  simd::splat(sxx), simd::splat(syy), simd::splat(sxy), simd::splat(peeq), dt,
+                  [&](int) { return segment_at(law, peeq); });
   r.sxx = lanes.sxx[0];
   r.syy = lanes.syy[0];
   r.sxy = lanes.sxy[0];
@@ -238,7 +263,16 @@ ShellPlasticState::ShellPlasticState(std::span<const Plasticity* const> lane_law
     m_batch_plastic.clear();
     return;
   }
+  for (const Plasticity& law : m_laws) {
+    std::vector<Real> slopes;
+    if (law.hardening == Hardening::Tabular)
+      for (std::size_t i = 0; i + 1 < law.yield_stress.size(); ++i)
+        slopes.push_back((law.yield_stress[i + 1] - law.yield_stress[i]) /
+                         (law.plastic_strain[i + 1] - law.plastic_strain[i]));
+    m_slopes.push_back(std::move(slopes));
+  }
   const std::size_t n = n_batches * static_cast<std::size_t>(points) * W;
+  m_segment.assign(n, 0);
   m_peeq.assign(n, 0.0);
   m_rate.assign(n, 0.0);
   m_yield.assign(n, std::numeric_limits<Real>::infinity());
@@ -270,7 +304,12 @@ Vec ShellPlasticState::point_return(std::size_t b, int k, Vec q11, Vec q12, Vec 
     laws[l] = &m_laws[static_cast<std::size_t>(law < 0 ? 0 : law)];
   }
   const Vec peeq = simd::load(&m_peeq[r]);
-  const LaneReturn ret = solve_lanes(laws, yielding, q11, q12, shear, sxx, syy, sxy, peeq, dt);
+  int* segment = &m_segment[r];
+  const LaneReturn ret =
+      solve_lanes(laws, yielding, q11, q12, shear, sxx, syy, sxy, peeq, dt, [&](int l) {
+        const int law = m_lane_law[b * W + static_cast<std::size_t>(l)];
+        return segment_from(*laws[l], m_slopes[static_cast<std::size_t>(law)], segment[l], peeq[l]);
+      });
   sxx = ret.sxx;
   syy = ret.syy;
   sxy = ret.sxy;
@@ -283,9 +322,14 @@ Vec ShellPlasticState::point_return(std::size_t b, int k, Vec q11, Vec q12, Vec 
   for (std::size_t l = 0; l < W; ++l) {
     if (!yielding[l]) continue;
     const Plasticity& law = *laws[l];
-    m_yield[r + l] = law.rate == RateDependence::None
-                         ? ret.yield[l]
-                         : flow_stress(law, peeq[l] + ret.dpeeq[l], 0.0).stress;
+    const Real peeq_end = peeq[l] + ret.dpeeq[l];
+    m_yield[r + l] =
+        law.rate == RateDependence::None ? ret.yield[l] : flow_stress(law, peeq_end, 0.0).stress;
+    // ε̄ᵖ only grows: the segment index moves up past the table points it passed.
+    const std::vector<Real>& eps = law.plastic_strain;
+    int& i = segment[l];
+    while (i + 1 < static_cast<int>(eps.size()) && peeq_end >= eps[static_cast<std::size_t>(i) + 1])
+      ++i;
   }
   return dissipation;
 }
@@ -303,6 +347,7 @@ void ShellPlasticState::set_peeq(std::size_t b, int k, std::size_t l, Real value
   const Plasticity& law = m_laws[static_cast<std::size_t>(m_lane_law[b * W + l])];
   m_peeq[row(b, k) + l] = value;
   m_yield[row(b, k) + l] = flow_stress(law, value, 0.0).stress;
+  if (law.hardening == Hardening::Tabular) m_segment[row(b, k) + l] = segment_index(law, value);
 }
 
 }  // namespace xpl::elements

@@ -87,6 +87,10 @@ class ShellPlasticState {
   std::vector<Real> m_peeq;                    ///< [b][points][W] ε̄ᵖ, -
   std::vector<Real> m_rate;                    ///< [b][points][W] Δε̄ᵖ/dt, 1/s
   std::vector<Real> m_yield;  ///< [b][points][W] σ_y(ε̄ᵖ, 0), Pa; +inf elastic
+  /// [b][points][W] tabular laws: the table segment holding ε̄ᵖ (the last point ε_i ≤ ε̄ᵖ),
+  /// kept up as ε̄ᵖ grows so that a return does not search the table.
+  std::vector<int> m_segment;
+  std::vector<std::vector<Real>> m_slopes;  ///< per law (tabular): slope of each segment, Pa
 };
 
 }  // namespace xpl::elements

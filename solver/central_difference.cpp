@@ -62,7 +62,7 @@ void CentralDifference::begin_step(int step, State& state, RigidBodies& rigid) {
   select_prescribed(active, state);
   collect_loads();
   m_first_update = true;
-  if (m_previous_force.rows() == 0 && (!m_prescribed.empty() || !m_free_loads.empty()))
+  if (m_previous_force.rows() == 0 && (!m_prescribed.empty() || !m_free_load_dofs.empty()))
     m_previous_force = NodalVectors::Zero(m_model.node_count(), 3);
   if (m_shells && m_previous_moment.rows() == 0 && !m_prescribed.empty())
     m_previous_moment = NodalVectors::Zero(m_model.node_count(), 3);
@@ -91,22 +91,38 @@ void CentralDifference::select_prescribed(const std::vector<PrescribedDof>& acti
 
 void CentralDifference::collect_loads() {
   const auto n = static_cast<std::size_t>(m_model.node_count());
+  m_loads.begin_step(m_model, m_boundary.loads(), m_pressures, m_gravity);
+  // The work of the loads is summed over the free loaded DOFs in the order they were once
+  // listed (CLOADs, then pressure nodes, then gravity nodes), so that ALLWK keeps its
+  // round-off.
   std::vector<char> is_prescribed(n * 6, 0);
   for (const PrescribedDof& d : m_prescribed) is_prescribed[d.component * n + d.node] = 1;
-  m_loaded_dofs = m_boundary.loads();
   std::vector<char> is_loaded(n * 3, 0);
-  for (const LoadedDof& l : m_loaded_dofs) is_loaded[l.component * n + l.node] = 1;
+  std::vector<Index> order;
+  for (const LoadedDof& l : m_boundary.loads()) {
+    is_loaded[l.component * n + l.node] = 1;
+    order.push_back(static_cast<Index>(l.component * n + l.node));
+  }
   for (const std::vector<Index>* nodes : {&m_pressures.nodes(), &m_gravity.nodes()})
     for (Index node : *nodes)
       for (int c = 0; c < 3; ++c)
         if (!is_loaded[c * n + node]) {
           is_loaded[c * n + node] = 1;
-          m_loaded_dofs.push_back({node, c, 0.0, NO_INDEX});
+          order.push_back(static_cast<Index>(c * n + node));
         }
-  m_free_loads.clear();
-  for (const LoadedDof& l : m_loaded_dofs)
-    if (!is_prescribed[l.component * n + l.node]) m_free_loads.push_back(l);
-  m_v_old_loaded.assign(m_free_loads.size(), 0.0);
+  m_free_load_dofs.clear();
+  m_free_load_mask.assign(m_loads.empty() ? 0 : n, 0);
+  for (Index at : order)
+    if (!is_prescribed[at]) {
+      m_free_load_dofs.push_back(at);
+      m_free_load_mask[at % n] |= static_cast<std::uint8_t>(1u << (at / n));
+    }
+  if (!m_free_load_dofs.empty() && m_load_work_force.rows() == 0) {
+    m_load_work_force = NodalVectors::Zero(m_model.node_count(), 3);
+    m_load_work_velocity = NodalVectors::Zero(m_model.node_count(), 3);
+  }
+  // Forces of loads the step no longer has must not stay behind.
+  if (m_force_external.rows() > 0) m_force_external.setZero();
 }
 
 void CentralDifference::report_step(int step, OutputSink& sink) const {
@@ -122,29 +138,36 @@ void CentralDifference::report_step(int step, OutputSink& sink) const {
                      "prescribe the motion on the REF NODE");
 }
 
-void CentralDifference::apply_loads(const State& state, Real step_time, Real total_time) {
-  if (m_loaded_dofs.empty()) return;
-  // External forces are part of the nodal update: timed with it, so the phases add up.
-  ScopedTimer timer(m_timers, Phase::Integration);
+void CentralDifference::apply_loads(const State&, Real step_time, Real total_time) {
+  if (m_loads.empty()) return;
+  m_loads.set_time(m_model, m_boundary, step_time, total_time);
+  m_loads_due = true;
   if (m_force_external.rows() == 0) m_force_external = NodalVectors::Zero(m_model.node_count(), 3);
-  for (const LoadedDof& l : m_loaded_dofs) m_force_external(l.node, l.component) = 0.0;
-  for (const LoadedDof& l : m_boundary.loads())
-    m_force_external(l.node, l.component) +=
-        l.value * m_boundary.factor(m_model, l.amplitude, step_time, total_time);
-  if (!m_pressures.empty())
-    m_pressures.add_forces(m_model, m_boundary, state.position, step_time, total_time,
-                           m_force_external);
-  if (!m_gravity.empty())
-    m_gravity.add_forces(m_model, m_boundary, step_time, total_time, m_force_external);
 }
 
-void CentralDifference::advance_positions(State& state, Real dt) {
+void CentralDifference::advance_positions(State& state, ElementSet& elements, Real dt) {
   ScopedTimer timer(m_timers, Phase::Integration);
-  state.position += dt * state.velocity_half;
-  if (m_shells) {
-    m_rotations.advance(state.angular_velocity_half, dt);
-    m_rotation_synced = false;
+  const Index n = m_model.node_count();
+  const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
+  // One pass: positions, the rotations of shell nodes, and the element forces cleared for the
+  // next element pass.
+  NodalVectors& x = state.position;
+  const NodalVectors& v = state.velocity_half;
+  NodalVectors& f = elements.force_internal();
+  NodalVectors& m = elements.moment_internal();
+#pragma omp parallel for schedule(static) if (n_chunks > 1)
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) {
+    const Index first = chunk * NODE_CHUNK, count = std::min(n, first + NODE_CHUNK) - first;
+    for (int c = 0; c < 3; ++c) {
+      x.col(c).segment(first, count) += dt * v.col(c).segment(first, count);
+      f.col(c).segment(first, count).setZero();
+    }
+    if (m_shells) {
+      m_rotations.advance_range(state.angular_velocity_half, dt, first, first + count);
+      for (int c = 0; c < 3; ++c) m.col(c).segment(first, count).setZero();
+    }
   }
+  if (m_shells) m_rotation_synced = false;
 }
 
 void CentralDifference::sync_rotation(State& state) {
@@ -184,22 +207,44 @@ Real update_range(const Field& d, Index off, Index first, Index last, Real dt_av
 
 }  // namespace
 
-Real CentralDifference::free_update(const Field& d, const Increment& inc, Real* sums) const {
+void CentralDifference::update_chunk(State& state, const Field& translation, const Field& rotation,
+                                     const Increment& inc, Index chunk) {
   const Index n = m_model.node_count();
-  const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
-#pragma omp parallel for schedule(static) if (n_chunks > 1)
-  for (Index chunk = 0; chunk < n_chunks; ++chunk) {
-    const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
-    Real ke = 0.0;
-    for (int c = 0; c < 3; ++c)
-      ke += d.acceleration
-                ? update_range<true>(d, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before)
-                : update_range<false>(d, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before);
-    sums[chunk] = 0.5 * ke;
+  const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
+  if (m_loads_due) {
+    // The loads of the chunk's nodes, and the work of those on free DOFs over the increment
+    // just taken (trapezoidal rule, exact for constant forces), before v_{n-1/2} moves on.
+    Real* fe = m_force_external.data();
+    Real* f_before = m_previous_force.data();
+    Real* mean_force = m_load_work_force.data();
+    Real* v_before = m_load_work_velocity.data();
+    const bool free_loads = !m_free_load_dofs.empty();
+    for (Index i = first; i < last; ++i) {
+      if (!m_loads.loaded(i)) continue;
+      Real f[3];
+      m_loads.force_at(i, state.position, f);
+      for (int c = 0; c < 3; ++c) {
+        const Index at = c * n + i;
+        fe[at] = f[c];
+        if (!free_loads || !(m_free_load_mask[i] >> c & 1u)) continue;
+        mean_force[at] = 0.5 * (f_before[at] + f[c]) * inc.dt_prev;
+        v_before[at] = translation.velocity_half[at];
+        f_before[at] = f[c];
+      }
+    }
   }
   Real ke = 0.0;
-  for (Index chunk = 0; chunk < n_chunks; ++chunk) ke += sums[chunk];
-  return ke;
+  for (int c = 0; c < 3; ++c)
+    ke += translation.acceleration ? update_range<true>(translation, c * n, first, last, inc.dt_avg,
+                                                        inc.w_new, inc.w_before)
+                                   : update_range<false>(translation, c * n, first, last,
+                                                         inc.dt_avg, inc.w_new, inc.w_before);
+  m_chunk_sums[chunk] = 0.5 * ke;
+  if (!m_shells) return;
+  ke = 0.0;
+  for (int c = 0; c < 3; ++c)
+    ke += update_range<false>(rotation, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before);
+  m_chunk_sums[(n + NODE_CHUNK - 1) / NODE_CHUNK + chunk] = 0.5 * ke;
 }
 
 void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBodies& rigid,
@@ -244,11 +289,20 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
     const Field& field = d.component < 3 ? translation : rotation;
     m_v_old_prescribed[k] = field.velocity_half[(d.component % 3) * n + d.node];
   }
-  for (std::size_t k = 0; k < m_free_loads.size(); ++k)
-    m_v_old_loaded[k] = state.velocity_half(m_free_loads[k].node, m_free_loads[k].component);
 
-  Real ke = free_update(translation, inc, m_chunk_sums.data());
-  if (m_shells) ke += free_update(rotation, inc, m_chunk_sums.data() + n_chunks);
+  // The fused pass over the nodes: loads, their work, the free updates of translations and
+  // rotations. The kinetic energy is summed per chunk, then over the chunks in chunk order
+  // (translations first): independent of the thread count.
+#pragma omp parallel for schedule(static) if (n_chunks > 1)
+  for (Index chunk = 0; chunk < n_chunks; ++chunk)
+    update_chunk(state, translation, rotation, inc, chunk);
+  Real ke = 0.0;
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) ke += m_chunk_sums[chunk];
+  if (m_shells) {
+    Real ke_rotation = 0.0;
+    for (Index chunk = 0; chunk < n_chunks; ++chunk) ke_rotation += m_chunk_sums[n_chunks + chunk];
+    ke += ke_rotation;
+  }
   Real work = 0.0;
   if (!rigid.empty())
     ke += rigid.update(
@@ -265,10 +319,12 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   if (m_first_update) find_jumps(state, inc);
   Real ke_fix = update_prescribed(state, translation, rotation, inc, work);
   if (!m_jumps.empty()) ke_fix += count_jump_work(translation, rotation, inc, work);
-  add_load_work(dt_prev, work);
+  if (m_loads_due)
+    for (Index at : m_free_load_dofs)
+      work = multiply_add(m_load_work_force.data()[at], m_load_work_velocity.data()[at], work);
+  m_loads_due = false;
   state.energies.kinetic = ke + ke_fix;
   state.energies.external_work += work;
-  elements.clear_forces();
   m_first_update = false;
 }
 
@@ -425,16 +481,6 @@ void CentralDifference::report_jump(int step, OutputSink& sink) {
                    format_real(m_jump.largest) + ") put " + format_real(m_jump.energy) +
                    " J into the model (impulsive input, counted in ALLWK)");
   m_jump = Jump{};
-}
-
-void CentralDifference::add_load_work(Real dt_prev, Real& work) {
-  for (std::size_t k = 0; k < m_free_loads.size(); ++k) {
-    const Index i = m_free_loads[k].node;
-    const int c = m_free_loads[k].component;
-    const Real f_now = m_force_external(i, c);
-    work += 0.5 * (m_previous_force(i, c) + f_now) * dt_prev * m_v_old_loaded[k];
-    m_previous_force(i, c) = f_now;
-  }
 }
 
 }  // namespace xpl

@@ -3,6 +3,7 @@
 /// DOFs, prescribed DOFs and their reactions, rigid bodies, the external loads of the step
 /// and the work they do, and the finite rotations of shell nodes.
 
+#include <cstdint>
 #include <vector>
 
 #include "common/timer.hpp"
@@ -10,6 +11,7 @@
 #include "solver/element_set.hpp"
 #include "solver/gravity_loads.hpp"
 #include "solver/model.hpp"
+#include "solver/nodal_loads.hpp"
 #include "solver/node_rotations.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/pressure_loads.hpp"
@@ -41,11 +43,14 @@ class CentralDifference {
   const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
 
   /// External forces (CLOAD, pressure, gravity) at step time `step_time` / total time
-  /// `total_time`, on the state's positions; nothing when the step has no loads.
+  /// `total_time`, on the state's positions: the next update_nodes() evaluates them node by
+  /// node in its pass (the positions must not change in between); nothing when the step has
+  /// no loads.
   void apply_loads(const State& state, Real step_time, Real total_time);
-  /// x_{n+1} = x_n + Δt v_{n+1/2}; shell node rotations advance by ω_{n+1/2} Δt.
-  void advance_positions(State& state, Real dt);
-  /// One velocity update with the forces of `elements` (which it then clears) and the loads:
+  /// x_{n+1} = x_n + Δt v_{n+1/2}; shell node rotations advance by ω_{n+1/2} Δt; the forces
+  /// of `elements` are cleared for its next element pass. One parallel pass over the nodes.
+  void advance_positions(State& state, ElementSet& elements, Real dt);
+  /// One velocity update with the forces of `elements` and the loads:
   /// dt_prev = Δt_{n-1/2} (0 at t = 0), dt_next = Δt_{n+1/2}; t_next_half and t_next_end are
   /// the total times at which velocity and displacement BCs are evaluated. Writes the
   /// velocities, accelerations, reactions, kinetic energy and external work into `state`.
@@ -74,10 +79,12 @@ class CentralDifference {
   /// Loaded DOFs: CLOADs and the three components of every node under pressure or gravity;
   /// free_loads are those that are not prescribed.
   void collect_loads();
-  /// Central-difference update of the free DOFs of a field; returns its kinetic energy
-  /// ½ Σ m v_before v_{n+1/2} (summed per chunk in chunk order: independent of the thread
-  /// count).
-  Real free_update(const Field& d, const Increment& inc, Real* sums) const;
+  /// The fused nodal pass on the nodes of one chunk: their loads (when apply_loads() set them
+  /// due) and the load work on free DOFs, then the central-difference update of the free
+  /// translations and rotations; the chunk's kinetic energy ½ Σ m v_before v_{n+1/2} goes to
+  /// m_chunk_sums (translations at `chunk`, rotations after the translations' chunks).
+  void update_chunk(State& state, const Field& translation, const Field& rotation,
+                    const Increment& inc, Index chunk);
   /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
   /// `work`); returns the kinetic-energy correction to what the free update counted.
   Real update_prescribed(State& state, const Field& translation, const Field& rotation,
@@ -96,8 +103,6 @@ class CentralDifference {
   /// before the jump).
   Real count_jump_work(const Field& translation, const Field& rotation, const Increment& inc,
                        Real& work);
-  /// Work of the loads on the free loaded DOFs over the increment just taken, into `work`.
-  void add_load_work(Real dt_prev, Real& work);
 
   const Model& m_model;
   PhaseTimers& m_timers;
@@ -105,19 +110,26 @@ class CentralDifference {
   BoundaryState m_boundary;
   PressureLoads m_pressures;
   GravityLoads m_gravity;
+  NodalLoads m_loads;        ///< the step's loads per node
+  bool m_loads_due = false;  ///< apply_loads() has set the time of the next update's loads
   NodeRotations m_rotations;
   bool m_rotation_synced = true;  ///< state.rotation matches m_rotations
   /// (n_nodes × 3), non-zero only on loaded DOFs; allocated only when a step has loads (P2).
   NodalVectors m_force_external;
   std::vector<Real> m_chunk_sums;
-  NodalVectors m_previous_force;            ///< f_ext + reaction at the previous increment
-  NodalVectors m_previous_moment;           ///< moment at prescribed rotations, previous inc.
-  std::vector<LoadedDof> m_free_loads;      ///< loaded DOFs that are not prescribed
-  std::vector<LoadedDof> m_loaded_dofs;     ///< every DOF with a load (CLOAD or pressure)
+  NodalVectors m_previous_force;   ///< f_ext + reaction at the previous increment
+  NodalVectors m_previous_moment;  ///< moment at prescribed rotations, previous inc.
+  /// Loaded DOFs that are not prescribed, as c · n_nodes + node, in the order their work is
+  /// summed (CLOADs, pressure nodes, gravity nodes).
+  std::vector<Index> m_free_load_dofs;
+  std::vector<std::uint8_t> m_free_load_mask;  ///< per node: bit c set if DOF c is in the list
+  /// The work of the loads on free DOFs over the last increment is Σ mean_force · v_before
+  /// over m_free_load_dofs: ½(f_{n-1} + f_n) Δt (N s) and v_{n-1/2} (m/s), n_nodes × 3,
+  /// written by the nodal pass, summed after it in the list's order.
+  NodalVectors m_load_work_force, m_load_work_velocity;
   std::vector<PrescribedDof> m_prescribed;  ///< the step's prescribed DOFs that exist
   std::vector<Real> m_prescribed_value;     ///< current value of each prescribed DOF
   std::vector<Real> m_v_old_prescribed;     ///< v_{n-1/2} at each prescribed DOF
-  std::vector<Real> m_v_old_loaded;         ///< v_{n-1/2} at each free loaded DOF
   /// The jumps of the prescribed motion met by the last update (BCs jump where they take
   /// effect: at the first update of a step).
   struct Jump {

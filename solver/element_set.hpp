@@ -112,6 +112,7 @@ class ElementSet {
   const NodalVectors& force_internal() const { return m_force_internal; }
   /// Internal nodal moments (n_nodes × 3), N·m; 0 rows without shells.
   const NodalVectors& moment_internal() const { return m_moment_internal; }
+  NodalVectors& moment_internal() { return m_moment_internal; }
   /// Zeroes the nodal forces and moments once they have been used.
   void clear_forces();
 

@@ -268,7 +268,7 @@ void ExplicitSolver::Impl::run_step(int step) {
   Real next_status = 0.01 * period;
   while (m_state.step_time < period) {
     // x_{n+1} = x_n + dt_{n+1/2} v_{n+1/2}; t_{n+1} = t_n + dt_{n+1/2}.
-    m_nodes.advance_positions(m_state, m_dt_half);
+    m_nodes.advance_positions(m_state, m_elements, m_dt_half);
     const Real dt_prev = m_dt_half;
     const bool last = advance_clock(dt_prev, step_start, period);
 

@@ -62,13 +62,4 @@ void GravityLoads::begin_step(const Model& model, int step, const NodalVectors& 
   m_nodes.erase(std::unique(m_nodes.begin(), m_nodes.end()), m_nodes.end());
 }
 
-void GravityLoads::add_forces(const Model& model, const BoundaryState& amplitudes, Real step_time,
-                              Real total_time, NodalVectors& force) const {
-  for (const Term& t : m_terms) {
-    const Real f = amplitudes.factor(model, t.amplitude, step_time, total_time);
-    for (std::size_t k = 0; k < t.nodes.size(); ++k)
-      for (int c = 0; c < 3; ++c) force(t.nodes[k], c) += f * t.mass[k] * t.acceleration[c];
-  }
-}
-
 }  // namespace xpl

@@ -24,17 +24,18 @@ class GravityLoads {
   /// Nodes that carry gravity forces (sorted, unique).
   const std::vector<Index>& nodes() const { return m_nodes; }
 
-  /// Adds m·g·direction·amplitude to `force` (n_nodes × 3).
-  void add_forces(const Model& model, const BoundaryState& amplitudes, Real step_time,
-                  Real total_time, NodalVectors& force) const;
-
- private:
+  /// One *DLOAD GRAV in force: the force on node nodes[k] is the amplitude times
+  /// mass[k] · acceleration.
   struct Term {
     std::vector<Index> nodes;
     std::vector<Real> mass;  ///< per node, kg
     Real acceleration[3];    ///< g · direction, m/s^2
     Index amplitude;
   };
+  /// The terms in force, in element-set order.
+  const std::vector<Term>& terms() const { return m_terms; }
+
+ private:
   std::map<Index, GravityLoad> m_active;
   std::vector<Term> m_terms;
   std::vector<Index> m_nodes;

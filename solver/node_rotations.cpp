@@ -11,12 +11,18 @@ NodeRotations::NodeRotations(Index node_count)
 
 void NodeRotations::advance(const NodalVectors& angular_velocity, Real dt) {
   const auto n = static_cast<Index>(m_w.size());
+  advance_range(angular_velocity, dt, 0, n);
+}
+
+void NodeRotations::advance_range(const NodalVectors& angular_velocity, Real dt, Index first,
+                                  Index last) {
+  const auto n = static_cast<Index>(m_w.size());
   const Real* ox = angular_velocity.data();
   const Real* oy = ox + n;
   const Real* oz = oy + n;
   const Real h = 0.5 * dt;
-#pragma omp parallel for simd schedule(static) if (n > 8192)
-  for (Index i = 0; i < n; ++i) {
+#pragma omp simd
+  for (Index i = first; i < last; ++i) {
     // Increment (1, a) / |(1, a)| with a = ω Δt / 2, then the product with q.
     const Real ax = h * ox[i], ay = h * oy[i], az = h * oz[i];
     const Real s = 1.0 / std::sqrt(1.0 + ax * ax + ay * ay + az * az);

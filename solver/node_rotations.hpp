@@ -16,6 +16,8 @@ class NodeRotations {
 
   /// q ← q(ω Δt) q for every node: ω (n_nodes × 3) is the spatial angular velocity.
   void advance(const NodalVectors& angular_velocity, Real dt);
+  /// The same for nodes [first, last) only (one thread's share of a nodal pass).
+  void advance_range(const NodalVectors& angular_velocity, Real dt, Index first, Index last);
 
   /// Rotation vectors (axis × angle, |angle| ≤ π) into `rotation` (n_nodes × 3).
   void rotation_vectors(NodalVectors& rotation) const;

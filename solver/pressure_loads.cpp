@@ -2,14 +2,13 @@
 
 #include <algorithm>
 
-#include <Eigen/Geometry>
-
 namespace xpl {
 
 void PressureLoads::begin_step(const Model& model, int step) {
   const Step& s = model.steps[step];
   if (s.pressures_reset) m_active.clear();
-  for (const PressureLoad& p : s.pressures) m_active[{p.face.element, p.face.face}] = p;
+  for (const PressureLoad& p : s.pressures)
+    m_active[{p.face.element, p.face.face}] = {p.face, p.value, p.amplitude};
   m_faces.clear();
   m_nodes.clear();
   for (const auto& [key, p] : m_active) {
@@ -32,19 +31,6 @@ void PressureLoads::begin_step(const Model& model, int step) {
   }
   std::sort(m_nodes.begin(), m_nodes.end());
   m_nodes.erase(std::unique(m_nodes.begin(), m_nodes.end()), m_nodes.end());
-}
-
-void PressureLoads::add_forces(const Model& model, const BoundaryState& amplitudes,
-                               const NodalVectors& position, Real step_time, Real total_time,
-                               NodalVectors& force) const {
-  for (const Face& f : m_faces) {
-    const Real p = f.sign * f.value * amplitudes.factor(model, f.amplitude, step_time, total_time);
-    if (p == 0.0) continue;
-    const Eigen::RowVector3d d13 = position.row(f.nodes[2]) - position.row(f.nodes[0]);
-    const Eigen::RowVector3d d24 = position.row(f.nodes[3]) - position.row(f.nodes[1]);
-    const Eigen::RowVector3d share = (0.125 * p) * d13.cross(d24);
-    for (Index n : f.nodes) force.row(n) += share;
-  }
 }
 
 }  // namespace xpl

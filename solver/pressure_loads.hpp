@@ -23,20 +23,25 @@ class PressureLoads {
   /// Nodes that carry pressure forces (sorted, unique).
   const std::vector<Index>& nodes() const { return m_nodes; }
 
-  /// Adds the nodal forces of every active pressure on the configuration `position`
-  /// (n_nodes × 3) to `force` (n_nodes × 3). On a bilinear face the consistent force of a
-  /// uniform pressure p is p·(½ d13 × d24)/4 at each corner, exact for warped faces too.
-  void add_forces(const Model& model, const BoundaryState& amplitudes, const NodalVectors& position,
-                  Real step_time, Real total_time, NodalVectors& force) const;
-
- private:
+  /// One loaded face: its corner nodes in the cycle whose d13 × d24 the sign refers to.
   struct Face {
     Index nodes[4];
     Real sign;  ///< +1: the pressure pushes along d13 × d24, −1: against it
     Real value;
     Index amplitude;
   };
-  std::map<std::pair<Index, int>, PressureLoad> m_active;  ///< by (element, face)
+  /// The active faces, in (element, face) order.
+  const std::vector<Face>& faces() const { return m_faces; }
+
+ private:
+  /// What a face keeps from its *DLOAD/*DSLOAD line (no source location: it is not needed
+  /// once the deck is read, and the map holds one entry per loaded face).
+  struct Active {
+    ElementFace face;
+    Real value;
+    Index amplitude;
+  };
+  std::map<std::pair<Index, int>, Active> m_active;  ///< by (element, face)
   std::vector<Face> m_faces;
   std::vector<Index> m_nodes;
 };
