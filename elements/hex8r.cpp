@@ -391,6 +391,14 @@ void Hex8rBlock::set_stress(std::span<const Real> stress) {
     }
 }
 
+void Hex8rBlock::gather_hourglass_state(std::vector<Real>& rows) const {
+  gather_lane_rows(m_hourglass, 12, W, m_element_index, m_slot, rows);
+}
+
+void Hex8rBlock::set_hourglass_state(std::span<const Real> rows) {
+  set_lane_rows(rows, 12, W, m_element_index, m_slot, m_lane_owner, m_hourglass);
+}
+
 std::array<Real, 6> Hex8rBlock::stress(Index i) const {
   const Index slot = m_slot[i];
   const Index b = slot / W, l = slot % W;
