@@ -4,6 +4,7 @@
 # the barriers inside them) at two run lengths, and prints the difference per increment, so
 # that setup and output do not count.
 #   bash benchmarks/count_sync_points.sh BUILD/apps/xpl
+# MODELS="hex c3d8" (a subset of hex c3d8 shell contact) limits the run.
 set -euo pipefail
 xpl=$(realpath "$1")
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -17,6 +18,7 @@ make_deck() {
   local name=$1 inc=$2 out=$work/${1}_$2.inp
   case $name in
     hex) "$python" "$repo/benchmarks/make_block.py" -n 20 --increments "$inc" --out "$out" ;;
+    c3d8) "$python" "$repo/benchmarks/make_block.py" -n 20 --element-type C3D8 --increments "$inc" --out "$out" ;;
     shell) "$python" "$repo/benchmarks/make_plate_benchmark.py" -n 60 --increments "$inc" --out "$out" ;;
     contact) "$python" "$repo/benchmarks/make_contact_benchmark.py" --n 12 --m 9 --increments "$inc" "$out" ;;
   esac >/dev/null
@@ -34,7 +36,7 @@ measure() {  # deck -> "increments regions barriers"
 
 echo "| model | increments | parallel regions per increment | barriers in regions per increment (per thread) |"
 echo "|---|---:|---:|---:|"
-for name in hex shell contact; do
+for name in ${MODELS:-hex c3d8 shell contact}; do
   read -r i1 r1 b1 <<<"$(measure "$(make_deck $name 50)")"
   read -r i2 r2 b2 <<<"$(measure "$(make_deck $name 150)")"
   printf '| %s | %s, %s | %.2f | %.2f |\n' "$name" "$i1" "$i2" \

@@ -1,11 +1,11 @@
 #include "elements/hex8.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-#include "elements/element_coloring.hpp"
 #include "elements/hex8_geometry.hpp"
 #include "elements/hex8_point.hpp"
 
@@ -15,101 +15,54 @@ using simd::Vec;
 
 Hex8Block::Hex8Block(std::vector<Index> element_index, const std::vector<Index>& connectivity,
                      const std::vector<HexMaterial>& materials, Index node_count)
-    : m_element_index(std::move(element_index)) {
-  BatchLayout layout = make_batches(connectivity, 8, node_count, W);
-  m_color_batches = std::move(layout.color_batches);
-  const Index n_batches = m_color_batches.back();
-  const auto nb = static_cast<std::size_t>(n_batches);
-  m_lane_owner = std::move(layout.lane_owner);
-  m_conn.assign(nb * 8 * W, 0);
-  m_const.assign(nb * N_CONST * W, 0.0);
+    : m_batches(std::move(element_index), connectivity, materials, node_count, N_CONST) {
+  const auto nb = static_cast<std::size_t>(m_batches.batch_count());
   m_stress.assign(nb * HEX8_POINTS * 6 * W, 0.0);
   m_point_volume.assign(nb * HEX8_POINTS * W, 0.0);
   m_volume.assign(nb * W, 0.0);
   m_viscous_before.assign(nb * W, 0.0);
-  m_slot.assign(static_cast<std::size_t>(size()), NO_INDEX);
   m_batch_energy.assign(nb * 3, 0.0);
-  m_batch_dt.assign(nb, 0.0);
-  m_batch_critical.assign(nb, NO_INDEX);
-  m_batch_failed.assign(nb, NO_INDEX);
-  for (Index b = 0; b < n_batches; ++b)
-    for (int l = 0; l < W; ++l) {
-      const Index owner = m_lane_owner[b * W + l];
-      // Padding lanes compute a copy of lane 0 and are masked out of every result.
-      const Index e = owner != NO_INDEX ? owner : m_lane_owner[b * W];
-      if (owner != NO_INDEX) m_slot[owner] = b * W + l;
-      for (int a = 0; a < 8; ++a) m_conn[(b * 8 + a) * W + l] = connectivity[e * 8 + a];
-      const HexMaterial& m = materials[e];
-      const Real mu = m.young / (2.0 * (1.0 + m.poisson));
-      const Real lambda = m.young * m.poisson / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson));
-      Real* c = &m_const[static_cast<std::size_t>(b) * N_CONST * W + l];
-      c[LAMBDA * W] = lambda;
-      c[TWO_MU * W] = 2.0 * mu;
-      c[DENSITY * W] = m.density;
-      c[WAVE_SPEED * W] = std::sqrt((lambda + 2.0 * mu) / m.density);
-      // The regular-mesh limits of the selectively reduced hex lie within 1 % of the one-point
-      // hex's (highest mode of a 6×6×6 mesh: 0.974, 0.889, 0.859 L_e/c_d at ν = 0.3, 0.45,
-      // 0.49 against 0.978, 0.892, 0.860), so it takes the same estimate; the global estimate
-      // covers the meshes with few neighbours (tests/solver/test_stability_c3d8.cpp).
-      c[DT_FACTOR * W] = poisson_dt_factor(m.poisson);
-    }
   setup_plasticity(materials);
-}
-
-void Hex8Block::add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const {
-  const Index n_batches = m_color_batches.back();
-  for (Index b = 0; b < n_batches; ++b)
-    for (int l = 0; l < W; ++l) {
-      if (m_lane_owner[b * W + l] == NO_INDEX) continue;
-      Real x[8], y[8], z[8];
-      for (int a = 0; a < 8; ++a) {
-        const Index node = m_conn[(b * 8 + a) * W + l];
-        x[a] = reference(node, 0);
-        y[a] = reference(node, 1);
-        z[a] = reference(node, 2);
-      }
-      const Real density = m_const[(static_cast<std::size_t>(b) * N_CONST + DENSITY) * W + l];
-      const Real share = density * hex8_volume(x, y, z) / 8.0;
-      for (int a = 0; a < 8; ++a) mass[m_conn[(b * 8 + a) * W + l]] += share;
-    }
 }
 
 void Hex8Block::internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
                                 Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
                                 HexStepTotals& totals) {
+  m_batches.own_pass(force, [&](int p) {
+    forces_of_part(p, position, velocity_half, dt, bulk_linear, bulk_quadratic, force);
+  });
+  add_totals(totals);
+}
+
+void Hex8Block::forces_of_part(int part, const NodalVectors& position,
+                               const NodalVectors& velocity_half, Real dt, Real bulk_linear,
+                               Real bulk_quadratic, NodalVectors& force) {
   const Index n_nodes = static_cast<Index>(position.rows());
   const Real* px = position.data();
   const Real* vx = velocity_half.data();
   Real* fx = force.data();
-  for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
-    const Index first = m_color_batches[c], last = m_color_batches[c + 1];
-#pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
-    for (Index b = first; b < last; ++b) {
-      if (!m_batch_plastic.empty() && m_batch_plastic[b])
-        compute_batch<true>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
-                            vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
-                            fx + 2 * n_nodes);
-      else
-        compute_batch<false>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
-                             vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
-                             fx + 2 * n_nodes);
-    }
-  }
-  const Index n_batches = m_color_batches.back();
-  for (Index b = 0; b < n_batches; ++b) {
+  m_batches.for_part_batches(part, m_batch_plastic, [&](Index b, auto plastic) {
+    compute_batch<decltype(plastic)::value>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
+                                            vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx,
+                                            fx + n_nodes, fx + 2 * n_nodes);
+  });
+}
+
+void Hex8Block::add_totals(HexStepTotals& totals) const {
+  for (Index b = 0; b < m_batches.batch_count(); ++b) {
     totals.strain_energy_increment += m_batch_energy[b * 3 + 0];
     totals.viscous_energy_increment += m_batch_energy[b * 3 + 1];
     totals.plastic_energy_increment += m_batch_energy[b * 3 + 2];
-    totals.merge(m_batch_dt[b], m_batch_critical[b], m_batch_failed[b]);
   }
+  m_batches.merge_limits(totals);
 }
 
 template <bool PLASTIC>
 void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const Real* pz,
                               const Real* vx, const Real* vy, const Real* vz, Real dt, Real b1,
                               Real b2, Real* fx, Real* fy, Real* fz) {
-  const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
-  const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
+  const Index* conn = m_batches.conn(batch);
+  const Real* cst = m_batches.constants(batch);
   V3<Vec> ax[8], av[8];
   gather_modes(conn, px, py, pz, vx, vy, vz, ax, av);
 
@@ -235,63 +188,40 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
   const Vec visc_inc = dt * volm * (0.5 * (simd::load(sv_store) + sv)) * tr;
   simd::store(sv_store, sv);
 
-  Real e_strain = 0.0, e_visc = 0.0, e_plastic = 0.0,
-       best_dt = std::numeric_limits<Real>::infinity();
-  Index critical = NO_INDEX, failed = NO_INDEX;
+  m_batches.scatter(batch, fnx, fny, fnz, fx, fy, fz);
+  Real e_strain = 0.0, e_visc = 0.0, e_plastic = 0.0;
+  bool ok[W];
   for (int l = 0; l < W; ++l) {
-    const Index owner = m_lane_owner[batch * W + l];
-    if (owner == NO_INDEX) continue;
-    for (int a = 0; a < 8; ++a) {
-      const Index node = conn[a * W + l];
-      fx[node] += fnx[a][l];
-      fy[node] += fny[a][l];
-      fz[node] += fnz[a][l];
-    }
+    // A fully integrated element also fails where a Gauss point's Jacobian turns over.
+    ok[l] = vol[l] > 0.0 && volm[l] > 0.0 && min_det[l] > 0.0;
+    if (m_batches.lane_owner(batch, l) == NO_INDEX) continue;
     e_strain += strain_inc[l];
     e_visc += visc_inc[l];
     if constexpr (PLASTIC) e_plastic += plastic_inc[l];
-    const Index model_e = m_element_index[owner];
-    // A fully integrated element also fails where a Gauss point's Jacobian turns over.
-    if (!(vol[l] > 0.0) || !(volm[l] > 0.0) || !(min_det[l] > 0.0)) {
-      if (failed == NO_INDEX || model_e < failed) failed = model_e;
-    } else if (dt_e[l] < best_dt || (dt_e[l] == best_dt && model_e < critical)) {
-      best_dt = dt_e[l];
-      critical = model_e;
-    }
   }
   m_batch_energy[batch * 3 + 0] = e_strain;
   m_batch_energy[batch * 3 + 1] = e_visc;
   m_batch_energy[batch * 3 + 2] = e_plastic;
-  m_batch_dt[batch] = best_dt;
-  m_batch_critical[batch] = critical;
-  m_batch_failed[batch] = failed;
+  m_batches.record_limit(batch, dt_e, ok);
 }
 
 void Hex8Block::gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {
   for (Index i = 0; i < size(); ++i) {
     const std::array<Real, 6> s = this->stress(i);
-    const Index e = m_element_index[i];
+    const Index e = m_batches.element_index(i);
     for (int c = 0; c < 6; ++c) stress[e * 6 + c] = s[c];
-    const Index b = m_slot[i] / W, l = m_slot[i] % W;
+    const Index b = m_batches.slot(i) / W, l = m_batches.slot(i) % W;
     volume[e] = m_volume[b * W + l];
   }
 }
 
 void Hex8Block::set_stress(std::span<const Real> stress) {
-  for (Index e : m_element_index) {
-    if (static_cast<std::size_t>(e) * 6 + 6 > stress.size()) {
-      throw std::invalid_argument("Hex8Block::set_stress: " + std::to_string(stress.size()) +
-                                  " values do not reach the row of element " + std::to_string(e) +
-                                  "; expected n_elements × 6");
-    }
-  }
-  const Index n_batches = m_color_batches.back();
-  for (Index b = 0; b < n_batches; ++b)
+  m_batches.check_model_rows(stress.size(), 6, "Hex8Block::set_stress");
+  for (Index b = 0; b < m_batches.batch_count(); ++b)
     for (int l = 0; l < W; ++l) {
       // Padding lanes take lane 0's stress, whose copy they compute.
-      const Index owner = m_lane_owner[b * W + l];
-      const Index i = owner != NO_INDEX ? owner : m_lane_owner[b * W];
-      const auto e = static_cast<std::size_t>(m_element_index[i]);
+      const auto e =
+          static_cast<std::size_t>(m_batches.element_index(m_batches.lane_element(b, l)));
       for (int q = 0; q < HEX8_POINTS; ++q)
         for (int c = 0; c < 6; ++c)
           m_stress[((static_cast<std::size_t>(b) * HEX8_POINTS + q) * 6 + c) * W + l] =
@@ -300,7 +230,7 @@ void Hex8Block::set_stress(std::span<const Real> stress) {
 }
 
 std::array<Real, 6> Hex8Block::point_stress(Index i, int q) const {
-  const Index b = m_slot[i] / W, l = m_slot[i] % W;
+  const Index b = m_batches.slot(i) / W, l = m_batches.slot(i) % W;
   std::array<Real, 6> s{};
   for (int c = 0; c < 6; ++c)
     s[c] = m_stress[((static_cast<std::size_t>(b) * HEX8_POINTS + q) * 6 + c) * W + l];
@@ -308,7 +238,7 @@ std::array<Real, 6> Hex8Block::point_stress(Index i, int q) const {
 }
 
 std::array<Real, 6> Hex8Block::stress(Index i) const {
-  const Index b = m_slot[i] / W, l = m_slot[i] % W;
+  const Index b = m_batches.slot(i) / W, l = m_batches.slot(i) % W;
   std::array<Real, 6> s{};
   Real weight = 0.0;
   for (int q = 0; q < HEX8_POINTS; ++q) {

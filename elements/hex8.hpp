@@ -12,14 +12,14 @@
 ///   F_k = ⅛ ( Σ_q s_q Σ_a n_a,q ∂m_k/∂ξ_a(q) + p̄ g_k ),   f_I = Σ_k Λ_kI F_k,
 /// with s_q the stress deviator at point q, p̄ = (1/V) Σ_q det J_q · tr(σ_q)/3 the volume-averaged
 /// mean stress (plus bulk viscosity) and g_k the exact volume gradient; no division by det J.
-/// Layout, colouring and determinism as Hex8rBlock (batches of simd::W elements of one colour).
+/// Layout, colouring, partition and determinism as Hex8rBlock (hex_batches.hpp).
 
 #include <array>
 #include <span>
 #include <vector>
 
 #include "common/types.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex_batches.hpp"
 #include "elements/plasticity.hpp"
 #include "elements/simd.hpp"
 
@@ -37,20 +37,39 @@ class Hex8Block {
             const std::vector<HexMaterial>& materials, Index node_count);
 
   /// Number of elements.
-  Index size() const { return static_cast<Index>(m_element_index.size()); }
-  /// Number of colours (parallel passes per internal-force evaluation).
-  int color_count() const { return static_cast<int>(m_color_batches.size()) - 1; }
+  Index size() const { return m_batches.size(); }
+  /// Number of colours.
+  int color_count() const { return m_batches.color_count(); }
 
   /// Adds ρ V₀ / 8 to each node of each element (reference coordinates n_nodes × 3, m).
-  void add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const;
+  void add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const {
+    m_batches.add_lumped_mass(reference, mass);
+  }
 
   /// One internal-force evaluation, as Hex8rBlock::internal_forces: `position` x_{n+1} and
   /// `velocity_half` v_{n+1/2} (n_nodes × 3), `dt` (0 at the start); strain rates on the
   /// mid-increment geometry, forces on x_{n+1}, added into `force` (n_nodes × 3, N). The
-  /// hourglass energy of the totals stays 0.
+  /// hourglass energy of the totals stays 0. The block alone is split into
+  /// omp_get_max_threads() parts (one parallel region).
   void internal_forces(const NodalVectors& position, const NodalVectors& velocity_half, Real dt,
                        Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
                        HexStepTotals& totals);
+
+  /// \name The pieces of internal_forces() for a pass over several blocks (as Hex8rBlock's).
+  void mark_nodes(int parts, std::vector<Index>& node_part) const {
+    m_batches.mark_nodes(parts, node_part);
+  }
+  void set_partition(int parts, const BoundaryNodes& boundary) {
+    m_batches.set_partition(parts, boundary);
+  }
+  int parts() const { return m_batches.parts(); }
+  void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
+                      Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force);
+  void add_boundary_forces(Index k, Index node, NodalVectors& force) const {
+    m_batches.add_boundary_forces(k, node, force);
+  }
+  /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
+  void add_totals(HexStepTotals& totals) const;
 
   /// Writes the element stress (row e·6.., S11 S22 S33 S12 S13 S23: the volume average of the
   /// integration points) and current volume of every element at its model index.
@@ -86,7 +105,14 @@ class Hex8Block {
 
  private:
   static constexpr int W = simd::W;
-  enum Constant { LAMBDA = 0, TWO_MU, DENSITY, WAVE_SPEED, DT_FACTOR, N_CONST };
+  enum Constant {
+    LAMBDA = HexBatches::LAMBDA,
+    TWO_MU = HexBatches::TWO_MU,
+    DENSITY = HexBatches::DENSITY,
+    WAVE_SPEED = HexBatches::WAVE_SPEED,
+    DT_FACTOR = HexBatches::DT_FACTOR,
+    N_CONST = HexBatches::N_SHARED
+  };
 
   template <bool PLASTIC>
   void compute_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* vx,
@@ -98,31 +124,21 @@ class Hex8Block {
   /// σ_y Δε̄ᵖ per lane (Pa; 0 where elastic).
   simd::Vec plastic_return(Index batch, int q, simd::Vec sn[6], Real dt);
   void setup_plasticity(const std::vector<HexMaterial>& materials);
-  /// Slot (batch·W + lane) of block element i.
-  Index slot(Index i) const { return m_slot[i]; }
 
-  std::vector<Index> m_element_index;  ///< model index per block element
-  // Batched (AoSoA) data, batch b lane l:
-  std::vector<Index> m_conn;           ///< [b][node 8][W]
-  std::vector<Index> m_lane_owner;     ///< [b][W] block element, or NO_INDEX for padding lanes
-  std::vector<Real> m_const;           ///< [b][N_CONST][W]
+  HexBatches m_batches;  ///< layout, constants, increment limits and partition
+  // State, batch b lane l:
   std::vector<Real> m_stress;          ///< [b][point 8][6][W]
   std::vector<Real> m_point_volume;    ///< [b][point 8][W] det J at x_{n+1} (weight 1), m^3
   std::vector<Real> m_volume;          ///< [b][W]
   std::vector<Real> m_viscous_before;  ///< [b][W] bulk-viscosity pressure of the last call
-  std::vector<Index> m_slot;           ///< block element -> batch*W + lane
-  std::vector<Index> m_color_batches;  ///< batches of colour c: [m_color_batches[c], [c+1])
   // Plasticity (all empty when no element is plastic):
   std::vector<Plasticity> m_laws;
   std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, or -1
   std::vector<unsigned char> m_batch_plastic;  ///< [b] 1 if any lane of the batch is plastic
   std::vector<Real> m_peeq;                    ///< [b][point 8][W] ε̄ᵖ, -
   std::vector<Real> m_yield;  ///< [b][point 8][W] σ_y(ε̄ᵖ, 0), Pa; +inf elastic
-  // Per-batch results, reduced serially in batch order (deterministic).
+  // Per-batch energies, reduced serially in batch order (deterministic).
   std::vector<Real> m_batch_energy;  ///< [b][3]: strain, viscous, plastic
-  std::vector<Real> m_batch_dt;
-  std::vector<Index> m_batch_critical;
-  std::vector<Index> m_batch_failed;
 };
 
 }  // namespace xpl::elements

@@ -13,38 +13,20 @@ namespace xpl::elements {
 using simd::Vec;
 
 void Hex8Block::setup_plasticity(const std::vector<HexMaterial>& materials) {
-  std::vector<const Plasticity*> seen;
-  std::vector<int> law_of_element(materials.size(), -1);
-  for (std::size_t e = 0; e < materials.size(); ++e) {
-    const Plasticity* p = materials[e].plastic;
-    if (p == nullptr) continue;
-    std::size_t k = 0;
-    while (k < seen.size() && seen[k] != p) ++k;
-    if (k == seen.size()) {
-      seen.push_back(p);
-      m_laws.push_back(*p);
-    }
-    law_of_element[e] = static_cast<int>(k);
+  HexBatches::PlasticLanes lanes = m_batches.plastic_lanes(materials);
+  if (lanes.laws.empty()) return;  // P2: an elastic block holds no plastic state
+  m_laws = std::move(lanes.laws);
+  m_lane_law = std::move(lanes.lane_law);
+  m_batch_plastic = std::move(lanes.batch_plastic);
+  const std::size_t n = m_lane_law.size();
+  m_peeq.assign(n * HEX8_POINTS, 0.0);
+  m_yield.assign(n * HEX8_POINTS, std::numeric_limits<Real>::infinity());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (m_lane_law[k] < 0) continue;
+    const Real y0 = flow_stress(m_laws[static_cast<std::size_t>(m_lane_law[k])], 0.0, 0.0).stress;
+    const std::size_t b = k / W, l = k % W;
+    for (int q = 0; q < HEX8_POINTS; ++q) m_yield[(b * HEX8_POINTS + q) * W + l] = y0;
   }
-  if (m_laws.empty()) return;  // P2: an elastic block holds no plastic state
-  const Index n_batches = m_color_batches.back();
-  const auto lanes = static_cast<std::size_t>(n_batches) * W;
-  m_lane_law.assign(lanes, -1);
-  m_batch_plastic.assign(static_cast<std::size_t>(n_batches), 0);
-  m_peeq.assign(lanes * HEX8_POINTS, 0.0);
-  m_yield.assign(lanes * HEX8_POINTS, std::numeric_limits<Real>::infinity());
-  for (Index b = 0; b < n_batches; ++b)
-    for (int l = 0; l < W; ++l) {
-      const Index owner = m_lane_owner[b * W + l];
-      const Index e = owner != NO_INDEX ? owner : m_lane_owner[b * W];
-      const int law = law_of_element[static_cast<std::size_t>(e)];
-      if (law < 0) continue;
-      m_lane_law[b * W + l] = law;
-      const Real y0 = flow_stress(m_laws[static_cast<std::size_t>(law)], 0.0, 0.0).stress;
-      for (int q = 0; q < HEX8_POINTS; ++q)
-        m_yield[(static_cast<std::size_t>(b) * HEX8_POINTS + q) * W + l] = y0;
-      if (owner != NO_INDEX) m_batch_plastic[b] = 1;
-    }
 }
 
 Vec Hex8Block::plastic_return(Index batch, int q, Vec sn[6], Real dt) {
@@ -57,7 +39,7 @@ Vec Hex8Block::plastic_return(Index batch, int q, Vec sn[6], Real dt) {
   const simd::Mask yielding = q2 > y * y;
   Vec dissipation = simd::splat(0.0);
   if (!simd::any(yielding)) return dissipation;
-  const Real* two_mu = &m_const[(static_cast<std::size_t>(batch) * N_CONST + TWO_MU) * W];
+  const Real* two_mu = m_batches.constants(batch) + TWO_MU * W;
   const std::size_t lane0 = static_cast<std::size_t>(batch) * W;
   for (int l = 0; l < W; ++l) {
     if (!yielding[l]) continue;
@@ -78,44 +60,25 @@ Vec Hex8Block::plastic_return(Index batch, int q, Vec sn[6], Real dt) {
 
 void Hex8Block::gather_plastic_strain(std::vector<Real>& peeq) const {
   if (m_laws.empty()) return;
-  for (Index i = 0; i < size(); ++i) peeq[m_element_index[i]] = plastic_strain(i);
+  for (Index i = 0; i < size(); ++i) peeq[m_batches.element_index(i)] = plastic_strain(i);
 }
 
 void Hex8Block::set_plastic_strain(std::span<const Real> peeq) {
   if (m_laws.empty()) return;
-  for (Index e : m_element_index) {
-    if (static_cast<std::size_t>(e) >= peeq.size()) {
-      throw std::invalid_argument("Hex8Block::set_plastic_strain: " + std::to_string(peeq.size()) +
-                                  " values do not reach element " + std::to_string(e) +
-                                  "; expected n_elements");
-    }
-  }
-  const Index n_batches = m_color_batches.back();
-  for (Index b = 0; b < n_batches; ++b)
-    for (int l = 0; l < W; ++l) {
-      const std::size_t slot = static_cast<std::size_t>(b) * W + l;
-      const int law = m_lane_law[slot];
-      if (law < 0) continue;
-      const Index owner = m_lane_owner[slot];
-      const Index i = owner != NO_INDEX ? owner : m_lane_owner[static_cast<std::size_t>(b) * W];
-      const Real value = peeq[static_cast<std::size_t>(m_element_index[i])];
-      if (!(value >= 0.0)) {
-        throw std::invalid_argument("Hex8Block::set_plastic_strain: PEEQ of element " +
-                                    std::to_string(m_element_index[i]) + " is " +
-                                    std::to_string(value) + "; expected a value >= 0");
-      }
-      const Real y = flow_stress(m_laws[static_cast<std::size_t>(law)], value, 0.0).stress;
-      for (int q = 0; q < HEX8_POINTS; ++q) {
-        const std::size_t k = (static_cast<std::size_t>(b) * HEX8_POINTS + q) * W + l;
-        m_peeq[k] = value;
-        m_yield[k] = y;
-      }
-    }
+  m_batches.for_imported_peeq(
+      peeq, m_lane_law, "Hex8Block::set_plastic_strain", [&](Index b, int l, int law, Real value) {
+        const Real y = flow_stress(m_laws[static_cast<std::size_t>(law)], value, 0.0).stress;
+        for (int q = 0; q < HEX8_POINTS; ++q) {
+          const std::size_t k = (static_cast<std::size_t>(b) * HEX8_POINTS + q) * W + l;
+          m_peeq[k] = value;
+          m_yield[k] = y;
+        }
+      });
 }
 
 Real Hex8Block::plastic_strain(Index i) const {
   if (m_laws.empty()) return 0.0;
-  const auto s = static_cast<std::size_t>(m_slot[i]);
+  const auto s = static_cast<std::size_t>(m_batches.slot(i));
   if (m_lane_law[s] < 0) return 0.0;
   const std::size_t b = s / W, l = s % W;
   Real weight = 0.0, sum = 0.0;

@@ -14,20 +14,18 @@ void Hex8Block::add_stiffness_product(const NodalVectors& position, const NodalV
   const Real* px = position.data();
   const Real* ux = u.data();
   Real* yx = y.data();
-  for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
-    const Index first = m_color_batches[c], last = m_color_batches[c + 1];
-#pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
-    for (Index b = first; b < last; ++b)
-      stiffness_batch(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes, ux + 2 * n_nodes, yx,
-                      yx + n_nodes, yx + 2 * n_nodes);
-  }
+  // Colour by colour: the lanes and batches of a colour share no node.
+  m_batches.for_color_batches(ParallelSite::HexStiffness, [&](Index b) {
+    stiffness_batch(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes, ux + 2 * n_nodes, yx,
+                    yx + n_nodes, yx + 2 * n_nodes);
+  });
 }
 
 void Hex8Block::stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz,
                                 const Real* ux, const Real* uy, const Real* uz, Real* yx, Real* yy,
                                 Real* yz) const {
-  const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
-  const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
+  const Index* conn = m_batches.conn(batch);
+  const Real* cst = m_batches.constants(batch);
   V3<Vec> ax[8], au[8], g[8];
   gather_modes(conn, px, py, pz, ux, uy, uz, ax, au);
   Vec vol;
@@ -76,15 +74,7 @@ void Hex8Block::stiffness_batch(Index batch, const Real* px, const Real* py, con
   from_modes(Fx, fnx);
   from_modes(Fy, fny);
   from_modes(Fz, fnz);
-  for (int l = 0; l < W; ++l) {
-    if (m_lane_owner[batch * W + l] == NO_INDEX) continue;
-    for (int a = 0; a < 8; ++a) {
-      const Index node = conn[a * W + l];
-      yx[node] += fnx[a][l];
-      yy[node] += fny[a][l];
-      yz[node] += fnz[a][l];
-    }
-  }
+  m_batches.scatter_direct(batch, fnx, fny, fnz, yx, yy, yz);
 }
 
 }  // namespace xpl::elements

@@ -1,14 +1,11 @@
 #include "elements/hex8r.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
-#include "elements/element_coloring.hpp"
 #include "elements/hex8_geometry.hpp"
 #include "elements/hex8r_gather.hpp"
 
@@ -18,99 +15,31 @@ using simd::Vec;
 
 Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
                        const std::vector<HexMaterial>& materials, Index node_count)
-    : m_element_index(std::move(element_index)) {
-  const Index n = size();
-  BatchLayout layout = make_batches(connectivity, 8, node_count, W);
-  m_color_batches = std::move(layout.color_batches);
-  const Index n_batches = m_color_batches.back();
-  m_lane_owner = std::move(layout.lane_owner);
-  m_conn.assign(static_cast<std::size_t>(n_batches) * 8 * W, 0);
-  m_const.assign(static_cast<std::size_t>(n_batches) * N_CONST * W, 0.0);
-  m_stress.assign(static_cast<std::size_t>(n_batches) * 6 * W, 0.0);
-  m_hourglass.assign(static_cast<std::size_t>(n_batches) * 12 * W, 0.0);
-  m_volume.assign(static_cast<std::size_t>(n_batches) * W, 0.0);
-  m_viscous_before.assign(static_cast<std::size_t>(n_batches) * W, 0.0);
-  m_slot.assign(n, NO_INDEX);
-  m_batch_energy.assign(static_cast<std::size_t>(n_batches) * 4, 0.0);
-  m_batch_dt.assign(n_batches, 0.0);
-  m_batch_critical.assign(n_batches, NO_INDEX);
-  m_batch_failed.assign(n_batches, NO_INDEX);
-
-  for (Index b = 0; b < n_batches; ++b) {
+    : m_batches(std::move(element_index), connectivity, materials, node_count, N_CONST) {
+  const auto nb = static_cast<std::size_t>(m_batches.batch_count());
+  m_stress.assign(nb * 6 * W, 0.0);
+  m_hourglass.assign(nb * 12 * W, 0.0);
+  m_volume.assign(nb * W, 0.0);
+  m_viscous_before.assign(nb * W, 0.0);
+  m_batch_energy.assign(nb * 4, 0.0);
+  for (Index b = 0; b < m_batches.batch_count(); ++b)
     for (int l = 0; l < W; ++l) {
-      const Index owner = m_lane_owner[b * W + l];
-      // Padding lanes compute a copy of lane 0 and are masked out of every result.
-      const Index e = owner != NO_INDEX ? owner : m_lane_owner[b * W];
-      if (owner != NO_INDEX) m_slot[owner] = b * W + l;
-      for (int a = 0; a < 8; ++a) m_conn[(b * 8 + a) * W + l] = connectivity[e * 8 + a];
-      const HexMaterial& m = materials[e];
-      const Real mu = m.young / (2.0 * (1.0 + m.poisson));
-      const Real lambda = m.young * m.poisson / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson));
-      Real* c = &m_const[static_cast<std::size_t>(b) * N_CONST * W + l];
-      c[LAMBDA * W] = lambda;
-      c[TWO_MU * W] = 2.0 * mu;
-      c[DENSITY * W] = m.density;
-      c[WAVE_SPEED * W] = std::sqrt((lambda + 2.0 * mu) / m.density);
-      c[DT_FACTOR * W] = poisson_dt_factor(m.poisson);
+      const HexMaterial& m = materials[m_batches.lane_element(b, l)];
+      Real* c = m_batches.constants(b) + l;
       const bool stiff = m.hourglass == HourglassForm::Stiffness;
       c[HG_STIFFNESS * W] = stiff ? HOURGLASS_STIFFNESS * m.hourglass_scale : 0.0;
       c[HG_VISCOSITY * W] = stiff ? 0.0 : HOURGLASS_VISCOSITY * m.hourglass_scale;
     }
-  }
   setup_plasticity(materials);
-}
-
-void Hex8rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const {
-  const Index n_batches = m_color_batches.back();
-  for (Index b = 0; b < n_batches; ++b)
-    for (int l = 0; l < W; ++l) {
-      if (m_lane_owner[b * W + l] == NO_INDEX) continue;
-      Real x[8], y[8], z[8];
-      for (int a = 0; a < 8; ++a) {
-        const Index node = m_conn[(b * 8 + a) * W + l];
-        x[a] = reference(node, 0);
-        y[a] = reference(node, 1);
-        z[a] = reference(node, 2);
-      }
-      const Real density = m_const[(static_cast<std::size_t>(b) * N_CONST + DENSITY) * W + l];
-      const Real share = density * hex8_volume(x, y, z) / 8.0;
-      for (int a = 0; a < 8; ++a) mass[m_conn[(b * 8 + a) * W + l]] += share;
-    }
 }
 
 void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
                                  Real dt, Real bulk_linear, Real bulk_quadratic,
                                  NodalVectors& force, HexStepTotals& totals) {
-  const int parts = std::max(1, omp_get_max_threads());
-  own_partition(parts, static_cast<Index>(position.rows()));
-  partitioned_pass(
-      parts, static_cast<Index>(m_boundary_nodes.size()),
-      [&](int p) {
-        forces_of_part(p, position, velocity_half, dt, bulk_linear, bulk_quadratic, force);
-      },
-      [&](Index k) { add_boundary_forces(k, m_boundary_nodes[k], force); });
+  m_batches.own_pass(force, [&](int p) {
+    forces_of_part(p, position, velocity_half, dt, bulk_linear, bulk_quadratic, force);
+  });
   add_totals(totals);
-}
-
-void Hex8rBlock::own_partition(int parts, Index node_count) {
-  if (m_own_partition && m_parts == parts) return;
-  std::vector<Index> node_part(node_count, UNTOUCHED);
-  mark_nodes(parts, node_part);
-  const BoundaryNodes boundary = boundary_nodes(node_part);
-  set_partition(parts, boundary);
-  m_boundary_nodes = boundary.nodes;
-  m_own_partition = true;
-}
-
-void Hex8rBlock::mark_nodes(int parts, std::vector<Index>& node_part) const {
-  mark_part_nodes(m_conn, m_lane_owner, m_color_batches, 8, W, parts, node_part);
-}
-
-void Hex8rBlock::set_partition(int parts, const BoundaryNodes& boundary) {
-  m_parts = parts;
-  m_own_partition = false;
-  m_exchange = CornerExchange(m_conn, m_lane_owner, 8, W, boundary);
-  m_exchange_force.assign(static_cast<std::size_t>(m_exchange.size()) * 3, 0.0);
 }
 
 void Hex8rBlock::forces_of_part(int part, const NodalVectors& position,
@@ -120,40 +49,30 @@ void Hex8rBlock::forces_of_part(int part, const NodalVectors& position,
   const Real* px = position.data();
   const Real* vx = velocity_half.data();
   Real* fx = force.data();
-  for (int c = 0; c < color_count(); ++c) {
-    const auto [first, last] = part_batches(m_color_batches, c, part, m_parts);
-    for (Index b = first; b < last; ++b) {
-      // P2: batches of elastic lanes compile without any plasticity work.
-      if (!m_batch_plastic.empty() && m_batch_plastic[b])
-        compute_batch<true>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
-                            vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
-                            fx + 2 * n_nodes);
-      else
-        compute_batch<false>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
-                             vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx, fx + n_nodes,
-                             fx + 2 * n_nodes);
-    }
-  }
+  m_batches.for_part_batches(part, m_batch_plastic, [&](Index b, auto plastic) {
+    compute_batch<decltype(plastic)::value>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
+                                            vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx,
+                                            fx + n_nodes, fx + 2 * n_nodes);
+  });
 }
 
 void Hex8rBlock::add_totals(HexStepTotals& totals) const {
   // Serial reduction in batch order: independent of the thread count.
-  const Index n_batches = m_color_batches.back();
-  for (Index b = 0; b < n_batches; ++b) {
+  for (Index b = 0; b < m_batches.batch_count(); ++b) {
     totals.strain_energy_increment += m_batch_energy[b * 4 + 0];
     totals.hourglass_energy_increment += m_batch_energy[b * 4 + 1];
     totals.viscous_energy_increment += m_batch_energy[b * 4 + 2];
     totals.plastic_energy_increment += m_batch_energy[b * 4 + 3];
-    totals.merge(m_batch_dt[b], m_batch_critical[b], m_batch_failed[b]);
   }
+  m_batches.merge_limits(totals);
 }
 
 template <bool PLASTIC>
 void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, const Real* pz,
                                const Real* vx, const Real* vy, const Real* vz, Real dt, Real b1,
                                Real b2, Real* fx, Real* fy, Real* fz) {
-  const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
-  const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
+  const Index* conn = m_batches.conn(batch);
+  const Real* cst = m_batches.constants(batch);
   Real* sig = &m_stress[static_cast<std::size_t>(batch) * 6 * W];
   Real* hgq = &m_hourglass[static_cast<std::size_t>(batch) * 12 * W];
 
@@ -316,91 +235,70 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   const Vec hg_inc = dt * hg_power;
 
   // Scatter (lanes of a batch share no node) and per-batch reductions over real lanes.
-  Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, e_plastic = 0.0,
-       best_dt = std::numeric_limits<Real>::infinity();
-  Index critical = NO_INDEX, failed = NO_INDEX;
-  // Corners at nodes another thread also writes go to the exchange buffer instead.
-  const Index* slots = m_exchange.batch_slots(batch);
+  m_batches.scatter(batch, fnx, fny, fnz, fx, fy, fz);
+  Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, e_plastic = 0.0;
+  bool ok[W];
   for (int l = 0; l < W; ++l) {
-    const Index owner = m_lane_owner[batch * W + l];
-    if (owner == NO_INDEX) continue;
-    for (int a = 0; a < 8; ++a) {
-      if (slots != nullptr && slots[a * W + l] != NO_INDEX) {
-        Real* e = &m_exchange_force[3 * static_cast<std::size_t>(slots[a * W + l])];
-        e[0] = fnx[a][l];
-        e[1] = fny[a][l];
-        e[2] = fnz[a][l];
-        continue;
-      }
-      const Index node = conn[a * W + l];
-      fx[node] += fnx[a][l];
-      fy[node] += fny[a][l];
-      fz[node] += fnz[a][l];
-    }
+    ok[l] = vol[l] > 0.0 && volm[l] > 0.0;
+    if (m_batches.lane_owner(batch, l) == NO_INDEX) continue;
     e_strain += strain_inc[l];
     e_hg += hg_inc[l];
     e_visc += visc_inc[l];
     if constexpr (PLASTIC) e_plastic += plastic_inc[l];
-    const Index model_e = m_element_index[owner];
-    if (!(vol[l] > 0.0) || !(volm[l] > 0.0)) {
-      if (failed == NO_INDEX || model_e < failed) failed = model_e;
-    } else if (dt_e[l] < best_dt || (dt_e[l] == best_dt && model_e < critical)) {
-      best_dt = dt_e[l];
-      critical = model_e;
-    }
   }
   m_batch_energy[batch * 4 + 0] = e_strain;
   m_batch_energy[batch * 4 + 1] = e_hg;
   m_batch_energy[batch * 4 + 2] = e_visc;
   m_batch_energy[batch * 4 + 3] = e_plastic;
-  m_batch_dt[batch] = best_dt;
-  m_batch_critical[batch] = critical;
-  m_batch_failed[batch] = failed;
+  m_batches.record_limit(batch, dt_e, ok);
 }
 
 void Hex8rBlock::gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {
   for (Index i = 0; i < size(); ++i) {
-    const Index slot = m_slot[i];
+    const Index slot = m_batches.slot(i);
     const Index b = slot / W, l = slot % W;
-    const Index e = m_element_index[i];
+    const Index e = m_batches.element_index(i);
     for (int c = 0; c < 6; ++c) stress[e * 6 + c] = m_stress[(b * 6 + c) * W + l];
     volume[e] = m_volume[b * W + l];
   }
 }
 
 void Hex8rBlock::set_stress(std::span<const Real> stress) {
-  for (Index e : m_element_index) {
-    if (static_cast<std::size_t>(e) * 6 + 6 > stress.size()) {
-      throw std::invalid_argument("Hex8rBlock::set_stress: " + std::to_string(stress.size()) +
-                                  " values do not reach the row of element " + std::to_string(e) +
-                                  "; expected n_elements × 6");
-    }
-  }
-  for (Index i = 0; i < size(); ++i) {
-    const Index slot = m_slot[i];
-    const Index b = slot / W, l = slot % W;
-    const std::size_t e = static_cast<std::size_t>(m_element_index[i]);
-    for (int c = 0; c < 6; ++c) m_stress[(b * 6 + c) * W + l] = stress[e * 6 + c];
-  }
-  // Padding lanes compute a copy of lane 0 of their batch: give them its stress as well.
-  const Index n_batches = m_color_batches.back();
-  for (Index b = 0; b < n_batches; ++b)
-    for (int l = 1; l < W; ++l) {
-      if (m_lane_owner[b * W + l] != NO_INDEX) continue;
-      for (int c = 0; c < 6; ++c) m_stress[(b * 6 + c) * W + l] = m_stress[(b * 6 + c) * W];
+  m_batches.check_model_rows(stress.size(), 6, "Hex8rBlock::set_stress");
+  // Padding lanes compute a copy of lane 0 of their batch: they take its stress as well.
+  for (Index b = 0; b < m_batches.batch_count(); ++b)
+    for (int l = 0; l < W; ++l) {
+      const auto e =
+          static_cast<std::size_t>(m_batches.element_index(m_batches.lane_element(b, l)));
+      for (int c = 0; c < 6; ++c) m_stress[(b * 6 + c) * W + l] = stress[e * 6 + c];
     }
 }
 
 void Hex8rBlock::gather_hourglass_state(std::vector<Real>& rows) const {
-  gather_lane_rows(m_hourglass, 12, W, m_element_index, m_slot, rows);
+  const auto width = static_cast<std::size_t>(HOURGLASS_STATE_WIDTH);
+  for (Index i = 0; i < size(); ++i) {
+    const Index slot = m_batches.slot(i);
+    const Index b = slot / W, l = slot % W;
+    const auto e = static_cast<std::size_t>(m_batches.element_index(i));
+    for (int c = 0; c < 12; ++c) rows[e * width + c] = m_hourglass[(b * 12 + c) * W + l];
+  }
 }
 
 void Hex8rBlock::set_hourglass_state(std::span<const Real> rows) {
-  set_lane_rows(rows, 12, W, m_element_index, m_slot, m_lane_owner, m_hourglass);
+  m_batches.check_model_rows(rows.size(), HOURGLASS_STATE_WIDTH,
+                             "Hex8rBlock::set_hourglass_state");
+  const auto width = static_cast<std::size_t>(HOURGLASS_STATE_WIDTH);
+  // Padding lanes compute a copy of lane 0 of their batch: they take its state as well.
+  for (Index b = 0; b < m_batches.batch_count(); ++b)
+    for (int l = 0; l < W; ++l) {
+      const auto e =
+          static_cast<std::size_t>(m_batches.element_index(m_batches.lane_element(b, l)));
+      for (int c = 0; c < 12; ++c) m_hourglass[(b * 12 + c) * W + l] = rows[e * width + c];
+    }
 }
 
 std::array<Real, 6> Hex8rBlock::stress(Index i) const {
-  const Index slot = m_slot[i];
+  const Index slot = m_batches.slot(i);
   const Index b = slot / W, l = slot % W;
   std::array<Real, 6> s{};
   for (int c = 0; c < 6; ++c) s[c] = m_stress[(b * 6 + c) * W + l];

@@ -13,39 +13,18 @@ namespace xpl::elements {
 using simd::Vec;
 
 void Hex8rBlock::setup_plasticity(const std::vector<HexMaterial>& materials) {
-  // One copy of each distinct law (materials point into the model's materials).
-  std::vector<const Plasticity*> seen;
-  std::vector<int> law_of_element(materials.size(), -1);
-  for (std::size_t e = 0; e < materials.size(); ++e) {
-    const Plasticity* p = materials[e].plastic;
-    if (p == nullptr) continue;
-    std::size_t k = 0;
-    while (k < seen.size() && seen[k] != p) ++k;
-    if (k == seen.size()) {
-      seen.push_back(p);
-      m_laws.push_back(*p);
-    }
-    law_of_element[e] = static_cast<int>(k);
-  }
-  if (m_laws.empty()) return;  // P2: an elastic block holds no plastic state
-  const Index n_batches = m_color_batches.back();
-  const auto lanes = static_cast<std::size_t>(n_batches) * W;
-  m_lane_law.assign(lanes, -1);
-  m_batch_plastic.assign(static_cast<std::size_t>(n_batches), 0);
-  m_peeq.assign(lanes, 0.0);
-  m_peeq_rate.assign(lanes, 0.0);
-  m_yield.assign(lanes, std::numeric_limits<Real>::infinity());
-  for (Index b = 0; b < n_batches; ++b)
-    for (int l = 0; l < W; ++l) {
-      const Index owner = m_lane_owner[b * W + l];
-      // Padding lanes follow lane 0, whose copy they compute.
-      const Index e = owner != NO_INDEX ? owner : m_lane_owner[b * W];
-      const int law = law_of_element[static_cast<std::size_t>(e)];
-      if (law < 0) continue;
-      m_lane_law[b * W + l] = law;
-      m_yield[b * W + l] = flow_stress(m_laws[static_cast<std::size_t>(law)], 0.0, 0.0).stress;
-      if (owner != NO_INDEX) m_batch_plastic[b] = 1;
-    }
+  HexBatches::PlasticLanes lanes = m_batches.plastic_lanes(materials);
+  if (lanes.laws.empty()) return;  // P2: an elastic block holds no plastic state
+  m_laws = std::move(lanes.laws);
+  m_lane_law = std::move(lanes.lane_law);
+  m_batch_plastic = std::move(lanes.batch_plastic);
+  const std::size_t n = m_lane_law.size();
+  m_peeq.assign(n, 0.0);
+  m_peeq_rate.assign(n, 0.0);
+  m_yield.assign(n, std::numeric_limits<Real>::infinity());
+  for (std::size_t k = 0; k < n; ++k)
+    if (m_lane_law[k] >= 0)
+      m_yield[k] = flow_stress(m_laws[static_cast<std::size_t>(m_lane_law[k])], 0.0, 0.0).stress;
 }
 
 Vec Hex8rBlock::plastic_return(Index batch, Vec sn[6], Real dt) {
@@ -62,7 +41,7 @@ Vec Hex8rBlock::plastic_return(Index batch, Vec sn[6], Real dt) {
     simd::store(rate, dissipation);
     return dissipation;
   }
-  const Real* two_mu = &m_const[(static_cast<std::size_t>(batch) * N_CONST + TWO_MU) * W];
+  const Real* two_mu = m_batches.constants(batch) + TWO_MU * W;
   for (int l = 0; l < W; ++l) {
     rate[l] = 0.0;
     if (!yielding[l]) continue;
@@ -85,48 +64,29 @@ Vec Hex8rBlock::plastic_return(Index batch, Vec sn[6], Real dt) {
 
 void Hex8rBlock::gather_plastic_strain(std::vector<Real>& peeq) const {
   if (m_laws.empty()) return;  // the caller's array holds zeros for elastic elements
-  for (Index i = 0; i < size(); ++i) peeq[m_element_index[i]] = plastic_strain(i);
+  for (Index i = 0; i < size(); ++i) peeq[m_batches.element_index(i)] = plastic_strain(i);
 }
 
 void Hex8rBlock::set_plastic_strain(std::span<const Real> peeq) {
   if (m_laws.empty()) return;
-  for (Index e : m_element_index) {
-    if (static_cast<std::size_t>(e) >= peeq.size()) {
-      throw std::invalid_argument("Hex8rBlock::set_plastic_strain: " + std::to_string(peeq.size()) +
-                                  " values do not reach element " + std::to_string(e) +
-                                  "; expected n_elements");
-    }
-  }
-  const Index n_batches = m_color_batches.back();
-  for (Index b = 0; b < n_batches; ++b)
-    for (int l = 0; l < W; ++l) {
-      const std::size_t slot = static_cast<std::size_t>(b) * W + l;
-      const int law = m_lane_law[slot];
-      if (law < 0) continue;
-      // Padding lanes take lane 0's value, like its stress.
-      const Index owner = m_lane_owner[slot];
-      const Index i = owner != NO_INDEX ? owner : m_lane_owner[static_cast<std::size_t>(b) * W];
-      const Real value = peeq[static_cast<std::size_t>(m_element_index[i])];
-      if (!(value >= 0.0)) {
-        throw std::invalid_argument("Hex8rBlock::set_plastic_strain: PEEQ of element " +
-                                    std::to_string(m_element_index[i]) + " is " +
-                                    std::to_string(value) + "; expected a value >= 0");
-      }
-      m_peeq[slot] = value;
-      m_peeq_rate[slot] = 0.0;
-      m_yield[slot] = flow_stress(m_laws[static_cast<std::size_t>(law)], value, 0.0).stress;
-    }
+  m_batches.for_imported_peeq(
+      peeq, m_lane_law, "Hex8rBlock::set_plastic_strain", [&](Index b, int l, int law, Real value) {
+        const std::size_t slot = static_cast<std::size_t>(b) * W + l;
+        m_peeq[slot] = value;
+        m_peeq_rate[slot] = 0.0;
+        m_yield[slot] = flow_stress(m_laws[static_cast<std::size_t>(law)], value, 0.0).stress;
+      });
 }
 
 Real Hex8rBlock::plastic_strain(Index i) const {
   if (m_laws.empty()) return 0.0;
-  const auto slot = static_cast<std::size_t>(m_slot[i]);
+  const auto slot = static_cast<std::size_t>(m_batches.slot(i));
   return m_lane_law[slot] < 0 ? 0.0 : m_peeq[slot];
 }
 
 Real Hex8rBlock::plastic_strain_rate(Index i) const {
   if (m_laws.empty()) return 0.0;
-  const auto slot = static_cast<std::size_t>(m_slot[i]);
+  const auto slot = static_cast<std::size_t>(m_batches.slot(i));
   return m_lane_law[slot] < 0 ? 0.0 : m_peeq_rate[slot];
 }
 

@@ -1,6 +1,5 @@
 // The linear stiffness product of the C3D8R block (Hex8rBlock::add_stiffness_product): what
 // the global estimate of the highest frequency needs (solver/global_increment.*).
-#include "common/parallel_error.hpp"
 #include "elements/hex8_geometry.hpp"
 #include "elements/hex8r.hpp"
 #include "elements/hex8r_gather.hpp"
@@ -15,25 +14,18 @@ void Hex8rBlock::add_stiffness_product(const NodalVectors& position, const Nodal
   const Real* px = position.data();
   const Real* ux = u.data();
   Real* yx = y.data();
-  // Colours as in internal_forces(): the lanes and batches of a colour share no node.
-  for (std::size_t c = 0; c + 1 < m_color_batches.size(); ++c) {
-    const Index first = m_color_batches[c], last = m_color_batches[c + 1];
-    ParallelErrors errors;
-#pragma omp parallel for schedule(static) if (last - first >= simd::MIN_PARALLEL_BATCHES)
-    for (Index b = first; b < last; ++b)
-      errors.guard(ParallelSite::HexStiffness, b, [&] {
-        stiffness_batch(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes, ux + 2 * n_nodes,
-                        yx, yx + n_nodes, yx + 2 * n_nodes);
-      });
-    errors.rethrow_if_any();
-  }
+  // Colour by colour: the lanes and batches of a colour share no node.
+  m_batches.for_color_batches(ParallelSite::HexStiffness, [&](Index b) {
+    stiffness_batch(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes, ux + 2 * n_nodes, yx,
+                    yx + n_nodes, yx + 2 * n_nodes);
+  });
 }
 
 void Hex8rBlock::stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz,
                                  const Real* ux, const Real* uy, const Real* uz, Real* yx, Real* yy,
                                  Real* yz) const {
-  const Index* conn = &m_conn[static_cast<std::size_t>(batch) * 8 * W];
-  const Real* cst = &m_const[static_cast<std::size_t>(batch) * N_CONST * W];
+  const Index* conn = m_batches.conn(batch);
+  const Real* cst = m_batches.constants(batch);
   V3<Vec> ax[8], au[8];
   gather_modes(conn, px, py, pz, ux, uy, uz, ax, au);
   V3<Vec> g[8];
@@ -95,15 +87,7 @@ void Hex8rBlock::stiffness_batch(Index batch, const Real* px, const Real* py, co
   from_modes(Fx, fnx);
   from_modes(Fy, fny);
   from_modes(Fz, fnz);
-  for (int l = 0; l < W; ++l) {
-    if (m_lane_owner[batch * W + l] == NO_INDEX) continue;
-    for (int a = 0; a < 8; ++a) {
-      const Index node = conn[a * W + l];
-      yx[node] += fnx[a][l];
-      yy[node] += fny[a][l];
-      yz[node] += fnz[a][l];
-    }
-  }
+  m_batches.scatter_direct(batch, fnx, fny, fnz, yx, yy, yz);
 }
 
 }  // namespace xpl::elements

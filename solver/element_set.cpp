@@ -275,14 +275,16 @@ void ElementSet::set_shell_thickness(std::span<const Real> thickness) {
 
 void ElementSet::use_partition(int parts) {
   if (m_parts == parts) return;
-  // The boundary nodes are those two parts share over both blocks, so that a node's hex and
-  // shell contributions keep their order (hex colours, then shell colours) too.
+  // The boundary nodes are those two parts share over all blocks, so that a node's
+  // contributions keep their order (C3D8R colours, then S4R, then C3D8) too.
   std::vector<Index> node_part(static_cast<std::size_t>(m_model.node_count()), elements::UNTOUCHED);
   if (m_hex) m_hex->mark_nodes(parts, node_part);
   if (m_shell) m_shell->mark_nodes(parts, node_part);
+  if (m_hex8) m_hex8->mark_nodes(parts, node_part);
   const elements::BoundaryNodes boundary = elements::boundary_nodes(node_part);
   if (m_hex) m_hex->set_partition(parts, boundary);
   if (m_shell) m_shell->set_partition(parts, boundary);
+  if (m_hex8) m_hex8->set_partition(parts, boundary);
   m_boundary_nodes = boundary.nodes;
   m_parts = parts;
 }
@@ -303,11 +305,15 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
           m_shell->forces_of_part(p, state.position, state.velocity_half,
                                   state.angular_velocity_half, dt, m_force_internal,
                                   m_moment_internal);
+        if (m_hex8)
+          m_hex8->forces_of_part(p, state.position, state.velocity_half, dt, s.bulk_linear,
+                                 s.bulk_quadratic, m_force_internal);
       },
       [&](Index k) {
         const Index node = m_boundary_nodes[k];
         if (m_hex) m_hex->add_boundary_forces(k, node, m_force_internal);
         if (m_shell) m_shell->add_boundary_forces(k, node, m_force_internal, m_moment_internal);
+        if (m_hex8) m_hex8->add_boundary_forces(k, node, m_force_internal);
       });
   if (m_hex) {
     elements::HexStepTotals t;
@@ -317,8 +323,7 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
   }
   if (m_hex8) {
     elements::HexStepTotals t;
-    m_hex8->internal_forces(state.position, state.velocity_half, dt, s.bulk_linear,
-                            s.bulk_quadratic, m_force_internal, t);
+    m_hex8->add_totals(t);
     totals.add(t);
     totals.viscous_energy_increment += t.viscous_energy_increment;
   }

@@ -1,10 +1,12 @@
 #include "io/deck/deck_lines.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <string>
 
 #include "io/deck/deck_file.hpp"
+#include "io/deck/deck_keywords.hpp"
 #include "solver/model.hpp"
 
 namespace xpl::io {
@@ -89,6 +91,44 @@ struct LineCursor {
   }
 };
 
+/// Whether a line can continue a keyword line: a parameter name starts with a letter (a
+/// number starts the keyword's data).
+bool starts_parameter(std::string_view line) {
+  const char c = line.front();
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+}
+
+/// Number of non-empty comma-separated fields of a data line (element lines hold no quotes).
+int filled_fields(std::string_view line) {
+  int n = 0;
+  bool empty = true;
+  for (const char c : line) {
+    if (c == ',') {
+      n += empty ? 0 : 1;
+      empty = true;
+    } else if (!is_blank(c)) {
+      empty = false;
+    }
+  }
+  return n + (empty ? 0 : 1);
+}
+
+/// Fields of one complete data line of an *ELEMENT block (the id and the nodes) for the
+/// element types xpl reads, else 0 (continuation by trailing commas only).
+int element_line_fields(const DeckKeyword& keyword) {
+  if (keyword.name != "ELEMENT") return 0;
+  for (const DeckParameter& p : keyword.parameters) {
+    if (p.name != "TYPE") continue;
+    std::string type(p.value);
+    std::transform(type.begin(), type.end(), type.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    if (type == "C3D8R" || type == "C3D8") return 9;
+    if (type == "S4R" || type == "S4") return 5;
+    if (type == "MASS" || type == "ROTARYI") return 2;
+  }
+  return 0;
+}
+
 }  // namespace
 
 namespace {
@@ -122,12 +162,34 @@ std::filesystem::path identity(const std::filesystem::path& path) {
   return error ? path.lexically_normal() : canonical;
 }
 
+namespace {
+
+/// The name of a known keyword that `name` spells without (or with other) inner blanks, as
+/// CalculiX reads keywords ("*ENDSTEP", "*SOLIDSECTION"), else `name` itself.
+std::string canonical_keyword(std::string name) {
+  auto squeezed = [](std::string_view text) {
+    std::string out;
+    for (const char c : text)
+      if (c != ' ') out += c;
+    return out;
+  };
+  const std::span<const KeywordSpec> table = keyword_table();
+  if (std::any_of(table.begin(), table.end(), [&](const KeywordSpec& s) { return s.name == name; }))
+    return name;
+  const std::string key = squeezed(name);
+  for (const KeywordSpec& spec : table)
+    if (spec.name != name && squeezed(spec.name) == key) return std::string(spec.name);
+  return name;
+}
+
+}  // namespace
+
 DeckKeyword parse_keyword(std::string_view line, const SourceLocation& where, InputErrors& errors) {
   std::vector<std::string_view> fields;
   const bool unterminated = split_fields(line.substr(1), fields);
   DeckKeyword keyword;
   keyword.where = where;
-  keyword.name = normalize_name(fields.front());
+  keyword.name = canonical_keyword(normalize_name(fields.front()));
   if (unterminated)
     errors.add(where, keyword.label(), "unterminated quote", "expected a closing \"");
   for (std::size_t i = 1; i < fields.size(); ++i)
@@ -144,16 +206,22 @@ void Lexer::read(std::string_view text, const std::string& file_name, int depth)
     std::string_view joined = current.text;
     const bool is_keyword = joined.front() == '*';
     const bool is_heading = open_block && blocks.back().keyword.name == "HEADING";
-    // A line ending with a comma continues on the next line, unless that is a keyword line.
-    if (!(is_heading && !is_keyword) && joined.back() == ',') {
+    // A line ending with a comma continues on the next line, unless that is a keyword line,
+    // a keyword line's next line is data (parameters start with a letter), or an element's
+    // line already holds all its nodes (CalculiX and Abaqus write "1, 1, 2, ..., 8," too).
+    const int complete = !is_keyword && open_block ? element_line_fields(blocks.back().keyword) : 0;
+    if (!(is_heading && !is_keyword) && joined.back() == ',' &&
+        (complete == 0 || filled_fields(joined) < complete)) {
       bool joining = false;
       PhysicalLine next;
       for (LineCursor peek = cursor; peek.next(next) && next.text.front() != '*'; peek = cursor) {
+        if (is_keyword && !starts_parameter(next.text)) break;
         if (!joining) joined_text.assign(joined);
         joining = true;
         joined_text += next.text;
         cursor = peek;
-        if (next.text.back() != ',') break;
+        if (next.text.back() != ',' || (complete > 0 && filled_fields(joined_text) >= complete))
+          break;
       }
       if (joining) joined = is_keyword ? std::string_view(joined_text) : storage.keep(joined_text);
     }

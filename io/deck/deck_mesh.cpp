@@ -78,6 +78,22 @@ void read_node(DeckState& deck, const DeckBlock& block) {
   }
 }
 
+namespace {
+
+/// Remembers the ids and ELSET= of a refused *ELEMENT block, so that the sets, sections and
+/// surfaces that name them are not reported again (the refusal is the one error).
+void refuse_elements(DeckState& deck, const DeckBlock& block) {
+  const std::string set_name = optional_name(block.keyword, "ELSET");
+  if (!set_name.empty()) deck.refused_element_sets.push_back(set_name);
+  for (const DeckDataLine& line : block.data) {
+    if (line.fields.empty()) continue;
+    if (const std::optional<long long> id = parse_integer(line.fields[0]))
+      deck.refused_element_ids.insert(*id);
+  }
+}
+
+}  // namespace
+
 void read_element(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(deck, keyword, {{"TYPE"}, {"ELSET"}});
@@ -97,10 +113,12 @@ void read_element(DeckState& deck, const DeckBlock& block) {
           "expected C3D8 (fully integrated, selectively reduced: no volumetric locking) or "
           "C3D8R; in bending with one element through the thickness C3D8R needs a few more "
           "elements, C3D8 is stiffer (shear locking)");
+    refuse_elements(deck, block);
     return;
   } else if (*type != "C3D8R") {
     error(deck, keyword.where, keyword, "element type " + *type + " is not supported yet",
           "supported: C3D8R, C3D8, S4R (S4 is run as S4R), MASS, ROTARYI");
+    refuse_elements(deck, block);
     return;
   }
   if (*type == "S4")

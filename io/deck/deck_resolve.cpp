@@ -132,7 +132,7 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
           members.push_back(it->second);
         else if (point != deck.point_element_index.end())
           points.push_back(point->second);
-        else
+        else if (node_sets || !deck.refused_element(item.first))
           deck.errors.add(item.where, item.keyword,
                           "undefined " + what + " " + std::to_string(item.first),
                           "expected a defined " + what + " id");
@@ -157,7 +157,13 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
           for (const auto& [id, index] : deck.point_element_index)
             if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
               points.push_back(index);
-        if (members.size() + points.size() == before)
+        const auto refused = [&] {
+          for (ExternalId id : deck.refused_element_ids)
+            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+              return true;
+          return false;
+        };
+        if (members.size() + points.size() == before && (node_sets || !refused()))
           deck.errors.add(item.where, item.keyword,
                           "range " + std::to_string(item.first) + ".." + std::to_string(item.last) +
                               " contains no defined " + what,
@@ -168,6 +174,7 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
         const auto it = names.find(item.name);
         const std::string set_keyword = node_sets ? "*NSET, NSET=" : "*ELSET, ELSET=";
         if (it == names.end()) {
+          if (!node_sets && deck.refused_element_set(item.name)) break;
           deck.errors.add(item.where, item.keyword, "undefined " + what + " set " + item.name,
                           "expected " + set_keyword + item.name);
           break;
@@ -193,6 +200,7 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
       case SetItem::Kind::NodesOfElementSet: {
         const auto it = deck.element_set_by_name.find(item.name);
         if (it == deck.element_set_by_name.end()) {
+          if (deck.refused_element_set(item.name)) break;
           deck.errors.add(item.where, item.keyword, "undefined element set " + item.name,
                           "expected *ELSET, ELSET=" + item.name);
           break;
@@ -251,6 +259,7 @@ std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& refere
     const std::optional<long long> id = parse_integer(reference.token);
     const auto it = id ? deck.element_index.find(*id) : deck.element_index.end();
     if (it == deck.element_index.end()) {
+      if (id && deck.refused_element(*id)) return {};
       deck.errors.add(reference.where, reference.keyword, "undefined element " + reference.token,
                       "expected a defined element id or an element set name");
       return {};
@@ -259,6 +268,7 @@ std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& refere
   }
   const auto it = deck.element_set_by_name.find(reference.token);
   if (it == deck.element_set_by_name.end()) {
+    if (deck.refused_element_set(reference.token)) return {};
     deck.errors.add(reference.where, reference.keyword, "undefined element set " + reference.token,
                     "expected *ELSET, ELSET=" + reference.token);
     return {};

@@ -204,6 +204,7 @@ Index resolve_section_references(DeckState& deck, const PendingSection& pending,
   }
   const auto set = deck.element_set_by_name.find(pending.element_set);
   if (set == deck.element_set_by_name.end()) {
+    if (deck.refused_element_set(pending.element_set)) return NO_INDEX;
     deck.errors.add(where, keyword, "undefined element set " + pending.element_set,
                     "expected *ELSET, ELSET=" + pending.element_set + " or *ELEMENT, ELSET=");
     return NO_INDEX;

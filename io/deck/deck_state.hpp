@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -194,6 +195,17 @@ struct DeckState {
   /// Elements whose section problem is reported already (refused section, section of the
   /// wrong kind): no "has no section" follow-up. Empty while there are none.
   std::vector<char> section_reported;
+  /// Element ids and ELSET= names (upper case) of refused *ELEMENT blocks (a type xpl does not
+  /// read): references to them draw no "undefined" follow-up error (one error per cause).
+  std::unordered_set<ExternalId> refused_element_ids;
+  std::vector<std::string> refused_element_sets;
+  /// Whether element id `id` / element set `name` (upper case) belongs to a refused block.
+  bool refused_element(ExternalId id) const { return refused_element_ids.count(id) > 0; }
+  bool refused_element_set(const std::string& name) const {
+    for (const std::string& refused : refused_element_sets)
+      if (refused == name) return true;
+    return false;
+  }
   std::vector<std::vector<PendingSurfaceItem>> surface_items;  ///< parallel to surfaces
   std::vector<PendingBoundary> boundaries;
   std::vector<PendingLoad> loads;

@@ -9,6 +9,7 @@
 #include <omp.h>
 #include <Eigen/Dense>
 
+#include "elements/hex8.hpp"
 #include "elements/hex8r.hpp"
 #include "elements/shell4r.hpp"
 #include "elements/thread_partition.hpp"
@@ -28,12 +29,13 @@ NodalVectors random_field(Index rows, unsigned seed) {
   return v;
 }
 
-Hex8rBlock hex_block(const test::HexBlockMesh& mesh) {
+template <class Block>
+Block hex_block(const test::HexBlockMesh& mesh) {
   const auto n = static_cast<Index>(mesh.connectivity.size() / 8);
   std::vector<Index> ids(n);
   std::iota(ids.begin(), ids.end(), 0);
   std::vector<HexMaterial> mats(n, HexMaterial{7850.0, 200e9, 0.3, HourglassForm::Stiffness, 1.0});
-  return Hex8rBlock(ids, mesh.connectivity, mats, static_cast<Index>(mesh.coordinates.rows()));
+  return Block(ids, mesh.connectivity, mats, static_cast<Index>(mesh.coordinates.rows()));
 }
 
 /// An n × n grid of slightly warped quads (side 10 mm), nodes row by row.
@@ -79,7 +81,8 @@ void with_threads(int threads, Pass&& pass) {
 
 }  // namespace
 
-TEST_CASE("hex forces are bitwise the same with 1, 2 and 3 parts", "[elements][hex][threads]") {
+TEMPLATE_TEST_CASE("hex forces are bitwise the same with 1, 2 and 3 parts",
+                   "[elements][hex][threads]", Hex8rBlock, Hex8Block) {
   // 12³ elements: 8 colours of 27 batches, so every part has batches in every colour.
   const auto mesh = test::make_block(12, 0.01, 0.2);
   const NodalVectors v = random_field(mesh.coordinates.rows(), 1);
@@ -87,7 +90,7 @@ TEST_CASE("hex forces are bitwise the same with 1, 2 and 3 parts", "[elements][h
   std::vector<NodalVectors> forces;
   std::vector<HexStepTotals> totals;
   for (int parts : {1, 2, 3}) {
-    auto block = hex_block(mesh);
+    auto block = hex_block<TestType>(mesh);
     NodalVectors f = NodalVectors::Zero(x.rows(), 3);
     HexStepTotals t;
     // Two increments: the second starts from the state the first left.
@@ -149,7 +152,7 @@ TEST_CASE("two parts of a block numbered in space share only a thin layer of nod
   // The parts take the same share of every colour, which on a mesh numbered layer by layer
   // is the same region: the nodes both touch (summed after the pass) are a few layers.
   const auto mesh = test::make_block(20, 0.01, 0.0);
-  const auto block = hex_block(mesh);
+  const auto block = hex_block<Hex8rBlock>(mesh);
   std::vector<Index> node_part(mesh.coordinates.rows(), UNTOUCHED);
   block.mark_nodes(2, node_part);
   const BoundaryNodes boundary = boundary_nodes(node_part);

@@ -31,6 +31,36 @@ TEST_CASE("assemblies are rejected, *PREPRINT is ignored", "[io][deck][errors]")
   CHECK(has_error(errors, "t.inp:2: *PART: unknown keyword *PART"));
 }
 
+TEST_CASE("a refused element type is one error, not also its sets, sections and surfaces",
+          "[io][deck][errors]") {
+  // CalculiX decks with C3D20R: the elements are refused, and everything that names them
+  // (their ELSET=, an *ELSET over their ids, a section, a surface) would otherwise repeat that
+  // one cause as "undefined" errors.
+  const std::string deck = two_brick_model() +
+                           "*ELEMENT, TYPE=C3D20R, ELSET=QUAD\n"
+                           "7000001, 1000001, 1000002, 1000003, 1000004, 1000007, 1000008, "
+                           "1000009, 1000010, 1000001, 1000002, 1000003, 1000004, 1000007, "
+                           "1000008, 1000009, 1000010, 1000001, 1000002, 1000003, 1000004\n"
+                           "*ELSET, ELSET=RANGE, GENERATE\n"
+                           "7000001, 7000001\n"
+                           "*ELSET, ELSET=NAMED\n"
+                           "QUAD, 7000001\n"
+                           "*NSET, NSET=OF_QUAD, ELSET=QUAD\n"
+                           "*SOLID SECTION, ELSET=QUAD, MATERIAL=STEEL\n"
+                           "*SURFACE, NAME=QS\n"
+                           "7000001, S1\n"
+                           "QUAD, S2\n"
+                           "*ELSET, ELSET=TYPO\n"
+                           "7000002\n" +
+                           simple_step();
+  const auto errors = deck_errors(deck);
+  INFO(errors.size() << " errors, first: " << (errors.empty() ? "" : errors.front()));
+  CHECK(has_error(errors, at(deck, "TYPE=C3D20R", "*ELEMENT"), "C3D20R is not supported"));
+  // An id that no block defined is still an error of its own.
+  CHECK(has_error(errors, at(deck, "7000002", "*ELSET"), "undefined element 7000002"));
+  CHECK(errors.size() == 2);
+}
+
 TEST_CASE("bad numbers name the token", "[io][deck][errors]") {
   std::string deck = two_brick_model() + simple_step();
   deck.replace(deck.find("1000002, 1, 0, 0"), 16, "1000002, 1.0e, 0, 0");

@@ -34,6 +34,44 @@ TEST_CASE("comments, blank lines, case and continued keyword lines", "[io][deck]
   CHECK(m.steps[0].time_period == 2.5e-3);
 }
 
+TEST_CASE("trailing commas as CalculiX decks write them, and keywords written without blanks",
+          "[io][deck][calculix]") {
+  // CalculiX (and Abaqus/CAE's exports) end complete element lines and keyword lines with a
+  // comma: an element line stops continuing once it holds all its nodes, and a keyword line
+  // is continued only by parameters (a line starting with a number is its data). CalculiX
+  // ignores the blanks of keyword names: *ENDSTEP is *END STEP.
+  std::string bricks = two_brick_model();
+  const std::string first =
+      "5000001, 1000001, 1000002, 1000003, 1000004, 1000007, 1000008, "
+      "1000009, 1000010\n";
+  bricks.replace(bricks.find(first), first.size(),
+                 "5000001, 1000001, 1000002, 1000003, 1000004, 1000007, 1000008, 1000009, "
+                 "1000010,\n");
+  const std::string deck = bricks +
+                           "*NSET, NSET=SPLIT,\n"
+                           "1000001, 1000002,\n"
+                           "1000003\n"
+                           "*ELEMENT, TYPE=C3D8R, ELSET=BRICKS\n"
+                           "5000003, 1000001, 1000002, 1000003,\n"
+                           "1000004, 1000007, 1000008, 1000009, 1000010,\n"
+                           "5000004, 1000002, 1000005, 1000006, 1000003, 1000008, 1000011, "
+                           "1000012, 1000009\n"
+                           "*STEP\n*DYNAMIC, EXPLICIT\n, 1e-3\n*ENDSTEP\n";
+  const Model m = io::read_deck_text(deck, "commas.inp");
+  CHECK(m.element_count() == 4);
+  CHECK(m.element_ids == std::vector<ExternalId>{5000001, 5000002, 5000003, 5000004});
+  CHECK(m.element_where(3).line == test::line_of(deck, "5000004,"));
+  const Index split = m.find_node_set("SPLIT");
+  REQUIRE(split != NO_INDEX);
+  CHECK(m.node_sets[split].members == std::vector<Index>{0, 1, 2});
+  CHECK(m.steps.size() == 1);
+  // A keyword line is still continued by a parameter line.
+  const Model c = io::read_deck_text(
+      two_brick_model() + "*NSET,\nNSET=CONT\n1000004\n" + test::simple_step(), "continued.inp");
+  REQUIRE(c.find_node_set("CONT") != NO_INDEX);
+  CHECK(c.node_sets[c.find_node_set("CONT")].members == std::vector<Index>{3});
+}
+
 TEST_CASE("*INCLUDE reads files relative to the including file", "[io][deck]") {
   const Model m = io::read_deck(std::string(XPL_TEST_DATA_DIR) + "/decks/include_main.inp");
   CHECK(m.job_name == "include_main");
