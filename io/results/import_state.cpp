@@ -370,7 +370,7 @@ ImportedState read_file(hid_t file, const Model& model) {
       if (shell_rows(e) && !(state.shell_thickness[e] > 0.0))
         refuse(frame + "/STH is not positive at element " + std::to_string(model.element_ids[e]),
                "expected shell thicknesses > 0");
-  } else if (shells) {
+  } else if (shells && has("S")) {
     state.notes.push_back("no STH in the last frame: the shells start at their section thickness");
   }
   const std::string status = h5::string_attribute(file, "/", "status").value_or("");
