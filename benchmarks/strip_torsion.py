@@ -11,6 +11,7 @@ the run starts from V3 = V0 (1 - cos(pi x / 2L)) and the tip deflection is fitte
 way. The stable increment is read from the run summary.
 
     strip_torsion.py --xpl NEW [--old OLD] [--meshes 20x4,40x8,80x16] [--csv OUT.csv]
+                     [--rotary ISOTROPIC,EXACT]
 
 The reference frequencies are the finest mesh's, and for torsion also St Venant's
 f = (1/4L) sqrt(G J / (rho I_p)), J = w t^3/3 (1 - 0.63 t/w), I_p = t w (w^2 + t^2)/12.
@@ -37,7 +38,7 @@ def st_venant():
     return math.sqrt(g * j / (RHO * ip)) / (4 * L)
 
 
-def build(nx, ny, mode, period, rotations=True):
+def build(nx, ny, mode, period, rotations=True, rotary="ISOTROPIC"):
     hx, hy = L / nx, WIDTH / ny
     nid = lambda i, j: j * (nx + 1) + i + 1  # noqa: E731
     out = ["*HEADING", f"Cantilever strip {L} x {WIDTH} x {T} m, {nx} x {ny} S4R, {mode}",
@@ -53,7 +54,8 @@ def build(nx, ny, mode, period, rotations=True):
     out += ["*NSET, NSET=ROOT"] + [str(nid(0, j)) for j in range(ny + 1)]
     out += ["*NSET, NSET=TIP", str(nid(nx, ny // 2))]
     out += ["*MATERIAL, NAME=AL", "*DENSITY", f"{RHO}", "*ELASTIC", f"{E:.6g}, {NU}",
-            "*SHELL SECTION, ELSET=STRIP, MATERIAL=AL", f"{T}, 5",
+            "*SHELL SECTION, ELSET=STRIP, MATERIAL=AL"
+            + ("" if rotary == "ISOTROPIC" else f", ROTARY INERTIA={rotary}"), f"{T}, 5",
             "*INITIAL CONDITIONS, TYPE=VELOCITY"]
     for j in range(ny + 1):
         for i in range(1, nx + 1):
@@ -89,11 +91,11 @@ def fit_frequency(time, u, f_lo, f_hi):
     return 0.5 * (lo + hi)
 
 
-def run(xpl, nx, ny, mode, out_dir, rotations=True):
-    name = f"strip_{mode}_{nx}x{ny}"
+def run(xpl, nx, ny, mode, out_dir, rotations=True, rotary="ISOTROPIC"):
+    name = f"strip_{mode}_{nx}x{ny}" + ("" if rotary == "ISOTROPIC" else "_" + rotary.lower())
     deck = out_dir / f"{name}.inp"
     period = 4.0e-3 if mode == "torsion" else 0.06
-    deck.write_text(build(nx, ny, mode, period, rotations))
+    deck.write_text(build(nx, ny, mode, period, rotations, rotary))
     subprocess.run([xpl, "run", str(deck), "-o", str(out_dir)], check=True, capture_output=True)
     with h5py.File(out_dir / f"{name}.h5", "r") as f:
         h = f["history/step_1"]
@@ -110,26 +112,34 @@ def main():
     parser.add_argument("--old")
     parser.add_argument("--meshes", default="20x4,40x8,80x16")
     parser.add_argument("--csv", type=pathlib.Path)
+    parser.add_argument("--rotary", default="ISOTROPIC",
+                        help="comma-separated *SHELL SECTION ROTARY INERTIA= values to run with "
+                             "the new binary (ISOTROPIC, EXACT)")
     args = parser.parse_args()
-    binaries = [("new", args.xpl)] + ([("old", args.old)] if args.old else [])
+    binaries = [("new", args.xpl, r) for r in args.rotary.split(",")]
+    binaries += [("old", args.old, "ISOTROPIC")] if args.old else []
     rows = []
     print(f"St Venant torsion (Kirchhoff strip with the edge correction): {st_venant():.2f} Hz")
-    for label, xpl in binaries:
+    for label, xpl, rotary in binaries:
         out_dir = pathlib.Path("build/strip_torsion") / label
         out_dir.mkdir(parents=True, exist_ok=True)
         for mesh in args.meshes.split(","):
             nx, ny = map(int, mesh.split("x"))
             # A binary from before issue 21 refuses dof 4: its torsion start is U3 alone.
-            ft, summary = run(xpl, nx, ny, "torsion", out_dir, rotations=label == "new")
-            fb, _ = run(xpl, nx, ny, "bending", out_dir)
-            rows.append({"binary": label, "mesh": mesh, "torsion_hz": ft, "bending_hz": fb,
-                         "increments": summary.get("increments", "")})
-            print(f"{label} {mesh:>6}: torsion {ft:.2f} Hz, bending {fb:.3f} Hz")
-    for label, _ in binaries:
-        mine = [r for r in rows if r["binary"] == label]
+            ft, summary = run(xpl, nx, ny, "torsion", out_dir, rotations=label == "new",
+                              rotary=rotary)
+            fb, bending = run(xpl, nx, ny, "bending", out_dir, rotary=rotary)
+            rows.append({"binary": label, "rotary": rotary, "mesh": mesh, "torsion_hz": ft,
+                         "bending_hz": fb, "torsion_increments": summary.get("increments", ""),
+                         "bending_increments": bending.get("increments", "")})
+            print(f"{label} {rotary} {mesh:>6}: torsion {ft:.2f} Hz, bending {fb:.3f} Hz, "
+                  f"{summary.get('increments', '')} increments")
+    for label, _, rotary in binaries:
+        mine = [r for r in rows if r["binary"] == label and r["rotary"] == rotary]
         ref = mine[-1]
         for r in mine:
-            print(f"{label} {r['mesh']:>6}: torsion {100 * (r['torsion_hz'] / ref['torsion_hz'] - 1):+.2f} % "
+            print(f"{label} {rotary} {r['mesh']:>6}: torsion "
+                  f"{100 * (r['torsion_hz'] / ref['torsion_hz'] - 1):+.2f} % "
                   f"of the finest, {100 * (r['torsion_hz'] / st_venant() - 1):+.2f} % of St Venant; "
                   f"bending {100 * (r['bending_hz'] / ref['bending_hz'] - 1):+.2f} % of the finest")
     if args.csv:

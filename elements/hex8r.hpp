@@ -15,6 +15,7 @@
 
 #include "common/types.hpp"
 #include "elements/hex_batches.hpp"
+#include "elements/lane_state.hpp"
 #include "elements/plasticity.hpp"
 #include "elements/simd.hpp"
 
@@ -85,11 +86,17 @@ class Hex8rBlock {
   /// Sets the stress of every element of the block from model-sized rows (n_elements × 6,
   /// row e·6.., S11 S22 S33 S12 S13 S23, global axes, Pa): the inverse of gather_output's
   /// stress part, for a run that starts from an imported state. Rows of elements outside the
-  /// block are not read. The accumulated hourglass forces are left as they are (zero on a new
-  /// block: result files do not hold them, so an imported state starts without hourglass
-  /// resistance), and so is the volume that gather_output reports (set by the next
+  /// block are not read. The accumulated hourglass forces are left as they are (see
+  /// set_hourglass_state), and so is the volume that gather_output reports (set by the next
   /// internal-force pass).
   void set_stress(std::span<const Real> stress);
+
+  /// Writes the accumulated stiffness-form hourglass forces (4 modes × 3 global components,
+  /// N; zero under the viscous form) of every block element at its model index into
+  /// model-sized rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp).
+  void gather_hourglass_state(std::vector<Real>& rows) const;
+  /// The inverse of gather_hourglass_state, for a run that starts from an imported state.
+  void set_hourglass_state(std::span<const Real> rows);
 
   /// Stress of block element i (constructor order), for tests.
   std::array<Real, 6> stress(Index i) const;

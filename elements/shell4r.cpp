@@ -63,9 +63,10 @@ constexpr Real GAMMA[4] = {1.0, -1.0, 1.0, -1.0};
 
 }  // namespace
 
-Real shell_rotary_radius2(Real thickness, Real length, Real poisson) {
+Real shell_rotary_radius2(Real thickness, Real length, Real poisson, bool exact) {
   const Real nu = poisson;
   const Real ratio = 2.0 * (1.0 + nu) / (SHELL_SHEAR_FACTOR * (1.0 - nu)) - 1.0;
+  if (exact) return thickness * thickness / 12.0;
   return std::max(thickness * thickness / 12.0,
                   SHELL_ROTARY_MARGIN * length * length / (4.0 * ratio));
 }
@@ -120,9 +121,13 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
       c[PHYS_ON * W] = physical ? 1.0 : 0.0;
       c[POISSON * W] = nu;
       m_batch_forms[b] |= physical ? FORM_PHYS : FORM_OLD;
+      m_rotary_exact = m_rotary_exact || p.rotary_exact;
       c[OFFSET * W] = p.offset;
       c[DENSITY * W] = p.density;
       c[THICKNESS0 * W] = p.thickness;
+      c[ROT_SPEED2 * W] =
+          p.rotary_exact ? SHELL_EXACT_ROTARY_MARGIN * SHELL_SHEAR_FACTOR * g / p.density : 0.0;
+      c[ROT_EXACT * W] = p.rotary_exact ? 1.0 : 0.0;
       m_thickness[b * W + l] = p.thickness;
       Real zeta[SHELL_MAX_POINTS], weight[SHELL_MAX_POINTS];
       const int points = std::min(p.integration_points, SHELL_MAX_POINTS);
@@ -154,7 +159,8 @@ void Shell4rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Re
     const Real share = m_const[(b * N_CONST + DENSITY) * W + l] * t * area / 4.0;
     const Real length = 1.41421356237309515 * area / frame.diagonal;
     const Real inertia =
-        share * shell_rotary_radius2(t, length, m_const[(b * N_CONST + POISSON) * W + l]);
+        share * shell_rotary_radius2(t, length, m_const[(b * N_CONST + POISSON) * W + l],
+                                     m_const[(b * N_CONST + ROT_EXACT) * W + l] > 0.0);
     for (Index node : nodes) {
       mass[node] += share;
       rotary_inertia[node] += inertia;
@@ -484,7 +490,16 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
 
   // Stable increment of the one-point quad: its breathing mode has ω = 2 c √(1+ν) / h on a
   // square; L = √2 A / (longer diagonal) is h on a square and shorter on skewed elements.
-  const Vec dt_e = (1.41421356237309515 * area / fe.diagonal) / constant(DT_SPEED);
+  const Vec length = 1.41421356237309515 * area / fe.diagonal;
+  Vec dt_e = length / constant(DT_SPEED);
+  if (m_rotary_exact) {
+    // ROTARY INERTIA=EXACT: the fastest transverse-shear mode, a tilt of the normal against
+    // the rotations, ω² = κ_s G (4/L² + 12/t0²)/ρ (shell4r.hpp) with a margin, may set the
+    // increment.
+    const Vec t0 = constant(THICKNESS0);
+    const Vec omega2 = constant(ROT_SPEED2) * (4.0 / (length * length) + 12.0 / (t0 * t0));
+    dt_e = simd::min(dt_e, 2.0 / simd::sqrt(simd::max(omega2, simd::splat(1e-300))));
+  }
   Vec strain_inc = fm.area * work;
   Vec plastic_inc = simd::splat(0.0);
   if constexpr (PLASTIC) {
@@ -589,6 +604,28 @@ void Shell4rBlock::gather_output(const NodalVectors& position, std::vector<Real>
     }
     thickness[e] = out.thickness;
   }
+}
+
+void Shell4rBlock::gather_hourglass_state(std::vector<Real>& rows) const {
+  gather_lane_rows(m_hourglass, N_HOURGLASS, W, m_element_index, m_slot, rows);
+}
+
+void Shell4rBlock::set_hourglass_state(std::span<const Real> rows) {
+  set_lane_rows(rows, N_HOURGLASS, W, m_element_index, m_slot, m_lane_owner, m_hourglass);
+}
+
+void Shell4rBlock::set_thickness(std::span<const Real> thickness) {
+  for (Index i = 0; i < size(); ++i) {
+    const auto e = static_cast<std::size_t>(m_element_index[i]);
+    if (e >= thickness.size() || !(thickness[e] > 0.0))
+      throw std::invalid_argument(
+          "Shell4rBlock::set_thickness: no positive thickness for element " + std::to_string(e));
+    m_thickness[slot_of(i)] = thickness[e];
+  }
+  const auto n_batches = static_cast<std::size_t>(m_color_batches.back());
+  for (std::size_t b = 0; b < n_batches; ++b)
+    for (int l = 1; l < W; ++l)
+      if (m_lane_owner[b * W + l] == NO_INDEX) m_thickness[b * W + l] = m_thickness[b * W];
 }
 
 void Shell4rBlock::set_output_stress(const NodalVectors& position, std::span<const Real> middle,

@@ -37,6 +37,7 @@
 
 #include "common/types.hpp"
 #include "elements/increment_limit.hpp"
+#include "elements/lane_state.hpp"
 #include "elements/shell_plasticity.hpp"
 #include "elements/simd.hpp"
 #include "elements/thread_partition.hpp"
@@ -52,6 +53,10 @@ inline constexpr Real SHELL_HOURGLASS_STIFFNESS = 0.05;
 inline constexpr Real SHELL_SHEAR_FACTOR = 5.0 / 6.0;
 /// Safety factor on the smallest rotary inertia scale c_ν (see the file comment).
 inline constexpr Real SHELL_ROTARY_MARGIN = 1.25;
+/// Factor on ω² of the tilt-mode bound κ_s G (4/L² + 12/t²)/ρ that limits the increment of
+/// ROTARY INERTIA=EXACT elements: the bound is exact on a square, and distorted elements
+/// reach 2.3 % above it in ω (tests/elements/test_shell4r_hourglass.cpp).
+inline constexpr Real SHELL_EXACT_ROTARY_MARGIN = 1.1;
 
 /// Hourglass control of the S4R bending and transverse-shear patterns.
 enum class ShellHourglass {
@@ -80,11 +85,15 @@ struct ShellProperties {
   const Plasticity* plastic = nullptr;
   /// Form of the bending and transverse-shear hourglass control.
   ShellHourglass hourglass = ShellHourglass::Physical;
+  /// Rotary inertia t²/12 per unit mass (ROTARY INERTIA=EXACT), with the stable increment
+  /// of the element's fastest transverse-shear mode, instead of the scaled default.
+  bool rotary_exact = false;
 };
 
 /// Rotary inertia per unit translational mass (m²) of a shell element of thickness t,
-/// stable-increment length L (m) and Poisson's ratio ν (see the file comment).
-Real shell_rotary_radius2(Real thickness, Real length, Real poisson);
+/// stable-increment length L (m) and Poisson's ratio ν (see the file comment); `exact`:
+/// t²/12 (ROTARY INERTIA=EXACT).
+Real shell_rotary_radius2(Real thickness, Real length, Real poisson, bool exact = false);
 
 /// What one shell internal-force pass reports (sums over the block in a fixed order).
 struct ShellStepTotals : IncrementLimit {
@@ -191,10 +200,20 @@ class Shell4rBlock {
   /// computes it): it is taken from S13 S23 of the middle rows; S33 and the transverse shear
   /// of the bottom and top rows are not read (gather_output writes S33 = 0 and the same
   /// shear at all three points). Thickness and hourglass resultants are left as they are
-  /// (the section thickness and zero on a new block: result files do not hold the hourglass
-  /// resultants).
+  /// (set_thickness, set_hourglass_state).
   void set_output_stress(const NodalVectors& position, std::span<const Real> middle,
                          std::span<const Real> bottom, std::span<const Real> top);
+
+  /// Writes the hourglass resultants of every block element at its model index into
+  /// model-sized rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp): the N_HOURGLASS
+  /// values below, in the element's corotational frame (N, N·m), the remaining columns 0.
+  void gather_hourglass_state(std::vector<Real>& rows) const;
+  /// The inverse of gather_hourglass_state, for a run that starts from an imported state in
+  /// the same configuration (the corotational frame follows from the nodes).
+  void set_hourglass_state(std::span<const Real> rows);
+  /// Sets the current thickness of every block element from a model-sized array (STH,
+  /// n_elements, m, > 0), for a run that starts from an imported state.
+  void set_thickness(std::span<const Real> thickness);
 
   /// Whether any element of the block is plastic (else no plastic state exists, P2).
   bool has_plasticity() const { return !m_plastic.empty(); }
@@ -234,6 +253,8 @@ class Shell4rBlock {
     OFFSET,      ///< reference surface above the mid-surface / thickness
     DENSITY,
     THICKNESS0,  ///< initial thickness
+    ROT_SPEED2,  ///< κ_s G / ρ on ROTARY INERTIA=EXACT lanes, else 0 (no rotational limit)
+    ROT_EXACT,   ///< 1 on ROTARY INERTIA=EXACT lanes, else 0
     N_CONST
   };
   /// Hourglass resultants: in-plane x, y; stiffness form: transverse, rotational x, y;
@@ -251,7 +272,8 @@ class Shell4rBlock {
   int points_of(std::size_t b, std::size_t l) const;
 
   std::vector<Index> m_element_index;
-  int m_points = 1;  ///< integration points of the block (max over elements)
+  int m_points = 1;             ///< integration points of the block (max over elements)
+  bool m_rotary_exact = false;  ///< any element with ROTARY INERTIA=EXACT
   // Batched (AoSoA) data, batch b lane l.
   std::vector<Index> m_conn;                 ///< [b][4][W]
   std::vector<Index> m_lane_owner;           ///< [b][W]

@@ -44,6 +44,7 @@ elements::ShellProperties shell_properties(const Model& model, Index element, Re
   p.thickness = section.thickness;
   p.integration_points = section.integration_points;
   p.offset = section.offset;
+  p.rotary_exact = section.rotary_exact;
   if (m.plastic) p.plastic = &*m.plastic;
   if (section.controls != NO_INDEX) {
     const SectionControls& c = model.section_controls[section.controls];
@@ -263,6 +264,15 @@ void ElementSet::set_plastic_strain(std::span<const Real> peeq, std::span<const 
   if (m_shell && !middle.empty()) m_shell->set_plastic_strain(middle, bottom, top);
 }
 
+void ElementSet::set_hourglass_state(std::span<const Real> rows) {
+  if (m_hex) m_hex->set_hourglass_state(rows);
+  if (m_shell) m_shell->set_hourglass_state(rows);
+}
+
+void ElementSet::set_shell_thickness(std::span<const Real> thickness) {
+  if (m_shell) m_shell->set_thickness(thickness);
+}
+
 void ElementSet::use_partition(int parts) {
   if (m_parts == parts) return;
   // The boundary nodes are those two parts share over all blocks, so that a node's
@@ -396,6 +406,11 @@ void ElementSet::gather_output(State& state, const FrameRequest& what) const {
   state.volume.resize(n_elements, 0.0);
   if (m_hex) m_hex->gather_output(state.stress, state.volume);
   if (m_hex8) m_hex8->gather_output(state.stress, state.volume);
+  if (what.stress && has_hourglass_state()) {
+    state.hourglass_state.assign(n_elements * elements::HOURGLASS_STATE_WIDTH, 0.0);
+    if (m_hex) m_hex->gather_hourglass_state(state.hourglass_state);
+    if (m_shell) m_shell->gather_hourglass_state(state.hourglass_state);
+  }
   if (m_shell) {
     const Real nan = std::numeric_limits<Real>::quiet_NaN();
     state.stress_bottom.resize(n_elements * 6, nan);

@@ -79,6 +79,15 @@ class ElementSet {
   void set_plastic_strain(std::span<const Real> peeq, std::span<const Real> middle,
                           std::span<const Real> bottom, std::span<const Real> top);
 
+  /// Whether the model's elements carry hourglass state (C3D8R or S4R elements: their
+  /// accumulated hourglass resultants), written with S and restored by set_hourglass_state.
+  bool has_hourglass_state() const { return m_hex != nullptr || m_shell != nullptr; }
+  /// Sets imported hourglass state (n_elements × elements::HOURGLASS_STATE_WIDTH, the rows
+  /// gather_output writes into State::hourglass_state).
+  void set_hourglass_state(std::span<const Real> rows);
+  /// Sets the imported current thickness of the shells (STH, n_elements, m).
+  void set_shell_thickness(std::span<const Real> thickness);
+
   /// Starts a step: the global frequency estimate is made anew at the next force pass.
   void begin_step() { m_global.begin_step(); }
   /// The global estimate made since the last call, as a note in `sink` (nothing otherwise).

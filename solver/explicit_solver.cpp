@@ -160,6 +160,8 @@ void ExplicitSolver::Impl::apply_initial_state(const InitialState& imported) {
   if (!imported.peeq.empty() || !imported.peeq_middle.empty())
     m_elements.set_plastic_strain(imported.peeq, imported.peeq_middle, imported.peeq_bottom,
                                   imported.peeq_top);
+  if (!imported.hourglass_state.empty()) m_elements.set_hourglass_state(imported.hourglass_state);
+  if (!imported.shell_thickness.empty()) m_elements.set_shell_thickness(imported.shell_thickness);
 }
 
 void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_messages) {
@@ -171,8 +173,12 @@ void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_me
                        " (positions, velocities" +
                        (imported->stress.empty() ? "" : ", element stresses") +
                        (imported->peeq.empty() ? "" : ", equivalent plastic strains") +
-                       "); time starts at 0. Hourglass forces and contact state start at zero; "
-                       "ALLSE counts the strain energy from here on");
+                       (imported->shell_thickness.empty() ? "" : ", shell thicknesses") +
+                       (imported->hourglass_state.empty() ? "" : ", hourglass forces") +
+                       "); time starts at 0. " +
+                       (imported->hourglass_state.empty() ? "Hourglass forces and contact state"
+                                                          : "Contact state") +
+                       " start at zero; ALLSE counts the strain energy from here on");
   for (const DeckMessage& m : m_model.deck_messages)
     m_sink.message(m.warning ? Severity::Warning : Severity::Note, escape_control(m.text));
   for (const SectionControls& c : m_model.section_controls)

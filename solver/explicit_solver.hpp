@@ -28,6 +28,12 @@ struct InitialState {
   std::vector<Real> peeq;                       ///< PEEQ (n_elements, -) or empty
   /// Shell PEEQ_SMID / PEEQ_SNEG / PEEQ_SPOS (n_elements each, -) or empty.
   std::vector<Real> peeq_middle, peeq_bottom, peeq_top;
+  /// Hourglass state (n_elements × elements::HOURGLASS_STATE_WIDTH, State::hourglass_state)
+  /// or empty (then it starts at zero).
+  std::vector<Real> hourglass_state;
+  /// Current shell thickness STH (n_elements, m; NaN rows of solids not read) or empty (then
+  /// the shells start at their section thickness).
+  std::vector<Real> shell_thickness;
 };
 
 struct SolverOptions {

@@ -117,6 +117,10 @@ struct ShellSection {
   /// fraction of the thickness along the shell normal: OFFSET=SPOS is 0.5, SNEG is -0.5,
   /// MIDSURFACE (default) is 0.
   Real offset = 0.0;
+  /// ROTARY INERTIA=EXACT: the physical rotary inertia t²/12 per unit mass, the element's
+  /// stable increment then including its rotational (transverse-shear) mode; ISOTROPIC
+  /// (default, false): scaled up where that mode would set the increment (shell4r.hpp).
+  bool rotary_exact = false;
   SourceLocation where;
 };
 

@@ -58,6 +58,11 @@ struct State {
   std::vector<Real> thickness;
   /// Current element volume, filled with `stress` (n_elements), m^3.
   std::vector<Real> volume;
+  /// Accumulated hourglass resultants (n_elements × elements::HOURGLASS_STATE_WIDTH, each
+  /// block's own layout: Hex8rBlock/Shell4rBlock::gather_hourglass_state; 0 for elements
+  /// without), filled with `stress` on models with C3D8R or S4R elements, else empty: the
+  /// state --import needs to continue a run with the same hourglass forces.
+  std::vector<Real> hourglass_state;
   /// Equivalent plastic strain PEEQ (n_elements), -: 0 for elastic elements; shells: the
   /// largest of their section points. Filled before a frame that asks for it (plastic models).
   std::vector<Real> peeq;

@@ -37,7 +37,12 @@ void read_solid_section(DeckState& deck, const DeckBlock& block) {
 void read_shell_section(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(deck, keyword,
-                   {{"ELSET"}, {"MATERIAL"}, {"OFFSET"}, {"CONTROLS"}, {"SECTION INTEGRATION"}});
+                   {{"ELSET"},
+                    {"MATERIAL"},
+                    {"OFFSET"},
+                    {"CONTROLS"},
+                    {"SECTION INTEGRATION"},
+                    {"ROTARY INERTIA"}});
   const std::optional<std::string> element_set = required_name(deck, keyword, "ELSET");
   const std::optional<std::string> material = required_name(deck, keyword, "MATERIAL");
   ShellSection section;
@@ -61,6 +66,14 @@ void read_shell_section(DeckState& deck, const DeckBlock& block) {
     else
       section.offset = *value;
   }
+
+  const std::string rotary = optional_name(keyword, "ROTARY INERTIA");
+  if (rotary == "EXACT")
+    section.rotary_exact = true;
+  else if (!rotary.empty() && rotary != "ISOTROPIC")
+    error(deck, keyword.where, keyword, "unknown ROTARY INERTIA=" + rotary,
+          "expected ROTARY INERTIA=ISOTROPIC (the default, scaled to keep the membrane "
+          "increment) or EXACT (t^2/12, with a smaller increment on thin elements)");
 
   const std::string integration = optional_name(keyword, "SECTION INTEGRATION");
   if (integration == "GAUSS")

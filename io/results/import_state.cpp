@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <unordered_map>
 
+#include "elements/lane_state.hpp"
 #include "io/results/h5_handles.hpp"
 #include "io/results/h5_reader.hpp"
 
@@ -350,6 +351,27 @@ ImportedState read_file(hid_t file, const Model& model) {
           "no PEEQ_SNEG/PEEQ_SMID/PEEQ_SPOS in the last frame: the shells take their largest "
           "PEEQ through the whole thickness");
     }
+  }
+  // Hourglass resultants (written with S by xpl since issue 14) and the shells' current
+  // thickness: without them a continued run starts with no hourglass resistance and the
+  // section thickness.
+  const bool hourglass_elements =
+      std::any_of(model.element_types.begin(), model.element_types.end(),
+                  [](ElementType t) { return t == ElementType::C3D8R || t == ElementType::S4R; });
+  if (hourglass_elements && has("HGSTATE")) {
+    state.hourglass_state = read_cells(file, frame + "/HGSTATE", element_of_row, model, all_rows,
+                                       elements::HOURGLASS_STATE_WIDTH);
+  } else if (hourglass_elements && has("S")) {
+    state.notes.push_back("no HGSTATE in the last frame: the hourglass forces start at zero");
+  }
+  if (shells && has("STH")) {
+    state.shell_thickness = read_cells(file, frame + "/STH", element_of_row, model, shell_rows, 1);
+    for (std::size_t e = 0; e < state.shell_thickness.size(); ++e)
+      if (shell_rows(e) && !(state.shell_thickness[e] > 0.0))
+        refuse(frame + "/STH is not positive at element " + std::to_string(model.element_ids[e]),
+               "expected shell thicknesses > 0");
+  } else if (shells && has("S")) {
+    state.notes.push_back("no STH in the last frame: the shells start at their section thickness");
   }
   const std::string status = h5::string_attribute(file, "/", "status").value_or("");
   if (!status.empty() && status != "completed" && status != "checked") {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "elements/lane_state.hpp"
 #include "io/results/results_mesh.hpp"
 #include "solver/output_variables.hpp"
 
@@ -217,6 +218,13 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
 
   for (const OutputVariable* v : frame_variables(what, output_scope(model)))
     write_variable(g, *v, state);
+  if (what.stress && !state.hourglass_state.empty()) {
+    // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
+    // --import (io/results/import_state.hpp).
+    const auto width = static_cast<std::size_t>(elements::HOURGLASS_STATE_WIDTH);
+    check_size(state.hourglass_state, n_elements * width, "hourglass_state");
+    h5::write_real(g, "HGSTATE", state.hourglass_state, {n_elements, width});
+  }
   ++m_frames;
   flush();
   return name;

@@ -86,9 +86,13 @@ TEST_CASE("bad *SHELL SECTION parameters", "[io][deck][shell][errors]") {
        p + "OFFSET=-1 is outside [-0.5, 0.5]; expected a fraction of the thickness between "
            "-0.5 (SNEG) and 0.5 (SPOS)"},
       {", CONTROLS=HG", p + "undefined section controls HG; expected *SECTION CONTROLS, NAME=HG"},
+      {", ROTARY INERTIA=FULL",
+       p + "unknown ROTARY INERTIA=FULL; expected ROTARY INERTIA=ISOTROPIC (the default, scaled "
+           "to keep the membrane increment) or EXACT (t^2/12, with a smaller increment on thin "
+           "elements)"},
       {", ORIENTATION=O1",
        p + "unknown parameter ORIENTATION; accepted parameters: ELSET=, MATERIAL=, OFFSET=, "
-           "CONTROLS=, SECTION INTEGRATION="},
+           "CONTROLS=, SECTION INTEGRATION=, ROTARY INERTIA="},
   };
   for (const auto& [extra, message] : cases) {
     const auto errors = deck_errors(plate_with_section(SECTION_LINE + extra, "0.002\n"));

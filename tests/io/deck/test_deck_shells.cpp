@@ -247,3 +247,17 @@ TEST_CASE("rotational output variables and shell thickness", "[io][deck][shell]"
   CHECK(bcs[6].first_dof == 1);
   CHECK(bcs[6].last_dof == 6);
 }
+
+TEST_CASE("ROTARY INERTIA=ISOTROPIC (default) and EXACT", "[io][deck][shell]") {
+  const std::pair<std::string, bool> cases[] = {
+      {"", false}, {", ROTARY INERTIA=ISOTROPIC", false}, {", rotary inertia=exact", true}};
+  for (const auto& [extra, exact] : cases) {
+    std::string deck = shell_plate_model() + simple_step();
+    const std::string section = "*SHELL SECTION, ELSET=PLATE, MATERIAL=ALU";
+    deck.replace(deck.find(section), section.size(), section + extra);
+    const Model m = io::read_deck_text(deck, "rotary.inp");
+    INFO("parameters: " << extra);
+    CHECK(m.shell_sections[0].rotary_exact == exact);
+    CHECK(m.deck_messages.empty());
+  }
+}

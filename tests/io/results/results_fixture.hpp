@@ -93,6 +93,8 @@ inline State tiny_state(const Model& model, int frame) {
   for (int e = 0; e < 2; ++e) {
     for (int c = 0; c < 6; ++c) state.stress.push_back((c + 1.0) * (e + 1) * (frame + 1));
     state.volume.push_back(0.015625 * (1.0 + 0.01 * frame));
+    // C3D8R hourglass state (HGSTATE), 12 values per element.
+    for (int c = 0; c < 12; ++c) state.hourglass_state.push_back(0.5 * (c + 1) - e + frame);
   }
   state.time = 1e-4 * frame;
   state.step_time = state.time;

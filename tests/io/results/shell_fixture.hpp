@@ -66,7 +66,7 @@ inline Model mixed_model(bool with_hex = true) {
   steel.has_density = steel.has_elastic = true;
   model.materials.push_back(steel);
   model.element_sets.push_back({"SHELLS", {0, with_hex ? 2 : 1}, {}});
-  model.shell_sections.push_back({0, 0, NO_INDEX, 0.01, 5, 0.0, {}});
+  model.shell_sections.push_back({0, 0, NO_INDEX, 0.01, 5, 0.0, false, {}});
   if (with_hex) {
     model.element_sets.push_back({"HEX", {1}, {}});
     model.solid_sections.push_back({1, 0, NO_INDEX, {}});
@@ -125,6 +125,8 @@ inline State mixed_state(const Model& model, int frame) {
     }
     state.thickness.push_back(shell ? 0.01 * (e + 1) * (1.0 - 0.001 * frame) : NaN);
     state.volume.push_back(0.015625 * (1.0 + 0.01 * frame));
+    // Hourglass state (HGSTATE), 12 values per element.
+    for (int c = 0; c < 12; ++c) state.hourglass_state.push_back(0.25 * (c + 1) + e - frame);
   }
   state.time = 1e-4 * frame;
   state.step_time = state.time;

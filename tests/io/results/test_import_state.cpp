@@ -92,6 +92,7 @@ TEST_CASE("import: the last frame of a hex result file", "[io][results][import]"
   CHECK(imported.stress == last.stress);
   CHECK(imported.stress_bottom.empty());
   CHECK(imported.stress_top.empty());
+  CHECK(imported.hourglass_state == last.hourglass_state);
   CHECK(imported.notes.empty());
 }
 
@@ -129,6 +130,8 @@ TEST_CASE("import: shell fields, and notes on what the last frame lacks",
     CHECK(imported.stress == last.stress);
     CHECK(same_values(imported.stress_bottom, last.stress_bottom));  // NaN rows of the hex
     CHECK(same_values(imported.stress_top, last.stress_top));
+    CHECK(imported.hourglass_state == last.hourglass_state);
+    CHECK(same_values(imported.shell_thickness, last.thickness));
     CHECK(imported.notes.empty());
   }
 
