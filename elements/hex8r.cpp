@@ -285,8 +285,7 @@ void Hex8rBlock::gather_hourglass_state(std::vector<Real>& rows) const {
 }
 
 void Hex8rBlock::set_hourglass_state(std::span<const Real> rows) {
-  m_batches.check_model_rows(rows.size(), HOURGLASS_STATE_WIDTH,
-                             "Hex8rBlock::set_hourglass_state");
+  m_batches.check_model_rows(rows.size(), HOURGLASS_STATE_WIDTH, "Hex8rBlock::set_hourglass_state");
   const auto width = static_cast<std::size_t>(HOURGLASS_STATE_WIDTH);
   // Padding lanes compute a copy of lane 0 of their batch: they take its state as well.
   for (Index b = 0; b < m_batches.batch_count(); ++b)

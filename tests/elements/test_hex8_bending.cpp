@@ -156,7 +156,7 @@ TEST_CASE("c3d8: nearly incompressible block under a punch: no volumetric lockin
   // the C3D8R result of the same fine mesh within 2 %, while a locking element would be
   // many times stiffer. Static solution, as the cantilever test.
   const int n = 12;  // 12³ elements: 0.5 s for four static solves
-  Beam b;  // reused as a general mesh holder
+  Beam b;            // reused as a general mesh holder
   const Real edge = 0.01;
   const int m = n + 1;
   auto node = [&](int i, int j, int k) { return static_cast<Index>(i + m * (j + m * k)); };
