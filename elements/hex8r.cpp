@@ -275,25 +275,12 @@ void Hex8rBlock::set_stress(std::span<const Real> stress) {
 }
 
 void Hex8rBlock::gather_hourglass_state(std::vector<Real>& rows) const {
-  const auto width = static_cast<std::size_t>(HOURGLASS_STATE_WIDTH);
-  for (Index i = 0; i < size(); ++i) {
-    const Index slot = m_batches.slot(i);
-    const Index b = slot / W, l = slot % W;
-    const auto e = static_cast<std::size_t>(m_batches.element_index(i));
-    for (int c = 0; c < 12; ++c) rows[e * width + c] = m_hourglass[(b * 12 + c) * W + l];
-  }
+  gather_lane_rows(m_hourglass, 12, W, m_batches.element_indices(), m_batches.slots(), rows);
 }
 
 void Hex8rBlock::set_hourglass_state(std::span<const Real> rows) {
-  m_batches.check_model_rows(rows.size(), HOURGLASS_STATE_WIDTH, "Hex8rBlock::set_hourglass_state");
-  const auto width = static_cast<std::size_t>(HOURGLASS_STATE_WIDTH);
-  // Padding lanes compute a copy of lane 0 of their batch: they take its state as well.
-  for (Index b = 0; b < m_batches.batch_count(); ++b)
-    for (int l = 0; l < W; ++l) {
-      const auto e =
-          static_cast<std::size_t>(m_batches.element_index(m_batches.lane_element(b, l)));
-      for (int c = 0; c < 12; ++c) m_hourglass[(b * 12 + c) * W + l] = rows[e * width + c];
-    }
+  set_lane_rows(rows, 12, W, m_batches.element_indices(), m_batches.slots(),
+                m_batches.lane_owners(), m_hourglass);
 }
 
 std::array<Real, 6> Hex8rBlock::stress(Index i) const {

@@ -90,6 +90,9 @@ class HexBatches {
   }
   /// Slot (batch·W + lane) of block element i.
   Index slot(Index i) const { return m_slot[i]; }
+  const std::vector<Index>& slots() const { return m_slot; }
+  /// Block element of every lane ([b][W]), NO_INDEX for padding lanes.
+  const std::vector<Index>& lane_owners() const { return m_lane_owner; }
   /// Corner nodes of batch b, [corner 8][W].
   const Index* conn(Index b) const { return &m_conn[static_cast<std::size_t>(b) * 8 * W]; }
   /// Constants of batch b, [constant][W].
