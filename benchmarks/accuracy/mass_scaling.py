@@ -21,7 +21,6 @@ of REPEAT (3).
 import argparse
 import csv
 import json
-import math
 import pathlib
 import sys
 
