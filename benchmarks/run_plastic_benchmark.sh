@@ -10,7 +10,8 @@
 # plate; LOAD stretch: stretched at 20/s, YIELD 50e6, every section point yields; LOAD pressure:
 # 3 MPa on the plate, YIELD 250e6, the plate yields in bending) and appends to
 # benchmarks/results/plastic_plate.csv. Each run also records the process's user CPU seconds,
-# which a shared machine disturbs far less than the wall-clock rate.
+# which a shared machine disturbs far less than the wall-clock rate (needs /usr/bin/time,
+# Debian's package time).
 set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
@@ -71,6 +72,12 @@ import csv, statistics, sys
 rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["date"] == sys.argv[2]]
 print("| threads | elastic best | elastic median | plastic best | plastic median | plastic/elastic (median) |")
 print("|---:|---:|---:|---:|---:|---:|")
+for threads in sorted({r["threads"] for r in rows}):
+    rates = {d: [float(r["cycles_per_second"]) for r in rows
+                 if r["threads"] == threads and r["deck"] == d] for d in ("elastic", "plastic")}
+    e, p = rates["elastic"], rates["plastic"]
+    print(f"| {threads} | {max(e):.4g} | {statistics.median(e):.4g} | {max(p):.4g} | "
+          f"{statistics.median(p):.4g} | {statistics.median(p) / statistics.median(e):.3f} |")
 if "user_cpu_s" in rows[0]:
     for threads in sorted({r["threads"] for r in rows}):
         cpu = {d: [float(r["user_cpu_s"]) for r in rows
@@ -80,10 +87,4 @@ if "user_cpu_s" in rows[0]:
               f"{statistics.median(e):.2f} s, plastic best {min(p):.2f} s median "
               f"{statistics.median(p):.2f} s, elastic/plastic CPU (median) "
               f"{statistics.median(e) / statistics.median(p):.3f}")
-for threads in sorted({r["threads"] for r in rows}):
-    rates = {d: [float(r["cycles_per_second"]) for r in rows
-                 if r["threads"] == threads and r["deck"] == d] for d in ("elastic", "plastic")}
-    e, p = rates["elastic"], rates["plastic"]
-    print(f"| {threads} | {max(e):.4g} | {statistics.median(e):.4g} | {max(p):.4g} | "
-          f"{statistics.median(p):.4g} | {statistics.median(p) / statistics.median(e):.3f} |")
 PY
