@@ -21,6 +21,7 @@
 #include "common/types.hpp"
 #include "elements/hex_batches.hpp"
 #include "elements/plasticity.hpp"
+#include "elements/radial_return_lanes.hpp"
 #include "elements/simd.hpp"
 
 namespace xpl::elements {
@@ -135,8 +136,7 @@ class Hex8Block {
   std::vector<Plasticity> m_laws;
   std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, or -1
   std::vector<unsigned char> m_batch_plastic;  ///< [b] 1 if any lane of the batch is plastic
-  std::vector<Real> m_peeq;                    ///< [b][point 8][W] ε̄ᵖ, -
-  std::vector<Real> m_yield;  ///< [b][point 8][W] σ_y(ε̄ᵖ, 0), Pa; +inf elastic
+  RadialReturnLanes m_points;  ///< [b][point 8][W] ε̄ᵖ, yield stress and table segment
   // Per-batch energies, reduced serially in batch order (deterministic).
   std::vector<Real> m_batch_energy;  ///< [b][3]: strain, viscous, plastic
 };

@@ -19,43 +19,22 @@ void Hex8Block::setup_plasticity(const std::vector<HexMaterial>& materials) {
   m_lane_law = std::move(lanes.lane_law);
   m_batch_plastic = std::move(lanes.batch_plastic);
   const std::size_t n = m_lane_law.size();
-  m_peeq.assign(n * HEX8_POINTS, 0.0);
-  m_yield.assign(n * HEX8_POINTS, std::numeric_limits<Real>::infinity());
+  m_points = RadialReturnLanes(n * HEX8_POINTS);
   for (std::size_t k = 0; k < n; ++k) {
     if (m_lane_law[k] < 0) continue;
-    const Real y0 = flow_stress(m_laws[static_cast<std::size_t>(m_lane_law[k])], 0.0, 0.0).stress;
     const std::size_t b = k / W, l = k % W;
-    for (int q = 0; q < HEX8_POINTS; ++q) m_yield[(b * HEX8_POINTS + q) * W + l] = y0;
+    for (int q = 0; q < HEX8_POINTS; ++q)
+      m_points.reset((b * HEX8_POINTS + q) * W + l, m_laws[static_cast<std::size_t>(m_lane_law[k])],
+                     0.0);
   }
 }
 
 Vec Hex8Block::plastic_return(Index batch, int q, Vec sn[6], Real dt) {
+  // The pressure (the element's, shared by all points) is left as it is by the return.
   const std::size_t base = (static_cast<std::size_t>(batch) * HEX8_POINTS + q) * W;
-  const Vec p = (sn[0] + sn[1] + sn[2]) * (1.0 / 3.0);
-  const Vec dev[6] = {sn[0] - p, sn[1] - p, sn[2] - p, sn[3], sn[4], sn[5]};
-  const Vec q2 = 1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) +
-                 3.0 * (dev[3] * dev[3] + dev[4] * dev[4] + dev[5] * dev[5]);
-  const Vec y = simd::load(&m_yield[base]);
-  const simd::Mask yielding = q2 > y * y;
-  Vec dissipation = simd::splat(0.0);
-  if (!simd::any(yielding)) return dissipation;
-  const Real* two_mu = m_batches.constants(batch) + TWO_MU * W;
-  const std::size_t lane0 = static_cast<std::size_t>(batch) * W;
-  for (int l = 0; l < W; ++l) {
-    if (!yielding[l]) continue;
-    const Plasticity& law = m_laws[static_cast<std::size_t>(m_lane_law[lane0 + l])];
-    const Real qt = std::sqrt(q2[l]);
-    const PlasticIncrement r = radial_return(law, qt, 1.5 * two_mu[l], m_peeq[base + l], dt);
-    if (!(r.peeq_increment > 0.0)) continue;
-    // Radial return of the deviator; the pressure (the element's, shared by all points) stays.
-    const Real scale = r.yield_stress / qt;
-    for (int c = 0; c < 3; ++c) sn[c][l] = p[l] + scale * dev[c][l];
-    for (int c = 3; c < 6; ++c) sn[c][l] = scale * dev[c][l];
-    m_peeq[base + l] += r.peeq_increment;
-    m_yield[base + l] = flow_stress(law, m_peeq[base + l], 0.0).stress;
-    dissipation[l] = r.yield_stress * r.peeq_increment;
-  }
-  return dissipation;
+  const Vec two_mu = simd::load(m_batches.constants(batch) + TWO_MU * W);
+  return m_points.return_row(base, &m_lane_law[static_cast<std::size_t>(batch) * W], m_laws, sn,
+                             two_mu, dt, nullptr);
 }
 
 void Hex8Block::gather_plastic_strain(std::vector<Real>& peeq) const {
@@ -67,12 +46,9 @@ void Hex8Block::set_plastic_strain(std::span<const Real> peeq) {
   if (m_laws.empty()) return;
   m_batches.for_imported_peeq(
       peeq, m_lane_law, "Hex8Block::set_plastic_strain", [&](Index b, int l, int law, Real value) {
-        const Real y = flow_stress(m_laws[static_cast<std::size_t>(law)], value, 0.0).stress;
-        for (int q = 0; q < HEX8_POINTS; ++q) {
-          const std::size_t k = (static_cast<std::size_t>(b) * HEX8_POINTS + q) * W + l;
-          m_peeq[k] = value;
-          m_yield[k] = y;
-        }
+        for (int q = 0; q < HEX8_POINTS; ++q)
+          m_points.reset((static_cast<std::size_t>(b) * HEX8_POINTS + q) * W + l,
+                         m_laws[static_cast<std::size_t>(law)], value);
       });
 }
 
@@ -85,11 +61,11 @@ Real Hex8Block::plastic_strain(Index i) const {
   for (int q = 0; q < HEX8_POINTS; ++q) {
     const std::size_t k = (b * HEX8_POINTS + q) * W + l;
     weight += m_point_volume[k];
-    sum += m_point_volume[k] * m_peeq[k];
+    sum += m_point_volume[k] * m_points.peeq(k);
   }
   if (weight > 0.0) return sum / weight;
   Real mean = 0.0;
-  for (int q = 0; q < HEX8_POINTS; ++q) mean += m_peeq[(b * HEX8_POINTS + q) * W + l];
+  for (int q = 0; q < HEX8_POINTS; ++q) mean += m_points.peeq((b * HEX8_POINTS + q) * W + l);
   return mean / HEX8_POINTS;
 }
 

@@ -17,6 +17,7 @@
 #include "elements/hex_batches.hpp"
 #include "elements/lane_state.hpp"
 #include "elements/plasticity.hpp"
+#include "elements/radial_return_lanes.hpp"
 #include "elements/simd.hpp"
 
 namespace xpl::elements {
@@ -144,7 +145,8 @@ class Hex8rBlock {
   /// J2 return of the trial stresses `sn` (6 × W) of a batch with plastic lanes over the
   /// increment `dt`: scales the deviatoric part of yielding lanes onto the yield surface,
   /// updates PEEQ, its rate and the yield stress, and returns σ_y Δε̄ᵖ per lane (Pa; 0 in
-  /// lanes that stay elastic). One SIMD yield test; the scalar return only where it fails.
+  /// lanes that stay elastic). One SIMD yield test; the batch return within table segments,
+  /// the scalar return only where that does not apply.
   simd::Vec plastic_return(Index batch, simd::Vec sn[6], Real dt);
   /// Copies the plastic laws and the plastic state arrays (constructor).
   void setup_plasticity(const std::vector<HexMaterial>& materials);
@@ -161,9 +163,8 @@ class Hex8rBlock {
   std::vector<Plasticity> m_laws;              ///< the distinct laws of the block's materials
   std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, or -1 (elastic lane)
   std::vector<unsigned char> m_batch_plastic;  ///< [b] 1 if any lane of the batch is plastic
-  std::vector<Real> m_peeq;                    ///< [b][W] equivalent plastic strain ε̄ᵖ, -
+  RadialReturnLanes m_points;                  ///< [b][W] ε̄ᵖ, yield stress and table segment
   std::vector<Real> m_peeq_rate;               ///< [b][W] Δε̄ᵖ/dt of the last increment, 1/s
-  std::vector<Real> m_yield;  ///< [b][W] σ_y(ε̄ᵖ, 0), Pa; +inf in elastic lanes
   // Per-batch energies, reduced serially in batch order (deterministic).
   std::vector<Real> m_batch_energy;  ///< [b][4]: strain, hourglass, viscous, plastic
 };

@@ -1,0 +1,57 @@
+#pragma once
+/// \file The J2 radial return of the hex integration points, one SIMD batch at a time.
+///
+/// A piecewise-linear hardening curve without rate dependence (tabular `*PLASTIC`, the
+/// common metal deck) makes the consistency condition linear inside one table segment:
+///   q_trial − 3G Δε̄ᵖ = σ_i + H_i (ε̄ᵖ_n + Δε̄ᵖ − ε_i)   ⇒   Δε̄ᵖ = (q_trial − σ_y,n) / (3G + H_i),
+/// with (ε_i, σ_i, H_i) the segment that holds ε̄ᵖ_n. The lanes of a batch whose solution stays
+/// inside their segment are returned together with masks, branch-free (one square root and
+/// two divisions per batch instead of a scalar Newton per lane). The other yielding lanes (a
+/// segment crossed within the increment, Johnson–Cook, rate laws, softening) take the scalar
+/// `radial_return`, which is exact for them.
+
+#include <cstddef>
+#include <vector>
+
+#include "common/types.hpp"
+#include "elements/plasticity.hpp"
+#include "elements/simd.hpp"
+
+namespace xpl::elements {
+
+/// Plastic state of the integration points of a hex block, one row of W lanes per batch
+/// (and point): ε̄ᵖ, the static yield stress the next trial is tested against, and the
+/// table segment that holds ε̄ᵖ. Slots are `row + lane`.
+class RadialReturnLanes {
+ public:
+  static constexpr int W = simd::W;
+
+  RadialReturnLanes() = default;
+  /// `slots` points in all (a multiple of W); every lane elastic (σ_y = +inf) until `reset`.
+  explicit RadialReturnLanes(std::size_t slots);
+
+  /// Sets slot `slot` to plastic strain `peeq` (≥ 0) on `law`: its yield stress and segment.
+  void reset(std::size_t slot, const Plasticity& law, Real peeq);
+
+  /// Return of the W lanes of row `row` (a slot multiple of W), in place on the trial stress
+  /// `sn` (Voigt 11 22 33 12 13 23, Pa); `two_mu` = 2G per lane (Pa), `laws[lane_law[l]]` the
+  /// law of lane l (−1: elastic, never yields), dt > 0 (s). Writes Δε̄ᵖ/dt (1/s, 0 where
+  /// elastic) to `rate` unless it is null; returns the dissipation σ_y Δε̄ᵖ per lane (J/m^3).
+  simd::Vec return_row(std::size_t row, const int* lane_law, const std::vector<Plasticity>& laws,
+                       simd::Vec sn[6], simd::Vec two_mu, Real dt, Real* rate);
+
+  Real peeq(std::size_t slot) const { return m_peeq[slot]; }
+
+ private:
+  std::vector<Real> m_peeq;   ///< ε̄ᵖ, -
+  std::vector<Real> m_yield;  ///< σ_y(ε̄ᵖ, 0), Pa; +inf in elastic lanes
+  /// The segment holding ε̄ᵖ: start (ε_i, σ_i), slope H_i ≥ 0 and end strain. The end is
+  /// +inf on the last segment (constant after the table) and −inf where the batch return
+  /// does not apply (not tabular, rate dependent, softening): those lanes always go scalar.
+  std::vector<Real> m_seg_strain;
+  std::vector<Real> m_seg_stress;
+  std::vector<Real> m_seg_slope;
+  std::vector<Real> m_seg_end;
+};
+
+}  // namespace xpl::elements
