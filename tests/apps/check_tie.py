@@ -34,6 +34,7 @@ import h5py
 import numpy as np
 
 E, NU_STEEL, RHO = 200e9, 0.3, 7850.0
+C0 = (E / RHO) ** 0.5  # bar wave speed at nu = 0, m/s
 
 
 def check(condition, message):
@@ -125,31 +126,35 @@ def read_msg(d, job):
 
 # --- patch ------------------------------------------------------------------------------------
 def patch(binary, out, driven=True):
-    """driven: DOF 1 of every non-slave node follows the linear field (asserted); else only
-    the x faces do (the free interior measured and printed, not asserted)."""
+    """Block B (5 x 5 x 2) on block A (4 x 4 x 2), B's bottom tied to A's top, stretched across
+    the tie by v3 = RATE z (v1 = v2 = 0). driven: every DOF of every non-slave node follows the
+    field (asserted: uniform S to 1e-6 of S33); else only z = 0 and z = 2T are driven in z and
+    the rest of the interior moves freely in z (the spread measured and printed, not asserted:
+    the one-pass node-to-face force transfer does not pass this patch test exactly)."""
     L, T, RATE = 0.01, 0.005, 100.0
     m = Mesh()
-    a = m.block((0, 0, 0), (L, L, T), (4, 4, 2), elset="A")
+    m.block((0, 0, 0), (L, L, T), (4, 4, 2), elset="A")
     b = m.block((0, 0, T), (L, L, T), (5, 5, 2), elset="B")
     slaves = set(flat(b, lambda i, j, k: k == 0))
     others = [n for n in m.nodes if n not in slaves]
-    x0 = [n for n in others if abs(m.nodes[n][0]) < 1e-12]
-    x1 = [n for n in others if abs(m.nodes[n][0] - L) < 1e-12]
-    m.lines += nset("OTHERS", others) + nset("X0", x0) + nset("X1", x1)
+    z0 = [n for n in others if abs(m.nodes[n][2]) < 1e-12]
+    z1 = [n for n in others if abs(m.nodes[n][2] - 2 * T) < 1e-12]
+    m.lines += nset("OTHERS", others) + nset("Z0", z0) + nset("Z1", z1)
     m.lines += ["*SURFACE, NAME=A_TOP, TYPE=ELEMENT"] + [
         f"{e}, S2" for e in range(1 + 16, 1 + 32)]  # A's upper layer, faces S2 (z max)
     m.lines += ["*SURFACE, NAME=B_BOTTOM, TYPE=ELEMENT"] + [f"{e}, S1" for e in range(33, 33 + 25)]
     m.lines += ["*TIE, NAME=GLUE", "B_BOTTOM, A_TOP"]
     m.lines += material(NU_STEEL) + ["*SOLID SECTION, ELSET=A, MATERIAL=STEEL",
                                      "*SOLID SECTION, ELSET=B, MATERIAL=STEEL"]
-    m.lines += ["*INITIAL CONDITIONS, TYPE=VELOCITY"] + [f"{n}, 1, {RATE * m.nodes[n][0]!r}"
+    # The slave nodes get no initial velocity: the tie gives them theirs.
+    m.lines += ["*INITIAL CONDITIONS, TYPE=VELOCITY"] + [f"{n}, 3, {RATE * m.nodes[n][2]!r}"
                                                          for n in others]
-    x_lines = ([f"{n}, 1, 1, {RATE * m.nodes[n][0]!r}" for n in others] if driven else
-               ["X0, 1, 1, 0.", f"X1, 1, 1, {RATE * L!r}"])
-    m.lines += ["*BOUNDARY, TYPE=VELOCITY", "OTHERS, 2, 3, 0.", *x_lines,
-                "*STEP", "*DYNAMIC, EXPLICIT", ", 4e-7",
-                "*OUTPUT, FIELD, NUMBER INTERVAL=1", "*NODE OUTPUT", "U", "*ELEMENT OUTPUT", "S",
-                "*END STEP"]
+    z_lines = ([f"{n}, 3, 3, {RATE * m.nodes[n][2]!r}" for n in others] if driven else
+               ["Z0, 3, 3, 0.", f"Z1, 3, 3, {RATE * 2 * T!r}"])
+    m.lines += ["*BOUNDARY, TYPE=VELOCITY", "OTHERS, 1, 2, 0.", *z_lines,
+                "*STEP", "*DYNAMIC, EXPLICIT", ", 5e-5",
+                "*OUTPUT, FIELD, NUMBER INTERVAL=50", "*NODE OUTPUT", "U", "*ELEMENT OUTPUT", "S",
+                "*OUTPUT, HISTORY, NUMBER INTERVAL=1", "*ENERGY OUTPUT", "*END STEP"]
     d = out / ("patch" if driven else "patch_free")
     d.mkdir()
     (d / "patch.inp").write_text(m.text("tie patch test"))
@@ -158,67 +163,93 @@ def patch(binary, out, driven=True):
     msg = read_msg(d, "patch")
     check(re.search(r"tie GLUE: 36 slave node\(s\) tied", msg), "patch: 36 tied slave nodes in .msg")
     with h5py.File(d / "patch.h5", "r") as f:
-        last = sorted(f["frames"], key=lambda s: int(s.split("_")[-1]))[-1]
-        fr = f["frames"][last]
+        fr = last_frame(f)
         incs = int(fr.attrs["increment"])
         t = float(fr.attrs["time"])
-        s11 = fr["S"][:, 0]
+        stress = fr["S"][:]
+        h = f["history/step_1/energy"]
+        drift = np.abs(h["ETOTAL"][:]).max() / np.abs(h["ALLWK"][:]).max()
     check(incs >= 100, f"patch: only {incs} increments")
-    spread = np.abs(s11 - s11.mean()).max() / abs(s11.mean())
+    s33 = stress[:, 2].mean()
+    spread = np.abs(stress - stress.mean(axis=0)).max() / abs(s33)
     lam, mu = E * NU_STEEL / ((1 + NU_STEEL) * (1 - 2 * NU_STEEL)), E / (2 * (1 + NU_STEEL))
-    expected = (lam + 2 * mu) * RATE * t
+    # Hypoelastic: the rate of deformation RATE / (1 + RATE t) integrates to ln(1 + RATE t).
+    expected = (lam + 2 * mu) * np.log1p(RATE * t)
     if not driven:
-        print(f"check_tie.py: patch with a free interior (measured, not asserted): S11 spread "
-              f"{spread:.2e} relative, mean/analytic - 1 = {s11.mean() / expected - 1:.1e}")
+        print(f"check_tie.py: patch with a free interior (measured, not asserted): S spread "
+              f"{spread:.2e} of S33, mean S33/analytic - 1 = {s33 / expected - 1:.1e}, ETOTAL "
+              f"drift {drift:.1e} of ALLWK")
         return
-    check(spread < 1e-6, f"patch: S11 spread {spread:.2e} relative (limit 1e-6)")
-    check(abs(s11.mean() / expected - 1) < 1e-3,
-          f"patch: mean S11 {s11.mean():.6e} Pa vs (lambda+2mu) eps = {expected:.6e} Pa")
-    print(f"check_tie.py: patch: {len(s11)} elements after {incs} increments, S11 spread "
-          f"{spread:.1e} relative, mean/analytic - 1 = {s11.mean() / expected - 1:.1e}")
+    check(spread < 1e-6, f"patch: S spread {spread:.2e} of S33 (limit 1e-6)")
+    check(abs(s33 / expected - 1) < 1e-3,
+          f"patch: mean S33 {s33:.6e} Pa vs (lambda+2mu) ln(1 + RATE t) = {expected:.6e} Pa")
+    check(drift < 0.01, f"patch: ETOTAL drift {drift:.2%} of ALLWK (limit 1 %)")
+    print(f"check_tie.py: patch: {len(stress)} elements after {incs} increments, S spread "
+          f"{spread:.1e} of S33, mean S33/analytic - 1 = {s33 / expected - 1:.1e}, ETOTAL drift "
+          f"{drift:.1e} of ALLWK")
 
 
 # --- wave -------------------------------------------------------------------------------------
-def wave(binary, out):
+def wave_run(binary, out, tied):
+    """The bar, tied (2 x 2 | 3 x 3 elements across) or in one piece (2 x 2 throughout);
+    returns the cross-section mean -S11 per 1 mm along x (100 values) at the end."""
     W, HALF, V = 0.003, 0.05, 1.0
     m = Mesh()
-    a = m.block((0, 0, 0), (HALF, W, W), (50, 2, 2), elset="LEFT")
-    b = m.block((HALF, 0, 0), (HALF, W, W), (50, 3, 3), elset="RIGHT")
-    n_left = 50 * 4
+    if tied:
+        a = m.block((0, 0, 0), (HALF, W, W), (50, 2, 2), elset="LEFT")
+        m.block((HALF, 0, 0), (HALF, W, W), (50, 3, 3), elset="RIGHT")
+        m.lines += ["*SURFACE, NAME=CUT_A, TYPE=ELEMENT"] + [
+            f"{1 + 49 + 50 * (j + 2 * k)}, S4" for k in range(2) for j in range(2)]
+        m.lines += ["*SURFACE, NAME=CUT_B, TYPE=ELEMENT"] + [
+            f"{200 + 1 + 50 * (j + 3 * k)}, S6" for k in range(3) for j in range(3)]
+        m.lines += ["*TIE, NAME=CUT, POSITION TOLERANCE=1e-6", "CUT_B, CUT_A"]
+        sections = ["*SOLID SECTION, ELSET=LEFT, MATERIAL=STEEL",
+                    "*SOLID SECTION, ELSET=RIGHT, MATERIAL=STEEL"]
+    else:
+        a = m.block((0, 0, 0), (2 * HALF, W, W), (100, 2, 2), elset="BAR")
+        sections = ["*SOLID SECTION, ELSET=BAR, MATERIAL=STEEL"]
     m.lines += nset("END", flat(a, lambda i, j, k: i == 0))
-    m.lines += ["*SURFACE, NAME=CUT_A, TYPE=ELEMENT"] + [
-        f"{1 + 49 + 50 * (j + 2 * k)}, S4" for k in range(2) for j in range(2)]
-    m.lines += ["*SURFACE, NAME=CUT_B, TYPE=ELEMENT"] + [
-        f"{n_left + 1 + 50 * (j + 3 * k)}, S6" for k in range(3) for j in range(3)]
-    m.lines += ["*TIE, NAME=CUT, POSITION TOLERANCE=1e-6", "CUT_B, CUT_A"]
-    m.lines += material(0.0) + ["*SOLID SECTION, ELSET=LEFT, MATERIAL=STEEL",
-                                "*SOLID SECTION, ELSET=RIGHT, MATERIAL=STEEL"]
-    c0 = (E / RHO) ** 0.5
-    period = 0.075 / c0  # the front at 75 mm; the far end's reflection not yet back at 25 mm
+    m.lines += material(0.0) + sections
+    period = 0.075 / C0  # the front at 75 mm; the far end's reflection not yet back
     m.lines += ["*BOUNDARY, TYPE=VELOCITY", f"END, 1, 1, {V}",
                 "*STEP", "*DYNAMIC, EXPLICIT", f", {period!r}",
-                "*OUTPUT, FIELD, NUMBER INTERVAL=1", "*ELEMENT OUTPUT", "S",
-                "*END STEP"]
-    d = out / "wave"
-    d.mkdir()
-    (d / "wave.inp").write_text(m.text("tied bar wave"))
-    code, text = xpl(binary, "run", str(d / "wave.inp"), "-o", str(d), "--quiet")
+                "*OUTPUT, FIELD, NUMBER INTERVAL=1000", "*ELEMENT OUTPUT", "S",
+                "*OUTPUT, HISTORY, NUMBER INTERVAL=1", "*ENERGY OUTPUT", "*END STEP"]
+    name = "tied" if tied else "whole"
+    d = out / "wave" / name
+    d.mkdir(parents=True)
+    (d / f"{name}.inp").write_text(m.text("tied bar wave" if tied else "bar in one piece"))
+    code, text = xpl(binary, "run", str(d / f"{name}.inp"), "-o", str(d), "--quiet")
     check(code == 0, f"wave: xpl exited {code}\n{text}")
-    sigma = RHO * c0 * V
-    with h5py.File(d / "wave.h5", "r") as f:
-        last = sorted(f["frames"], key=lambda s: int(s.split("_")[-1]))[-1]
-        s11 = -f["frames"][last]["S"][:, 0]
-    left = s11[:n_left].reshape(4, 50)  # rows: j, k; columns: i (x)
-    right = s11[n_left:].reshape(9, 50)
-    # Plateau behind the front past the tie: x = 55..65 mm (front at 75 mm).
-    plateau = right.mean(axis=0)[5:15]
-    err = np.abs(plateau / sigma - 1).max()
-    # Reflection: the left half at 20..45 mm carries the incident plateau only.
-    refl = np.abs(left.mean(axis=0)[20:45] / sigma - 1).max()
+    with h5py.File(d / f"{name}.h5", "r") as f:
+        s11 = -last_frame(f)["S"][:, 0]
+        h = f["history/step_1/energy"]
+        drift = np.abs(h["ETOTAL"][:]).max() / np.abs(h["ALLWK"][:]).max()
+    if tied:
+        profile = np.concatenate([s11[:200].reshape(4, 50).mean(axis=0),
+                                  s11[200:].reshape(9, 50).mean(axis=0)])
+    else:
+        profile = s11.reshape(4, 100).mean(axis=0)
+    return profile, drift
+
+
+def wave(binary, out):
+    V = 1.0
+    sigma = RHO * C0 * V
+    tied, drift = wave_run(binary, out, True)
+    whole, _ = wave_run(binary, out, False)
+    # Plateau past the tie: the mean over x = 55..70 mm (front at 75 mm; the ringing behind a
+    # stepped front, +-2 % on either mesh, averages out over the window).
+    err = abs(tied[55:70].mean() / sigma - 1)
+    # Reflection: what the tie sends back shows in the left half (the reflected front would be
+    # back at 25 mm): the difference to the bar in one piece there, element by element.
+    refl = np.abs(tied[:50] - whole[:50]).max() / sigma
     check(err < 0.02, f"wave: plateau past the tie off by {err:.2%} of rho c0 v (limit 2 %)")
     check(refl < 0.02, f"wave: reflection {refl:.2%} of rho c0 v (limit 2 %)")
-    print(f"check_tie.py: wave: plateau past the tie within {err:.2%} of rho c0 v = {sigma:.4e} Pa, "
-          f"reflection at most {refl:.2%}")
+    check(drift < 0.01, f"wave: ETOTAL drift {drift:.2%} of ALLWK (limit 1 %)")
+    print(f"check_tie.py: wave: plateau past the tie within {err:.2%} of rho c0 v = {sigma:.4e} "
+          f"Pa, reflection at most {refl:.2%} (vs the bar in one piece), ETOTAL drift "
+          f"{drift:.2e} of ALLWK")
 
 
 # --- plate --------------------------------------------------------------------------------------
