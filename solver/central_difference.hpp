@@ -91,8 +91,7 @@ class CentralDifference {
                     const Increment& inc, Index chunk);
   /// The loads of one chunk's nodes and their work (the first part of update_chunk; run as a
   /// pass of its own before the ties gather the slave forces).
-  void load_chunk(const State& state, const Field& translation, const Increment& inc,
-                  Index chunk);
+  void load_chunk(const State& state, const Field& translation, const Increment& inc, Index chunk);
   /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
   /// `work`); returns the kinetic-energy correction to what the free update counted.
   Real update_prescribed(State& state, const Field& translation, const Field& rotation,
@@ -118,8 +117,8 @@ class CentralDifference {
   BoundaryState m_boundary;
   PressureLoads m_pressures;
   GravityLoads m_gravity;
-  NodalLoads m_loads;        ///< the step's loads per node
-  bool m_loads_due = false;  ///< apply_loads() has set the time of the next update's loads
+  NodalLoads m_loads;              ///< the step's loads per node
+  bool m_loads_due = false;        ///< apply_loads() has set the time of the next update's loads
   bool m_loads_evaluated = false;  ///< load_chunk ran before the fused pass (ties)
   const Ties* m_ties = nullptr;
   NodeRotations m_rotations;

@@ -96,7 +96,7 @@ class ContactStage {
   std::vector<std::string> m_pair_names;  ///< in the engine's pair order (history output)
   PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
-  std::vector<char> m_tied;  ///< Ties::tied_nodes(), empty without ties
+  std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
 };
 
 }  // namespace xpl

@@ -310,11 +310,11 @@ struct RigidBody {
 /// (SPEC S6): every slave node within the tolerance of the master surface is bound to its
 /// closest point there (solver/ties.hpp).
 struct Tie {
-  std::string name;                 ///< upper-case name
-  Index slave = NO_INDEX;           ///< into Model::surfaces (element or node based)
-  Index master = NO_INDEX;          ///< into Model::surfaces (element based)
-  std::optional<Real> tolerance;    ///< POSITION TOLERANCE=, m; empty: the default (ties.hpp)
-  bool adjust = true;               ///< ADJUST=YES: slave nodes moved onto the master first
+  std::string name;               ///< upper-case name
+  Index slave = NO_INDEX;         ///< into Model::surfaces (element or node based)
+  Index master = NO_INDEX;        ///< into Model::surfaces (element based)
+  std::optional<Real> tolerance;  ///< POSITION TOLERANCE=, m; empty: the default (ties.hpp)
+  bool adjust = true;             ///< ADJUST=YES: slave nodes moved onto the master first
   SourceLocation where;
 };
 

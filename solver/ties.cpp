@@ -73,26 +73,25 @@ Ties::Ties(const Model& model, State& state) {
       MasterFace face;
       const Index* en = model.nodes_of(f.element);
       face.shell = is_shell(model.element_types[f.element]);
-      for (int k = 0; k < 4; ++k) face.corner[k] = face.shell ? en[k] : en[HEX_FACE_NODES[f.face][k]];
+      for (int k = 0; k < 4; ++k)
+        face.corner[k] = face.shell ? en[k] : en[HEX_FACE_NODES[f.face][k]];
       face.low = face.high = point(state.reference, face.corner[0]);
       for (Index c : face.corner) {
         face.low = face.low.cwiseMin(point(state.reference, c));
         face.high = face.high.cwiseMax(point(state.reference, c));
         on_master[c] = 1;
       }
-      diagonal_sum += 0.5 * ((point(state.reference, face.corner[2]) -
-                              point(state.reference, face.corner[0]))
-                                 .norm() +
-                             (point(state.reference, face.corner[3]) -
-                              point(state.reference, face.corner[1]))
-                                 .norm());
+      diagonal_sum +=
+          0.5 * ((point(state.reference, face.corner[2]) - point(state.reference, face.corner[0]))
+                     .norm() +
+                 (point(state.reference, face.corner[3]) - point(state.reference, face.corner[1]))
+                     .norm());
       faces.push_back(face);
     }
-    const Real tolerance =
-        tie.tolerance ? *tie.tolerance
-                      : (faces.empty() ? 0.0
-                                       : TIE_DEFAULT_TOLERANCE * diagonal_sum /
-                                             static_cast<Real>(faces.size()));
+    const Real tolerance = tie.tolerance ? *tie.tolerance
+                                         : (faces.empty() ? 0.0
+                                                          : TIE_DEFAULT_TOLERANCE * diagonal_sum /
+                                                                static_cast<Real>(faces.size()));
     Index tied = 0;
     Real largest = 0.0;
     std::vector<Index> untied;
@@ -137,13 +136,12 @@ Ties::Ties(const Model& model, State& state) {
       if (tie.adjust)
         for (int c = 0; c < 3; ++c) state.position(s, c) = closest.point[c];
     }
-    std::string text = "tie " + tie.name + ": " + std::to_string(tied) +
-                       " slave node(s) tied to surface " + model.surfaces[tie.master].name +
-                       " (position tolerance " + number(tolerance) + " m" +
-                       (tie.tolerance ? "" : ", the default 5 % of the mean master face diagonal") +
-                       "); largest distance to the master " + number(largest) + " m" +
-                       (tie.adjust ? ", removed by ADJUST=YES (strain free)"
-                                   : ", kept (ADJUST=NO)");
+    std::string text =
+        "tie " + tie.name + ": " + std::to_string(tied) + " slave node(s) tied to surface " +
+        model.surfaces[tie.master].name + " (position tolerance " + number(tolerance) + " m" +
+        (tie.tolerance ? "" : ", the default 5 % of the mean master face diagonal") +
+        "); largest distance to the master " + number(largest) + " m" +
+        (tie.adjust ? ", removed by ADJUST=YES (strain free)" : ", kept (ADJUST=NO)");
     if (untied.empty()) {
       text += "; no slave node outside the tolerance";
     } else {

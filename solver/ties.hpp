@@ -47,7 +47,8 @@ inline constexpr Real TIE_DEFAULT_TOLERANCE = 0.05;
 class Ties {
  public:
   Ties() = default;
-  /// Binds the slave nodes on `state.reference`; ADJUST=YES moves them there (position). Nothing is allocated when the model has no ties.
+  /// Binds the slave nodes on `state.reference`; ADJUST=YES moves them there (position). Nothing is
+  /// allocated when the model has no ties.
   Ties(const Model& model, State& state);
 
   bool empty() const { return m_bindings.empty() && m_messages.empty(); }

@@ -3,6 +3,7 @@
 /// within the tolerance is geometry: the solver finds them (solver/ties.hpp).
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "io/deck/deck_handlers.hpp"
@@ -62,13 +63,15 @@ void read_tie(DeckState& deck, const DeckBlock& block) {
   const bool has_slave = !line.fields.empty() && !line.fields[0].empty();
   const bool has_master = line.fields.size() > 1 && !line.fields[1].empty();
   if (!has_slave || !has_master) {
-    error(deck, line.where(), keyword, has_slave ? "missing master surface" : "missing slave surface",
+    error(deck, line.where(), keyword,
+          has_slave ? "missing master surface" : "missing slave surface",
           "expected slave surface, master surface");
     return;
   }
   if (!ok) return;
   deck.model.ties.push_back(tie);
-  deck.ties.push_back({normalize_name(line.fields[0]), normalize_name(line.fields[1]), line.where()});
+  deck.ties.push_back(
+      {normalize_name(line.fields[0]), normalize_name(line.fields[1]), line.where()});
 }
 
 namespace {
@@ -148,7 +151,8 @@ void resolve_ties(DeckState& deck) {
     if (body.element_set != NO_INDEX)
       for (Index e : model.element_sets[body.element_set].members) {
         const Index* en = model.nodes_of(e);
-        members.insert(members.end(), en, en + (model.element_offsets[e + 1] - model.element_offsets[e]));
+        members.insert(members.end(), en,
+                       en + (model.element_offsets[e + 1] - model.element_offsets[e]));
       }
     for (Index set : {body.pin_node_set, body.tie_node_set})
       if (set != NO_INDEX)
@@ -179,10 +183,10 @@ void resolve_ties(DeckState& deck) {
       if (constrained[i] == 2) conflicts["4 rigid"].nodes.push_back(i);
     }
     for (const auto& [cause, c] : conflicts) {
-      const std::string node = "node " + std::to_string(model.node_ids[c.nodes.front()]) +
-                               (c.nodes.size() > 1
-                                    ? " (and " + std::to_string(c.nodes.size() - 1) + " more)"
-                                    : std::string());
+      const std::string node =
+          "node " + std::to_string(model.node_ids[c.nodes.front()]) +
+          (c.nodes.size() > 1 ? " (and " + std::to_string(c.nodes.size() - 1) + " more)"
+                              : std::string());
       const std::string which = "slave " + node + " of tie " + tie.name;
       if (cause[0] == '1')
         deck.errors.add(tie.where, keyword, which + " is also a slave of tie " + c.other,

@@ -440,6 +440,69 @@ def deck_errors(binary, out):
     print(f"check_tie.py: deck errors: {len(ties)} conflicts, one file:line error each, exit 1")
 
 
+# --- shells -------------------------------------------------------------------------------------
+def shells(binary, out):
+    """Lap joint of two S4R plates in one plane: MASTER (4 x 4, x 0..10 mm, clamped at x = 0)
+    and SLAVE (5 x 5, x 6..16 mm) overlapping over 6..10 mm; a pressure on SLAVE bends the
+    joint. The slave nodes over the master (x <= 10 mm, 18) are tied with their rotations, the
+    others (x >= 12 mm, 18) are listed untied in the .msg. Checked: UR and U of every tied
+    slave node equal the bilinear interpolation of its master corners (the tie passes
+    rotations, else the joint would be a hinge), ETOTAL within 1 % of ALLWK."""
+    W = 0.01
+    m = Mesh()
+    mp = m.plate((0, 0, 0), (W, W), (4, 4), "MASTER")
+    sp = m.plate((0.006, 0, 0), (W, W), (5, 5), "SLAVE")
+    m.lines += nset("CLAMP", [mp[0][j] for j in range(5)])
+    m.lines += ["*SURFACE, NAME=M_SURF, TYPE=ELEMENT", "MASTER, SPOS",
+                "*SURFACE, NAME=S_SURF, TYPE=ELEMENT", "SLAVE, SNEG",
+                "*TIE, NAME=LAP", "S_SURF, M_SURF"]
+    m.lines += material(NU_STEEL) + ["*SHELL SECTION, ELSET=MASTER, MATERIAL=STEEL", "0.0005",
+                                     "*SHELL SECTION, ELSET=SLAVE, MATERIAL=STEEL", "0.0005"]
+    m.lines += ["*AMPLITUDE, NAME=RAMP", f"0., 0., {2e-5!r}, 1., 1., 1.",
+                "*BOUNDARY", "CLAMP, 1, 6",
+                "*STEP", "*DYNAMIC, EXPLICIT", ", 3e-5",
+                "*DLOAD, AMPLITUDE=RAMP", "SLAVE, P, 1e5",
+                "*OUTPUT, FIELD, TIME INTERVAL=1e-5", "*NODE OUTPUT", "U, UR",
+                "*OUTPUT, HISTORY, TIME INTERVAL=1e-7", "*ENERGY OUTPUT", "*END STEP"]
+    d = out / "shells"
+    d.mkdir()
+    (d / "lap.inp").write_text(m.text("lap joint of two tied shell plates"))
+    code, text = xpl(binary, "run", str(d / "lap.inp"), "-o", str(d), "--quiet")
+    check(code == 0, f"shells: xpl exited {code}\n{text}")
+    msg = read_msg(d, "lap")
+    check(re.search(r"tie LAP: 18 slave node\(s\) tied", msg), "shells: 18 tied slave nodes")
+    check(re.search(r"18 slave node\(s\) farther than the tolerance stay free: \d+", msg),
+          "shells: the 18 untied slave nodes listed in .msg")
+    with h5py.File(d / "lap.h5", "r") as f:
+        check(f.attrs["status"] == "completed", f"shells: status {f.attrs['status']!r}")
+        ids = list(f["mesh/node_ids"][:])
+        row = {n: k for k, n in enumerate(ids)}
+        fr = last_frame(f)
+        u, ur = fr["U"][:], fr["UR"][:]
+        h = f["history/step_1/energy"]
+        drift = np.abs(h["ETOTAL"][:] - h["ETOTAL"][0]).max() / np.abs(h["ALLWK"][:]).max()
+    worst_u = worst_r = 0.0
+    for i in range(3):  # slave columns at x = 6, 8, 10 mm
+        for j in range(6):
+            px, py = 0.006 + 0.002 * i, W * j / 5
+            ei, ej = min(int(px / 0.0025), 3), min(int(py / 0.0025), 3)
+            xi, eta = px / 0.0025 - ei, py / 0.0025 - ej
+            c = [mp[ei][ej], mp[ei + 1][ej], mp[ei + 1][ej + 1], mp[ei][ej + 1]]
+            w = [(1 - xi) * (1 - eta), xi * (1 - eta), xi * eta, (1 - xi) * eta]
+            s_row = row[sp[i][j]]
+            worst_u = max(worst_u, np.abs(u[s_row] - sum(a * u[row[n]] for a, n in zip(w, c))).max())
+            worst_r = max(worst_r, np.abs(ur[s_row] - sum(a * ur[row[n]] for a, n in zip(w, c))).max())
+    umax, rmax = np.abs(u).max(), np.abs(ur).max()
+    check(umax > 1e-6 and rmax > 1e-4, f"shells: the joint bends (U {umax:.2e} m, UR {rmax:.2e})")
+    # U: exact up to round-off; UR: each rotation vector is integrated incrementally from the
+    # tied angular velocity, which matches the interpolation to second order in the rotation.
+    check(worst_u < 1e-9 * umax, f"shells: tied U off by {worst_u:.2e} m (largest U {umax:.2e})")
+    check(worst_r < 1e-3 * rmax, f"shells: tied UR off by {worst_r:.2e} (largest UR {rmax:.2e})")
+    check(drift < 0.01, f"shells: ETOTAL drift {drift:.2%} of ALLWK (limit 1 %)")
+    print(f"check_tie.py: shells: tied U to {worst_u / umax:.1e}, UR to {worst_r / rmax:.1e} of "
+          f"the largest, ETOTAL drift {drift:.1e} of ALLWK")
+
+
 # --- example ------------------------------------------------------------------------------------
 def example(binary, out):
     """examples/tie/glued_drop.inp: runs, all 36 slave nodes tied, ETOTAL balanced, the glued
@@ -468,7 +531,7 @@ def example(binary, out):
           f"lower {vl:.3f} m/s")
 
 
-CASES = ("deck_errors", "patch", "wave", "plate", "overclosure", "example")
+CASES = ("deck_errors", "patch", "wave", "plate", "shells", "overclosure", "example")
 
 
 def main():
@@ -489,6 +552,8 @@ def main():
         elif case == "plate":
             full, umax = plate(binary, out)
             import_case(binary, out, full, umax)
+        elif case == "shells":
+            shells(binary, out)
         elif case == "overclosure":
             overclosure(binary, out)
         elif case == "example":
