@@ -79,7 +79,7 @@ def main():
              "*BOUNDARY", "2999, 1, 6",
              "*CONTACT", "*CONTACT INCLUSIONS", "LOWER_BOTTOM, WALL_TOP",
              "*OUTPUT, FIELD, TIME INTERVAL=1e-05", "*NODE OUTPUT", "U, V", "*ELEMENT OUTPUT", "S",
-             "*OUTPUT, HISTORY, TIME INTERVAL=2e-07", "*ENERGY OUTPUT", "*END STEP"]
+             "*OUTPUT, HISTORY, TIME INTERVAL=1e-06", "*ENERGY OUTPUT", "*END STEP"]
     out.write_text("\n".join(text) + "\n")
 
 
