@@ -5,23 +5,24 @@ Usage: check_tie.py XPL OUT_DIR [CASE]   (CASE: one of deck_errors, patch, wave,
        shells, threads, overclosure, example; default all)
 
 Cases (units m, kg, s; steel E = 200 GPa, rho = 7850, nu as stated):
-- patch: block A (4 x 4 x 2 C3D8R, 10 x 10 x 5 mm) under block B (5 x 5 x 2, 10 x 10 x 5 mm),
-  B's bottom (36 nodes) tied to A's top (4 x 4 faces). A homogeneous strain rate dv1/dx1 =
-  100 /s (lateral and normal DOFs held on every non-slave node, x faces prescribed, the slave
-  nodes free and given no initial velocity: the tie gives them theirs). After 200 increments
-  every element's S11 equals the mean to 1e-6 relative, and the mean is (lambda + 2 mu) eps.
-- wave: a bar (x 0..100 mm) in two tied halves, 2 x 2 elements across the left half, 3 x 3 across
-  the right, 1 mm axial elements, nu = 0; the left end moves at v = 1 m/s. The cross-section
-  mean S11 past the tie plateaus within 2 % of rho c0 v; the left half shows no reflection
-  above 2 % of it before the far-end reflection returns.
-- plate: an S4R plate (5 x 5, 10 x 10 mm, 0.5 mm) tied to the top face of a 4 x 4 x 2 block
-  with a fixed base, pressure on the plate: runs, ETOTAL within 1 % of ALLWK, every plate node
-  on the block's top face (bilinear interpolation of its corners) to 1e-9 m.
-- overclosure: block B's bottom 0.01 mm inside block A's top, ADJUST=NO, general contact: the
-  overclosure offsets of the tied nodes have reason 7 (tie).
-- import: the plate case stopped at half time and continued with --import: U at the end within
-  2e-3 of the largest displacement of the uninterrupted run.
-- threads: the plate case at 1 and 2 threads, bit for bit (every frame field and history).
+- deck_errors: four node conflicts (a slave of two ties, a slave on another tie's master, a
+  slave with a BC on DOFs 1-3, a slave in a rigid body): one file:line error each, exit 1.
+- patch: block B (5 x 5 x 2 C3D8R) on block A (4 x 4 x 2), B's bottom (36 nodes) tied to A's
+  top, stretched across the tie (v3 = 100 z /s): with every non-slave DOF driven by the field,
+  S is uniform to 1e-6 of S33 and S33 = (lambda + 2 mu) ln(1 + rate t); the same with a free
+  interior is run and its spread printed (not asserted).
+- wave: a bar in two tied halves (2 x 2 | 3 x 3 elements across, nu = 0), the left end at
+  1 m/s: the mean S11 over 55-70 mm within 2 % of rho c0 v, the left half within 2 % of
+  rho c0 v of the same bar in one piece (the tie's reflection), ETOTAL within 1 %.
+- plate: an S4R plate (5 x 5) tied to the top of a 4 x 4 x 2 block, pressure on the plate:
+  ETOTAL within 1 % of ALLWK, plate nodes on the block face to 1e-9 m, 1 and 2 threads bit for
+  bit; continued from half time with --import: end U within 2e-3 of the largest U.
+- shells: a lap joint of two S4R plates (rotations tied): U and UR of the tied nodes follow
+  the master, the nodes off the master listed untied in .msg, ETOTAL within 1 %.
+- threads: a 6570-node tied model at 1 and 2 threads, bit for bit.
+- overclosure: B's bottom 0.01 mm inside A's top with general contact: ADJUST=NO holds the 18
+  tied nodes, offsets with reason 7 (tie); ADJUST=YES moves the slaves onto A first.
+- example: examples/tie/glued_drop.inp runs, ETOTAL balanced, both blocks rebound.
 """
 
 import pathlib
@@ -360,33 +361,60 @@ def import_case(binary, out, full, umax):
 
 
 # --- overclosure ----------------------------------------------------------------------------------
-def overclosure(binary, out):
+def overclosure_run(binary, out, adjust):
+    """Block B's bottom 0.01 mm inside block A's top, tied (POSITION TOLERANCE 0.1 mm), general
+    contact over all exterior faces; returns the offsets' reasons, the nodes the contact pass
+    moved, U of frame 0 of B's bottom nodes, and the .msg."""
     L, T, DEPTH = 0.004, 0.002, 1e-5
     m = Mesh()
     m.block((0, 0, 0), (L, L, T), (2, 2, 2), elset="A")
-    m.block((0, 0, T - DEPTH), (L, L, T), (2, 2, 2), elset="B")
+    b = m.block((0, 0, T - DEPTH), (L, L, T), (2, 2, 2), elset="B")
     m.lines += ["*SURFACE, NAME=A_TOP, TYPE=ELEMENT"] + [f"{e}, S2" for e in range(5, 9)]
     m.lines += ["*SURFACE, NAME=B_BOTTOM, TYPE=ELEMENT"] + [f"{e}, S1" for e in range(9, 13)]
-    m.lines += ["*TIE, NAME=GLUE, ADJUST=NO, POSITION TOLERANCE=1e-4", "B_BOTTOM, A_TOP"]
+    m.lines += [f"*TIE, NAME=GLUE, ADJUST={'YES' if adjust else 'NO'}, POSITION TOLERANCE=1e-4",
+                "B_BOTTOM, A_TOP"]
     m.lines += material(NU_STEEL) + ["*SOLID SECTION, ELSET=A, MATERIAL=STEEL",
                                      "*SOLID SECTION, ELSET=B, MATERIAL=STEEL"]
-    m.lines += ["*STEP", "*DYNAMIC, EXPLICIT", ", 1e-7", "*CONTACT", "*CONTACT INCLUSIONS, ALL EXTERIOR",
-                "*END STEP"]
-    d = out / "overclosure"
-    d.mkdir()
-    (d / "tied.inp").write_text(m.text("tied nodes penetrating at t = 0"))
-    code, text = xpl(binary, "run", str(d / "tied.inp"), "-o", str(d), "--quiet")
+    m.lines += ["*STEP", "*DYNAMIC, EXPLICIT", ", 1e-7", "*CONTACT",
+                "*CONTACT INCLUSIONS, ALL EXTERIOR", "*OUTPUT, FIELD, NUMBER INTERVAL=1",
+                "*NODE OUTPUT", "U", "*END STEP"]
+    name = "adjust" if adjust else "held"
+    d = out / "overclosure" / name
+    d.mkdir(parents=True)
+    (d / f"{name}.inp").write_text(m.text("tied nodes penetrating at t = 0"))
+    code, text = xpl(binary, "run", str(d / f"{name}.inp"), "-o", str(d), "--quiet")
     check(code == 0, f"overclosure: exited {code}\n{text}")
-    with h5py.File(d / "tied.h5", "r") as f:
+    bottom = flat(b, lambda i, j, k: k == 0)
+    with h5py.File(d / f"{name}.h5", "r") as f:
         t = f["overclosure/step_1/offsets"]
-        reasons = set(int(r) for r in t["reason"][:])
-        n = int(t.attrs["rows"])
+        reasons = [int(r) for r in t["reason"][:]] if int(t.attrs["rows"]) > 0 else []
         adjusted = int(f["overclosure/step_1/adjusted"].attrs["rows"])
-    check(n > 0 and reasons == {7}, f"overclosure: offsets {n}, reasons {reasons} (expected 7 tie)")
+        row = {n: k for k, n in enumerate(f["mesh/node_ids"][:])}
+        u0 = f["frames"][sorted(f["frames"])[0]]["U"][:][[row[n] for n in bottom]]
+    return reasons, adjusted, u0, read_msg(d, name), DEPTH
+
+
+def overclosure(binary, out):
+    # ADJUST=NO: the 9 slave nodes of B's bottom and the 9 master corners of A's top (inside
+    # B's bottom faces) penetrate; all are held, their penetration an offset with reason tie.
+    reasons, adjusted, u0, msg, depth = overclosure_run(binary, out, False)
+    check(len(reasons) == 18 and set(reasons) == {7},
+          f"overclosure: offsets {len(reasons)}, reasons {set(reasons)} (expected 18, all 7 tie)")
     check(adjusted == 0, f"overclosure: {adjusted} tied nodes were moved")
-    msg = read_msg(d, "tied")
+    check(np.abs(u0).max() == 0.0, "overclosure: ADJUST=NO moved a slave node")
     check("reason: tie" in msg, "overclosure: the .msg names reason tie")
-    print(f"check_tie.py: overclosure: {n} offsets, all reason tie, none adjusted")
+    # ADJUST=YES: the tie moves the slave nodes onto A's top first (U3 = DEPTH at frame 0,
+    # strain free); nothing penetrates any more, no offset.
+    reasons_a, adjusted_a, u0_a, msg_a, _ = overclosure_run(binary, out, True)
+    err = np.abs(u0_a[:, 2] - depth).max()
+    check(err < 1e-12 and np.abs(u0_a[:, :2]).max() < 1e-12,
+          f"overclosure: ADJUST=YES moved the slave nodes by {u0_a[:, 2].min():.3e}.."
+          f"{u0_a[:, 2].max():.3e} m in z (expected {depth:.1e})")
+    check(not reasons_a and adjusted_a == 0,
+          f"overclosure: ADJUST=YES left {len(reasons_a)} offsets, {adjusted_a} contact moves")
+    check("removed by ADJUST=YES" in msg_a, "overclosure: .msg names the ADJUST=YES move")
+    print(f"check_tie.py: overclosure: ADJUST=NO 18 offsets, all reason tie, none moved; "
+          f"ADJUST=YES slaves moved by {depth:.0e} m to {err:.1e}, no offset")
 
 
 # --- deck errors ----------------------------------------------------------------------------------
