@@ -162,7 +162,7 @@ def patch(binary, out, driven=True):
     code, text = xpl(binary, "run", str(d / "patch.inp"), "-o", str(d), "--quiet")
     check(code == 0, f"patch: xpl exited {code}\n{text}")
     msg = read_msg(d, "patch")
-    check(re.search(r"tie GLUE: 36 slave node\(s\) tied", msg), "patch: 36 tied slave nodes in .msg")
+    check(re.search(r"tie GLUE: 36 slave node\(s\) tied", msg), "patch: 36 tied slave nodes")
     with h5py.File(d / "patch.h5", "r") as f:
         fr = last_frame(f)
         incs = int(fr.attrs["increment"])
@@ -288,26 +288,14 @@ def plate(binary, out):
     results = []
     for threads in (1, 2):
         r = d / f"t{threads}"
-        code, text = xpl(binary, "run", str(d / "plate.inp"), "-o", str(r), "--threads", str(threads),
-                         "--quiet")
+        code, text = xpl(binary, "run", str(d / "plate.inp"), "-o", str(r), "--threads",
+                         str(threads), "--quiet")
         check(code == 0, f"plate: xpl exited {code} with {threads} threads\n{text}")
         results.append(r / "plate.h5")
     msg = read_msg(d / "t1", "plate")
     check(re.search(r"tie SKIN: 36 slave node\(s\) tied", msg), "plate: 36 tied nodes in .msg")
-    with h5py.File(results[0], "r") as f, h5py.File(results[1], "r") as g:
-        check(f.attrs["status"] == "completed", f"plate: status {f.attrs['status']!r}")
-        # Threads: every frame field and every history series bit for bit.
-        for name in f["frames"]:
-            for field in f["frames"][name]:
-                check(f["frames"][name][field][()].tobytes() == g["frames"][name][field][()].tobytes(),
-                      f"plate: frame {name} {field} differs between 1 and 2 threads")
-
-        def same(name, obj):
-            if isinstance(obj, h5py.Dataset):
-                check(obj[()].tobytes() == g["history"][name][()].tobytes(),
-                      f"plate: history {name} differs between 1 and 2 threads")
-
-        f["history"].visititems(same)
+    same_results(results[0], results[1], "plate")
+    with h5py.File(results[0], "r") as f:
         h = f["history/step_1/energy"]
         wk = h["ALLWK"][:]
         drift = np.abs(h["ETOTAL"][:] - h["ETOTAL"][0]).max() / max(np.abs(wk).max(), 1e-30)
@@ -330,7 +318,8 @@ def plate(binary, out):
                 target = sum(wk_ * x[row[n]] for wk_, n in zip(w, c))
                 worst = max(worst, np.abs(x[row[p[i][j]]] - target).max())
         check(umax > 1e-7, f"plate: the block deforms (largest U {umax:.2e} m)")
-        check(worst < 1e-9, f"plate: a plate node is {worst:.2e} m off the block's face")
+        # Round-off of the interpolation only: relative 1e-9 of the motion.
+        check(worst < 1e-9 * umax, f"plate: a plate node is {worst:.2e} m off the block's face")
     print(f"check_tie.py: plate: ETOTAL drift {drift:.2e} of ALLWK, plate nodes on the block face "
           f"to {worst:.1e} m (largest U {umax:.2e} m), 1 and 2 threads identical")
     return results[0], umax
@@ -438,7 +427,8 @@ def deck_errors(binary, out):
     m.lines += ["*RIGID BODY, REF NODE=999, ELSET=D"]
     b_bottom_node = 19  # block B's first node: on B's bottom face
     ties = {
-        "T1": ("*TIE, NAME=T1", "B_BOTTOM, A_TOP", "has a boundary condition on a translational DOF"),
+        "T1": ("*TIE, NAME=T1", "B_BOTTOM, A_TOP",
+               "has a boundary condition on a translational DOF"),
         "T2": ("*TIE, NAME=T2", "B_BOTTOM, C_BOTTOM", "is also a slave of tie T1"),
         "T3": ("*TIE, NAME=T3", "A_TOP, C_TOP", "is also a master node of tie T1"),
         "T4": ("*TIE, NAME=T4", "D_BOTTOM, C_TOP", "belongs to a rigid body"),
@@ -518,8 +508,10 @@ def shells(binary, out):
             c = [mp[ei][ej], mp[ei + 1][ej], mp[ei + 1][ej + 1], mp[ei][ej + 1]]
             w = [(1 - xi) * (1 - eta), xi * (1 - eta), xi * eta, (1 - xi) * eta]
             s_row = row[sp[i][j]]
-            worst_u = max(worst_u, np.abs(u[s_row] - sum(a * u[row[n]] for a, n in zip(w, c))).max())
-            worst_r = max(worst_r, np.abs(ur[s_row] - sum(a * ur[row[n]] for a, n in zip(w, c))).max())
+            u_tie = sum(a * u[row[n]] for a, n in zip(w, c))
+            ur_tie = sum(a * ur[row[n]] for a, n in zip(w, c))
+            worst_u = max(worst_u, np.abs(u[s_row] - u_tie).max())
+            worst_r = max(worst_r, np.abs(ur[s_row] - ur_tie).max())
     umax, rmax = np.abs(u).max(), np.abs(ur).max()
     check(umax > 1e-6 and rmax > 1e-4, f"shells: the joint bends (U {umax:.2e} m, UR {rmax:.2e})")
     # U: exact up to round-off; UR: each rotation vector is integrated incrementally from the
@@ -618,8 +610,8 @@ def example(binary, out):
         v = last_frame(f)["V"][:]
     check(drift < 0.01, f"example: ETOTAL drift {drift:.2%} of the initial ALLKE (limit 1 %)")
     vu, vl = v[upper, 2].mean(), v[lower, 2].mean()
-    check(vu > 0 and vl > 0, f"example: mean V3 after the impact upper {vu:.3f}, lower {vl:.3f} m/s "
-          "(expected both rebounding, > 0)")
+    check(vu > 0 and vl > 0, f"example: mean V3 after the impact upper {vu:.3f}, lower "
+          f"{vl:.3f} m/s (expected both rebounding, > 0)")
     print(f"check_tie.py: example: ETOTAL drift {drift:.2e} of ALLKE, rebound V3 upper {vu:.3f}, "
           f"lower {vl:.3f} m/s")
 
