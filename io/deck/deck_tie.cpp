@@ -91,6 +91,9 @@ std::vector<Index> surface_nodes(const Model& model, const Surface& surface) {
         nodes.insert(nodes.end(), en, en + 4);
     }
   }
+  // Unresolved nodes (elements of a deck with errors elsewhere) are no conflict of a tie.
+  const Index n = model.node_count();
+  std::erase_if(nodes, [n](Index i) { return i < 0 || i >= n; });
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
@@ -106,6 +109,7 @@ struct Conflict {
 
 void resolve_ties(DeckState& deck) {
   Model& model = deck.model;
+  if (model.ties.empty()) return;
   const std::string keyword = "*TIE";
   std::vector<char> valid(model.ties.size(), 1);
   for (std::size_t t = 0; t < model.ties.size(); ++t) {
@@ -145,7 +149,8 @@ void resolve_ties(DeckState& deck) {
   std::vector<char> constrained(n, 0);  // 1: translational BC, 2: rigid body
   for (const Step& step : model.steps)
     for (const BoundaryCondition& bc : step.boundaries)
-      if (bc.node != NO_INDEX && bc.first_dof <= 3) constrained[bc.node] = 1;
+      if (bc.node >= 0 && bc.node < model.node_count() && bc.first_dof <= 3)
+        constrained[bc.node] = 1;
   for (const RigidBody& body : model.rigid_bodies) {
     std::vector<Index> members;
     if (body.element_set != NO_INDEX)
@@ -159,7 +164,8 @@ void resolve_ties(DeckState& deck) {
         members.insert(members.end(), model.node_sets[set].members.begin(),
                        model.node_sets[set].members.end());
     if (body.reference_node != NO_INDEX) members.push_back(body.reference_node);
-    for (Index i : members) constrained[i] = 2;
+    for (Index i : members)
+      if (i >= 0 && i < model.node_count()) constrained[i] = 2;
   }
   for (std::size_t t = 0; t < model.ties.size(); ++t) {
     if (!valid[t]) continue;
