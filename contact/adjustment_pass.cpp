@@ -70,12 +70,15 @@ const char* offset_reason_name(OffsetReason reason) {
       return "later step";
     case OffsetReason::Import:
       return "import";
+    case OffsetReason::Tie:
+      return "tie";
   }
   return "conflict";
 }
 
 std::optional<OffsetReason> lock_reason(std::uint8_t lock, const Vec3& normal) {
   if ((lock & LOCK_RIGID) != 0) return OffsetReason::Rigid;
+  if ((lock & LOCK_TIE) != 0) return OffsetReason::Tie;
   for (int c = 0; c < 3; ++c)
     if (((lock >> c) & 1u) != 0 && std::abs(normal[c]) > LOCK_COMPONENT)
       return OffsetReason::Boundary;

@@ -29,6 +29,7 @@ inline constexpr std::uint8_t LOCK_X = 1;  ///< translation 1 has a boundary con
 inline constexpr std::uint8_t LOCK_Y = 2;
 inline constexpr std::uint8_t LOCK_Z = 4;
 inline constexpr std::uint8_t LOCK_RIGID = 8;  ///< moves with a rigid body (member, pin, tie)
+inline constexpr std::uint8_t LOCK_TIE = 16;   ///< a *TIE slave node or a corner it is bound to
 
 /// Why a penetration is stored as an offset instead of being removed.
 enum class OffsetReason : std::uint8_t {
@@ -39,6 +40,7 @@ enum class OffsetReason : std::uint8_t {
   Conflict,    ///< competing adjustments did not converge
   LaterStep,   ///< contact first defined after step 1: no node moves (C6)
   Import,      ///< the run starts from an imported state: no node moves (C6, S7)
+  Tie,         ///< a *TIE slave node, or a master corner one is bound to (S6, C3)
 };
 
 /// Name of a reason for reports ("BC", "rigid", ...).

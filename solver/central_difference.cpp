@@ -207,11 +207,11 @@ Real update_range(const Field& d, Index off, Index first, Index last, Real dt_av
 
 }  // namespace
 
-void CentralDifference::update_chunk(State& state, const Field& translation, const Field& rotation,
-                                     const Increment& inc, Index chunk) {
+void CentralDifference::load_chunk(const State& state, const Field& translation,
+                                   const Increment& inc, Index chunk) {
   const Index n = m_model.node_count();
   const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
-  if (m_loads_due) {
+  {
     // The loads of the chunk's nodes, and the work of those on free DOFs over the increment
     // just taken (trapezoidal rule, exact for constant forces), before v_{n-1/2} moves on.
     Real* fe = m_force_external.data();
@@ -233,6 +233,13 @@ void CentralDifference::update_chunk(State& state, const Field& translation, con
       }
     }
   }
+}
+
+void CentralDifference::update_chunk(State& state, const Field& translation, const Field& rotation,
+                                     const Increment& inc, Index chunk) {
+  const Index n = m_model.node_count();
+  const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
+  if (m_loads_due && !m_loads_evaluated) load_chunk(state, translation, inc, chunk);
   Real ke = 0.0;
   for (int c = 0; c < 3; ++c)
     ke += translation.acceleration ? update_range<true>(translation, c * n, first, last, inc.dt_avg,
@@ -293,9 +300,22 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   // The fused pass over the nodes: loads, their work, the free updates of translations and
   // rotations. The kinetic energy is summed per chunk, then over the chunks in chunk order
   // (translations first): independent of the thread count.
+  // Ties: the slaves' loads first (in their own pass), then every slave force to the master
+  // corners, so that the fused pass updates the masters with them (solver/ties.hpp).
+  const bool tied = m_ties != nullptr && m_ties->active();
+  if (tied) {
+    if (m_loads_due) {
+#pragma omp parallel for schedule(static) if (n_chunks > 1)
+      for (Index chunk = 0; chunk < n_chunks; ++chunk) load_chunk(state, translation, inc, chunk);
+      m_loads_evaluated = true;
+    }
+    m_ties->gather(elements.force_internal(), loaded ? &m_force_external : nullptr,
+                   m_shells ? &elements.moment_internal() : nullptr);
+  }
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
   for (Index chunk = 0; chunk < n_chunks; ++chunk)
     update_chunk(state, translation, rotation, inc, chunk);
+  m_loads_evaluated = false;
   Real ke = 0.0;
   for (Index chunk = 0; chunk < n_chunks; ++chunk) ke += m_chunk_sums[chunk];
   if (m_shells) {
@@ -319,6 +339,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   if (m_first_update) find_jumps(state, inc);
   Real ke_fix = update_prescribed(state, translation, rotation, inc, work);
   if (!m_jumps.empty()) ke_fix += count_jump_work(translation, rotation, inc, work);
+  if (tied) m_ties->follow(state);  // slaves after their masters (prescribed and rigid too)
   if (m_loads_due)
     for (Index at : m_free_load_dofs)
       work = multiply_add(m_load_work_force.data()[at], m_load_work_velocity.data()[at], work);

@@ -17,6 +17,7 @@
 #include "solver/pressure_loads.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
+#include "solver/ties.hpp"
 
 namespace xpl {
 
@@ -56,6 +57,9 @@ class CentralDifference {
   /// velocities, accelerations, reactions, kinetic energy and external work into `state`.
   void update_nodes(State& state, ElementSet& elements, RigidBodies& rigid, Real dt_prev,
                     Real dt_next, Real t_next_half, Real t_next_end);
+  /// The model's ties (must outlive the update); null or inactive: none, and the nodal update
+  /// runs exactly as without (no extra pass).
+  void set_ties(const Ties* ties) { m_ties = ties; }
   /// Brings state.rotation up to date with the tracked rotations (before output).
   void sync_rotation(State& state);
 
@@ -85,6 +89,9 @@ class CentralDifference {
   /// m_chunk_sums (translations at `chunk`, rotations after the translations' chunks).
   void update_chunk(State& state, const Field& translation, const Field& rotation,
                     const Increment& inc, Index chunk);
+  /// The loads of one chunk's nodes and their work (the first part of update_chunk; run as a
+  /// pass of its own before the ties gather the slave forces).
+  void load_chunk(const State& state, const Field& translation, const Increment& inc, Index chunk);
   /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
   /// `work`); returns the kinetic-energy correction to what the free update counted.
   Real update_prescribed(State& state, const Field& translation, const Field& rotation,
@@ -110,8 +117,10 @@ class CentralDifference {
   BoundaryState m_boundary;
   PressureLoads m_pressures;
   GravityLoads m_gravity;
-  NodalLoads m_loads;        ///< the step's loads per node
-  bool m_loads_due = false;  ///< apply_loads() has set the time of the next update's loads
+  NodalLoads m_loads;              ///< the step's loads per node
+  bool m_loads_due = false;        ///< apply_loads() has set the time of the next update's loads
+  bool m_loads_evaluated = false;  ///< load_chunk ran before the fused pass (ties)
+  const Ties* m_ties = nullptr;
   NodeRotations m_rotations;
   bool m_rotation_synced = true;  ///< state.rotation matches m_rotations
   /// (n_nodes × 3), non-zero only on loaded DOFs; allocated only when a step has loads (P2).

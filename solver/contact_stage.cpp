@@ -142,6 +142,9 @@ void ContactStage::resolve_overclosures(int step, const contact::ContactEngine* 
     if (d.component < 3) lock[d.node] |= static_cast<std::uint8_t>(1u << d.component);
   for (Index i = 0; i < n; ++i)
     if (rigid.is_rigid_node(i)) lock[i] |= contact::LOCK_RIGID;
+  if (!m_tied.empty())
+    for (Index i = 0; i < n; ++i)
+      if (m_tied[i] != 0) lock[i] |= contact::LOCK_TIE;
   NodalVectors as_read;
   if (settings.adjust) as_read = state.position;
   const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes,

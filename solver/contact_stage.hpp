@@ -35,6 +35,9 @@ class ContactStage {
   /// engine it replaces; it reports to the sink.
   void begin_step(int step, State& state, ElementSet& elements, const RigidBodies& rigid,
                   const std::vector<PrescribedDof>& prescribed);
+  /// Nodes of ties (Ties::tied_nodes, n_nodes): held by the overclosure pass, their
+  /// penetration an offset with reason "tie".
+  void set_tied_nodes(std::vector<char> tied) { m_tied = std::move(tied); }
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
 
@@ -93,6 +96,7 @@ class ContactStage {
   std::vector<std::string> m_pair_names;  ///< in the engine's pair order (history output)
   PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
+  std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
 };
 
 }  // namespace xpl

@@ -173,6 +173,16 @@ void ElementSet::set_inverse_mass(const RigidBodies& rigid, const std::vector<Re
   }
 }
 
+void ElementSet::update_inverse_mass(const std::vector<Index>& nodes, const State& state,
+                                     const RigidBodies& rigid) {
+  for (Index i : nodes) {
+    if (rigid.is_rigid_node(i)) continue;
+    m_inverse_mass[i] = state.mass[i] > 0.0 ? 1.0 / state.mass[i] : 0.0;
+    if (!m_inverse_inertia.empty())
+      m_inverse_inertia[i] = state.rotary_inertia[i] > 0.0 ? 1.0 / state.rotary_inertia[i] : 0.0;
+  }
+}
+
 Real ElementSet::mass_factor(Index e) const {
   return m_mass_scaling.factor.empty() ? 1.0 : m_mass_scaling.factor[e];
 }

@@ -129,6 +129,10 @@ class ElementSet {
   const std::vector<Real>& inverse_mass() const { return m_inverse_mass; }
   /// Inverse rotary inertia (n_nodes), 1/(kg·m²); empty without shells.
   const std::vector<Real>& inverse_inertia() const { return m_inverse_inertia; }
+  /// Recomputes the inverse mass (and inverse rotary inertia) of `nodes` from `state` after
+  /// the ties moved mass between them (Ties::distribute_mass); rigid-body nodes keep 0.
+  void update_inverse_mass(const std::vector<Index>& nodes, const State& state,
+                           const RigidBodies& rigid);
   /// Shell thickness at each node for contact (n_nodes, m), or empty without shells.
   const std::vector<Real>& node_thickness() const { return m_node_thickness; }
   /// Kind of each element for the contact domain (n_elements).

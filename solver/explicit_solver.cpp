@@ -18,6 +18,7 @@
 #include "solver/output_driver.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/thread_team.hpp"
+#include "solver/ties.hpp"
 
 namespace xpl {
 
@@ -83,6 +84,7 @@ struct ExplicitSolver::Impl {
   PhaseTimers m_timers;
   State m_state;
   RigidBodies m_rigid;
+  Ties m_ties;  ///< before m_elements: ADJUST moves slave nodes before the masses are lumped
   ElementSet m_elements;
   CentralDifference m_nodes;
   ContactStage m_contact;
@@ -102,11 +104,19 @@ ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions o
       m_options(options),
       m_state(initial_state(model)),
       m_rigid(model),
+      m_ties(model, m_state),
       m_elements(model, m_rigid, m_state, m_timers, options.dt_safety),
       m_nodes(model, m_timers, m_elements.has_shells()),
       m_contact(model, sink, m_timers, options.initial_state != nullptr),
       m_energy(model, options.dt_floor_ratio, options.energy_limit),
       m_output(model, sink, m_timers) {
+  if (m_ties.active()) {
+    // Slave masses to their master corners before the rigid bodies sum theirs.
+    m_ties.distribute_mass(m_state);
+    m_elements.update_inverse_mass(m_ties.changed_nodes(), m_state, m_rigid);
+    m_nodes.set_ties(&m_ties);
+    m_contact.set_tied_nodes(m_ties.tied_nodes());
+  }
   const std::vector<std::string> rigid_messages = set_up_rigid_bodies();
   if (m_options.initial_state != nullptr) apply_initial_state(*m_options.initial_state);
   report_setup(rigid_messages);
@@ -191,6 +201,7 @@ void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_me
                                          ": HOURGLASS=ENHANCED is the S4R physical "
                                          "stabilisation; C3D8R elements run it as STIFFNESS");
   for (const std::string& m : rigid_messages) m_sink.message(Severity::Info, m);
+  for (const std::string& m : m_ties.messages()) m_sink.message(Severity::Info, m);
   m_elements.report_setup(m_state.reference, m_sink);
 }
 

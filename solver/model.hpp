@@ -306,6 +306,18 @@ struct RigidBody {
   SourceLocation where;
 };
 
+/// `*TIE, NAME=, POSITION TOLERANCE=, ADJUST=YES|NO` with the data line `slave, master`
+/// (SPEC S6): every slave node within the tolerance of the master surface is bound to its
+/// closest point there (solver/ties.hpp).
+struct Tie {
+  std::string name;               ///< upper-case name
+  Index slave = NO_INDEX;         ///< into Model::surfaces (element or node based)
+  Index master = NO_INDEX;        ///< into Model::surfaces (element based)
+  std::optional<Real> tolerance;  ///< POSITION TOLERANCE=, m; empty: the default (ties.hpp)
+  bool adjust = true;             ///< ADJUST=YES: slave nodes moved onto the master first
+  SourceLocation where;
+};
+
 /// A point mass (`*ELEMENT, TYPE=MASS` + `*MASS, ELSET=`) or rotary inertia
 /// (`TYPE=ROTARYI` + `*ROTARY INERTIA`: I11, I22, I33, I12, I13, I23 in global axes) on a node.
 struct PointInertia {
@@ -459,6 +471,7 @@ struct Model {
   std::vector<ContactClearance> contact_clearances;  ///< `*CONTACT CLEARANCE`
   std::vector<NodalDistribution> distributions;      ///< `*DISTRIBUTION, LOCATION=NODE`
   std::vector<RigidBody> rigid_bodies;
+  std::vector<Tie> ties;  ///< `*TIE`
   std::vector<PointInertia> point_inertias;
 
   // --- initial conditions and history --------------------------------------------------------

@@ -207,7 +207,8 @@ void report_overclosures(const contact::OverclosureReport& report,
     TableColumn slave = Tables::ids("slave_surface", "index into attribute surface_names");
     TableColumn offset = Tables::reals("offset", "d0, m");
     TableColumn reason = Tables::ids(
-        "reason", "0 BC, 1 rigid, 2 pinched, 3 distortion, 4 conflict, 5 later step, 6 import");
+        "reason",
+        "0 BC, 1 rigid, 2 pinched, 3 distortion, 4 conflict, 5 later step, 6 import, 7 tie");
     for (const contact::OffsetNode& o : report.offsets) {
       node.ids.push_back(tables.node_id(o.node));
       tables.add_face(o.face, element, face);

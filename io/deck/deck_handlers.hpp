@@ -216,6 +216,14 @@ bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocatio
 void read_rigid_body(DeckState& deck, const DeckBlock& block);
 /// Resolves the recorded rigid bodies (in finish()).
 void resolve_rigid_bodies(DeckState& deck);
+
+// --- Ties (deck_tie.cpp)
+
+/// `*TIE, NAME=, POSITION TOLERANCE=, ADJUST=`: one data line `slave, master`.
+void read_tie(DeckState& deck, const DeckBlock& block);
+/// Surfaces of the ties, and the node conflicts (slave of two ties, slave on another tie's
+/// master, slave with a translational BC or in a rigid body): after rigid bodies and steps.
+void resolve_ties(DeckState& deck);
 /// `*ELEMENT, TYPE=MASS|ROTARYI`.
 void read_point_elements(DeckState& deck, const DeckBlock& block, bool rotary);
 /// `*MASS` or (`rotary`) `*ROTARY INERTIA`.

@@ -60,6 +60,7 @@ constexpr KeywordSpec KEYWORDS[] = {
     {"MASS", Model, None, read_mass},
     {"ROTARY INERTIA", Model, None, read_rotary_inertia},
     {"RIGID BODY", Model, None, read_rigid_body},
+    {"TIE", Model, None, read_tie},
     {"SURFACE INTERACTION", Model, None, read_surface_interaction},
     {"FRICTION", Model, Interaction, read_friction},
     {"SURFACE BEHAVIOR", Model, Interaction, read_surface_behavior},

@@ -54,6 +54,7 @@ Model finish(DeckState& deck) {
   resolve_gravity(deck);
   resolve_contact_pairs(deck);
   resolve_rigid_bodies(deck);
+  resolve_ties(deck);  // after rigid bodies and steps (node conflicts)
   resolve_point_inertias(deck);
   resolve_distributions(deck);
   resolve_clearances(deck);  // after surfaces, contact pairs, rigid bodies and distributions

@@ -125,6 +125,11 @@ struct PendingRigidBody {
   DeckReference reference_node;
   std::string element_set, pin_node_set, tie_node_set;
 };
+/// `*TIE` data line (parallel to Model::ties); names upper case.
+struct PendingTie {
+  std::string slave, master;
+  SourceLocation where;
+};
 /// `*DISTRIBUTION, LOCATION=NODE` (parallel to Model::distributions): its data lines.
 struct PendingDistribution {
   std::optional<Real> default_value;                   ///< first line with a blank node field
@@ -215,6 +220,7 @@ struct DeckState {
   std::vector<PendingGravity> gravity;
   std::vector<PendingContactPair> contact_pairs;
   std::vector<PendingRigidBody> rigid_bodies;  ///< parallel to Model::rigid_bodies
+  std::vector<PendingTie> ties;                ///< parallel to Model::ties
   std::vector<PointElement> point_elements;
   std::unordered_map<ExternalId, Index> point_element_index;  ///< into point_elements
   std::vector<PointProperty> point_properties;

@@ -1,0 +1,216 @@
+/// \file *TIE, NAME=, POSITION TOLERANCE=, ADJUST=YES|NO (SPEC S6): read as model data, the
+/// surfaces resolved and the nodes checked once the whole deck is read. Which slave nodes lie
+/// within the tolerance is geometry: the solver finds them (solver/ties.hpp).
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "io/deck/deck_handlers.hpp"
+#include "io/deck/deck_numbers.hpp"
+
+namespace xpl::io {
+
+void read_tie(DeckState& deck, const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(deck, keyword, {{"NAME"}, {"POSITION TOLERANCE"}, {"ADJUST"}, {"TYPE"}});
+  const std::optional<std::string> name = required_name(deck, keyword, "NAME");
+  Tie tie;
+  tie.where = keyword.where;
+  bool ok = name.has_value();
+  if (name) tie.name = *name;
+  if (const DeckParameter* p = find_parameter(keyword, "POSITION TOLERANCE");
+      p != nullptr && p->has_value) {
+    const std::optional<Real> value = parse_real(p->value);
+    if (!value || !(*value >= 0.0) || !std::isfinite(*value)) {
+      error(deck, keyword.where, keyword, "bad POSITION TOLERANCE=" + p->value,
+            "expected a distance >= 0, e.g. POSITION TOLERANCE=0.001");
+      ok = false;
+    } else {
+      tie.tolerance = *value;
+    }
+  }
+  const std::string adjust = optional_name(keyword, "ADJUST");
+  if (adjust == "NO") {
+    tie.adjust = false;
+  } else if (!adjust.empty() && adjust != "YES") {
+    error(deck, keyword.where, keyword, "bad ADJUST=" + adjust,
+          "expected ADJUST=YES (default) or ADJUST=NO");
+    ok = false;
+  }
+  const std::string type = optional_name(keyword, "TYPE");
+  if (!type.empty() && type != "SURFACE TO SURFACE" && type != "NODE TO SURFACE") {
+    error(deck, keyword.where, keyword, "bad TYPE=" + type,
+          "expected TYPE=SURFACE TO SURFACE or NODE TO SURFACE (xpl ties node to surface)");
+    ok = false;
+  }
+  if (name)
+    for (const Tie& other : deck.model.ties)
+      if (other.name == tie.name) {
+        error(deck, keyword.where, keyword,
+              "tie " + tie.name + " is already defined at " + location_text(other.where),
+              "expected each *TIE NAME= once");
+        ok = false;
+      }
+  if (block.data.size() != 1) {
+    error(deck, keyword.where, keyword,
+          "found " + std::to_string(block.data.size()) + " data lines",
+          "expected one data line: slave surface, master surface");
+    return;
+  }
+  const DeckDataLine& line = block.data.front();
+  if (!check_field_count(deck, line, keyword, 2, "slave surface, master surface")) ok = false;
+  const bool has_slave = !line.fields.empty() && !line.fields[0].empty();
+  const bool has_master = line.fields.size() > 1 && !line.fields[1].empty();
+  if (!has_slave || !has_master) {
+    error(deck, line.where(), keyword,
+          has_slave ? "missing master surface" : "missing slave surface",
+          "expected slave surface, master surface");
+    return;
+  }
+  if (!ok) return;
+  deck.model.ties.push_back(tie);
+  deck.ties.push_back(
+      {normalize_name(line.fields[0]), normalize_name(line.fields[1]), line.where()});
+}
+
+namespace {
+
+/// Nodes of an element-based surface's faces (sorted, unique): hex face corners, the four
+/// nodes of a shell face; a node-based surface's nodes.
+std::vector<Index> surface_nodes(const Model& model, const Surface& surface) {
+  std::vector<Index> nodes;
+  if (surface.type == Surface::Type::Node) {
+    nodes = surface.nodes;
+  } else {
+    for (const ElementFace& f : surface.faces) {
+      const Index* en = model.nodes_of(f.element);
+      if (is_hex(model.element_types[f.element]))
+        for (int k : HEX_FACE_NODES[f.face]) nodes.push_back(en[k]);
+      else
+        nodes.insert(nodes.end(), en, en + 4);
+    }
+  }
+  // Unresolved nodes (elements of a deck with errors elsewhere) are no conflict of a tie.
+  const Index n = model.node_count();
+  std::erase_if(nodes, [n](Index i) { return i < 0 || i >= n; });
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+/// One error per tie and cause: the first node, and how many more.
+struct Conflict {
+  std::vector<Index> nodes;
+  std::string other;  ///< what the first node conflicts with
+};
+
+}  // namespace
+
+void resolve_ties(DeckState& deck) {
+  Model& model = deck.model;
+  if (model.ties.empty()) return;
+  const std::string keyword = "*TIE";
+  std::vector<char> valid(model.ties.size(), 1);
+  for (std::size_t t = 0; t < model.ties.size(); ++t) {
+    Tie& tie = model.ties[t];
+    const PendingTie& pending = deck.ties[t];
+    tie.slave = contact_surface(deck, pending.slave, pending.where, keyword);
+    tie.master = contact_surface(deck, pending.master, pending.where, keyword);
+    if (tie.slave == NO_INDEX || tie.master == NO_INDEX) {
+      valid[t] = 0;
+      continue;
+    }
+    if (model.surfaces[tie.master].type == Surface::Type::Node) {
+      deck.errors.add(pending.where, keyword, "master surface " + pending.master + " is node-based",
+                      "expected an element-based surface (*SURFACE, TYPE=ELEMENT) as the master");
+      valid[t] = 0;
+    }
+    if (tie.slave == tie.master) {
+      deck.errors.add(pending.where, keyword,
+                      "surface " + pending.slave + " is both slave and master",
+                      "expected two different surfaces: slave surface, master surface");
+      valid[t] = 0;
+    }
+  }
+
+  // Node conflicts (checked on every node of the slave surface, within the tolerance or not):
+  // a slave of two ties, a slave that is a master node of another tie, a slave with a
+  // boundary condition on a translation, a slave in a rigid body. A slave node that is also a
+  // master node of its own tie is not a conflict: it stays untied (ties.hpp).
+  const auto n = static_cast<std::size_t>(model.node_count());
+  std::vector<Index> slave_of(n, NO_INDEX), master_of(n, NO_INDEX);
+  std::vector<std::vector<Index>> slaves(model.ties.size());
+  for (std::size_t t = 0; t < model.ties.size(); ++t) {
+    if (!valid[t]) continue;
+    for (Index i : surface_nodes(model, model.surfaces[model.ties[t].master]))
+      if (master_of[i] == NO_INDEX) master_of[i] = static_cast<Index>(t);
+  }
+  std::vector<char> constrained(n, 0);  // 1: translational BC, 2: rigid body
+  for (const Step& step : model.steps)
+    for (const BoundaryCondition& bc : step.boundaries)
+      if (bc.node >= 0 && bc.node < model.node_count() && bc.first_dof <= 3)
+        constrained[bc.node] = 1;
+  for (const RigidBody& body : model.rigid_bodies) {
+    std::vector<Index> members;
+    if (body.element_set != NO_INDEX)
+      for (Index e : model.element_sets[body.element_set].members) {
+        const Index* en = model.nodes_of(e);
+        members.insert(members.end(), en,
+                       en + (model.element_offsets[e + 1] - model.element_offsets[e]));
+      }
+    for (Index set : {body.pin_node_set, body.tie_node_set})
+      if (set != NO_INDEX)
+        members.insert(members.end(), model.node_sets[set].members.begin(),
+                       model.node_sets[set].members.end());
+    if (body.reference_node != NO_INDEX) members.push_back(body.reference_node);
+    for (Index i : members)
+      if (i >= 0 && i < model.node_count()) constrained[i] = 2;
+  }
+  for (std::size_t t = 0; t < model.ties.size(); ++t) {
+    if (!valid[t]) continue;
+    const Tie& tie = model.ties[t];
+    std::map<std::string, Conflict> conflicts;  // keyed by cause (ordered: a fixed message order)
+    for (Index i : surface_nodes(model, model.surfaces[tie.slave])) {
+      if (master_of[i] == static_cast<Index>(t)) continue;  // on its own master: untied
+      if (slave_of[i] != NO_INDEX) {
+        Conflict& c = conflicts["1 slave"];
+        if (c.nodes.empty()) c.other = model.ties[slave_of[i]].name;
+        c.nodes.push_back(i);
+        continue;
+      }
+      slave_of[i] = static_cast<Index>(t);
+      if (master_of[i] != NO_INDEX) {
+        Conflict& c = conflicts["2 master"];
+        if (c.nodes.empty()) c.other = model.ties[master_of[i]].name;
+        c.nodes.push_back(i);
+      }
+      if (constrained[i] == 1) conflicts["3 boundary"].nodes.push_back(i);
+      if (constrained[i] == 2) conflicts["4 rigid"].nodes.push_back(i);
+    }
+    for (const auto& [cause, c] : conflicts) {
+      const std::string node =
+          "node " + std::to_string(model.node_ids[c.nodes.front()]) +
+          (c.nodes.size() > 1 ? " (and " + std::to_string(c.nodes.size() - 1) + " more)"
+                              : std::string());
+      const std::string which = "slave " + node + " of tie " + tie.name;
+      if (cause[0] == '1')
+        deck.errors.add(tie.where, keyword, which + " is also a slave of tie " + c.other,
+                        "expected each node a slave of one tie at most");
+      else if (cause[0] == '2')
+        deck.errors.add(tie.where, keyword, which + " is also a master node of tie " + c.other,
+                        "expected a slave node on no other tie's master surface (tie the parts "
+                        "in a chain master to master, or merge the ties)");
+      else if (cause[0] == '3')
+        deck.errors.add(tie.where, keyword,
+                        which + " has a boundary condition on a translational DOF",
+                        "expected a tied slave node to follow its master; put the boundary "
+                        "condition on the master surface's nodes");
+      else
+        deck.errors.add(tie.where, keyword, which + " belongs to a rigid body",
+                        "expected a deformable slave node (make the rigid part the master)");
+    }
+  }
+}
+
+}  // namespace xpl::io
