@@ -147,10 +147,13 @@ void resolve_ties(DeckState& deck) {
       if (master_of[i] == NO_INDEX) master_of[i] = static_cast<Index>(t);
   }
   std::vector<char> constrained(n, 0);  // 1: translational BC, 2: rigid body
+  std::vector<char> rotation_bc(n, 0);  // a BC on DOF 4-6 (a shell node's rotations)
   for (const Step& step : model.steps)
-    for (const BoundaryCondition& bc : step.boundaries)
-      if (bc.node >= 0 && bc.node < model.node_count() && bc.first_dof <= 3)
-        constrained[bc.node] = 1;
+    for (const BoundaryCondition& bc : step.boundaries) {
+      if (bc.node < 0 || bc.node >= model.node_count()) continue;
+      if (bc.first_dof <= 3) constrained[bc.node] = 1;
+      if (bc.last_dof >= 4) rotation_bc[bc.node] = 1;
+    }
   for (const RigidBody& body : model.rigid_bodies) {
     std::vector<Index> members;
     if (body.element_set != NO_INDEX)
@@ -171,6 +174,13 @@ void resolve_ties(DeckState& deck) {
     if (!valid[t]) continue;
     const Tie& tie = model.ties[t];
     std::map<std::string, Conflict> conflicts;  // keyed by cause (ordered: a fixed message order)
+    // A shell master ties the rotations of shell slaves too (ties.hpp): a rotational BC on
+    // such a slave would be overwritten by the tie.
+    bool shell_master = false;
+    for (const ElementFace& f : model.surfaces[tie.master].faces)
+      if (f.element >= 0 && f.element < model.element_count() &&
+          is_shell(model.element_types[f.element]))
+        shell_master = true;
     for (Index i : surface_nodes(model, model.surfaces[tie.slave])) {
       if (master_of[i] == static_cast<Index>(t)) continue;  // on its own master: untied
       if (slave_of[i] != NO_INDEX) {
@@ -187,6 +197,8 @@ void resolve_ties(DeckState& deck) {
       }
       if (constrained[i] == 1) conflicts["3 boundary"].nodes.push_back(i);
       if (constrained[i] == 2) conflicts["4 rigid"].nodes.push_back(i);
+      if (shell_master && rotation_bc[i] && constrained[i] != 1)
+        conflicts["5 rotation"].nodes.push_back(i);
     }
     for (const auto& [cause, c] : conflicts) {
       const std::string node =
@@ -206,9 +218,17 @@ void resolve_ties(DeckState& deck) {
                         which + " has a boundary condition on a translational DOF",
                         "expected a tied slave node to follow its master; put the boundary "
                         "condition on the master surface's nodes");
-      else
+      else if (cause[0] == '4')
         deck.errors.add(tie.where, keyword, which + " belongs to a rigid body",
                         "expected a deformable slave node (make the rigid part the master)");
+      else
+        deck.errors.add(tie.where, keyword,
+                        which +
+                            " has a boundary condition on a rotational DOF, and the shell "
+                            "master surface " +
+                            model.surfaces[tie.master].name + " ties its rotations",
+                        "expected a tied slave node to follow its master; put the boundary "
+                        "condition on the master surface's nodes");
     }
   }
 }

@@ -521,6 +521,18 @@ def shells(binary, out):
     check(drift < 0.01, f"shells: ETOTAL drift {drift:.2%} of ALLWK (limit 1 %)")
     print(f"check_tie.py: shells: tied U to {worst_u / umax:.1e}, UR to {worst_r / rmax:.1e} of "
           f"the largest, ETOTAL drift {drift:.1e} of ALLWK")
+    # The tie sets the rotations of these slaves: a rotational BC on one would be overwritten,
+    # so the deck is refused (one error at the *TIE line).
+    text = m.text("lap joint with a rotational BC on a tied slave").replace(
+        "*BOUNDARY\nCLAMP, 1, 6", f"*BOUNDARY\nCLAMP, 1, 6\n{sp[0][0]}, 4, 6")
+    check(f"{sp[0][0]}, 4, 6" in text, "shells: rotational BC added to the deck")
+    (d / "rot.inp").write_text(text)
+    code, output = xpl(binary, "check", str(d / "rot.inp"))
+    line = text.splitlines().index("*TIE, NAME=LAP") + 1
+    hits = [l for l in output.splitlines() if "*TIE:" in l]
+    check(code == 1 and len(hits) == 1 and f"rot.inp:{line}: *TIE:" in hits[0] and
+          "rotational DOF" in hits[0], f"shells: rotational BC on a tied slave: exit {code}, "
+          f"errors {hits}\n{output}")
 
 
 # --- threads ------------------------------------------------------------------------------------
