@@ -37,7 +37,8 @@ void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>
                                   std::to_string(s.width));
     }
     const auto slash = s.path.rfind('/');
-    const hsize_t width = s.width > 1 ? static_cast<hsize_t>(s.width) : 0;
+    // Node series are always (nt, n_nodes), also for a one-node set; whole-model series (nt).
+    const hsize_t width = s.width > 1 || !s.node_ids.empty() ? static_cast<hsize_t>(s.width) : 0;
     if (slash == std::string::npos) {
       m_series.emplace_back(m_group.get(), s.path, width);
     } else {
