@@ -109,10 +109,14 @@ std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameReq
            data_item(dims, data_type, dataset) + "\n        </Attribute>\n";
   };
   std::string grid = "      <Grid Name=\"frame_" + frame + "\" GridType=\"Uniform\">\n";
-  grid += "        <Time Value=\"" + exact(time) + "\"/>\n";
-  grid += "        <Information Name=\"step\" Value=\"" + std::to_string(step) + "\"/>\n";
-  grid += "        <Information Name=\"step_name\" Value=\"" + xml_escape(step_name) + "\"/>\n";
-  grid += "        <Information Name=\"step_time\" Value=\"" + exact(step_time) + "\"/>\n";
+  // meshio.read rejects Time and Information elements (other than its own) in a single
+  // grid: the last-frame file carries neither (its frame's time is in JOB.xdmf and JOB.h5).
+  if (set_elements) {
+    grid += "        <Time Value=\"" + exact(time) + "\"/>\n";
+    grid += "        <Information Name=\"step\" Value=\"" + std::to_string(step) + "\"/>\n";
+    grid += "        <Information Name=\"step_name\" Value=\"" + xml_escape(step_name) + "\"/>\n";
+    grid += "        <Information Name=\"step_time\" Value=\"" + exact(step_time) + "\"/>\n";
+  }
   grid += "        <Topology TopologyType=\"" + m_mesh.topology_type + "\" NumberOfElements=\"" +
           cells + "\">\n          " +
           data_item(m_mesh.topology_dimensions, "Int", m_mesh.topology_dataset) +
