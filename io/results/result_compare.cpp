@@ -170,9 +170,6 @@ void compare_frames(const ResultFile& ref, const ResultFile& cand, const Compare
       report.notes.push_back(rf + " at t = " + format_number(t_ref) + " s is compared with " + cf +
                              " at t = " + format_number(t_cand) + " s");
     for (const std::string& field : h5::group_members(ref.file.get(), rf)) {
-      // The group of the XDMF file's tensor copies (VTK order, global axes) is derived from
-      // S, S_SNEG and S_SPOS, which are compared themselves.
-      if (field == "xdmf") continue;
       if (!options.names.empty() &&
           std::find(options.names.begin(), options.names.end(), field) == options.names.end())
         continue;

@@ -214,11 +214,13 @@ void to_global(const elements::QuadFrame<Real>& f, const Real* local, Real* glob
   std::copy(out, out + 6, global);
 }
 
-/// Writes /frames/NNNNNN/xdmf: the tensors the XDMF file shows, in VTK order, in global axes
+/// Writes /xdmf/NNNNNN (`path`): the tensors the XDMF file shows, in VTK order, in global axes
 /// (S, S_SNEG, S_SPOS) and, on shell models, the shells' local-axes ones (S_LOCAL, ...; NaN
-/// rows for solids). The datasets of the frame itself keep the Abaqus order.
-void write_xdmf_tensors(hid_t frame, const Model& model, const State& state) {
-  const h5::Handle group = h5::require_group(frame, "xdmf");
+/// rows for solids). The datasets of /frames/NNNNNN keep the Abaqus order; the copies live
+/// outside the frame group so that a frame holds datasets only, as before.
+void write_xdmf_tensors(hid_t file, const std::string& path, const Model& model,
+                        const State& state) {
+  const h5::Handle group = h5::require_group(file, path);
   const bool shells = model.has_shells();
   const auto n = static_cast<std::size_t>(model.element_count());
   struct Tensor {
@@ -338,7 +340,7 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
     write_variable(g, *v, model, state);
     describe(g, std::string(v->name), component_list(*v), v->unit, v->description);
   }
-  if (what.stress) write_xdmf_tensors(g, model, state);
+  if (what.stress) write_xdmf_tensors(m_file.get(), std::string("xdmf/") + name, model, state);
   if (what.stress && !state.hourglass_state.empty()) {
     // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
     // --import (io/results/import_state.hpp).

@@ -70,13 +70,15 @@ std::string link_name(std::string name) {
   return name;
 }
 
-/// Writes /mesh/GROUP/NAME (deck ids) and, for the XDMF file, /mesh/GROUP_rows/NAME
-/// (zero-based rows) and /mesh/GROUP_flags/NAME (1 for members, else 0) of every set.
-void write_sets(hid_t mesh, const std::string& group_name, const std::vector<NamedSet>& sets,
-                const std::vector<ExternalId>& ids, bool node, std::vector<XdmfSet>& xdmf) {
+/// Writes /mesh/GROUP/NAME (deck ids) and, for the XDMF file, /xdmf/sets/GROUP_rows/NAME
+/// (zero-based rows) and /xdmf/sets/GROUP_flags/NAME (1 for members, else 0) of every set.
+void write_sets(hid_t file, hid_t mesh, const std::string& group_name,
+                const std::vector<NamedSet>& sets, const std::vector<ExternalId>& ids, bool node,
+                std::vector<XdmfSet>& xdmf) {
   const h5::Handle group = h5::require_group(mesh, group_name);
-  const h5::Handle rows_group = h5::require_group(mesh, group_name + "_rows");
-  const h5::Handle flags_group = h5::require_group(mesh, group_name + "_flags");
+  const std::string base = "/xdmf/sets/" + group_name;
+  const h5::Handle rows_group = h5::require_group(file, base + "_rows");
+  const h5::Handle flags_group = h5::require_group(file, base + "_flags");
   for (const NamedSet& set : sets) {
     const std::string link = link_name(set.name);
     const std::vector<std::int64_t> members = member_ids(set, ids);
@@ -86,7 +88,6 @@ void write_sets(hid_t mesh, const std::string& group_name, const std::vector<Nam
     std::vector<std::uint8_t> flags(ids.size(), 0);
     for (Index m : set.members) flags[static_cast<std::size_t>(m)] = 1;
     h5::write_uint8(flags_group.get(), link, flags, {flags.size()});
-    const std::string base = "/mesh/" + group_name;
     xdmf.push_back({set.name, node, static_cast<Index>(rows.size()), base + "_rows/" + link,
                     base + "_flags/" + link});
   }
@@ -157,8 +158,9 @@ XdmfMesh write_mesh_group(hid_t file, const Model& model) {
     xdmf.topology_dimensions =
         std::to_string(xdmf.cells) + " " + std::to_string(nodes_per_element(type));
   }
-  write_sets(mesh.get(), "node_sets", model.node_sets, model.node_ids, true, xdmf.sets);
-  write_sets(mesh.get(), "element_sets", model.element_sets, model.element_ids, false, xdmf.sets);
+  write_sets(file, mesh.get(), "node_sets", model.node_sets, model.node_ids, true, xdmf.sets);
+  write_sets(file, mesh.get(), "element_sets", model.element_sets, model.element_ids, false,
+             xdmf.sets);
   return xdmf;
 }
 

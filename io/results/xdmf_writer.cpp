@@ -134,10 +134,10 @@ std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameReq
     if (v->width == 6) {
       // Tensors: the copies in VTK's Tensor6 order (XX YY ZZ XY YZ XZ) and global axes, so
       // that ParaView and meshio label S13 as XZ; shell models add the local-axes copies.
-      grid += attribute(name, "Tensor6", node, dims, "Float", prefix + "xdmf/" + name);
+      grid += attribute(name, "Tensor6", node, dims, "Float", "/xdmf/" + frame + "/" + name);
       if (m_mesh.shells) {
         grid += attribute(name + "_LOCAL", "Tensor6", node, dims, "Float",
-                          prefix + "xdmf/" + name + "_LOCAL");
+                          "/xdmf/" + frame + "/" + name + "_LOCAL");
       }
       continue;
     }

@@ -53,8 +53,9 @@ TEST_CASE("output variables: a frame writes its datasets in the order of the fil
           "[results][variables]") {
   using Names = std::vector<std::string>;
   CHECK(frame_names(everything(), true) ==
-        Names{"U", "UR", "V", "VR", "A", "RF", "RM", "S", "MISES", "S_SNEG", "S_SPOS", "EVOL",
-              "STH", "CPRESS", "CSHEAR", "CSTATUS", "CNORMF", "CSHEARF"});
+        Names{"U",    "UR",    "V",      "VR",     "A",          "RF",         "RM",
+              "S",    "MISES", "S_SNEG", "S_SPOS", "MISES_SNEG", "MISES_SPOS", "MISES_MAX",
+              "EVOL", "STH",   "CPRESS", "CSHEAR", "CSTATUS",    "CNORMF",     "CSHEARF"});
   CHECK(frame_names(everything(), false) == Names{"U", "V", "A", "RF", "S", "MISES", "EVOL",
                                                   "CPRESS", "CSHEAR", "CSTATUS", "CNORMF",
                                                   "CSHEARF"});
