@@ -128,6 +128,11 @@ def check_h5(path):
                     check(obj.shape[0] == nt, f"history {name} has {obj.shape[0]} rows, not {nt}")
                     if obj.ndim == 2:
                         check(obj.attrs["node_ids"].shape == (obj.shape[1],), f"{name} node_ids")
+                    # Issue 19: node series are (nt, n) for any n; every series has units.
+                    check(not name.startswith("node/") or obj.ndim == 2, f"history {name} 1-D")
+                    check("units" in obj.attrs, f"history {name} has no units")
+                    check(name == "time" or "components" in obj.attrs,
+                          f"history {name} has no components")
 
             step.visititems(visit)
         return f["mesh/coordinates"][()], cell_blocks(kinds, nodes), data, times

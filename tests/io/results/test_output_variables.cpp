@@ -121,7 +121,7 @@ TEST_CASE("output variables: history node requests", "[results][variables]") {
 }
 
 TEST_CASE("output variables: the history of a contact pair", "[results][variables]") {
-  std::vector<HistorySeries> series{{"energy/ALLKE", 1, {}}};
+  std::vector<HistorySeries> series{{"energy/ALLKE", 1, {}, "", ""}};
   append_contact_pair_series(series, "ALL_EXTERIOR");
   REQUIRE(series.size() == 3);
   CHECK(series[1].path == "contact/ALL_EXTERIOR/CFN");
