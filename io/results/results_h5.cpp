@@ -281,15 +281,15 @@ ResultsH5::ResultsH5(const std::filesystem::path& path, const std::string& job)
   // The 1.8 format stores attributes larger than 64 KiB (node_ids of wide history series).
   h5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST),
             "cannot set the file format");
-  // Live reading (issue 19): no HDF5 file lock, so that h5py and ParaView can open the file
-  // while the job runs (a reader's own shared lock no longer fails on the writer's exclusive
-  // one, and HDF5_USE_FILE_LOCKING=FALSE is not needed). Every frame, history block and the
-  // status end with a flush (below), so a reader that opens the file between two flushes sees
-  // a consistent prefix of the frames. One run per job and directory at a time is JOB.lck's
-  // rule (job_lock.hpp), taken before this file is created.
-  h5::check(H5Pset_file_locking(access.get(), false, true), "cannot set the file locking");
-  // A reader may still hold the previous run's file open: unlink it rather than truncate it
-  // under the reader, who keeps reading the old (complete) file.
+  // Live reading (issue 19) is NOT done: without HDF5's file lock (H5Pset_file_locking
+  // off) an h5py reader that holds the file while the next frame is flushed reads torn
+  // metadata ("addr overflow" errors, once a segmentation fault), and SWMR in HDF5 1.10
+  // cannot create the groups every frame adds. What is needed: close the file between
+  // writes (the history writer then must not hold dataset handles). See README.
+  //
+  // A reader (ParaView) may still hold the previous run's file open: unlink it rather than
+  // truncate it, so that the new run does not fail on the reader's lock and the reader keeps
+  // the old, complete file. JOB.lck (job_lock.hpp) keeps one run per job and directory.
   std::error_code ignored;
   std::filesystem::remove(path, ignored);
   m_file =

@@ -103,14 +103,10 @@ inline State tiny_state(const Model& model, int frame) {
   return state;
 }
 
-/// An opened HDF5 file (read-only). Without file locking, as ResultsH5 writes it: HDF5 refuses
-/// to open a file twice in one process with different locking flags, and the tests read files
-/// the writer still holds open.
+/// An opened HDF5 file (read-only).
 inline io::h5::Handle open_h5(const std::filesystem::path& path) {
   io::h5::silence_errors();
-  const io::h5::Handle access{io::h5::check_id(H5Pcreate(H5P_FILE_ACCESS), "properties"), H5Pclose};
-  io::h5::check(H5Pset_file_locking(access.get(), false, true), "file locking");
-  return {io::h5::check_id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get()), "open"), H5Fclose};
+  return {io::h5::check_id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open"), H5Fclose};
 }
 
 /// Whether the link `path` exists (every intermediate group must exist).
