@@ -162,6 +162,19 @@ def case_shear(xpl, repo, out):
                              str(results / "shear_last.xdmf"), str(converted)],
                             capture_output=True, text=True, timeout=60)
     check(result.returncode == 0 and converted.exists(), f"meshio convert: {result.stderr}")
+    # Issue 19, item 6: U at every 4th interval, S at every 3rd: the S-only frames get U too.
+    two = out / "two_requests.inp"
+    two.write_text(SHEAR_DECK.replace(", 1e-5\n", ", 2e-3\n")
+                   .replace("*OUTPUT, FIELD, NUMBER INTERVAL=2", "*OUTPUT, FIELD, NUMBER INTERVAL=4")
+                   .replace("*ELEMENT OUTPUT\nS\n", "")
+                   .replace("*OUTPUT, HISTORY", "*OUTPUT, FIELD, NUMBER INTERVAL=3\n"
+                            "*ELEMENT OUTPUT\nS\n*OUTPUT, HISTORY"))
+    run(xpl, two, out / "two")
+    with h5py.File(out / "two" / "two_requests.h5", "r") as f:
+        frames = [f["frames"][n] for n in sorted(f["frames"])]
+        check(len(frames) == 7, f"{len(frames)} frames of two requests")
+        check(sum("S" in g and len(g) > 1 for g in frames) >= 3, "frames with S")
+        check(all("U" in g for g in frames), "a frame without U")
     print(f"shear: S13 = {s13:.6g} Pa in column 5 (XZ) of meshio's S; ids, sets, "
           f"(nt, 1) history OK")
 
