@@ -142,6 +142,33 @@ INTERNAL_FIELDS = {"HGSTATE"}
 VTK_ORDER = [0, 1, 2, 3, 5, 4]  # S11 S22 S33 S12 S23 S13 = XX YY ZZ XY YZ XZ
 
 
+def check_rotation(f, frame, field, copy, kinds):
+    """Shell rows of the XDMF copy: the local tensor rotated to global axes, E^T L E, with the
+    shell frame (e1 bisecting the unit diagonals, e3 normal) of the deformed corners."""
+    if "S4R" not in f["mesh"]:
+        return
+    x = f["mesh/coordinates"][()] + frame["U"][()]
+    group = f["mesh/S4R"]
+    rows = group["element_rows"][()] if "element_rows" in group else np.arange(len(kinds))
+    local = frame[field][()]
+    for row, corners in zip(rows, group["connectivity"][()]):
+        p = x[corners]
+        d13, d24 = p[2] - p[0], p[3] - p[1]
+        e3 = np.cross(d13, d24)
+        e3 /= np.linalg.norm(e3)
+        e1 = d13 / np.linalg.norm(d13) - d24 / np.linalg.norm(d24)
+        e1 /= np.linalg.norm(e1)
+        rotation = np.array([e1, np.cross(e3, e1), e3])
+        s = local[row]
+        tensor = np.array([[s[0], s[3], s[4]], [s[3], s[1], s[5]], [s[4], s[5], s[2]]])
+        g = rotation.T @ tensor @ rotation
+        expected = np.array([g[0, 0], g[1, 1], g[2, 2], g[0, 1], g[1, 2], g[0, 2]])
+        # Rounding of two rotations written in another order: 1e-12 of the largest component.
+        scale = max(np.abs(s).max(), 1e-300)
+        check(np.abs(copy[row] - expected).max() <= 1e-12 * scale,
+              f"{field} of shell row {row}: the global copy is not E^T S E")
+
+
 def xdmf_fields(f, name, kinds, node_ids, element_ids):
     """The fields the XDMF file shows for frame `name`, from the datasets of JOB.h5."""
     frame = f["frames"][name]
@@ -169,6 +196,8 @@ def xdmf_fields(f, name, kinds, node_ids, element_ids):
                       f"/xdmf/{name}/{field}_LOCAL shell rows")
                 check(np.isnan(local[hex_rows]).all(), f"/xdmf/{name}/{field}_LOCAL solid rows")
                 out[field + "_LOCAL"] = local
+                if "U" in frame:
+                    check_rotation(f, frame, field, copy, kinds)
         else:
             out[field] = values
     return out
