@@ -156,16 +156,19 @@ def case_shear(xpl, repo, out):
         check(reader.num_steps == n_frames, "TimeSeriesReader steps")
         _, _, cell_data = reader.read_data(reader.num_steps - 1)
         check(cell_data["S"][0][0, 5] == s13, "TimeSeriesReader: XZ differs from S13")
-    # The meshio command line reads the last-frame file too.
+    # The meshio command line (`meshio convert`; Debian's python3-meshio installs no `meshio`
+    # script, so its entry point is called) reads the last-frame file too.
     converted = out / "shear.vtu"
-    result = subprocess.run([sys.executable, "-c", "import sys, meshio._cli; sys.exit(meshio._cli.main())", "convert",
+    cli = "import sys, meshio._cli; sys.exit(meshio._cli.main())"
+    result = subprocess.run([sys.executable, "-c", cli, "convert",
                              str(results / "shear_last.xdmf"), str(converted)],
                             capture_output=True, text=True, timeout=60)
     check(result.returncode == 0 and converted.exists(), f"meshio convert: {result.stderr}")
     # Issue 19, item 6: U at every 4th interval, S at every 3rd: the S-only frames get U too.
     two = out / "two_requests.inp"
     two.write_text(SHEAR_DECK.replace(", 1e-5\n", ", 2e-3\n")
-                   .replace("*OUTPUT, FIELD, NUMBER INTERVAL=2", "*OUTPUT, FIELD, NUMBER INTERVAL=4")
+                   .replace("*OUTPUT, FIELD, NUMBER INTERVAL=2",
+                            "*OUTPUT, FIELD, NUMBER INTERVAL=4")
                    .replace("*ELEMENT OUTPUT\nS\n", "")
                    .replace("*OUTPUT, HISTORY", "*OUTPUT, FIELD, NUMBER INTERVAL=3\n"
                             "*ELEMENT OUTPUT\nS\n*OUTPUT, HISTORY"))
