@@ -29,9 +29,13 @@ bool OutputDriver::history_due(Real step_time, bool last) {
   return m_schedule.has_history() && m_schedule.history_due(step_time, last);
 }
 
-void OutputDriver::write_frame(State& state, const FrameRequest& what, const ElementSet& elements,
-                               const ContactStage& contact, CentralDifference& nodes) {
+void OutputDriver::write_frame(State& state, const FrameRequest& requested,
+                               const ElementSet& elements, const ContactStage& contact,
+                               CentralDifference& nodes) {
   ScopedTimer timer(m_timers, Phase::Output);
+  FrameRequest what = requested;
+  if (m_displacement_written) what.displacement = true;
+  m_displacement_written = what.displacement;
   elements.gather_output(state, what);
   if (what.contact_stress || what.contact_status || what.contact_force) contact.fill_output(state);
   nodes.sync_rotation(state);

@@ -46,7 +46,8 @@ class OutputDriver {
   bool history_due(Real step_time, bool last);
 
   /// One field frame of `what`: element output, contact output and rotations gathered into
-  /// `state` first.
+  /// `state` first. Once a frame has written U, every later frame writes it too (a frame of
+  /// another request without U would be drawn undeformed in ParaView).
   void write_frame(State& state, const FrameRequest& what, const ElementSet& elements,
                    const ContactStage& contact, CentralDifference& nodes);
   /// One history row (requests, then contact pair forces) at state.time.
@@ -66,6 +67,7 @@ class OutputDriver {
   PhaseTimers& m_timers;
   OutputSchedule m_schedule;
   std::vector<Real> m_history_row;
+  bool m_displacement_written = false;  ///< a frame has written U
 };
 
 }  // namespace xpl

@@ -96,7 +96,7 @@ void OutputSchedule::begin_step(const Model& model, int step) {
         if (energy.models == OutputModels::Contact && !model.has_contact()) continue;
         if (energy.models == OutputModels::Plastic && !scope.plastic) continue;
         if (!first_series("energy/" + name, index)) continue;
-        m_series.push_back({"energy/" + name, 1, {}});
+        m_series.push_back({"energy/" + name, 1, {}, name, std::string(energy.unit)});
         m_columns.push_back({i, nullptr, 0, NO_INDEX});
       }
     }
@@ -114,7 +114,8 @@ void OutputSchedule::begin_step(const Model& model, int step) {
         const std::string name(v.components[static_cast<std::size_t>(c)]);
         const std::string path = "node/" + set.name + "/" + name;
         if (!first_series(path, index)) continue;
-        HistorySeries series{path, static_cast<Index>(set.members.size()), {}};
+        HistorySeries series{
+            path, static_cast<Index>(set.members.size()), {}, name, std::string(v.unit)};
         for (Index node : set.members) {
           series.node_ids.push_back(model.node_ids[node]);
           m_columns.push_back({-1, value, c, node});

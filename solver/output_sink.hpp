@@ -39,11 +39,15 @@ struct FrameRequest {
 
 /// One column group of history output: `path` names an HDF5 dataset below /history
 /// ("energy/ALLKE", "node/FIXED/RF1"); width 1 is a scalar series, width > 1 has one
-/// column per node (node_ids gives the deck ids of the columns).
+/// column per node (node_ids gives the deck ids of the columns). Node series are (nt, n) also
+/// for one node. `component` ("U3", "ALLKE", "CFN") and `unit` ("m") become the dataset's
+/// attributes components and units.
 struct HistorySeries {
   std::string path;
   Index width = 1;
   std::vector<ExternalId> node_ids;
+  std::string component;
+  std::string unit;
 };
 
 /// One line of the .sta file.

@@ -70,7 +70,11 @@ NodeHistoryRequest parse_node_history(std::string_view name) {
 void append_contact_pair_series(std::vector<HistorySeries>& series, const std::string& pair) {
   for (const OutputVariable& v : OUTPUT_VARIABLES)
     if (v.location == OutputLocation::ContactPair)
-      series.push_back({"contact/" + pair + "/" + std::string(v.name), 1, {}});
+      series.push_back({"contact/" + pair + "/" + std::string(v.name),
+                        1,
+                        {},
+                        std::string(v.name),
+                        std::string(v.unit)});
 }
 
 const std::vector<int>& energy_history_order() {

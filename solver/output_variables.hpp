@@ -24,7 +24,8 @@ enum class OutputId {
   S, EVOL, MISES, STH, PEEQ, S_SNEG, S_SPOS, // element
   PEEQ_SNEG, PEEQ_SMID, PEEQ_SPOS,          // element, plastic shells
   CPRESS, CSHEAR, CSTATUS, CNORMF, CSHEARF, // node, contact
-  CFN, CFS                                  // contact pair
+  CFN, CFS,                                 // contact pair
+  MISES_SNEG, MISES_SPOS, MISES_MAX         // element, shell surfaces (with S)
 };
 // clang-format on
 
@@ -99,7 +100,7 @@ Real reaction_moment(const State& s, Index i, int c);
 /// in messages; a frame writes its datasets flag by flag (FRAME_FLAGS), in table order within
 /// a flag (frame_variables()).
 // clang-format off
-inline constexpr std::array<OutputVariable, 24> OUTPUT_VARIABLES = {{
+inline constexpr std::array<OutputVariable, 27> OUTPUT_VARIABLES = {{
     // id, name, location, width, components, unit, models, keyword, request, preselect,
     // frame flag, node history value, description
     {OutputId::U, "U", OutputLocation::Node, 3, {"U1", "U2", "U3"}, "m", OutputModels::All,
@@ -184,6 +185,16 @@ inline constexpr std::array<OutputVariable, 24> OUTPUT_VARIABLES = {{
     {OutputId::CFS, "CFS", OutputLocation::ContactPair, 1, {"CFS"}, "N", OutputModels::Contact,
      OutputKeyword::None, "", false, nullptr, nullptr,
      "total frictional force of a pair (history of every contact step)"},
+    {OutputId::MISES_SNEG, "MISES_SNEG", OutputLocation::Element, 1, {"MISES_SNEG"}, "Pa",
+     OutputModels::Shells, OutputKeyword::None, "", false, &FrameRequest::stress, nullptr,
+     "von Mises stress of S_SNEG (shell bottom surface); NaN for solids"},
+    {OutputId::MISES_SPOS, "MISES_SPOS", OutputLocation::Element, 1, {"MISES_SPOS"}, "Pa",
+     OutputModels::Shells, OutputKeyword::None, "", false, &FrameRequest::stress, nullptr,
+     "von Mises stress of S_SPOS (shell top surface); NaN for solids"},
+    {OutputId::MISES_MAX, "MISES_MAX", OutputLocation::Element, 1, {"MISES_MAX"}, "Pa",
+     OutputModels::Shells, OutputKeyword::None, "", false, &FrameRequest::stress, nullptr,
+     "largest von Mises stress through the thickness (shells: of S_SNEG, S, S_SPOS; solids: "
+     "MISES): the field to colour a shell model by"},
 }};
 // clang-format on
 

@@ -121,6 +121,11 @@ void write_int64(hid_t parent, const std::string& name, std::span<const std::int
   write_dataset(parent, name, H5T_NATIVE_INT64, data.data(), data.size(), dims);
 }
 
+void write_uint8(hid_t parent, const std::string& name, std::span<const std::uint8_t> data,
+                 const std::vector<hsize_t>& dims) {
+  write_dataset(parent, name, H5T_NATIVE_UINT8, data.data(), data.size(), dims);
+}
+
 void write_real(hid_t parent, const std::string& name, std::span<const double> data,
                 const std::vector<hsize_t>& dims) {
   write_dataset(parent, name, H5T_NATIVE_DOUBLE, data.data(), data.size(), dims);

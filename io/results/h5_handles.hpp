@@ -61,6 +61,10 @@ Handle require_group(hid_t parent, const std::string& path);
 void write_int64(hid_t parent, const std::string& name, std::span<const std::int64_t> data,
                  const std::vector<hsize_t>& dims);
 
+/// Writes a new uint8 dataset `name` below `parent` with shape `dims` (flags).
+void write_uint8(hid_t parent, const std::string& name, std::span<const std::uint8_t> data,
+                 const std::vector<hsize_t>& dims);
+
 /// Writes a new float64 dataset `name` below `parent` with shape `dims` (row-major data).
 void write_real(hid_t parent, const std::string& name, std::span<const double> data,
                 const std::vector<hsize_t>& dims);

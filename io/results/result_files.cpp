@@ -210,7 +210,10 @@ void ResultFiles::declare_history(const std::vector<HistorySeries>& series) {
 void ResultFiles::write_frame(const Model& model, const State& state, const FrameRequest& what) {
   m_impl->check_space();
   const std::string frame = m_impl->h5_file.write_frame(model, state, what);
-  m_impl->xdmf_file.add_frame(frame, state.time, what);
+  const auto step = static_cast<std::size_t>(state.step);
+  m_impl->xdmf_file.add_frame(frame, state.time, what, state.step + 1,
+                              step < model.steps.size() ? model.steps[step].name : "",
+                              state.step_time);
 }
 
 void ResultFiles::append_history(Real time, std::span<const Real> values) {

@@ -1,10 +1,13 @@
 #include "io/results/results_h5.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <system_error>
 
 #include "elements/lane_state.hpp"
+#include "elements/quad_shell_geometry.hpp"
 #include "io/results/results_mesh.hpp"
 #include "solver/output_variables.hpp"
 
@@ -87,8 +90,27 @@ void write_nodal(hid_t group, const OutputVariable& v, const NodalVectors& field
   write_values(group, v, row_major(field));
 }
 
+/// Von Mises stress of every stress row of `stress` (rows of 6; NaN rows give NaN).
+std::vector<double> mises_rows(const std::vector<Real>& stress) {
+  std::vector<double> mises(stress.size() / 6);
+  for (std::size_t e = 0; e < mises.size(); ++e) mises[e] = von_mises(&stress[e * 6]);
+  return mises;
+}
+
+/// Largest von Mises stress through the thickness: of S_SNEG, S and S_SPOS on shells, of S on
+/// solids (whose S_SNEG and S_SPOS rows are NaN).
+std::vector<double> mises_max(const Model& model, const State& state) {
+  std::vector<double> out = mises_rows(state.stress);
+  for (std::size_t e = 0; e < out.size(); ++e) {
+    if (!is_shell(model.element_types[e])) continue;
+    out[e] = std::max(
+        {out[e], von_mises(&state.stress_bottom[e * 6]), von_mises(&state.stress_top[e * 6])});
+  }
+  return out;
+}
+
 /// Writes the frame dataset of `v` from the state.
-void write_variable(hid_t group, const OutputVariable& v, const State& state) {
+void write_variable(hid_t group, const OutputVariable& v, const Model& model, const State& state) {
   switch (v.id) {
     case OutputId::U:
       return write_nodal(group, v, state.position - state.reference);
@@ -108,11 +130,14 @@ void write_variable(hid_t group, const OutputVariable& v, const State& state) {
       return write_values(group, v, state.stress);
     case OutputId::EVOL:
       return write_values(group, v, state.volume);
-    case OutputId::MISES: {
-      std::vector<double> mises(state.stress.size() / 6);
-      for (std::size_t e = 0; e < mises.size(); ++e) mises[e] = von_mises(&state.stress[e * 6]);
-      return write_values(group, v, mises);
-    }
+    case OutputId::MISES:
+      return write_values(group, v, mises_rows(state.stress));
+    case OutputId::MISES_SNEG:
+      return write_values(group, v, mises_rows(state.stress_bottom));
+    case OutputId::MISES_SPOS:
+      return write_values(group, v, mises_rows(state.stress_top));
+    case OutputId::MISES_MAX:
+      return write_values(group, v, mises_max(model, state));
     case OutputId::STH:
       return write_values(group, v, state.thickness);
     case OutputId::PEEQ:
@@ -144,6 +169,102 @@ void write_variable(hid_t group, const OutputVariable& v, const State& state) {
   throw std::logic_error("write_frame: " + std::string(v.name) + " is not field output");
 }
 
+/// Comma-separated component names of `v` ("S11,S22,S33,S12,S13,S23").
+std::string component_list(const OutputVariable& v) {
+  std::string out;
+  for (int c = 0; c < v.width; ++c) {
+    if (c > 0) out += ",";
+    out += v.components[static_cast<std::size_t>(c)];
+  }
+  return out;
+}
+
+/// Describes dataset `name` of `group`: its components, unit and meaning (attributes only).
+void describe(hid_t group, const std::string& name, const std::string& components,
+              std::string_view unit, std::string_view description) {
+  const h5::Handle data{
+      h5::check_id(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "cannot open " + name), H5Dclose};
+  h5::set_string_attribute(data.get(), "components", components);
+  h5::set_string_attribute(data.get(), "units", std::string(unit));
+  h5::set_string_attribute(data.get(), "description", std::string(description));
+}
+
+/// Component order of the XDMF copies of a tensor: VTK's Tensor6 (XX YY ZZ XY YZ XZ), i.e.
+/// the Abaqus rows S11 S22 S33 S12 S23 S13.
+constexpr int VTK_ORDER[6] = {0, 1, 2, 3, 5, 4};
+
+/// One stress row (Abaqus order) in VTK order.
+void to_vtk(const Real* abaqus, Real* vtk) {
+  for (int c = 0; c < 6; ++c) vtk[c] = abaqus[VTK_ORDER[c]];
+}
+
+/// The stress row `local` (Abaqus order, axes e1 e2 e3) in global axes (Abaqus order):
+/// σ_ij = Σ_ab E_ai σ_ab E_bj with E the rows e1, e2, e3.
+void to_global(const elements::QuadFrame<Real>& f, const Real* local, Real* global) {
+  const Real E[3][3] = {
+      {f.e1.x, f.e1.y, f.e1.z}, {f.e2.x, f.e2.y, f.e2.z}, {f.e3.x, f.e3.y, f.e3.z}};
+  const Real L[3][3] = {{local[0], local[3], local[4]},
+                        {local[3], local[1], local[5]},
+                        {local[4], local[5], local[2]}};
+  Real G[3][3] = {};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) G[i][j] += E[a][i] * L[a][b] * E[b][j];
+  const Real out[6] = {G[0][0], G[1][1], G[2][2], G[0][1], G[0][2], G[1][2]};
+  std::copy(out, out + 6, global);
+}
+
+/// Writes /xdmf/NNNNNN (`path`): the tensors the XDMF file shows, in VTK order, in global axes
+/// (S, S_SNEG, S_SPOS) and, on shell models, the shells' local-axes ones (S_LOCAL, ...; NaN
+/// rows for solids). The datasets of /frames/NNNNNN keep the Abaqus order; the copies live
+/// outside the frame group so that a frame holds datasets only, as before.
+void write_xdmf_tensors(hid_t file, const std::string& path, const Model& model,
+                        const State& state) {
+  const h5::Handle group = h5::require_group(file, path);
+  const bool shells = model.has_shells();
+  const auto n = static_cast<std::size_t>(model.element_count());
+  struct Tensor {
+    const char* name;
+    const std::vector<Real>* rows;
+  };
+  const Tensor tensors[] = {
+      {"S", &state.stress}, {"S_SNEG", &state.stress_bottom}, {"S_SPOS", &state.stress_top}};
+  const std::string global_names = "XX,YY,ZZ,XY,YZ,XZ";
+  for (const Tensor& t : tensors) {
+    if (!shells && t.rows != &state.stress) continue;
+    std::vector<double> global(n * 6), local;
+    if (shells) local.assign(n * 6, std::nan(""));
+    for (std::size_t e = 0; e < n; ++e) {
+      const Real* row = &(*t.rows)[e * 6];
+      const auto type = model.element_types[e];
+      if (!is_shell(type)) {
+        to_vtk(row, &global[e * 6]);
+        continue;
+      }
+      const Index* nodes = model.nodes_of(static_cast<Index>(e));
+      elements::V3<Real> p[4];
+      for (int k = 0; k < 4; ++k)
+        p[k] = {state.position(nodes[k], 0), state.position(nodes[k], 1),
+                state.position(nodes[k], 2)};
+      Real rotated[6];
+      to_global(elements::quad_frame(p), row, rotated);
+      to_vtk(rotated, &global[e * 6]);
+      to_vtk(row, &local[e * 6]);
+    }
+    const std::string name = t.name;
+    h5::write_real(group.get(), name, global, {n, 6});
+    describe(group.get(), name, global_names, "Pa",
+             "copy of " + name + " for the XDMF file: global axes, VTK order");
+    if (!shells) continue;
+    h5::write_real(group.get(), name + "_LOCAL", local, {n, 6});
+    describe(group.get(), name + "_LOCAL", "11,22,33,12,23,13", "Pa",
+             "copy of " + name +
+                 " for the XDMF file: shells only (NaN rows for solids), local shell axes, VTK "
+                 "order");
+  }
+}
+
 }  // namespace
 
 Real von_mises(const Real* s) {
@@ -160,6 +281,17 @@ ResultsH5::ResultsH5(const std::filesystem::path& path, const std::string& job)
   // The 1.8 format stores attributes larger than 64 KiB (node_ids of wide history series).
   h5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST),
             "cannot set the file format");
+  // Live reading (issue 19) is NOT done: without HDF5's file lock (H5Pset_file_locking
+  // off) an h5py reader that holds the file while the next frame is flushed reads torn
+  // metadata ("addr overflow" errors, once a segmentation fault), and SWMR in HDF5 1.10
+  // cannot create the groups every frame adds. What is needed: close the file between
+  // writes (the history writer then must not hold dataset handles). See README.
+  //
+  // A reader (ParaView) may still hold the previous run's file open: unlink it rather than
+  // truncate it, so that the new run does not fail on the reader's lock and the reader keeps
+  // the old, complete file. JOB.lck (job_lock.hpp) keeps one run per job and directory.
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
   m_file =
       h5::Handle{h5::check_id(H5Fcreate(m_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
                               "cannot create " + m_path),
@@ -216,8 +348,11 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
                            step_index < model.steps.size() ? model.steps[step_index].name : "");
   h5::set_int64_attribute(g, "increment", state.increment);
 
-  for (const OutputVariable* v : frame_variables(what, output_scope(model)))
-    write_variable(g, *v, state);
+  for (const OutputVariable* v : frame_variables(what, output_scope(model))) {
+    write_variable(g, *v, model, state);
+    describe(g, std::string(v->name), component_list(*v), v->unit, v->description);
+  }
+  if (what.stress) write_xdmf_tensors(m_file.get(), std::string("xdmf/") + name, model, state);
   if (what.stress && !state.hourglass_state.empty()) {
     // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
     // --import (io/results/import_state.hpp).

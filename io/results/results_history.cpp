@@ -24,6 +24,7 @@ void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>
   m_step = step;
   m_group = h5::require_group(file, "history/step_" + std::to_string(step));
   m_time.emplace(m_group.get(), "time", 0);
+  h5::set_string_attribute(m_time->get(), "units", "s");
   m_columns.clear();
   m_row_width = 0;
   for (const HistorySeries& s : series) {
@@ -37,7 +38,8 @@ void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>
                                   std::to_string(s.width));
     }
     const auto slash = s.path.rfind('/');
-    const hsize_t width = s.width > 1 ? static_cast<hsize_t>(s.width) : 0;
+    // Node series are always (nt, n_nodes), also for a one-node set; whole-model series (nt).
+    const hsize_t width = s.width > 1 || !s.node_ids.empty() ? static_cast<hsize_t>(s.width) : 0;
     if (slash == std::string::npos) {
       m_series.emplace_back(m_group.get(), s.path, width);
     } else {
@@ -47,6 +49,10 @@ void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>
     if (!s.node_ids.empty()) {
       h5::set_int64_array_attribute(m_series.back().get(), "node_ids", s.node_ids);
     }
+    // Issue 19: what the columns are (node series: this component of node node_ids[j]).
+    if (!s.component.empty())
+      h5::set_string_attribute(m_series.back().get(), "components", s.component);
+    if (!s.unit.empty()) h5::set_string_attribute(m_series.back().get(), "units", s.unit);
     m_columns.push_back(m_row_width);
     m_row_width += static_cast<hsize_t>(s.width);
   }

@@ -70,12 +70,26 @@ std::string link_name(std::string name) {
   return name;
 }
 
-void write_sets(hid_t mesh, const char* group_name, const std::vector<NamedSet>& sets,
-                const std::vector<ExternalId>& ids) {
+/// Writes /mesh/GROUP/NAME (deck ids) and, for the XDMF file, /xdmf/sets/GROUP_rows/NAME
+/// (zero-based rows) and /xdmf/sets/GROUP_flags/NAME (1 for members, else 0) of every set.
+void write_sets(hid_t file, hid_t mesh, const std::string& group_name,
+                const std::vector<NamedSet>& sets, const std::vector<ExternalId>& ids, bool node,
+                std::vector<XdmfSet>& xdmf) {
   const h5::Handle group = h5::require_group(mesh, group_name);
+  const std::string base = "/xdmf/sets/" + group_name;
+  const h5::Handle rows_group = h5::require_group(file, base + "_rows");
+  const h5::Handle flags_group = h5::require_group(file, base + "_flags");
   for (const NamedSet& set : sets) {
+    const std::string link = link_name(set.name);
     const std::vector<std::int64_t> members = member_ids(set, ids);
-    h5::write_int64(group.get(), link_name(set.name), members, {members.size()});
+    h5::write_int64(group.get(), link, members, {members.size()});
+    std::vector<std::int64_t> rows(set.members.begin(), set.members.end());
+    h5::write_int64(rows_group.get(), link, rows, {rows.size()});
+    std::vector<std::uint8_t> flags(ids.size(), 0);
+    for (Index m : set.members) flags[static_cast<std::size_t>(m)] = 1;
+    h5::write_uint8(flags_group.get(), link, flags, {flags.size()});
+    xdmf.push_back({set.name, node, static_cast<Index>(rows.size()), base + "_rows/" + link,
+                    base + "_flags/" + link});
   }
 }
 
@@ -144,8 +158,9 @@ XdmfMesh write_mesh_group(hid_t file, const Model& model) {
     xdmf.topology_dimensions =
         std::to_string(xdmf.cells) + " " + std::to_string(nodes_per_element(type));
   }
-  write_sets(mesh.get(), "node_sets", model.node_sets, model.node_ids);
-  write_sets(mesh.get(), "element_sets", model.element_sets, model.element_ids);
+  write_sets(file, mesh.get(), "node_sets", model.node_sets, model.node_ids, true, xdmf.sets);
+  write_sets(file, mesh.get(), "element_sets", model.element_sets, model.element_ids, false,
+             xdmf.sets);
   return xdmf;
 }
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 #include <utility>
 
@@ -49,61 +50,14 @@ const char* attribute_type(int width) {
   return width == 3 ? "Vector" : "Scalar";
 }
 
-}  // namespace
-
-XdmfWriter::XdmfWriter(std::filesystem::path path, std::string h5_name)
-    : m_path(std::move(path)), m_h5_name(xml_escape(h5_name)) {}
-
-void XdmfWriter::set_mesh(XdmfMesh mesh) {
-  m_mesh = std::move(mesh);
-}
-
-std::string XdmfWriter::data_item(const std::string& dims, const char* type,
-                                  const std::string& dataset) const {
-  return std::string("<DataItem Dimensions=\"") + dims + "\" DataType=\"" + type +
-         "\" Precision=\"8\" Format=\"HDF\">" + m_h5_name + ":" + dataset + "</DataItem>";
-}
-
-void XdmfWriter::add_frame(const std::string& frame, Real time, const FrameRequest& what) {
-  const std::string nodes = std::to_string(m_mesh.nodes);
-  const std::string cells = std::to_string(m_mesh.cells);
-  const std::string prefix = "/frames/" + frame + "/";
-  std::string grid = "      <Grid Name=\"frame_" + frame + "\" GridType=\"Uniform\">\n";
-  grid += "        <Time Value=\"" + exact(time) + "\"/>\n";
-  grid += "        <Topology TopologyType=\"" + m_mesh.topology_type + "\" NumberOfElements=\"" +
-          cells + "\">\n          " +
-          data_item(m_mesh.topology_dimensions, "Int", m_mesh.topology_dataset) +
-          "\n        </Topology>\n";
-  grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
-          data_item(nodes + " 3", "Float", "/mesh/coordinates") + "\n        </Geometry>\n";
-  for (const OutputVariable* v : frame_variables(what, {m_mesh.shells, m_mesh.plastic})) {
-    const std::string name(v->name);
-    const bool node = v->location == OutputLocation::Node;
-    std::string dims = node ? nodes : cells;
-    if (v->width > 1) dims.append(" ").append(std::to_string(v->width));
-    grid += "        <Attribute Name=\"" + name + "\" AttributeType=\"" + attribute_type(v->width) +
-            "\" Center=\"" + (node ? "Node" : "Cell") + "\">\n          " +
-            data_item(dims, "Float", prefix + name) + "\n        </Attribute>\n";
-  }
-  grid += "      </Grid>\n";
-  m_grids += grid;
-  ++m_frames;
-  write();
-}
-
-void XdmfWriter::write() const {
-  // Write a sibling file and rename it over the old one: readers never see a partial file.
-  std::filesystem::path temporary = m_path;
+/// Writes `text` to a sibling file and renames it over `path`: readers never see a partial
+/// file.
+void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::path temporary = path;
   temporary += ".tmp";
   {
     std::ofstream out(temporary, std::ios::trunc);
-    out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
-        << "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n"
-        << "  <Domain>\n"
-        << "    <Grid Name=\"frames\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"
-        << m_grids << "    </Grid>\n"
-        << "  </Domain>\n"
-        << "</Xdmf>\n";
+    out << text;
     out.close();
     if (!out) {
       std::error_code ignored;
@@ -112,13 +66,123 @@ void XdmfWriter::write() const {
     }
   }
   std::error_code error;
-  std::filesystem::rename(temporary, m_path, error);
+  std::filesystem::rename(temporary, path, error);
   if (error) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
-    throw std::runtime_error("cannot rename " + temporary.string() + " to " + m_path.string() +
-                             ": " + error.message());
+    throw std::runtime_error("cannot rename " + temporary.string() + " to " + path.string() + ": " +
+                             error.message());
   }
+}
+
+}  // namespace
+
+XdmfWriter::XdmfWriter(std::filesystem::path path, std::string h5_name)
+    : m_path(std::move(path)), m_h5_name(xml_escape(h5_name)) {
+  m_last_path = m_path;
+  m_last_path.replace_filename(m_path.stem().string() + "_last.xdmf");
+}
+
+void XdmfWriter::set_mesh(XdmfMesh mesh) {
+  m_mesh = std::move(mesh);
+}
+
+std::string XdmfWriter::data_item(const std::string& dims, const char* type,
+                                  const std::string& dataset) const {
+  const char* precision = std::string_view(type) == "UInt" ? "1" : "8";
+  return std::string("<DataItem Dimensions=\"") + dims + "\" DataType=\"" + type +
+         "\" Precision=\"" + precision + "\" Format=\"HDF\">" + m_h5_name + ":" + dataset +
+         "</DataItem>";
+}
+
+std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameRequest& what,
+                             int step, const std::string& step_name, Real step_time,
+                             bool set_elements) const {
+  const std::string nodes = std::to_string(m_mesh.nodes);
+  const std::string cells = std::to_string(m_mesh.cells);
+  const std::string prefix = "/frames/" + frame + "/";
+  const auto attribute = [&](const std::string& name, const char* type, bool node,
+                             const std::string& dims, const char* data_type,
+                             const std::string& dataset) {
+    return "        <Attribute Name=\"" + xml_escape(name) + "\" AttributeType=\"" + type +
+           "\" Center=\"" + (node ? "Node" : "Cell") + "\">\n          " +
+           data_item(dims, data_type, dataset) + "\n        </Attribute>\n";
+  };
+  std::string grid = "      <Grid Name=\"frame_" + frame + "\" GridType=\"Uniform\">\n";
+  // meshio.read rejects Time and Information elements (other than its own) in a single
+  // grid: the last-frame file carries neither (its frame's time is in JOB.xdmf and JOB.h5).
+  if (set_elements) {
+    grid += "        <Time Value=\"" + exact(time) + "\"/>\n";
+    grid += "        <Information Name=\"step\" Value=\"" + std::to_string(step) + "\"/>\n";
+    grid += "        <Information Name=\"step_name\" Value=\"" + xml_escape(step_name) + "\"/>\n";
+    grid += "        <Information Name=\"step_time\" Value=\"" + exact(step_time) + "\"/>\n";
+  }
+  grid += "        <Topology TopologyType=\"" + m_mesh.topology_type + "\" NumberOfElements=\"" +
+          cells + "\">\n          " +
+          data_item(m_mesh.topology_dimensions, "Int", m_mesh.topology_dataset) +
+          "\n        </Topology>\n";
+  grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
+          data_item(nodes + " 3", "Float", "/mesh/coordinates") + "\n        </Geometry>\n";
+  // Deck ids, so that a picked point or cell shows its node or element number.
+  grid += attribute("node_id", "Scalar", true, nodes, "Int", "/mesh/node_ids");
+  grid += attribute("element_id", "Scalar", false, cells, "Int", "/mesh/element_ids");
+  for (const OutputVariable* v : frame_variables(what, {m_mesh.shells, m_mesh.plastic})) {
+    const std::string name(v->name);
+    const bool node = v->location == OutputLocation::Node;
+    std::string dims = node ? nodes : cells;
+    if (v->width > 1) dims.append(" ").append(std::to_string(v->width));
+    if (v->width == 6) {
+      // Tensors: the copies in VTK's Tensor6 order (XX YY ZZ XY YZ XZ) and global axes, so
+      // that ParaView and meshio label S13 as XZ; shell models add the local-axes copies.
+      grid += attribute(name, "Tensor6", node, dims, "Float", "/xdmf/" + frame + "/" + name);
+      if (m_mesh.shells) {
+        grid += attribute(name + "_LOCAL", "Tensor6", node, dims, "Float",
+                          "/xdmf/" + frame + "/" + name + "_LOCAL");
+      }
+      continue;
+    }
+    grid += attribute(name, attribute_type(v->width), node, dims, "Float", prefix + name);
+  }
+  for (const XdmfSet& set : m_mesh.sets) {
+    const std::string kind = set.node ? "NSET_" : "ELSET_";
+    if (set_elements) {
+      grid += "        <Set Name=\"" + xml_escape(kind + set.name) + "\" SetType=\"" +
+              (set.node ? "Node" : "Cell") + "\">\n          " +
+              data_item(std::to_string(set.size), "Int", set.rows_dataset) + "\n        </Set>\n";
+    } else {
+      grid += attribute(kind + set.name, "Scalar", set.node, set.node ? nodes : cells, "UInt",
+                        set.flag_dataset);
+    }
+  }
+  grid += "      </Grid>\n";
+  return grid;
+}
+
+void XdmfWriter::add_frame(const std::string& frame, Real time, const FrameRequest& what, int step,
+                           const std::string& step_name, Real step_time) {
+  m_grids += grid(frame, time, what, step, step_name, step_time, true);
+  ++m_frames;
+  write();
+  // The newest frame alone: meshio.read and the meshio CLI read a single uniform grid.
+  write_file(m_last_path,
+             "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+             "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n"
+             "  <Domain>\n" +
+                 grid(frame, time, what, step, step_name, step_time, false) +
+                 "  </Domain>\n"
+                 "</Xdmf>\n");
+}
+
+void XdmfWriter::write() const {
+  write_file(m_path,
+             "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+             "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n"
+             "  <Domain>\n"
+             "    <Grid Name=\"frames\" GridType=\"Collection\" CollectionType=\"Temporal\">\n" +
+                 m_grids +
+                 "    </Grid>\n"
+                 "  </Domain>\n"
+                 "</Xdmf>\n");
 }
 
 }  // namespace xpl::io

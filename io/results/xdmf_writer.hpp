@@ -4,11 +4,21 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "common/types.hpp"
 #include "solver/output_sink.hpp"
 
 namespace xpl::io {
+
+/// A node or element set as the XDMF file shows it.
+struct XdmfSet {
+  std::string name;          ///< deck name (XML-escaped when written)
+  bool node = true;          ///< node set (else element set)
+  Index size = 0;            ///< members
+  std::string rows_dataset;  ///< HDF5 path of its zero-based rows (int64)
+  std::string flag_dataset;  ///< HDF5 path of its 0/1 flag per node or element (uint8)
+};
 
 /// The mesh every frame shares, and where JOB.h5 keeps its topology (see write_mesh_group).
 struct XdmfMesh {
@@ -25,6 +35,9 @@ struct XdmfMesh {
   bool shells = false;
   /// Models with a plastic material: frames may list PEEQ.
   bool plastic = false;
+  /// Node and element sets (XDMF Set elements in JOB.xdmf, flag attributes in the
+  /// last-frame file, which meshio reads).
+  std::vector<XdmfSet> sets;
 };
 
 /// Writes the XDMF index of the frames in an HDF5 result file.
@@ -35,19 +48,26 @@ class XdmfWriter {
 
   /// The mesh of all frames (call before the first add_frame).
   void set_mesh(XdmfMesh mesh);
-  /// Adds the frame /frames/`frame` at total time `time` with the fields `what` and rewrites
-  /// the file.
-  void add_frame(const std::string& frame, Real time, const FrameRequest& what);
+  /// Adds the frame /frames/`frame` at total time `time` of step `step` (1-based, named
+  /// `step_name`, at step time `step_time`) with the fields `what` and rewrites the file, and
+  /// JOB_last.xdmf: the newest frame alone, as one uniform grid that meshio.read reads.
+  void add_frame(const std::string& frame, Real time, const FrameRequest& what, int step = 0,
+                 const std::string& step_name = "", Real step_time = 0.0);
   /// Number of frames listed.
   int frame_count() const { return m_frames; }
 
  private:
   void write() const;
+  /// The grid of one frame; `sets` as XDMF Set elements (ParaView) or as flag attributes
+  /// (meshio reads no Set element).
+  std::string grid(const std::string& frame, Real time, const FrameRequest& what, int step,
+                   const std::string& step_name, Real step_time, bool set_elements) const;
   std::string data_item(const std::string& dims, const char* type,
                         const std::string& dataset) const;
 
   std::filesystem::path m_path;
-  std::string m_h5_name;  ///< XML-escaped
+  std::filesystem::path m_last_path;  ///< JOB_last.xdmf
+  std::string m_h5_name;              ///< XML-escaped
   XdmfMesh m_mesh;
   std::string m_grids;  ///< XML of every frame so far
   int m_frames = 0;

@@ -6,14 +6,17 @@ Usage: check_results.py DIRECTORY JOB
 h5py: the documented layout of JOB.h5 (shapes, ids, per-type connectivity, the mixed
 topology of hex + shell meshes, status, history).
 meshio: JOB.xdmf through meshio.xdmf.TimeSeriesReader (mesh and every frame's point and cell
-data), and single frames of it through meshio.read (which reads one grid, not a temporal
-collection), compared with the datasets in JOB.h5; the cell data must line up with the cells
-(shell-only fields are NaN exactly on the hexahedra). Exits non-zero on the first mismatch.
+data), and JOB_last.xdmf (the last frame alone) through meshio.read (which reads one grid, not
+a temporal collection), compared with the datasets in JOB.h5; the cell data must line up with
+the cells (shell-only fields are NaN exactly on the hexahedra). Tensors reach the XDMF in VTK
+order (XX YY ZZ XY YZ XZ = S11 S22 S33 S12 S23 S13) and global axes from /xdmf/NNNNNN (issue
+19); solids' rows there are their S columns reordered, shells' local-axes copies are S_LOCAL
+etc. The XDMF also carries node_id / element_id (deck ids) and, in JOB_last.xdmf, one 0/1
+attribute per set (NSET_NAME / ELSET_NAME). Exits non-zero on the first mismatch.
 """
 
 import pathlib
 import sys
-import xml.etree.ElementTree as ET
 
 import h5py
 import meshio
@@ -109,11 +112,12 @@ def check_h5(path):
         frames = sorted(f["frames"].keys())
         check(len(frames) > 0, "no frames")
         data, times = [], []
+        node_ids, element_ids = f["mesh/node_ids"][()], f["mesh/element_ids"][()]
         for name in frames:
             frame = f["frames"][name]
             check_frame(name, frame, n_nodes, kinds)
             times.append(frame.attrs["time"])
-            data.append({field: frame[field][()] for field in frame})
+            data.append(xdmf_fields(f, name, kinds, node_ids, element_ids))
         check(all(np.diff(times) >= 0), "frame times decrease")
         for step in f["history"].values():
             nt = step["time"].shape[0]
@@ -124,12 +128,79 @@ def check_h5(path):
                     check(obj.shape[0] == nt, f"history {name} has {obj.shape[0]} rows, not {nt}")
                     if obj.ndim == 2:
                         check(obj.attrs["node_ids"].shape == (obj.shape[1],), f"{name} node_ids")
+                    # Issue 19: node series are (nt, n) for any n; every series has units.
+                    check(not name.startswith("node/") or obj.ndim == 2, f"history {name} 1-D")
+                    check("units" in obj.attrs, f"history {name} has no units")
+                    check(name == "time" or "components" in obj.attrs,
+                          f"history {name} has no components")
 
             step.visititems(visit)
         return f["mesh/coordinates"][()], cell_blocks(kinds, nodes), data, times
 
 
 INTERNAL_FIELDS = {"HGSTATE"}
+VTK_ORDER = [0, 1, 2, 3, 5, 4]  # S11 S22 S33 S12 S23 S13 = XX YY ZZ XY YZ XZ
+
+
+def check_rotation(f, frame, field, copy, kinds):
+    """Shell rows of the XDMF copy: the local tensor rotated to global axes, E^T L E, with the
+    shell frame (e1 bisecting the unit diagonals, e3 normal) of the deformed corners."""
+    if "S4R" not in f["mesh"]:
+        return
+    x = f["mesh/coordinates"][()] + frame["U"][()]
+    group = f["mesh/S4R"]
+    rows = group["element_rows"][()] if "element_rows" in group else np.arange(len(kinds))
+    local = frame[field][()]
+    for row, corners in zip(rows, group["connectivity"][()]):
+        p = x[corners]
+        d13, d24 = p[2] - p[0], p[3] - p[1]
+        e3 = np.cross(d13, d24)
+        e3 /= np.linalg.norm(e3)
+        e1 = d13 / np.linalg.norm(d13) - d24 / np.linalg.norm(d24)
+        e1 /= np.linalg.norm(e1)
+        rotation = np.array([e1, np.cross(e3, e1), e3])
+        s = local[row]
+        tensor = np.array([[s[0], s[3], s[4]], [s[3], s[1], s[5]], [s[4], s[5], s[2]]])
+        g = rotation.T @ tensor @ rotation
+        expected = np.array([g[0, 0], g[1, 1], g[2, 2], g[0, 1], g[1, 2], g[0, 2]])
+        # Rounding of two rotations written in another order: 1e-12 of the largest component.
+        scale = max(np.abs(s).max(), 1e-300)
+        check(np.abs(copy[row] - expected).max() <= 1e-12 * scale,
+              f"{field} of shell row {row}: the global copy is not E^T S E")
+
+
+def xdmf_fields(f, name, kinds, node_ids, element_ids):
+    """The fields the XDMF file shows for frame `name`, from the datasets of JOB.h5."""
+    frame = f["frames"][name]
+    shells = "quad" in kinds
+    hex_rows = np.array(kinds) == "hexahedron"
+    out = {"node_id": node_ids, "element_id": element_ids}
+    for field in frame:
+        if field in INTERNAL_FIELDS:
+            continue
+        values = frame[field][()]
+        check("components" in frame[field].attrs and "units" in frame[field].attrs,
+              f"{name}/{field}: components / units attributes")
+        if values.ndim == 2 and values.shape[1] == 6:
+            check(list(frame[field].attrs["components"].split(",")) == [
+                field.split("_")[0] + c for c in ("11", "22", "33", "12", "13", "23")],
+                f"{name}/{field} components {frame[field].attrs['components']}")
+            copy = f["xdmf"][name][field][()]
+            # Solid rows: the same stresses (global axes), columns in VTK order.
+            check(np.array_equal(copy[hex_rows], values[hex_rows][:, VTK_ORDER], equal_nan=True),
+                  f"/xdmf/{name}/{field} solid rows are not {field} in VTK order")
+            out[field] = copy
+            if shells:
+                local = f["xdmf"][name][field + "_LOCAL"][()]
+                check(np.array_equal(local[~hex_rows], values[~hex_rows][:, VTK_ORDER]),
+                      f"/xdmf/{name}/{field}_LOCAL shell rows")
+                check(np.isnan(local[hex_rows]).all(), f"/xdmf/{name}/{field}_LOCAL solid rows")
+                out[field + "_LOCAL"] = local
+                if "U" in frame:
+                    check_rotation(f, frame, field, copy, kinds)
+        else:
+            out[field] = values
+    return out
 
 
 def check_cells(cells, blocks, what):
@@ -141,11 +212,14 @@ def check_cells(cells, blocks, what):
 def check_fields(point_data, cell_data, cells, frame, what):
     """meshio's point and cell data equal the frame's datasets; cell data split by block."""
     node_fields = {f for f in frame if f in NODE_FIELDS or f in ROTATIONS.values()}
+    node_fields.add("node_id")
     check(set(point_data) == node_fields, f"{what}: point data {sorted(point_data)}")
     for field in node_fields:
         check(np.array_equal(point_data[field], frame[field]), f"{what}: {field}")
-    # HGSTATE is internal state for --import (README), deliberately not in the XDMF.
-    check(set(cell_data) == set(frame) - node_fields - INTERNAL_FIELDS,
+    # HGSTATE is internal state for --import (README), deliberately not in the XDMF (nor in
+    # `frame`, the XDMF's fields).
+    check(not set(cell_data) & INTERNAL_FIELDS, f"{what}: internal fields in the XDMF")
+    check(set(cell_data) == set(frame) - node_fields,
           f"{what}: cell data {sorted(cell_data)}")
     for field, blocks in cell_data.items():
         check([len(b) for b in blocks] == [len(c.data) for c in cells], f"{what}: {field} blocks")
@@ -170,26 +244,27 @@ def check_time_series(path, coordinates, blocks, data, times):
     return reader.num_steps
 
 
-def check_single_frames(path, coordinates, blocks, data):
-    """meshio.read reads one grid: each frame, cut out of the collection, must read alone."""
-    grids = ET.parse(path).getroot().find("Domain").find("Grid").findall("Grid")
-    check(len(grids) == len(data), "XDMF grids")
-    single = path.with_name(path.stem + ".single_frame.xdmf")  # beside JOB.h5: same relative path
-    try:
-        for k in (0, len(grids) - 1):
-            grid = grids[k]
-            for time in grid.findall("Time"):
-                grid.remove(time)  # meshio.read knows no Time outside a collection
-            root = ET.Element("Xdmf", Version="3.0")
-            ET.SubElement(root, "Domain").append(grid)
-            ET.ElementTree(root).write(single)
-            mesh = meshio.read(single)
-            check(np.array_equal(mesh.points, coordinates), f"meshio.read frame {k}: points")
-            check_cells(mesh.cells, blocks, f"meshio.read frame {k}")
-            check_fields(mesh.point_data, mesh.cell_data, mesh.cells, data[k],
-                         f"meshio.read frame {k}")
-    finally:
-        single.unlink(missing_ok=True)
+def check_last_frame(path, coordinates, blocks, frame, h5_path):
+    """meshio.read reads one grid: JOB_last.xdmf, the last frame alone, with the sets as 0/1
+    point and cell data."""
+    mesh = meshio.read(path)
+    check(np.array_equal(mesh.points, coordinates), "meshio.read: points")
+    check_cells(mesh.cells, blocks, "meshio.read")
+    with h5py.File(h5_path, "r") as f:
+        node_ids, element_ids = f["mesh/node_ids"][()], f["mesh/element_ids"][()]
+        sets = {"NSET_" + n: (True, f["mesh/node_sets"][n][()]) for n in f["mesh/node_sets"]}
+        sets.update({"ELSET_" + n: (False, f["mesh/element_sets"][n][()])
+                     for n in f["mesh/element_sets"]})
+    check(sets, "the test models have sets")
+    point_data, cell_data = dict(mesh.point_data), dict(mesh.cell_data)
+    for name, (node, members) in sets.items():
+        data = point_data.pop(name, None) if node else cell_data.pop(name, None)
+        check(data is not None, f"meshio.read: set {name} missing")
+        flags = data if node else np.concatenate(data)
+        ids = node_ids if node else element_ids
+        check(np.array_equal(np.sort(ids[flags.astype(bool)]), np.sort(members)),
+              f"meshio.read: set {name} members")
+    check_fields(point_data, cell_data, mesh.cells, frame, "meshio.read JOB_last.xdmf")
 
 
 def main():
@@ -199,7 +274,8 @@ def main():
     coordinates, blocks, data, times = check_h5(directory / f"{job}.h5")
     xdmf = directory / f"{job}.xdmf"
     steps = check_time_series(xdmf, coordinates, blocks, data, times)
-    check_single_frames(xdmf, coordinates, blocks, data)
+    check_last_frame(directory / f"{job}_last.xdmf", coordinates, blocks, data[-1],
+                     directory / f"{job}.h5")
     types = ", ".join(f"{len(rows)} {kind}" for kind, rows in blocks)
     print(f"check_results.py: {job}: h5py layout and {steps} XDMF frames ({types}) OK")
 

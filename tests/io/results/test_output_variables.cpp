@@ -53,8 +53,9 @@ TEST_CASE("output variables: a frame writes its datasets in the order of the fil
           "[results][variables]") {
   using Names = std::vector<std::string>;
   CHECK(frame_names(everything(), true) ==
-        Names{"U", "UR", "V", "VR", "A", "RF", "RM", "S", "MISES", "S_SNEG", "S_SPOS", "EVOL",
-              "STH", "CPRESS", "CSHEAR", "CSTATUS", "CNORMF", "CSHEARF"});
+        Names{"U",    "UR",    "V",      "VR",     "A",          "RF",         "RM",
+              "S",    "MISES", "S_SNEG", "S_SPOS", "MISES_SNEG", "MISES_SPOS", "MISES_MAX",
+              "EVOL", "STH",   "CPRESS", "CSHEAR", "CSTATUS",    "CNORMF",     "CSHEARF"});
   CHECK(frame_names(everything(), false) == Names{"U", "V", "A", "RF", "S", "MISES", "EVOL",
                                                   "CPRESS", "CSHEAR", "CSTATUS", "CNORMF",
                                                   "CSHEARF"});
@@ -120,7 +121,7 @@ TEST_CASE("output variables: history node requests", "[results][variables]") {
 }
 
 TEST_CASE("output variables: the history of a contact pair", "[results][variables]") {
-  std::vector<HistorySeries> series{{"energy/ALLKE", 1, {}}};
+  std::vector<HistorySeries> series{{"energy/ALLKE", 1, {}, "", ""}};
   append_contact_pair_series(series, "ALL_EXTERIOR");
   REQUIRE(series.size() == 3);
   CHECK(series[1].path == "contact/ALL_EXTERIOR/CFN");

@@ -35,7 +35,8 @@ TEST_CASE("results: HDF5 failures become exceptions that name the object", "[io]
   io::ResultFiles files(scratch.path(), "job", {.progress = false});
   files.begin_run(model);
   files.begin_step(model, 0);
-  const std::vector<HistorySeries> twice{{"energy/ALLKE", 1, {}}, {"energy/ALLKE", 1, {}}};
+  const std::vector<HistorySeries> twice{{"energy/ALLKE", 1, {}, "", ""},
+                                         {"energy/ALLKE", 1, {}, "", ""}};
   try {
     files.declare_history(twice);
     FAIL("a duplicate series was accepted");
@@ -51,9 +52,9 @@ TEST_CASE("results: history rows that do not match the declaration are rejected"
   io::ResultFiles files(scratch.path(), "job", {.progress = false});
   files.begin_run(model);
   files.begin_step(model, 0);
-  CHECK_THROWS_AS(files.declare_history({{"/absolute", 1, {}}}), std::invalid_argument);
+  CHECK_THROWS_AS(files.declare_history({{"/absolute", 1, {}, "", ""}}), std::invalid_argument);
   files.begin_step(model, 1);
-  files.declare_history({{"energy/ALLKE", 1, {}}});
+  files.declare_history({{"energy/ALLKE", 1, {}, "", ""}});
   const std::vector<Real> two{1.0, 2.0};
   CHECK_THROWS_AS(files.append_history(0.0, two), std::invalid_argument);
   CHECK_THROWS_AS(files.declare_history({}), std::logic_error);
@@ -69,7 +70,7 @@ TEST_CASE("results: wide history series, several steps and an overwritten file",
     files.begin_run(model);
     for (int step = 0; step < 2; ++step) {
       files.begin_step(model, step);
-      HistorySeries wide{"node/ALL/U1", WIDTH, {}};
+      HistorySeries wide{"node/ALL/U1", WIDTH, {}, "", ""};
       for (Index i = 0; i < WIDTH; ++i) wide.node_ids.push_back(5 * i + 1);
       files.declare_history({wide});
       std::vector<Real> row(WIDTH);
@@ -101,7 +102,7 @@ TEST_CASE("results: a sink destroyed without end_run marks the file failed", "[i
     io::ResultFiles files(directory, "job", {.progress = false});
     files.begin_run(model);
     files.begin_step(model, 0);
-    files.declare_history({{"energy/ALLKE", 1, {}}});
+    files.declare_history({{"energy/ALLKE", 1, {}, "", ""}});
     const Real value = 3.0;
     files.append_history(0.5, {&value, 1});
   }

@@ -24,7 +24,7 @@ std::vector<Real> history_row(int r) {
 std::vector<HistorySeries> history_series(const Model& model) {
   std::vector<ExternalId> fixed;
   for (Index n : model.node_sets[0].members) fixed.push_back(model.node_ids[n]);
-  return {{"energy/ALLKE", 1, {}}, {"node/FIXED/RF1", N_FIXED, fixed}};
+  return {{"energy/ALLKE", 1, {}, "", ""}, {"node/FIXED/RF1", N_FIXED, fixed, "RF1", "N"}};
 }
 
 FrameRequest everything() {

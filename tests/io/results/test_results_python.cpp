@@ -28,7 +28,8 @@ TEST_CASE("results: write the result files read by check_results.py", "[.][io][r
   io::ResultFiles files(directory, "tiny", {.progress = false});
   files.begin_run(model);
   files.begin_step(model, 0);
-  files.declare_history({{"energy/ALLKE", 1, {}}, {"node/FIXED/U3", 4, {1000, 1021, 1042, 1063}}});
+  files.declare_history({{"energy/ALLKE", 1, {}, "ALLKE", "J"},
+                         {"node/FIXED/U3", 4, {1000, 1021, 1042, 1063}, "U3", "m"}});
   for (int frame = 0; frame < 4; ++frame) {
     // The last frame has no stress: a frame lists only the fields it has.
     files.write_frame(model, tiny_state(model, frame), {true, true, true, true, frame < 3, true});
@@ -50,7 +51,7 @@ TEST_CASE("results: write the mixed hex + shell result files read by check_resul
   io::ResultFiles files(directory, "mixed", {.progress = false});
   files.begin_run(model);
   files.begin_step(model, 0);
-  files.declare_history({{"energy/ALLKE", 1, {}}});
+  files.declare_history({{"energy/ALLKE", 1, {}, "ALLKE", "J"}});
   for (int frame = 0; frame < 3; ++frame) {
     // The last frame has no stress and no thickness.
     FrameRequest what = all_fields();
