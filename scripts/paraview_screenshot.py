@@ -11,7 +11,7 @@ element id of the peak cell (element_id cell data). Right view: the node and ele
 the way ParaView's readers expose them, drawn on the undeformed mesh, one colour per set, and
 listed with their sizes.
 
-Why it is done this way (ParaView 5.11, Mesa under xvfb):
+Why it is done this way (ParaView 5.11 as packaged by Debian, under xvfb):
 * The Xdmf3 reader turns every XDMF `Set` on by default and adds it as a block without any
   cell data; those blocks lie on top of the mesh and are drawn in the solid colour, which is
   what made an earlier attempt show grey surfaces under a correct scalar bar. Here its `Sets`
@@ -29,11 +29,11 @@ import sys
 from paraview import servermanager
 from paraview.simple import (
     ColorBy,
-    CreateRenderView,
     CreateLayout,
+    CreateRenderView,
     ExtractBlock,
     GetColorTransferFunction,
-    Hide,
+    GetScalarBar,
     MergeBlocks,
     Render,
     SaveScreenshot,
@@ -139,17 +139,16 @@ def stress_view(xdmf, frame, field, size):
     lut.RescaleTransferFunction(0.0, values[peak])
     lut.AutomaticRescaleRangeMode = "Never"
     shown.SetScalarBarVisibility(view, True)
-    bar = lut.GetScalarBarRepresentation(view) if hasattr(lut, "GetScalarBarRepresentation") else None
-    if bar is None:
-        from paraview.simple import GetScalarBar
-
-        bar = GetScalarBar(lut, view)
-    bar.Title = f"{field} [Pa] (cell data)"
+    bar = GetScalarBar(lut, view)
+    bar.Title = f"{field}, Pa (cell data)"
     bar.ComponentTitle = ""
     bar.RangeLabelFormat = "%-#6.2e"
     bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
+    bar.HorizontalTitle = 1
+    bar.TitleFontSize = 15
+    bar.LabelFontSize = 14
     bar.WindowLocation = "Any Location"
-    bar.Position = [0.86, 0.1]
+    bar.Position = [0.80, 0.12]
     bar.ScalarBarLength = 0.6
 
     plates = Show(rest, view)
@@ -169,7 +168,8 @@ def stress_view(xdmf, frame, field, size):
     )
     text = Show(title, view)
     text.WindowLocation = "Upper Left Corner"
-    text.FontSize = 14
+    text.Justification = "Left"
+    text.FontSize = 15
     text.Color = [0.0, 0.0, 0.0]
 
     view.CameraPosition = [0.11, -0.13, 0.085]
@@ -197,6 +197,9 @@ def set_view(xdmf, set_entries, size):
     view.Background = [1.0, 1.0, 1.0]
     view.UseColorPaletteForBackground = 0
 
+    node_sets = sorted((n for n in names if n.startswith("NSET_") and n in found),
+                       key=lambda n: -found[n].GetNumberOfPoints())
+    sizes = {n: max(9 - 3 * rank, 4) for rank, n in enumerate(node_sets)}
     lines = ["Sets in ParaView (XDMF Reader, SetStatus), frame 0, undeformed:"]
     for index, name in enumerate(names):
         block = found.get(name)
@@ -209,38 +212,42 @@ def set_view(xdmf, set_entries, size):
         if name.startswith("NSET_"):
             count = block.GetNumberOfPoints() if block is not None else 0
             shown.SetRepresentationType("Points")
-            shown.PointSize = 9 if count < 5 else 5
+            # Larger sets get larger points, so that a subset drawn over them leaves a ring.
+            shown.PointSize = 11 if count < 5 else sizes.get(name, 5)
             shown.RenderPointsAsSpheres = 1
             lines.append(f"  {name}: {count} node(s)")
         else:
             count = block.GetNumberOfCells() if block is not None else 0
             shown.SetRepresentationType("Surface")
-            shown.Opacity = 0.35 if name != "ELSET_TUBE" else 1.0
+            shown.Opacity = 0.35 if name != "ELSET_TUBE" else 0.6
             lines.append(f"  {name}: {count} element(s)")
         label = Text(registrationName=f"label_{name}")
         label.Text = lines[-1].strip()
         label_shown = Show(label, view)
         label_shown.WindowLocation = "Any Location"
-        label_shown.Position = [0.03, 0.80 - 0.045 * index]
+        label_shown.Position = [0.02, 0.78 - 0.045 * index]
         label_shown.FontSize = 15
         label_shown.Bold = 1
         label_shown.Color = list(colour)
     distinct = sorted({re.sub(r"\[\d+\]$", "", entry) for entry in set_entries})
+    same = "these" if distinct == sorted(names) else "other"
     header = Text(registrationName="set_list")
     header.Text = (
         lines[0]
-        + f"\nXdmf3ReaderS Sets: {len(set_entries)} entries = these {len(distinct)} names,"
-        + "\n  each once per frame (NAME, NAME[1], ...)"
+        + f"\nXdmf3ReaderS Sets: {len(set_entries)} entries, {same} {len(distinct)} names"
+        + " once per frame (NAME, NAME[1], ...)"
     )
     head = Show(header, view)
     head.WindowLocation = "Upper Left Corner"
-    head.FontSize = 14
+    head.Justification = "Left"
+    head.FontSize = 15
     head.Color = [0.0, 0.0, 0.0]
 
     view.CameraPosition = [0.11, -0.13, 0.10]
     view.CameraFocalPoint = [0.0, 0.0, 0.03]
     view.CameraViewUp = [0.0, 0.0, 1.0]
     view.ResetCamera(False)
+    view.GetActiveCamera().Dolly(0.9)
     return view, names
 
 
