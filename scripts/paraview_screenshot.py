@@ -177,6 +177,7 @@ def stress_view(xdmf, frame, field, size):
     view.CameraViewUp = [0.0, 0.0, 1.0]
     view.ResetCamera(False)
     view.CameraParallelScale = 0.03
+    print(f"peak {field} {values[peak]!r} element_id {int(ids[peak])}")
     return view, set_entries
 
 
@@ -267,7 +268,8 @@ def main(argv):
     Render(right)
     SaveScreenshot(args.png, layout, SaveAllViews=1, ImageResolution=[width, height],
                    CompressionLevel="9")
-    print(f"wrote {args.png}: {args.field} on the shells, sets {', '.join(names)}")
+    print(f"sets {' '.join(names)}")
+    print(f"wrote {args.png}")
 
 
 if __name__ == "__main__":
