@@ -57,6 +57,14 @@ SET_COLOURS = [
     (0.40, 0.40, 0.40),
 ]
 
+# What the shell fields mean, for the title.
+MEANING = {
+    "MISES_MAX": " (largest Mises through the thickness)",
+    "MISES_SPOS": " (Mises at the top surface, SPOS)",
+    "MISES_SNEG": " (Mises at the bottom surface, SNEG)",
+    "MISES": " (Mises at the middle section point)",
+}
+
 
 def parse_args(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -162,7 +170,7 @@ def stress_view(xdmf, frame, field, size):
     title.Text = (
         f"{name}: frame {frame % len(times)} of {len(times) - 1}, t = {time * 1e3:.3f} ms, "
         f"warped by U (x1)\n"
-        f"S4R shells coloured by {field} (largest Mises through the thickness);\n"
+        f"S4R shells coloured by {field}{MEANING.get(field, '')};\n"
         f"peak {values[peak]:.3e} Pa in element_id {int(ids[peak])}; rigid plates translucent\n"
         f"reader: Xdmf3ReaderS, Sets off ({len(set_entries)} set entries listed)"
     )
