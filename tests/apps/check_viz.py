@@ -15,6 +15,10 @@ Usage: check_viz.py CASE XPL REPO OUT_DIR, CASE one of
             whole frames, the end "completed"
   paraview  the shear job through pvpython's XDMF reader: S's component 5 is named XZ and holds
             S13, node_id / element_id are there; skipped (exit 77) without pvpython
+  screenshot  examples/contact/tube_crush through scripts/paraview_screenshot.py (xvfb-run
+            pvpython): the picture is drawn in colour (the shells are not grey), its peak
+            MISES_MAX and that element's id are the .h5's, the sets are the deck's; skipped
+            (exit 77) without pvpython or xvfb-run
 """
 
 import ast
@@ -338,6 +342,51 @@ def case_paraview(xpl, repo, out):
           f"{sets} present")
 
 
+def case_screenshot(xpl, repo, out):
+    pvpython, xvfb = shutil.which("pvpython"), shutil.which("xvfb-run")
+    if pvpython is None or xvfb is None:
+        print("pvpython or xvfb-run not installed: skipped")
+        sys.exit(SKIP)
+    import matplotlib.image
+
+    results = out / "results"
+    run(xpl, repo / "examples/contact/tube_crush/tube_crush.inp", results)
+    png = out / "tube_crush_mises.png"
+    command = [xvfb, "-a", pvpython, str(repo / "scripts/paraview_screenshot.py"),
+               str(results / "tube_crush.xdmf"), str(png)]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=180)
+    check(result.returncode == 0, f"screenshot: {result.returncode}: {result.stderr[-2000:]}")
+    lines = dict(line.split(" ", 1) for line in result.stdout.splitlines() if " " in line)
+    with h5py.File(results / "tube_crush.h5", "r") as f:
+        last = f["frames"][sorted(f["frames"])[-1]]
+        mises_max = last["MISES_MAX"][:]
+        peak = int(np.nanargmax(mises_max))
+        element_id = int(f["mesh/element_ids"][peak])
+        sets = sorted(["NSET_" + n for n in f["xdmf/sets/node_sets_rows"]]
+                      + ["ELSET_" + n for n in f["xdmf/sets/element_sets_rows"]])
+    field, value, _, shown_id = lines["peak"].split()
+    check(field == "MISES_MAX" and float(value) == mises_max[peak],
+          f"picture's peak {lines['peak']}, .h5 {mises_max[peak]!r}")
+    check(int(shown_id) == element_id, f"picture's peak element {shown_id}, .h5 {element_id}")
+    check(sorted(lines["sets"].split()) == sets, f"picture's sets {lines['sets']}, .h5 {sets}")
+    check(png.stat().st_size < 300_000, f"picture of {png.stat().st_size} bytes")
+    image = matplotlib.image.imread(png)[:, :, :3]
+    height, width = image.shape[:2]
+    # The shells lie in the left 35 % of the picture, left of the colour bar, between the title
+    # and the orientation axes; the plates there are grey. Coloured by MISES_MAX with the Jet
+    # map, the shells show both warm (red to yellow) and cold (blue) cells; grey shells (the sets
+    # drawn over them) have neither, shells in one colour only one kind.
+    tube = image[int(0.12 * height) : int(0.78 * height), int(0.1 * width) : int(0.35 * width)]
+    red, green, blue = tube[:, :, 0], tube[:, :, 1], tube[:, :, 2]
+    warm = float(np.mean((red > 0.6) & (blue < 0.35) & (red - blue > 0.4)))
+    cold = float(np.mean((blue > 0.5) & (red < 0.35) & (blue - red > 0.4)))
+    check(warm > 0.01 and cold > 0.01,
+          f"shells' part of the picture: {warm:.1%} warm, {cold:.1%} cold pixels")
+    print(f"screenshot: {width}x{height}, {png.stat().st_size} bytes, {warm:.1%} warm and "
+          f"{cold:.1%} cold pixels on the shells, peak MISES_MAX {mises_max[peak]:.4g} Pa in "
+          f"element {element_id}")
+
+
 def main():
     if len(sys.argv) != 5:
         sys.exit(__doc__)
@@ -346,7 +395,7 @@ def main():
     shutil.rmtree(out, ignore_errors=True)
     out.mkdir(parents=True)
     cases = {"shear": case_shear, "plate": case_plate, "live": case_live,
-             "paraview": case_paraview}
+             "paraview": case_paraview, "screenshot": case_screenshot}
     if case not in cases:
         sys.exit(__doc__)
     cases[case](xpl, repo, out)
