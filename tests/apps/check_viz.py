@@ -282,7 +282,8 @@ def case_live(xpl, repo, out):
                 if name in frames_read:
                     continue
                 g = f["frames"][name]
-                check(set(g) == {"U", "V", "S", "MISES", "HGSTATE"}, f"frame {name} holds {sorted(g)}")
+                check(set(g) == {"U", "V", "S", "MISES", "HGSTATE"},
+                      f"frame {name} holds {sorted(g)}")
                 u, s = g["U"][()], g["S"][()]
                 check(u.shape == (1331, 3) and g["V"].shape == (1331, 3) and s.shape == (1000, 6),
                       f"frame {name}: U {u.shape}, S {s.shape}")
