@@ -74,6 +74,18 @@ void fail(const std::string& what) {
   throw Error("HDF5: " + what + (reason.empty() ? std::string() : ": " + reason));
 }
 
+bool lock_refused() {
+  bool refused = false;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_DOWNWARD,
+      [](unsigned /*n*/, const H5E_error2_t* error, void* data) -> herr_t {
+        if (error->min_num == H5E_CANTLOCKFILE) *static_cast<bool*>(data) = true;
+        return 0;
+      },
+      &refused);
+  return refused;
+}
+
 hid_t check_id(hid_t id, const std::string& what) {
   if (id < 0) fail(what);
   return id;

@@ -24,6 +24,11 @@ void silence_errors();
 /// Throws Error("HDF5: <what>: <innermost HDF5 message>") and clears the error stack.
 [[noreturn]] void fail(const std::string& what);
 
+/// Whether the current HDF5 error stack holds a refused file lock (HDF5 1.10 locks a file
+/// for its writer; an open by another process fails until the writer closes it). Leaves the
+/// stack as it is.
+bool lock_refused();
+
 /// Returns `id`, or throws Error if it is negative (an HDF5 failure).
 hid_t check_id(hid_t id, const std::string& what);
 

@@ -15,20 +15,6 @@ namespace {
 /// job holds JOB.h5 for milliseconds), s; the message below says 5 s.
 constexpr double WRITER_WAIT = 5.0;
 
-/// Whether the HDF5 error stack holds a refused file lock: another process has the file open
-/// for writing.
-bool lock_refused() {
-  bool refused = false;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_DOWNWARD,
-      [](unsigned /*n*/, const H5E_error2_t* error, void* data) -> herr_t {
-        if (error->min_num == H5E_CANTLOCKFILE) *static_cast<bool*>(data) = true;
-        return 0;
-      },
-      &refused);
-  return refused;
-}
-
 Handle open_dataset(hid_t file, const std::string& path, const std::string& expected) {
   if (!has_link(file, path)) refuse("the file has no " + path, expected);
   return {check_id(H5Dopen2(file, path.c_str(), H5P_DEFAULT), path), H5Dclose};
@@ -74,7 +60,7 @@ Handle open_read_only(const std::filesystem::path& path, const std::string& expe
   for (;;) {
     const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     if (id >= 0) return {id, H5Fclose};
-    const bool locked = lock_refused();
+    const bool locked = h5::lock_refused();
     H5Eclear2(H5E_DEFAULT);
     if (!locked) refuse("cannot be opened as HDF5 (truncated or damaged)", expected);
     const std::chrono::duration<double> waited = std::chrono::steady_clock::now() - start;

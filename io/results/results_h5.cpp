@@ -323,25 +323,22 @@ void ResultsH5::with_file(const std::function<void(hid_t)>& write) {
   for (int attempt = 0;; ++attempt) {
     id = H5Fopen(m_path.c_str(), H5F_ACC_RDWR, m_access.get());
     if (id >= 0) break;
-    // HDF5's lock: a reader has the file open. Anything else (the file was removed) fails now.
-    std::error_code error;
-    const bool exists = std::filesystem::exists(m_path, error);
-    if (!exists || waited() > LOCK_WAIT) {
-      h5::fail("cannot open " + m_path + " for writing" +
-               (exists ? " (another process kept it open for " + std::to_string(LOCK_WAIT) +
-                             " s; readers must close it between reads)"
-                       : std::string(" (the file is gone)")));
+    // HDF5's lock: a reader has the file open; wait for it. Anything else fails now.
+    if (!h5::lock_refused()) h5::fail("cannot open " + m_path + " for writing");
+    if (waited() > LOCK_WAIT) {
+      h5::fail("cannot open " + m_path + " for writing: another process kept it open for " +
+               std::to_string(static_cast<int>(LOCK_WAIT)) +
+               " s (readers must close it between reads)");
     }
     H5Eclear2(H5E_DEFAULT);
     std::this_thread::sleep_for(std::chrono::milliseconds(std::min(1 << std::min(attempt, 6), 50)));
   }
   h5::Handle file{id, H5Fclose};
   if (const double seconds = waited(); seconds > LOCK_NOTICE && m_wait_notice) {
-    char text[160];
-    std::snprintf(text, sizeof text,
-                  "the run waited %.1f s for another process (a reader) to close %s", seconds,
-                  m_path.c_str());
-    m_wait_notice(text);
+    char duration[32];
+    std::snprintf(duration, sizeof duration, "%.1f s", seconds);
+    m_wait_notice("the run waited " + std::string(duration) +
+                  " for another process (a reader) to close " + m_path);
   }
   write(id);
   h5::check(H5Fflush(id, H5F_SCOPE_GLOBAL), "cannot flush " + m_path);
