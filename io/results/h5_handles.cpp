@@ -74,6 +74,18 @@ void fail(const std::string& what) {
   throw Error("HDF5: " + what + (reason.empty() ? std::string() : ": " + reason));
 }
 
+bool lock_refused() {
+  bool refused = false;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_DOWNWARD,
+      [](unsigned /*n*/, const H5E_error2_t* error, void* data) -> herr_t {
+        if (error->min_num == H5E_CANTLOCKFILE) *static_cast<bool*>(data) = true;
+        return 0;
+      },
+      &refused);
+  return refused;
+}
+
 hid_t check_id(hid_t id, const std::string& what) {
   if (id < 0) fail(what);
   return id;
@@ -98,6 +110,10 @@ Handle& Handle::operator=(Handle&& other) noexcept {
 void Handle::reset() {
   if (m_id >= 0 && m_closer != nullptr) m_closer(m_id);
   m_id = -1;
+}
+
+hid_t Handle::release() {
+  return std::exchange(m_id, -1);
 }
 
 Handle require_group(hid_t parent, const std::string& path) {
@@ -156,8 +172,8 @@ void set_int64_array_attribute(hid_t object, const std::string& name,
         "cannot write attribute " + name);
 }
 
-AppendableDataset::AppendableDataset(hid_t parent, const std::string& name, hsize_t width)
-    : m_name(name), m_width(width) {
+AppendableDataset::AppendableDataset(hid_t file, const std::string& path, hsize_t width)
+    : m_path(path), m_width(width) {
   // Chunks of about 128 KiB at most: a few hundred rows of a narrow series, fewer of a wide one.
   const hsize_t chunk_rows = std::clamp<hsize_t>(16384 / std::max<hsize_t>(width, 1), 1, 256);
   std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{chunk_rows};
@@ -170,37 +186,42 @@ AppendableDataset::AppendableDataset(hid_t parent, const std::string& name, hsiz
   const Handle properties{check_id(H5Pcreate(H5P_DATASET_CREATE), "cannot create properties"),
                           H5Pclose};
   check(H5Pset_chunk(properties.get(), static_cast<int>(chunk.size()), chunk.data()),
-        "cannot set the chunk size of " + name);
-  m_dataset = Handle{check_id(H5Dcreate2(parent, name.c_str(), H5T_NATIVE_DOUBLE, space.get(),
-                                         H5P_DEFAULT, properties.get(), H5P_DEFAULT),
-                              "cannot create dataset " + name),
-                     H5Dclose};
+        "cannot set the chunk size of " + path);
+  const Handle dataset{check_id(H5Dcreate2(file, path.c_str(), H5T_NATIVE_DOUBLE, space.get(),
+                                           H5P_DEFAULT, properties.get(), H5P_DEFAULT),
+                                "cannot create dataset " + path),
+                       H5Dclose};
 }
 
-void AppendableDataset::append(const double* buffer, hsize_t rows, hsize_t buffer_width,
+Handle AppendableDataset::open(hid_t file) const {
+  return {check_id(H5Dopen2(file, m_path.c_str(), H5P_DEFAULT), "cannot open " + m_path), H5Dclose};
+}
+
+void AppendableDataset::append(hid_t file, const double* buffer, hsize_t rows, hsize_t buffer_width,
                                hsize_t column) {
   if (rows == 0) return;
+  const Handle dataset = open(file);
   const hsize_t width = std::max<hsize_t>(m_width, 1);
   // For a one-dimensional dataset HDF5 reads only the first entry of these arrays.
   const std::array<hsize_t, 2> new_dims{m_rows + rows, width};
-  check(H5Dset_extent(m_dataset.get(), new_dims.data()), "cannot extend dataset " + m_name);
+  check(H5Dset_extent(dataset.get(), new_dims.data()), "cannot extend dataset " + m_path);
 
-  const Handle file_space{check_id(H5Dget_space(m_dataset.get()), "cannot get a dataspace"),
+  const Handle file_space{check_id(H5Dget_space(dataset.get()), "cannot get a dataspace"),
                           H5Sclose};
   const std::array<hsize_t, 2> file_start{m_rows, 0}, count{rows, width};
   check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, file_start.data(), nullptr,
                             count.data(), nullptr),
-        "cannot select rows of " + m_name);
+        "cannot select rows of " + m_path);
 
   // The memory side is the whole row buffer; HDF5 gathers this series' columns from it.
   const Handle memory_space = make_space({rows, buffer_width});
   const std::array<hsize_t, 2> memory_start{0, column};
   check(H5Sselect_hyperslab(memory_space.get(), H5S_SELECT_SET, memory_start.data(), nullptr,
                             count.data(), nullptr),
-        "cannot select columns for " + m_name);
-  check(H5Dwrite(m_dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
+        "cannot select columns for " + m_path);
+  check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
                  H5P_DEFAULT, buffer),
-        "cannot write rows of " + m_name);
+        "cannot write rows of " + m_path);
   m_rows += rows;
 }
 

@@ -24,6 +24,11 @@ void silence_errors();
 /// Throws Error("HDF5: <what>: <innermost HDF5 message>") and clears the error stack.
 [[noreturn]] void fail(const std::string& what);
 
+/// Whether the current HDF5 error stack holds a refused file lock (HDF5 1.10 locks a file
+/// for its writer; an open by another process fails until the writer closes it). Leaves the
+/// stack as it is.
+bool lock_refused();
+
 /// Returns `id`, or throws Error if it is negative (an HDF5 failure).
 hid_t check_id(hid_t id, const std::string& what);
 
@@ -48,6 +53,9 @@ class Handle {
   bool valid() const { return m_id >= 0; }
   /// Closes the identifier now (errors on close are ignored: nothing useful can be done).
   void reset();
+  /// Gives up ownership: returns the identifier, which the caller must close (e.g. to check
+  /// the result of H5Fclose, which writes the file's last metadata).
+  hid_t release();
 
  private:
   hid_t m_id = -1;
@@ -82,24 +90,26 @@ void set_int64_attribute(hid_t object, const std::string& name, std::int64_t val
 void set_int64_array_attribute(hid_t object, const std::string& name,
                                std::span<const std::int64_t> values);
 
-/// A float64 dataset of shape (rows) or (rows × width) that grows by appending rows.
+/// A float64 dataset of shape (rows) or (rows × width) that grows by appending rows. It keeps
+/// no HDF5 handle, only its path and row count: the file may be closed between two appends
+/// (JOB.h5 is closed between writes so that readers can open it, results_h5.hpp).
 class AppendableDataset {
  public:
-  /// Creates the chunked dataset `name` below `parent` with zero rows. `width` 0 means a
-  /// one-dimensional dataset.
-  AppendableDataset(hid_t parent, const std::string& name, hsize_t width);
+  /// Creates the chunked dataset `path` (below the root of the open `file`; its groups must
+  /// exist) with zero rows. `width` 0 means a one-dimensional dataset.
+  AppendableDataset(hid_t file, const std::string& path, hsize_t width);
 
   /// Appends `rows` rows taken from a row-major buffer of `buffer_width` columns, starting at
-  /// column `column` (the values of all series sit side by side in one buffer).
-  void append(const double* buffer, hsize_t rows, hsize_t buffer_width, hsize_t column);
+  /// column `column` (the values of all series sit side by side in one buffer), to the dataset
+  /// in the open `file`.
+  void append(hid_t file, const double* buffer, hsize_t rows, hsize_t buffer_width, hsize_t column);
 
-  /// The dataset handle (for attributes).
-  hid_t get() const { return m_dataset.get(); }
+  /// Opens the dataset in the open `file` (for attributes).
+  Handle open(hid_t file) const;
   hsize_t rows() const { return m_rows; }
 
  private:
-  Handle m_dataset;
-  std::string m_name;
+  std::string m_path;
   hsize_t m_width = 0;  ///< 0: one-dimensional
   hsize_t m_rows = 0;
 };

@@ -1,13 +1,19 @@
 #include "io/results/h5_reader.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <sstream>
 #include <system_error>
+#include <thread>
 #include <type_traits>
 
 namespace xpl::io::h5 {
 
 namespace {
+
+/// Longest wait for a writer to release a file it holds (xpl writing a frame of a running
+/// job holds JOB.h5 for milliseconds), s; the message below says 5 s.
+constexpr double WRITER_WAIT = 5.0;
 
 Handle open_dataset(hid_t file, const std::string& path, const std::string& expected) {
   if (!has_link(file, path)) refuse("the file has no " + path, expected);
@@ -48,12 +54,20 @@ Handle open_read_only(const std::filesystem::path& path, const std::string& expe
     H5Eclear2(H5E_DEFAULT);
     refuse("not an HDF5 file", expected + " (JOB.h5, not JOB.xdmf)");
   }
-  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (id < 0) {
+  // A running job's JOB.h5 is closed between writes (results_h5.hpp): while xpl writes, the
+  // open is refused by HDF5's lock; try again for a while.
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (id >= 0) return {id, H5Fclose};
+    const bool locked = h5::lock_refused();
     H5Eclear2(H5E_DEFAULT);
-    refuse("cannot be opened as HDF5 (truncated or damaged)", expected);
+    if (!locked) refuse("cannot be opened as HDF5 (truncated or damaged)", expected);
+    const std::chrono::duration<double> waited = std::chrono::steady_clock::now() - start;
+    if (waited.count() > WRITER_WAIT)
+      refuse("another process keeps it open for writing (waited 5 s)", expected);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  return {id, H5Fclose};
 }
 
 bool has_link(hid_t file, const std::string& path) {

@@ -32,7 +32,9 @@ class FormatError : public std::runtime_error {
 [[noreturn]] void refuse(const std::string& problem, std::string expected);
 
 /// Opens `path` read-only. Throws FormatError when it does not exist, is not a regular file
-/// or is not an HDF5 file (a truncated or damaged one included), Error when HDF5 fails.
+/// or is not an HDF5 file (a truncated or damaged one included), Error when HDF5 fails. A
+/// file another process holds for writing (a running job's JOB.h5 during a write) is retried
+/// for up to 5 s.
 Handle open_read_only(const std::filesystem::path& path, const std::string& expected = RESULT_FILE);
 
 /// Whether the link `path` (absolute) exists, every intermediate group included.

@@ -92,6 +92,8 @@ struct ResultFiles::Impl {
         progress_tty(opts.progress && isatty(STDERR_FILENO) == 1) {
     summary.job = job;
     summary.threads = opts.threads;
+    h5_file.set_wait_notice(
+        [this](const std::string& text) { msg_file.message(Severity::Warning, text); });
     // A summary of an earlier run must not pass for this one's while it runs.
     std::error_code ignored;
     std::filesystem::remove(summary_json, ignored);

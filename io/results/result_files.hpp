@@ -17,7 +17,8 @@ struct ResultOptions {
 
 /// An OutputSink that writes JOB.h5, JOB.xdmf, JOB.sta and JOB.msg into a directory, and at
 /// the end of the run, however it ends, JOB.summary.json and /summary (run_summary_file.hpp).
-/// The HDF5 file is flushed after every frame, so it is readable even if the run dies.
+/// JOB.h5 is closed between writes (results_h5.hpp), so it is complete if the run dies and
+/// readable while it runs.
 /// The constructor takes the job lock (JOB.lck, see JobLock) before it opens any file and
 /// throws JobLocked if another run of the job holds it; the destructor releases it.
 class ResultFiles final : public OutputSink {

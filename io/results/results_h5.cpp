@@ -1,10 +1,12 @@
 #include "io/results/results_h5.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include "elements/lane_state.hpp"
 #include "elements/quad_shell_geometry.hpp"
@@ -265,6 +267,14 @@ void write_xdmf_tensors(hid_t file, const std::string& path, const Model& model,
   }
 }
 
+/// Writes the status attributes of the open `file`.
+void write_status(hid_t file, const std::string& status, const std::string& error,
+                  std::optional<double> time_reached) {
+  h5::set_string_attribute(file, "status", status);
+  h5::set_string_attribute(file, "error", error);
+  if (time_reached) h5::set_real_attribute(file, "time_reached", *time_reached);
+}
+
 }  // namespace
 
 Real von_mises(const Real* s) {
@@ -276,42 +286,76 @@ Real von_mises(const Real* s) {
 ResultsH5::ResultsH5(const std::filesystem::path& path, const std::string& job)
     : m_path(path.string()) {
   h5::silence_errors();
-  const h5::Handle access{h5::check_id(H5Pcreate(H5P_FILE_ACCESS), "cannot create properties"),
-                          H5Pclose};
-  // The 1.8 format stores attributes larger than 64 KiB (node_ids of wide history series).
-  h5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST),
+  m_access =
+      h5::Handle{h5::check_id(H5Pcreate(H5P_FILE_ACCESS), "cannot create properties"), H5Pclose};
+  // The 1.8 format stores attributes larger than 64 KiB (node_ids of wide history series). It
+  // also has no "open for writing" flag in the superblock, which would make a file whose
+  // writer was killed unreadable until h5clear.
+  h5::check(H5Pset_libver_bounds(m_access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST),
             "cannot set the file format");
-  // Live reading (issue 19) is NOT done: without HDF5's file lock (H5Pset_file_locking
-  // off) an h5py reader that holds the file while the next frame is flushed reads torn
-  // metadata ("addr overflow" errors, once a segmentation fault), and SWMR in HDF5 1.10
-  // cannot create the groups every frame adds. What is needed: close the file between
-  // writes (the history writer then must not hold dataset handles). See README.
-  //
-  // A reader (ParaView) may still hold the previous run's file open: unlink it rather than
-  // truncate it, so that the new run does not fail on the reader's lock and the reader keeps
-  // the old, complete file. JOB.lck (job_lock.hpp) keeps one run per job and directory.
+  // Closing the file closes every object still open in it: no handle kept by mistake can
+  // keep the file, and its lock, open between writes.
+  h5::check(H5Pset_fclose_degree(m_access.get(), H5F_CLOSE_STRONG), "cannot set the close mode");
+  // A reader (ParaView, h5py) may still hold the previous run's file open: unlink it rather
+  // than truncate it, so that the new run does not wait for the reader's lock and the reader
+  // keeps the old, complete file. JOB.lck (job_lock.hpp) keeps one run per job and directory.
   std::error_code ignored;
   std::filesystem::remove(path, ignored);
-  m_file =
-      h5::Handle{h5::check_id(H5Fcreate(m_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
-                              "cannot create " + m_path),
-                 H5Fclose};
-  h5::set_string_attribute(m_file.get(), "xpl_version", XPL_VERSION);
-  h5::set_string_attribute(m_file.get(), "job", job);
-  h5::set_string_attribute(m_file.get(), "heading", "");
-  h5::set_string_attribute(m_file.get(), "status", "running");
-  h5::set_string_attribute(m_file.get(), "error", "");
-  flush();
+  h5::Handle file{
+      h5::check_id(H5Fcreate(m_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, m_access.get()),
+                   "cannot create " + m_path),
+      H5Fclose};
+  h5::set_string_attribute(file.get(), "xpl_version", XPL_VERSION);
+  h5::set_string_attribute(file.get(), "job", job);
+  h5::set_string_attribute(file.get(), "heading", "");
+  h5::set_string_attribute(file.get(), "status", "running");
+  h5::set_string_attribute(file.get(), "error", "");
+  h5::check(H5Fclose(file.release()), "cannot close " + m_path);
+}
+
+void ResultsH5::with_file(const std::function<void(hid_t)>& write) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const auto waited = [&start] {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  hid_t id = -1;
+  for (int attempt = 0;; ++attempt) {
+    id = H5Fopen(m_path.c_str(), H5F_ACC_RDWR, m_access.get());
+    if (id >= 0) break;
+    // HDF5's lock: a reader has the file open; wait for it. Anything else fails now.
+    if (!h5::lock_refused()) h5::fail("cannot open " + m_path + " for writing");
+    if (waited() > LOCK_WAIT) {
+      h5::fail("cannot open " + m_path + " for writing: another process kept it open for " +
+               std::to_string(static_cast<int>(LOCK_WAIT)) +
+               " s (readers must close it between reads)");
+    }
+    H5Eclear2(H5E_DEFAULT);
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::min(1 << std::min(attempt, 6), 50)));
+  }
+  h5::Handle file{id, H5Fclose};
+  if (const double seconds = waited(); seconds > LOCK_NOTICE && m_wait_notice) {
+    char duration[32];
+    std::snprintf(duration, sizeof duration, "%.1f s", seconds);
+    m_wait_notice("the run waited " + std::string(duration) +
+                  " for another process (a reader) to close " + m_path);
+  }
+  write(id);
+  h5::check(H5Fflush(id, H5F_SCOPE_GLOBAL), "cannot flush " + m_path);
+  h5::check(H5Fclose(file.release()), "cannot close " + m_path);
 }
 
 XdmfMesh ResultsH5::write_mesh(const Model& model) {
-  h5::set_string_attribute(m_file.get(), "heading", model.heading);
-  XdmfMesh mesh = write_mesh_group(m_file.get(), model);
-  flush();
+  XdmfMesh mesh;
+  with_file([&](hid_t file) {
+    h5::set_string_attribute(file, "heading", model.heading);
+    mesh = write_mesh_group(file, model);
+  });
   return mesh;
 }
 
 void ResultsH5::begin_step(int step) {
+  if (m_history.pending()) with_file([&](hid_t file) { m_history.write_pending(file); });
   m_history.end();
   m_step = step;
 }
@@ -320,12 +364,11 @@ void ResultsH5::declare_history(const std::vector<HistorySeries>& series) {
   if (m_history.active()) {
     throw std::logic_error("declare_history called twice in step " + std::to_string(m_step + 1));
   }
-  m_history.begin(m_file.get(), m_step + 1, series);
-  flush();
+  with_file([&](hid_t file) { m_history.begin(file, m_step + 1, series); });
 }
 
 void ResultsH5::append_history(Real time, std::span<const Real> values) {
-  if (m_history.append(time, values)) flush();
+  if (m_history.append(time, values)) with_file([&](hid_t file) { m_history.write_pending(file); });
 }
 
 std::string ResultsH5::write_frame(const Model& model, const State& state,
@@ -335,100 +378,105 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
   const auto n_elements = static_cast<std::size_t>(model.element_count());
   check_frame(state, what, model.node_count(), n_elements, shells, model.has_plastic_shells());
   check_contact(state, what, model.node_count());
-  m_history.write_pending();
   char name[16];
   std::snprintf(name, sizeof name, "%06d", m_frames);
-  const h5::Handle group = h5::require_group(m_file.get(), std::string("frames/") + name);
-  const hid_t g = group.get();
-  h5::set_real_attribute(g, "time", state.time);
-  h5::set_real_attribute(g, "step_time", state.step_time);
-  h5::set_int64_attribute(g, "step", state.step + 1);
-  const auto step_index = static_cast<std::size_t>(state.step);
-  h5::set_string_attribute(g, "step_name",
-                           step_index < model.steps.size() ? model.steps[step_index].name : "");
-  h5::set_int64_attribute(g, "increment", state.increment);
+  with_file([&](hid_t file) {
+    // The history rows up to the frame go with it: a reader sees both up to the same time.
+    m_history.write_pending(file);
+    const h5::Handle group = h5::require_group(file, std::string("frames/") + name);
+    const hid_t g = group.get();
+    h5::set_real_attribute(g, "time", state.time);
+    h5::set_real_attribute(g, "step_time", state.step_time);
+    h5::set_int64_attribute(g, "step", state.step + 1);
+    const auto step_index = static_cast<std::size_t>(state.step);
+    h5::set_string_attribute(g, "step_name",
+                             step_index < model.steps.size() ? model.steps[step_index].name : "");
+    h5::set_int64_attribute(g, "increment", state.increment);
 
-  for (const OutputVariable* v : frame_variables(what, output_scope(model))) {
-    write_variable(g, *v, model, state);
-    describe(g, std::string(v->name), component_list(*v), v->unit, v->description);
-  }
-  if (what.stress) write_xdmf_tensors(m_file.get(), std::string("xdmf/") + name, model, state);
-  if (what.stress && !state.hourglass_state.empty()) {
-    // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
-    // --import (io/results/import_state.hpp).
-    const auto width = static_cast<std::size_t>(elements::HOURGLASS_STATE_WIDTH);
-    check_size(state.hourglass_state, n_elements * width, "hourglass_state");
-    h5::write_real(g, "HGSTATE", state.hourglass_state, {n_elements, width});
-  }
+    for (const OutputVariable* v : frame_variables(what, output_scope(model))) {
+      write_variable(g, *v, model, state);
+      describe(g, std::string(v->name), component_list(*v), v->unit, v->description);
+    }
+    if (what.stress) write_xdmf_tensors(file, std::string("xdmf/") + name, model, state);
+    if (what.stress && !state.hourglass_state.empty()) {
+      // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
+      // --import (io/results/import_state.hpp).
+      const auto width = static_cast<std::size_t>(elements::HOURGLASS_STATE_WIDTH);
+      check_size(state.hourglass_state, n_elements * width, "hourglass_state");
+      h5::write_real(g, "HGSTATE", state.hourglass_state, {n_elements, width});
+    }
+  });
   ++m_frames;
-  flush();
   return name;
 }
 
 void ResultsH5::write_table(const ResultTable& table) {
-  const h5::Handle group = h5::require_group(m_file.get(), table.path);
-  if (!table.description.empty())
-    h5::set_string_attribute(group.get(), "description", table.description);
-  h5::set_int64_attribute(group.get(), "rows", table.rows);
-  for (const auto& [name, value] : table.attributes)
-    h5::set_string_attribute(group.get(), name, value);
-  for (const TableColumn& c : table.columns) {
-    const std::vector<hsize_t> dims =
-        c.width == 1
-            ? std::vector<hsize_t>{static_cast<hsize_t>(table.rows)}
-            : std::vector<hsize_t>{static_cast<hsize_t>(table.rows), static_cast<hsize_t>(c.width)};
-    if (c.integer)
-      h5::write_int64(group.get(), c.name, c.ids, dims);
-    else
-      h5::write_real(group.get(), c.name, c.values, dims);
-    if (!c.description.empty()) {
-      const h5::Handle data = h5::Handle(
-          h5::check_id(H5Dopen2(group.get(), c.name.c_str(), H5P_DEFAULT), "cannot open " + c.name),
-          H5Dclose);
-      h5::set_string_attribute(data.get(), "description", c.description);
+  with_file([&](hid_t file) {
+    const h5::Handle group = h5::require_group(file, table.path);
+    if (!table.description.empty())
+      h5::set_string_attribute(group.get(), "description", table.description);
+    h5::set_int64_attribute(group.get(), "rows", table.rows);
+    for (const auto& [name, value] : table.attributes)
+      h5::set_string_attribute(group.get(), name, value);
+    for (const TableColumn& c : table.columns) {
+      const std::vector<hsize_t> dims = c.width == 1
+                                            ? std::vector<hsize_t>{static_cast<hsize_t>(table.rows)}
+                                            : std::vector<hsize_t>{static_cast<hsize_t>(table.rows),
+                                                                   static_cast<hsize_t>(c.width)};
+      if (c.integer)
+        h5::write_int64(group.get(), c.name, c.ids, dims);
+      else
+        h5::write_real(group.get(), c.name, c.values, dims);
+      if (!c.description.empty()) {
+        const h5::Handle data =
+            h5::Handle(h5::check_id(H5Dopen2(group.get(), c.name.c_str(), H5P_DEFAULT),
+                                    "cannot open " + c.name),
+                       H5Dclose);
+        h5::set_string_attribute(data.get(), "description", c.description);
+      }
     }
-  }
-  flush();
+  });
 }
 
 void ResultsH5::finish(const std::string& status, const std::string& error,
                        std::optional<double> time_reached) {
+  // The last history rows and the status in one write: a reader that sees "completed" sees
+  // the whole history.
+  with_file([&](hid_t file) {
+    m_history.write_pending(file);
+    write_status(file, status, error, time_reached);
+  });
   m_history.end();
-  record_status(status, error, time_reached);
 }
 
 void ResultsH5::record_status(const std::string& status, const std::string& error,
                               std::optional<double> time_reached) {
-  h5::set_string_attribute(m_file.get(), "status", status);
-  h5::set_string_attribute(m_file.get(), "error", error);
-  if (time_reached) h5::set_real_attribute(m_file.get(), "time_reached", *time_reached);
-  flush();
+  with_file([&](hid_t file) { write_status(file, status, error, time_reached); });
 }
 
 void ResultsH5::write_summary(const JsonValue& summary) {
-  const h5::Handle group = h5::require_group(m_file.get(), "summary");
-  const auto write = [&](const auto& self, const JsonValue& value, const std::string& key) -> void {
-    if (const auto* members = value.as_object()) {
-      for (const auto& [name, member] : *members)
-        self(self, member, key.empty() ? name : key + "." + name);
-    } else if (const bool* b = value.as_bool()) {
-      h5::set_int64_attribute(group.get(), key, *b ? 1 : 0);
-    } else if (const std::int64_t* i = value.as_int()) {
-      h5::set_int64_attribute(group.get(), key, *i);
-    } else if (const double* d = value.as_double()) {
-      h5::set_real_attribute(group.get(), key, *d);
-    } else if (const std::string* s = value.as_string()) {
-      h5::set_string_attribute(group.get(), key, *s);
-    } else if (value.is_null()) {
-      h5::set_real_attribute(group.get(), key, std::nan(""));
-    }
-    // Arrays: the summary has none.
-  };
-  write(write, summary, "");
-}
-
-void ResultsH5::flush() {
-  h5::check(H5Fflush(m_file.get(), H5F_SCOPE_GLOBAL), "cannot flush " + m_path);
+  with_file([&](hid_t file) {
+    const h5::Handle group = h5::require_group(file, "summary");
+    const auto write = [&](const auto& self, const JsonValue& value,
+                           const std::string& key) -> void {
+      if (const auto* members = value.as_object()) {
+        for (const auto& [name, member] : *members)
+          self(self, member, key.empty() ? name : key + "." + name);
+      } else if (const bool* b = value.as_bool()) {
+        h5::set_int64_attribute(group.get(), key, *b ? 1 : 0);
+      } else if (const std::int64_t* i = value.as_int()) {
+        h5::set_int64_attribute(group.get(), key, *i);
+      } else if (const double* d = value.as_double()) {
+        h5::set_real_attribute(group.get(), key, *d);
+      } else if (const std::string* s = value.as_string()) {
+        h5::set_string_attribute(group.get(), key, *s);
+      } else if (value.is_null()) {
+        h5::set_real_attribute(group.get(), key, std::nan(""));
+      }
+      // Arrays: the summary has none.
+    };
+    write(write, summary, "");
+  });
 }
 
 }  // namespace xpl::io

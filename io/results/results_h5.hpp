@@ -2,6 +2,7 @@
 /// \file JOB.h5: mesh, field frames, history and the run status (layout in README.md).
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -18,10 +19,21 @@ namespace xpl::io {
 /// Von Mises stress of one stress row (S11 S22 S33 S12 S13 S23), Pa.
 Real von_mises(const Real* s);
 
-/// The HDF5 result file of one job. Every write that completes a frame, a block of history
-/// rows or the run flushes the file, so that a reader sees a consistent file if the run dies.
+/// The HDF5 result file of one job. Every write (the mesh, a frame, a block of history rows,
+/// a table, the status) opens JOB.h5, writes and closes it again with every handle, so that
+/// between writes the file on disk is complete and unlocked: a reader (h5py, ParaView) may
+/// open it during the run and sees a consistent prefix of the frames, and a run that dies
+/// leaves the file as of its last write. While the writer holds the file (milliseconds per
+/// frame), HDF5's file lock makes a reader's open fail ("unable to lock file"): the reader
+/// retries. While a reader holds the file, the writer waits (up to LOCK_WAIT, then the write
+/// fails).
 class ResultsH5 {
  public:
+  /// Longest wait for a reader to release JOB.h5 before a write, s.
+  static constexpr double LOCK_WAIT = 300.0;
+  /// Waits longer than this are reported through the wait notice (set_wait_notice), s.
+  static constexpr double LOCK_NOTICE = 1.0;
+
   /// Creates (truncates) `path` with status "running".
   ResultsH5(const std::filesystem::path& path, const std::string& job);
 
@@ -39,11 +51,11 @@ class ResultsH5 {
   std::string write_frame(const Model& model, const State& state, const FrameRequest& what);
   /// Writes a setup table as a group of column datasets (OutputSink::write_table).
   void write_table(const ResultTable& table);
-  /// Writes pending history rows, the final status and error text, and flushes. A run that
+  /// Writes pending history rows, the final status and error text. A run that
   /// did not complete also records `time_reached` (total time of its last status line, s).
   void finish(const std::string& status, const std::string& error,
               std::optional<double> time_reached = std::nullopt);
-  /// Writes the status attributes only (as finish) and flushes: the fallback when finish
+  /// Writes the status attributes only (as finish): the fallback when finish
   /// failed, e.g. on a full disk, where the pending history rows do not fit but a small
   /// attribute may still.
   void record_status(const std::string& status, const std::string& error,
@@ -51,14 +63,22 @@ class ResultsH5 {
   /// Writes the run summary (run_summary_file.hpp) as attributes of the group /summary:
   /// nested keys joined by '.' ("wall_time.setup"), booleans as int64 0/1, null as NaN.
   void write_summary(const JsonValue& summary);
-  /// Flushes the file to disk.
-  void flush();
+  /// Called with a sentence when a write waited more than LOCK_NOTICE for a reader.
+  void set_wait_notice(std::function<void(const std::string&)> notice) {
+    m_wait_notice = std::move(notice);
+  }
   /// Number of frames written.
   int frame_count() const { return m_frames; }
 
  private:
-  h5::Handle m_file;
+  /// Opens JOB.h5 for writing (waiting while a reader holds HDF5's lock on it), calls
+  /// `write` with the file id, then flushes and closes the file; on an exception the file is
+  /// closed too and the exception passes on.
+  void with_file(const std::function<void(hid_t)>& write);
+
+  h5::Handle m_access;  ///< file access properties (a property list, not an open file)
   HistoryWriter m_history;
+  std::function<void(const std::string&)> m_wait_notice;
   std::string m_path;
   int m_step = 0;  ///< zero-based current step
   int m_frames = 0;

@@ -20,11 +20,13 @@ void check_series_path(const std::string& path, int step) {
 }  // namespace
 
 void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>& series) {
+  if (pending()) throw std::logic_error("HistoryWriter::begin: rows of the last step not written");
   end();
   m_step = step;
-  m_group = h5::require_group(file, "history/step_" + std::to_string(step));
-  m_time.emplace(m_group.get(), "time", 0);
-  h5::set_string_attribute(m_time->get(), "units", "s");
+  const std::string group = "history/step_" + std::to_string(step);
+  h5::require_group(file, group);
+  m_time.emplace(file, group + "/time", 0);
+  h5::set_string_attribute(m_time->open(file).get(), "units", "s");
   m_columns.clear();
   m_row_width = 0;
   for (const HistorySeries& s : series) {
@@ -40,19 +42,15 @@ void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>
     const auto slash = s.path.rfind('/');
     // Node series are always (nt, n_nodes), also for a one-node set; whole-model series (nt).
     const hsize_t width = s.width > 1 || !s.node_ids.empty() ? static_cast<hsize_t>(s.width) : 0;
-    if (slash == std::string::npos) {
-      m_series.emplace_back(m_group.get(), s.path, width);
-    } else {
-      const h5::Handle parent = h5::require_group(m_group.get(), s.path.substr(0, slash));
-      m_series.emplace_back(parent.get(), s.path.substr(slash + 1), width);
-    }
+    if (slash != std::string::npos) h5::require_group(file, group + "/" + s.path.substr(0, slash));
+    m_series.emplace_back(file, group + "/" + s.path, width);
+    const h5::Handle dataset = m_series.back().open(file);
     if (!s.node_ids.empty()) {
-      h5::set_int64_array_attribute(m_series.back().get(), "node_ids", s.node_ids);
+      h5::set_int64_array_attribute(dataset.get(), "node_ids", s.node_ids);
     }
     // Issue 19: what the columns are (node series: this component of node node_ids[j]).
-    if (!s.component.empty())
-      h5::set_string_attribute(m_series.back().get(), "components", s.component);
-    if (!s.unit.empty()) h5::set_string_attribute(m_series.back().get(), "units", s.unit);
+    if (!s.component.empty()) h5::set_string_attribute(dataset.get(), "components", s.component);
+    if (!s.unit.empty()) h5::set_string_attribute(dataset.get(), "units", s.unit);
     m_columns.push_back(m_row_width);
     m_row_width += static_cast<hsize_t>(s.width);
   }
@@ -69,27 +67,25 @@ bool HistoryWriter::append(Real time, std::span<const Real> values) {
   }
   m_times.push_back(time);
   m_values.insert(m_values.end(), values.begin(), values.end());
-  if (m_times.size() < ROWS_PER_WRITE) return false;
-  write_pending();
-  return true;
+  return m_times.size() >= ROWS_PER_WRITE;
 }
 
-void HistoryWriter::write_pending() {
+void HistoryWriter::write_pending(hid_t file) {
   if (!active() || m_times.empty()) return;
   const auto rows = static_cast<hsize_t>(m_times.size());
-  m_time->append(m_times.data(), rows, 1, 0);
+  m_time->append(file, m_times.data(), rows, 1, 0);
   for (std::size_t i = 0; i < m_series.size(); ++i) {
-    m_series[i].append(m_values.data(), rows, m_row_width, m_columns[i]);
+    m_series[i].append(file, m_values.data(), rows, m_row_width, m_columns[i]);
   }
   m_times.clear();
   m_values.clear();
 }
 
 void HistoryWriter::end() {
-  write_pending();
   m_series.clear();
   m_time.reset();
-  m_group.reset();
+  m_times.clear();
+  m_values.clear();
 }
 
 }  // namespace xpl::io

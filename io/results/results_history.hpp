@@ -13,27 +13,30 @@
 namespace xpl::io {
 
 /// Buffers history rows of the current step and appends them to JOB.h5 in blocks, so that
-/// nothing touches the file on most append() calls.
+/// nothing touches the file on most append() calls. It holds no HDF5 handle: every call that
+/// writes takes the open file, which the caller closes again (JOB.h5 is closed between writes
+/// so that readers can open it during a run, results_h5.hpp).
 class HistoryWriter {
  public:
   /// Rows buffered before they are written to the file.
   static constexpr std::size_t ROWS_PER_WRITE = 256;
 
-  /// Starts the history of `step` (1-based; group /history/step_N below `file`) with the
-  /// given columns. Ends the history of a previous step first.
+  /// Starts the history of `step` (1-based; group /history/step_N of the open `file`) with
+  /// the given columns. Ends the history of a previous step first.
   void begin(hid_t file, int step, const std::vector<HistorySeries>& series);
   /// Whether a step's history is open.
   bool active() const { return m_time.has_value(); }
   /// Buffers one row; `values` holds every series' columns back to back. Returns true when
-  /// the buffer was written to the file (the caller may then flush the file).
+  /// ROWS_PER_WRITE rows are buffered: the caller then writes them (write_pending).
   bool append(Real time, std::span<const Real> values);
-  /// Writes the buffered rows to the file.
-  void write_pending();
-  /// Writes the buffered rows and closes the step's datasets.
+  /// Whether rows are buffered that the file does not have yet.
+  bool pending() const { return !m_times.empty(); }
+  /// Writes the buffered rows to the open `file`.
+  void write_pending(hid_t file);
+  /// Ends the step's history; its rows must have been written (write_pending) first.
   void end();
 
  private:
-  h5::Handle m_group;
   std::optional<h5::AppendableDataset> m_time;
   std::vector<h5::AppendableDataset> m_series;
   std::vector<hsize_t> m_columns;  ///< first column of each series in a row

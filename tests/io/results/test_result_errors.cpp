@@ -42,7 +42,7 @@ TEST_CASE("results: HDF5 failures become exceptions that name the object", "[io]
     FAIL("a duplicate series was accepted");
   } catch (const io::h5::Error& error) {
     const std::string what = error.what();
-    CHECK(what.rfind("HDF5: cannot create dataset ALLKE", 0) == 0);
+    CHECK(what.rfind("HDF5: cannot create dataset history/step_1/energy/ALLKE", 0) == 0);
   }
 }
 
