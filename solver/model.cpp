@@ -5,6 +5,27 @@
 
 namespace xpl {
 
+std::vector<Index> Model::surface_nodes(const Surface& surface) const {
+  std::vector<Index> nodes;
+  if (surface.type == Surface::Type::Node) {
+    nodes = surface.nodes;
+  } else {
+    for (const ElementFace& f : surface.faces) {
+      if (f.element < 0 || f.element >= element_count()) continue;
+      const Index* en = nodes_of(f.element);
+      if (is_hex(element_types[f.element]))
+        for (int k : HEX_FACE_NODES[f.face]) nodes.push_back(en[k]);
+      else
+        nodes.insert(nodes.end(), en, en + 4);
+    }
+  }
+  const Index n = node_count();
+  std::erase_if(nodes, [n](Index i) { return i < 0 || i >= n; });
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
 std::string to_upper(std::string text) {
   for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return text;

@@ -497,6 +497,10 @@ struct Model {
   Index element_count() const { return static_cast<Index>(element_ids.size()); }
   /// Node indices of element e.
   const Index* nodes_of(Index e) const { return element_nodes.data() + element_offsets[e]; }
+  /// Nodes of a surface (sorted, unique): the corners of an element surface's faces (hex face
+  /// corners, the four nodes of a shell), or a node surface's nodes; indices outside the
+  /// model (a deck with errors elsewhere) are left out.
+  std::vector<Index> surface_nodes(const Surface& surface) const;
   /// The deck line of element e (for messages).
   SourceLocation element_where(Index e) const {
     return {source_files[element_file[e]], element_line[e]};

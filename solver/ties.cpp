@@ -26,25 +26,6 @@ Eigen::Vector3d point(const NodalVectors& x, Index i) {
   return {x(i, 0), x(i, 1), x(i, 2)};
 }
 
-/// Nodes of a surface (sorted, unique): face corners of an element surface, or its nodes.
-std::vector<Index> surface_nodes(const Model& model, const Surface& surface) {
-  std::vector<Index> nodes;
-  if (surface.type == Surface::Type::Node) {
-    nodes = surface.nodes;
-  } else {
-    for (const ElementFace& f : surface.faces) {
-      const Index* en = model.nodes_of(f.element);
-      if (is_hex(model.element_types[f.element]))
-        for (int k : HEX_FACE_NODES[f.face]) nodes.push_back(en[k]);
-      else
-        nodes.insert(nodes.end(), en, en + 4);
-    }
-  }
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
-}
-
 std::string number(Real value) {
   std::ostringstream text;
   text.precision(4);
@@ -95,7 +76,7 @@ Ties::Ties(const Model& model, State& state) {
     Index tied = 0;
     Real largest = 0.0;
     std::vector<Index> untied;
-    for (Index s : surface_nodes(model, model.surfaces[tie.slave])) {
+    for (Index s : model.surface_nodes(model.surfaces[tie.slave])) {
       if (on_master[s]) continue;  // a node of its own master surface stays untied
       const Eigen::Vector3d p = point(state.reference, s);
       Real best = std::numeric_limits<Real>::infinity();

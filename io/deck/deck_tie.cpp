@@ -76,29 +76,6 @@ void read_tie(DeckState& deck, const DeckBlock& block) {
 
 namespace {
 
-/// Nodes of an element-based surface's faces (sorted, unique): hex face corners, the four
-/// nodes of a shell face; a node-based surface's nodes.
-std::vector<Index> surface_nodes(const Model& model, const Surface& surface) {
-  std::vector<Index> nodes;
-  if (surface.type == Surface::Type::Node) {
-    nodes = surface.nodes;
-  } else {
-    for (const ElementFace& f : surface.faces) {
-      const Index* en = model.nodes_of(f.element);
-      if (is_hex(model.element_types[f.element]))
-        for (int k : HEX_FACE_NODES[f.face]) nodes.push_back(en[k]);
-      else
-        nodes.insert(nodes.end(), en, en + 4);
-    }
-  }
-  // Unresolved nodes (elements of a deck with errors elsewhere) are no conflict of a tie.
-  const Index n = model.node_count();
-  std::erase_if(nodes, [n](Index i) { return i < 0 || i >= n; });
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
-}
-
 /// One error per tie and cause: the first node, and how many more.
 struct Conflict {
   std::vector<Index> nodes;
@@ -143,7 +120,7 @@ void resolve_ties(DeckState& deck) {
   std::vector<std::vector<Index>> slaves(model.ties.size());
   for (std::size_t t = 0; t < model.ties.size(); ++t) {
     if (!valid[t]) continue;
-    for (Index i : surface_nodes(model, model.surfaces[model.ties[t].master]))
+    for (Index i : model.surface_nodes(model.surfaces[model.ties[t].master]))
       if (master_of[i] == NO_INDEX) master_of[i] = static_cast<Index>(t);
   }
   std::vector<char> constrained(n, 0);  // 1: translational BC, 2: rigid body
@@ -181,7 +158,7 @@ void resolve_ties(DeckState& deck) {
       if (f.element >= 0 && f.element < model.element_count() &&
           is_shell(model.element_types[f.element]))
         shell_master = true;
-    for (Index i : surface_nodes(model, model.surfaces[tie.slave])) {
+    for (Index i : model.surface_nodes(model.surfaces[tie.slave])) {
       if (master_of[i] == static_cast<Index>(t)) continue;  // on its own master: untied
       if (slave_of[i] != NO_INDEX) {
         Conflict& c = conflicts["1 slave"];
