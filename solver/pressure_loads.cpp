@@ -7,8 +7,23 @@ namespace xpl {
 void PressureLoads::begin_step(const Model& model, int step) {
   const Step& s = model.steps[step];
   if (s.pressures_reset) m_active.clear();
-  for (const PressureLoad& p : s.pressures)
-    m_active[{p.face.element, p.face.face}] = {p.face, p.value, p.amplitude};
+  if (!s.pressures.empty()) {
+    // The earlier steps' faces, then this step's in deck order; a stable sort by face keeps
+    // that order among equal faces, so the last of each run is the entry in force (a later
+    // line for the same face replaces an earlier one).
+    m_active.reserve(m_active.size() + s.pressures.size());
+    for (const PressureLoad& p : s.pressures)
+      m_active.push_back({{p.face.element, p.face.face}, {p.face, p.value, p.amplitude}});
+    std::stable_sort(m_active.begin(), m_active.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < m_active.size(); ++i) {
+      if (i + 1 < m_active.size() && m_active[i + 1].first == m_active[i].first) continue;
+      m_active[kept++] = m_active[i];
+    }
+    m_active.resize(kept);
+    m_active.shrink_to_fit();
+  }
   m_faces.clear();
   m_nodes.clear();
   for (const auto& [key, p] : m_active) {
