@@ -260,14 +260,7 @@ void read_contact_pair(DeckState& deck, const DeckBlock& block) {
   const Index step = deck.in_step ? static_cast<Index>(deck.model.steps.size() - 1) : NO_INDEX;
   for (const DeckDataLine& line : block.data) {
     check_field_count(deck, line, keyword, 2, "slave surface, master surface");
-    const bool has_slave = !line.fields.empty() && !line.fields[0].empty();
-    const bool has_master = line.fields.size() > 1 && !line.fields[1].empty();
-    if (!has_slave || !has_master) {
-      error(deck, line.where(), keyword,
-            has_slave ? "missing master surface" : "missing slave surface",
-            "expected slave surface, master surface");
-      continue;
-    }
+    if (!check_surface_pair(deck, line, keyword)) continue;
     if (!interaction) continue;
     deck.contact_pairs.push_back({step, normalize_name(line.fields[0]),
                                   normalize_name(line.fields[1]), *interaction, line.where()});

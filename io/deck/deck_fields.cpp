@@ -164,6 +164,15 @@ bool check_field_count(DeckState& deck, const DeckDataLine& line, const DeckKeyw
   return false;
 }
 
+bool check_surface_pair(DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword) {
+  const bool has_slave = !line.fields.empty() && !line.fields[0].empty();
+  const bool has_master = line.fields.size() > 1 && !line.fields[1].empty();
+  if (has_slave && has_master) return true;
+  error(deck, line.where(), keyword, has_slave ? "missing master surface" : "missing slave surface",
+        "expected slave surface, master surface");
+  return false;
+}
+
 DeckReference reference(const DeckDataLine& line, const DeckKeyword& keyword, std::size_t i) {
   DeckReference ref;
   if (i < line.fields.size()) ref.token = line.fields[i];

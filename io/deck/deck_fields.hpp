@@ -55,6 +55,9 @@ std::optional<long long> integer_field(DeckState& deck, const DeckDataLine& line
 /// Reports a data line with more than `count` fields.
 bool check_field_count(DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword,
                        std::size_t count, const std::string& expected);
+/// Checks a `slave surface, master surface` line (*CONTACT PAIR, *TIE): both names present
+/// (one error naming the missing one otherwise). Returns whether both are there.
+bool check_surface_pair(DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword);
 /// Field i of a data line as a node/element reference (id or upper-case set name).
 DeckReference reference(const DeckDataLine& line, const DeckKeyword& keyword, std::size_t i);
 /// Index of the node set `name`, created (defined at `where`) if new.

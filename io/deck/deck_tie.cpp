@@ -60,14 +60,7 @@ void read_tie(DeckState& deck, const DeckBlock& block) {
   }
   const DeckDataLine& line = block.data.front();
   if (!check_field_count(deck, line, keyword, 2, "slave surface, master surface")) ok = false;
-  const bool has_slave = !line.fields.empty() && !line.fields[0].empty();
-  const bool has_master = line.fields.size() > 1 && !line.fields[1].empty();
-  if (!has_slave || !has_master) {
-    error(deck, line.where(), keyword,
-          has_slave ? "missing master surface" : "missing slave surface",
-          "expected slave surface, master surface");
-    return;
-  }
+  if (!check_surface_pair(deck, line, keyword)) return;
   if (!ok) return;
   deck.model.ties.push_back(tie);
   deck.ties.push_back(
