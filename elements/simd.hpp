@@ -59,14 +59,19 @@ inline Vec min(Vec a, Vec b) {
 inline Vec max(Vec a, Vec b) {
   return a > b ? a : b;
 }
-/// With AVX-512 one vsqrtpd (GCC's builtin behind _mm512_sqrt_pd, without the header,
-/// whose GCC 12 version warns under -Wall): under the default -fmath-errno the lane loop
-/// compiles to a root, a compare and a call per lane and is never vectorised. Roots are
-/// correctly rounded either way, so the bits are those of the loop.
+/// With AVX-512 one vsqrtpd, with AVX two of 4 lanes (GCC's builtins behind _mm512_sqrt_pd
+/// and _mm256_sqrt_pd, without the header, whose GCC 12 version warns under -Wall): under the
+/// default -fmath-errno the lane loop compiles to a root, a compare and a call per lane and is
+/// never vectorised. Roots are correctly rounded either way, so the bits are those of the loop.
 inline Vec sqrt(Vec a) {
 #if defined(__AVX512F__)
   constexpr int CURRENT_ROUNDING = 4;  // _MM_FROUND_CUR_DIRECTION
   return __builtin_ia32_sqrtpd512_mask(a, a, static_cast<unsigned char>(0xff), CURRENT_ROUNDING);
+#elif defined(__AVX__)
+  typedef Real Half __attribute__((vector_size(W / 2 * sizeof(Real))));
+  const Half low = __builtin_ia32_sqrtpd256(__builtin_shufflevector(a, a, 0, 1, 2, 3));
+  const Half high = __builtin_ia32_sqrtpd256(__builtin_shufflevector(a, a, 4, 5, 6, 7));
+  return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
 #else
   Vec r;
   for (int l = 0; l < W; ++l) r[l] = std::sqrt(a[l]);
