@@ -32,7 +32,7 @@ constexpr const char* USAGE =
     "          stop before the first increment\n"
     "  -o DIR  directory for the result files (default: the current directory)\n"
     "  --threads N  OpenMP threads (default: OMP_NUM_THREADS or all cores; one thread for\n"
-    "               models of fewer than 2000 elements); more than the cores is warned of\n"
+    "               models of fewer than 10,000 elements); more than the cores is warned of\n"
     "  --quiet      no progress line and no summary on the terminal\n"
     "  --import PREV.h5  start from the last frame of an earlier result of the same mesh\n"
     "               (positions, velocities, stresses); penetrations there become contact\n"

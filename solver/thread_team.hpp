@@ -10,8 +10,11 @@ namespace xpl {
 
 /// Models with fewer elements than this run on one thread unless the user asks for more:
 /// below it a second thread gains less than its forks and barriers cost per increment, and
-/// on a busy machine a descheduled thread makes every barrier wait.
-inline constexpr Index SMALL_MODEL_ELEMENTS = 2000;
+/// on a busy machine a descheduled thread makes every barrier wait. Measured crossing
+/// (benchmarks/RESULTS.md, "Small models on one thread"): ~10,600 hexes on an idle 2-vCPU
+/// VM, where waking a sleeping (passive) thread costs ~100 µs per barrier; ~2,000 on a
+/// heavily loaded one. One thread is never slower than two below the higher one.
+inline constexpr Index SMALL_MODEL_ELEMENTS = 10000;
 
 /// The team size of a run of `model`: `requested` when it is positive (`--threads`
 /// insists), else 1 for a model of fewer than SMALL_MODEL_ELEMENTS elements and

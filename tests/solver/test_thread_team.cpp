@@ -18,7 +18,7 @@ TEST_CASE("small models run on one thread unless the caller insists", "[solver][
   CHECK(team_size(small, 2, 2) == 2);
   CHECK(team_size(small, 3, 2) == 3);
   spec.nx = 40;
-  spec.ny = spec.nz = 8;  // 2560 elements
+  spec.ny = spec.nz = 16;  // 10,240 elements
   const Model large = test::make_box(spec);
   REQUIRE(large.element_count() >= SMALL_MODEL_ELEMENTS);
   CHECK(team_size(large, 0, 2) == 2);
