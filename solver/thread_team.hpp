@@ -13,7 +13,8 @@ namespace xpl {
 /// on a busy machine a descheduled thread makes every barrier wait. Measured crossing
 /// (benchmarks/RESULTS.md, "Small models on one thread"): ~10,600 hexes on an idle 2-vCPU
 /// VM, where waking a sleeping (passive) thread costs ~100 µs per barrier; ~2,000 on a
-/// heavily loaded one. One thread is never slower than two below the higher one.
+/// heavily loaded one. Below 10,000, one thread was at least as fast as two in every
+/// median measured on that VM, idle and with a competing job.
 inline constexpr Index SMALL_MODEL_ELEMENTS = 10000;
 
 /// The team size of a run of `model`: `requested` when it is positive (`--threads`
