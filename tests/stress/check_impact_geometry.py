@@ -3,7 +3,9 @@
 closest points on triangles against dense sampling, winding numbers inside and outside a
 block, a node pushed into a block found at its depth (and one within the limit not), a node
 moved through a shell plate reported as passed through, a node beside the plate's edge not
-counted, and a whole body beyond the other reported as shot through.
+counted, a whole body beyond the other reported as shot through, a node outside a closed shell
+box beside its edge not taken as behind a face (and one through its bottom reported), the
+energy criteria failing and holding at their limits.
 
 Usage: check_impact_geometry.py   (exit 0 when every check holds)
 """
@@ -161,6 +163,34 @@ def shell_crossing():
           f"a block below the plate is shot through: {crossings[-1:]}")
 
 
+def shell_box_edge():
+    """A node outside a closed shell box near its edge is not behind the box's faces; a node
+    moved through the box's bottom is."""
+    box = scenes.shell_box("TARGET", (2.0, 2.0, 2.0), (2, 2, 2), 0.1)
+    block = scenes.solid_block("PROJECTILE", (1.0, 1.0, 1.0), (1, 1, 1), "C3D8R")
+    block.moved(shift=(0.0, 0.0, -3.0))
+    blocks = [("PROJECTILE", block), ("TARGET", box)]
+    run = block_run(blocks)
+    meta = meta_of(blocks)
+    meta["pair"] = None
+    corner = int(np.flatnonzero(np.all(np.isclose(run["reference"], [0.5, 0.5, -2.5]),
+                                       axis=1))[0])
+    other = int(np.flatnonzero(np.all(np.isclose(run["reference"], [-0.5, 0.5, -2.5]),
+                                      axis=1))[0])
+    # Each beside the edge x = 1, z = -1, in the plane of one of its faces (1e-9 on the inner
+    # side of it): the closest point is on the edge, where the two faces tie; whichever wins,
+    # one node is behind its face's plane, so a test along face normals reports a crossing.
+    run["current"][corner] = [1.3, 0.0, -1.0 + 1e-9]
+    run["current"][other] = [1.0 - 1e-9, 0.0, -1.3]
+    findings, crossings = ic.penetration(run, meta)
+    check(not findings and not crossings,
+          f"nodes outside a shell box beside its edge are not behind its faces: {crossings}")
+    run["current"][other] = run["reference"][other]
+    run["current"][corner] = [0.2, 0.1, -0.8]  # 0.2 inside the box's bottom
+    findings, crossings = ic.penetration(run, meta)
+    check(len(crossings) == 1, f"a node through a shell box's bottom is reported: {crossings}")
+
+
 def energy_checks():
     run = {"energy": {"ALLKE": np.array([10.0, 5.0, -0.1]), "ALLIE": np.array([0.0, 5.0, 9.0]),
                       "ALLAE": np.array([0.0, 0.2, 1.0]), "ETOTAL": np.array([10.0, 10.0, 9.85]),
@@ -181,6 +211,7 @@ def main():
     winding_numbers_of_a_block()
     solid_penetration()
     shell_crossing()
+    shell_box_edge()
     energy_checks()
     if failures:
         print(f"check_impact_geometry.py: {len(failures)} FAILED")

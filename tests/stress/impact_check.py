@@ -213,6 +213,40 @@ def boundary_flags(quads):
     return edge_free, free_nodes
 
 
+def pseudo_normals(quads, coordinates, quad_of, corner):
+    """Normals of a shell mesh for a side test at each triangle of triangles(): the triangle's
+    own (its interior), the sum of the unit normals of the quads at its quad edge (the edge)
+    and at its two quad corners (the corners). Arrays (T × 3) each."""
+    corners = coordinates[quads]
+    normal = np.cross(corners[:, 2] - corners[:, 0], corners[:, 3] - corners[:, 1])
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    at_node = np.zeros_like(coordinates)
+    at_edge = {}
+    for q, quad in enumerate(quads.tolist()):
+        for i in range(4):
+            at_node[quad[i]] += normal[q]
+            key = tuple(sorted((quad[i], quad[(i + 1) % 4])))
+            at_edge[key] = at_edge.get(key, 0.0) + normal[q]
+    a_rows = quads[quad_of, corner]
+    b_rows = quads[quad_of, (corner + 1) % 4]
+    a, b = coordinates[a_rows], coordinates[b_rows]
+    c = corners.mean(axis=1)[quad_of]
+    return {"face": np.cross(b - a, c - a), "a": at_node[a_rows], "b": at_node[b_rows],
+            "edge": np.array([at_edge[tuple(sorted((i, j)))]
+                              for i, j in zip(a_rows.tolist(), b_rows.tolist())])}
+
+
+def feature_normals(normals, best, w, eps=1e-9):
+    """The pseudo-normal at each closest point: weights w (N × 3) on triangles `best` (N)."""
+    n = normals["face"][best].copy()
+    on_edge = w[:, 2] < eps
+    n[on_edge] = normals["edge"][best[on_edge]]
+    at_a, at_b = w[:, 0] > 1.0 - eps, w[:, 1] > 1.0 - eps
+    n[at_a] = normals["a"][best[at_a]]
+    n[at_b] = normals["b"][best[at_b]]
+    return n
+
+
 # ---------------------------------------------------------------------------------------------
 # The penetration criterion
 
@@ -259,6 +293,8 @@ def penetration(run, meta):
             next_rows = quads[quad_of, (corner + 1) % 4]
             a_free = np.array([r in free_nodes for r in corner_rows.tolist()], dtype=bool)
             b_free = np.array([r in free_nodes for r in next_rows.tolist()], dtype=bool)
+            pseudo_now = pseudo_normals(quads, current, quad_of, corner)
+            pseudo_then = pseudo_normals(quads, reference, quad_of, corner)
         for slave, rows in body_rows.items():
             if slave == master and kind == "solid":
                 continue  # a solid's self penetration is not measured (see the docstring)
@@ -296,13 +332,16 @@ def penetration(run, meta):
                 d = distance[np.arange(len(chunk)), best]
                 ok = np.isfinite(d) & ~perimeter[np.arange(len(chunk)), best]
                 depth = np.where(ok, 0.5 * (t_master + t_slave) - d, -np.inf)
-                # Side now and as read, on the same triangle at the same weights.
+                # Side now and as read, at the same point of the same triangle, along the
+                # pseudo-normal of the feature the point lies on (face, edge or corner), so
+                # that a node outside a convex fold is not taken as behind one of its faces.
                 w = weights[np.arange(len(chunk)), best]
                 side = []
                 then = reference[rows[chunk]]
-                for (ta, tb, tc), points in (((a, b, c), p), ((a0, b0, c0), then)):
+                for (ta, tb, tc), points, normals in (((a, b, c), p, pseudo_now),
+                                                     ((a0, b0, c0), then, pseudo_then)):
                     q = (w[:, 0:1] * ta[best] + w[:, 1:2] * tb[best] + w[:, 2:3] * tc[best])
-                    n = np.cross(tb[best] - ta[best], tc[best] - ta[best])
+                    n = feature_normals(normals, best, w)
                     side.append(np.einsum("ij,ij->i", points - q, n))
                 crossed = ok & (side[0] * side[1] < 0.0) & (d < h_master)
                 for k in np.flatnonzero(crossed):
