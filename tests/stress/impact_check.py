@@ -262,9 +262,11 @@ def penetration(run, meta):
     1.5 element sizes from the face as read: a fold) is inside when its distance d to the
     mid-surface is below the half thicknesses of both (depth = t_master/2 + t_node/2 - d),
     unless its closest point is on the shell's free perimeter (beside the shell, as contact
-    treats it); a node whose closest point is inside a face and that lies on the other side of
-    that face than at the start has passed through it. The limit is 10 % of the smaller element
-    size of the two bodies (shortest edge as read)."""
+    treats it). A node of another body whose closest point is on the shell (not its perimeter)
+    and that is now on the other side of it than at the start has passed through it; each side
+    is taken at the node's own closest point, along the pseudo-normal of the face, edge or
+    corner that point lies on (for a closed shell: inside or outside). The limit is 10 % of the
+    smaller element size of the two bodies (shortest edge as read)."""
     bodies = meta["bodies"]
     reference, current = run["reference"], run["current"]
     body_rows = {}
@@ -324,26 +326,33 @@ def penetration(run, meta):
                 perimeter = ((weights[..., 2] < eps) & tri_edge_free[None]) | \
                             ((weights[..., 0] > 1 - eps) & a_free[None]) | \
                             ((weights[..., 1] > 1 - eps) & b_free[None])
+                then = reference[rows[chunk]]
+                weights0, distance0 = closest_points(then, a0, b0, c0)
                 if slave == master:
                     # A fold: only faces the node was far from as read count.
-                    _, distance0 = closest_points(reference[rows[chunk]], a0, b0, c0)
-                    distance = np.where(distance0 > SELF_EXCLUSION * h_master, distance, np.inf)
+                    far = distance0 > SELF_EXCLUSION * h_master
+                    distance = np.where(far, distance, np.inf)
+                    distance0 = np.where(far, distance0, np.inf)
                 best = distance.argmin(axis=1)
                 d = distance[np.arange(len(chunk)), best]
                 ok = np.isfinite(d) & ~perimeter[np.arange(len(chunk)), best]
                 depth = np.where(ok, 0.5 * (t_master + t_slave) - d, -np.inf)
-                # Side now and as read, at the same point of the same triangle, along the
-                # pseudo-normal of the feature the point lies on (face, edge or corner), so
-                # that a node outside a convex fold is not taken as behind one of its faces.
-                w = weights[np.arange(len(chunk)), best]
+                # The node's side of the shell now and as read, each at its own closest point,
+                # along the pseudo-normal of the feature that point lies on (face, edge or
+                # corner): a node outside a convex fold is not behind one of its faces, and
+                # a node inside a closed shell box is inside whichever face is nearest.
+                best0 = distance0.argmin(axis=1)
                 side = []
-                then = reference[rows[chunk]]
-                for (ta, tb, tc), points, normals in (((a, b, c), p, pseudo_now),
-                                                     ((a0, b0, c0), then, pseudo_then)):
-                    q = (w[:, 0:1] * ta[best] + w[:, 1:2] * tb[best] + w[:, 2:3] * tc[best])
-                    n = feature_normals(normals, best, w)
+                for (ta, tb, tc), points, normals, w_all, pick in (
+                        ((a, b, c), p, pseudo_now, weights, best),
+                        ((a0, b0, c0), then, pseudo_then, weights0, best0)):
+                    w = w_all[np.arange(len(chunk)), pick]
+                    q = (w[:, 0:1] * ta[pick] + w[:, 1:2] * tb[pick] + w[:, 2:3] * tc[pick])
+                    n = feature_normals(normals, pick, w)
                     side.append(np.einsum("ij,ij->i", points - q, n))
-                crossed = ok & (side[0] * side[1] < 0.0) & (d < h_master)
+                # A node of the shell itself lies on it as read, on neither side: its folds are
+                # judged by the depth alone.
+                crossed = ok & (side[0] * side[1] < 0.0) & (slave != master)
                 for k in np.flatnonzero(crossed):
                     node = int(run["node_ids"][rows[chunk[k]]])
                     crossings.append(f"node {node} ({slave}) ended {d[k] * 1e3:.3g} mm on the "
@@ -499,31 +508,38 @@ def run_xpl(xpl, deck, out, threads, timing=None, timeout=600):
     return process.returncode
 
 
-def run_deck(xpl, deck, threads=True, timing=None):
+def run_deck(xpl, deck, threads=True, timing=None, reuse=False):
     """Run DECK (beside its .json metadata) with 1 (and 2) threads and check it: a list of
     (criterion, passed, message) for every criterion (threads: passed None when not run).
-    timing (a dict, optional) receives the runs' CPU times, cpu_1 and cpu_2 (s)."""
+    timing (a dict, optional) receives the runs' CPU times, cpu_1 and cpu_2 (s). reuse: check
+    the runs already beside the deck (from an earlier call) instead of running xpl again."""
     folder = deck.parent
     meta = json.loads(deck.with_suffix(".json").read_text())
     job = deck.stem
-    code = run_xpl(xpl, deck, folder, 1, timing)
-    if not (folder / f"{job}.summary.json").exists():
+    summary = folder / f"{job}.summary.json"
+    if reuse and summary.exists():
+        code = None
+    else:
+        summary.unlink(missing_ok=True)  # a run that writes none must not find an old one
+        code = run_xpl(xpl, deck, folder, 1, timing)
+    if not summary.exists():
         text = (folder / "xpl_run.txt").read_text(errors="replace").strip()
         results = [("completed", False, f"xpl exited {code}: {text[-300:]}")]
         return results + [(c, False, "no results") for c in CRITERIA[1:]]
     results = check_scene(read_run(folder, job), meta)
     if threads:
-        run_xpl(xpl, deck, folder / "threads_2", 2, timing)
+        if not (reuse and (folder / "threads_2" / f"{job}.summary.json").exists()):
+            run_xpl(xpl, deck, folder / "threads_2", 2, timing)
         results.append(threads_criterion(xpl, folder, folder / "threads_2", job))
     else:
         results.append(("threads", None, "not run"))
     return results
 
 
-def run_scene(xpl, scene_id, work, threads=True, timing=None):
+def run_scene(xpl, scene_id, work, threads=True, timing=None, reuse=False):
     """Write scene ID under WORK/scene_ID, run and check it: (deck, results)."""
     deck = impact_scenes.write_scene(scene_id, work)
-    return deck, run_deck(xpl, deck, threads, timing)
+    return deck, run_deck(xpl, deck, threads, timing, reuse)
 
 
 def describe(scene_id):
