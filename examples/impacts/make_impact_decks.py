@@ -35,8 +35,12 @@ Plastic steel blocks meeting at a closing speed of 600, 1000, 2000, 3000 m/s (ea
 it): 10 mm cubes of 4^3 and 5^3 C3D8R, 50 um apart, 30 us:
   blocks_600, blocks_1000, blocks_2000, blocks_3000
 
-Usage: python3 examples/impacts/make_impact_decks.py [OUT_DIR] [--only NAME]
-(default OUT_DIR: examples/impacts; standard library only)
+Usage: python3 examples/impacts/make_impact_decks.py [OUT_DIR] [--only NAME | --all]
+(default OUT_DIR: examples/impacts; standard library only). Without --only or --all it writes
+the decks kept in the repository (all but the Taylor bars, 450 KB each); write those into a
+folder of your own (`--only taylor_rigid build/impacts`, or `--all build/impacts`, as the
+test does): a deck left under examples/ joins the regression suite's list
+(tests/regression/decks.txt).
 """
 
 import argparse
@@ -357,8 +361,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("out", nargs="?", default=str(HERE))
     parser.add_argument("--only", choices=sorted(DECKS))
+    parser.add_argument("--all", action="store_true", help="the Taylor bars too")
     args = parser.parse_args()
-    for name in [args.only] if args.only else DECKS:
+    names = [args.only] if args.only else [n for n in DECKS
+                                           if args.all or not n.startswith("taylor_")]
+    for name in names:
         print(write(name, args.out))
 
 
