@@ -11,8 +11,11 @@ failure is reported with its cause):
   kinetic      ALLKE >= 0 in every history row
   penetration  in the last frame's deformed coordinates, no node of the model deeper than 10 %
                of the element size inside a face of another body (or of its own body, for
-               shells), and no body passed through another; see penetration() for the
-               geometry and check_scene() for what "element size" is
+               shells), and no body passed through another; penetration() has the geometry
+               and the element size. A pass-through is reported with v·Δt over the target's
+               thickness, which says whether the increment could resolve it (physical when a
+               node crosses the whole thickness within one increment). A run that ended
+               before its first output frame is "not measured" here (and failed anyway)
   threads      1 and 2 threads give bitwise the same results (`xpl compare --rtol 0 --atol 0`
                on completed runs; every dataset of the .h5 otherwise)
 
@@ -20,9 +23,9 @@ Usage:
   impact_check.py run XPL ID [--work DIR] [--no-threads]
       write scene ID (impact_scenes.py), run it with 1 (and 2) threads, check it; prints the
       deck path first and one line per criterion; exit 0 when every criterion holds, else 1
-  impact_check.py check DECK_DIR [--meta SCENE.json]
+  impact_check.py check DECK_DIR [--meta SCENE.json] [--xpl XPL]
       check the runs already in DECK_DIR (JOB.h5 and JOB.summary.json; a `threads_2`
-      subfolder for the threads criterion)
+      subfolder for the threads criterion, compared by XPL compare when given)
 Needs numpy and h5py (/usr/bin/python3).
 """
 
@@ -32,8 +35,8 @@ import math
 import os
 import pathlib
 import subprocess
-import threading
 import sys
+import threading
 
 import h5py
 import numpy as np
@@ -582,7 +585,8 @@ def main(argv=None):
                                          for k, v in timing.items()))
         return 1 if failed else 0
     folder = pathlib.Path(args.folder)
-    meta_path = pathlib.Path(args.meta) if args.meta else next(folder.glob("*.json"))
+    meta_path = pathlib.Path(args.meta) if args.meta else \
+        next(p for p in sorted(folder.glob("*.json")) if not p.name.endswith(".summary.json"))
     meta = json.loads(meta_path.read_text())
     job = meta_path.stem
     results = check_scene(read_run(folder, job), meta)
