@@ -13,7 +13,6 @@ namespace xpl::contact {
 namespace {
 
 /// Face of a hex opposite face f (S1–S2, S3–S5, S4–S6).
-constexpr int OPPOSITE_HEX_FACE[6] = {1, 0, 4, 5, 2, 3};
 
 Vec3 face_centre(const Index* element_nodes, int f, const NodalVectors& x) {
   Vec3 c = Vec3::Zero();

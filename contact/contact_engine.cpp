@@ -73,6 +73,7 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   SlaveView v;
   v.slot = s;
   const Index node = m_domain.slaves().nodes()[s];
+  v.node = node;
   v.point = node_point(position, node);
   v.normal = m_domain.slaves().normal(s);
   v.double_sided = m_domain.slave_double_sided(s);
@@ -112,6 +113,8 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
       faces[f].face != held->face)
     return false;
+  // A face of the node's own hex (file comment).
+  if (faces[f].behind(v.node)) return false;
   // A shell face next to the shell node's own elements continues its own shell (file comment).
   if (double_sided && faces[f].shell) {
     bool own = false;

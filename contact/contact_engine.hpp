@@ -24,6 +24,10 @@
 ///   with one of them): that face continues the node's own shell. Where an element is
 ///   narrower than the thickness, the node lies within t of it, beside its edge by less than
 ///   its penetration, and would touch it a thickness deep.
+/// - the face is not a face of a hex the node belongs to (ContactFace::behind): the node lies
+///   on that element's boundary, and when the element is squashed (the first layer of a Taylor
+///   bar flattening on a plate) its far nodes come within the depth limit of the face and, as
+///   the rim folds, their normals turn against it: a spring a whole element deep, from nowhere.
 /// A node pressed onto one side of a shell stays with that side: the other side of the same
 /// element is not admissible while the constraint is closed, so a deep penetration is pushed
 /// back rather than through.
@@ -143,6 +147,7 @@ class ContactEngine {
   /// face it is held on (side memory) or null.
   struct SlaveView {
     Index slot = NO_INDEX;
+    Index node = NO_INDEX;
     Vec3 point = Vec3::Zero();
     Vec3 normal = Vec3::Zero();
     bool double_sided = false;

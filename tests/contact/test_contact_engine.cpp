@@ -293,3 +293,35 @@ TEST_CASE(
     CHECK(engine.normal_force(s) == Approx(engine.touch(s).weight * k * 0.15).epsilon(1e-9));
   }
 }
+
+TEST_CASE("a node never touches a face of its own hex, however squashed the hex is",
+          "[contact][engine]") {
+  // One hex squashed to a fifth of its height: its top nodes lie 0.2 above its bottom face,
+  // within the depth limit of that face (half the height as read, 0.5), with normals (+z at
+  // the top face's corners, leaning outward) against the bottom face's −z. They are corners
+  // of the element whose bottom face that is: no contact (a Taylor bar's mushrooming rim made
+  // 10 J springs per node of this). A separate block 0.1 below still touches as before.
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 1, 1, 1, 1.0);
+  test::add_hex_block(mesh, 1, 1, 1, 1.0, Vec3(0.0, 0.0, -1.05));
+  const NodalVectors reference = mesh.coordinates;
+  NodalVectors x = reference;
+  for (Index i = 4; i < 8; ++i) x(i, 2) = 0.2;     // block 1's top nodes
+  for (Index i = 12; i < 16; ++i) x(i, 2) = 0.05;  // block 2's top nodes, 0.05 into block 1
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), reference), {},
+                                options, reference, {});
+  engine.probe(x, {});
+  const ContactDomain& domain = engine.domain();
+  for (Index node = 4; node < 8; ++node) {
+    const contact::SlaveTouch& touch = engine.touch(domain.slaves().slot(node));
+    CHECK((touch.face == NO_INDEX || domain.faces()[touch.face].element != 0));
+  }
+  for (Index node = 12; node < 16; ++node) {
+    const contact::SlaveTouch& touch = engine.touch(domain.slaves().slot(node));
+    REQUIRE(touch.face != NO_INDEX);
+    CHECK(domain.faces()[touch.face].element == 0);
+    CHECK(touch.gap == Approx(-0.05).margin(1e-12));
+  }
+}
