@@ -325,3 +325,92 @@ TEST_CASE("a node never touches a face of its own hex, however squashed the hex 
     CHECK(touch.gap == Approx(-0.05).margin(1e-12));
   }
 }
+
+namespace {
+
+/// An S4R sheet (t = 0.2, in z = 0) between two unit hexes: the lower one's top 0.1 − `low`
+/// below the sheet's mid-plane, so that it penetrates the sheet's lower side by `low`, the
+/// upper one's bottom likewise by `high`. The sheet is the slave surface of a one-sided pair,
+/// the blocks its master; block nodes are heavy (1e6) and sheet nodes weigh 1.
+struct Sandwich {
+  test::ContactMesh mesh;
+  std::vector<Real> thickness, mass, inverse_mass;
+  DomainSpec spec;
+  Sandwich(Real low, Real high) {
+    const Real t = 0.2;
+    const Index s0 = mesh.add_node(0.2, 0.2, 0), s1 = mesh.add_node(0.8, 0.2, 0),
+                s2 = mesh.add_node(0.8, 0.8, 0), s3 = mesh.add_node(0.2, 0.8, 0);
+    mesh.add_element(contact::ElementKind::Shell, {s0, s1, s2, s3});
+    test::add_hex_block(mesh, 1, 1, 1, 1.0, Vec3(0, 0, -0.5 * t + low - 1.0));
+    test::add_hex_block(mesh, 1, 1, 1, 1.0, Vec3(0, 0, 0.5 * t - high));
+    const Index n = mesh.node_count();
+    thickness.assign(n, 0.0);
+    for (Index i = 0; i < 4; ++i) thickness[i] = t;
+    mass.assign(n, 1e6);
+    for (Index i = 0; i < 4; ++i) mass[i] = 1.0;
+    for (Index i = 0; i < n; ++i) inverse_mass.push_back(1.0 / mass[i]);
+    spec.surfaces.push_back({"SHEET", false, {{0, contact::SHELL_SNEG}, {0, contact::SHELL_SPOS}}});
+    spec.surfaces.push_back({"DIES", false, {{1, 1}, {2, 0}}});  // lower top S2, upper bottom S1
+    spec.inclusions.push_back({0, 1, true});
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a node pinched between two faces is pushed by both, each spring from its own side",
+          "[contact][engine][pinch]") {
+  // The sheet's corner nodes penetrate the lower block by 0.03 and the upper one by 0.02.
+  // With one spring the node would feel the nearer (lower) face alone, and flip to the upper
+  // one as soon as it had been pushed past the middle: now both act, each from its side.
+  const Real dt = 1e-3;
+  Sandwich sandwich(0.03, 0.02);
+  const NodalVectors& x = sandwich.mesh.coordinates;
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  contact::ContactEngine engine(ContactDomain(sandwich.spec, sandwich.mesh.topology(), x), {},
+                                options, x, sandwich.thickness);
+  NodalVectors force = NodalVectors::Zero(sandwich.mesh.node_count(), 3);
+  PhaseTimers timers;
+  engine.update(x, NodalVectors::Zero(sandwich.mesh.node_count(), 3), 0.0, dt, sandwich.thickness,
+                sandwich.mass, sandwich.inverse_mass, force, timers);
+  const Real k = contact::default_penalty_stiffness(1.0, 1e6, dt);
+  for (Index node = 0; node < 4; ++node) {
+    const Index s = engine.domain().slaves().slot(node);
+    const contact::SlaveTouch& first = engine.touch(s);
+    const contact::SlaveTouch& second = engine.second_touch(s);
+    REQUIRE(first.face != NO_INDEX);
+    REQUIRE(second.face != NO_INDEX);
+    CHECK(first.gap == Approx(-0.03).margin(1e-12));
+    CHECK(second.gap == Approx(-0.02).margin(1e-12));
+    CHECK(first.normal.dot(second.normal) == Approx(-1.0).margin(1e-12));
+    // Two springs, each 2k in the row-sum bound (heavy but moving corners): 4k/m·Δt² = 2 is
+    // over the node budget of 1, so each spring carries half its default stiffness.
+    const Real share = contact::DEFAULT_PENALTY_NODE_BUDGET / (4.0 * k * dt * dt);
+    CHECK(engine.normal_force(s) == Approx(share * k * 0.03).epsilon(1e-9));
+    CHECK(engine.second_normal_force(s) == Approx(share * k * 0.02).epsilon(1e-9));
+    CHECK(force(node, 2) == Approx(-share * k * 0.01).epsilon(1e-9));  // net push up
+  }
+}
+
+TEST_CASE("a node pressed on one side only keeps its full default spring",
+          "[contact][engine][pinch]") {
+  // Only the upper block penetrates (0.02); the lower one is 0.05 away: one spring, its row
+  // sum 2k/m·Δt² = 1 within the node budget, so it is not scaled.
+  const Real dt = 1e-3;
+  Sandwich sandwich(-0.05, 0.02);
+  const NodalVectors& x = sandwich.mesh.coordinates;
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  contact::ContactEngine engine(ContactDomain(sandwich.spec, sandwich.mesh.topology(), x), {},
+                                options, x, sandwich.thickness);
+  NodalVectors force = NodalVectors::Zero(sandwich.mesh.node_count(), 3);
+  PhaseTimers timers;
+  engine.update(x, NodalVectors::Zero(sandwich.mesh.node_count(), 3), 0.0, dt, sandwich.thickness,
+                sandwich.mass, sandwich.inverse_mass, force, timers);
+  const Real k = contact::default_penalty_stiffness(1.0, 1e6, dt);
+  for (Index node = 0; node < 4; ++node) {
+    const Index s = engine.domain().slaves().slot(node);
+    CHECK(engine.second_touch(s).face == NO_INDEX);
+    CHECK(engine.normal_force(s) == Approx(k * 0.02).epsilon(1e-9));
+  }
+}
