@@ -330,12 +330,16 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       ContactConstraint& c2 = m_second[s];
       const SlaveTouch& t = m_touch[s];
       const SlaveTouch& t2 = m_second_touch[s];
-      // The memory of a side follows its side (file comment): the touch that now looks the
-      // way last increment's second touch looked continues that one.
-      if (c2.master_face != NO_INDEX && t.face != NO_INDEX && !c.offset_permanent &&
+      // The memory of a side follows its side (file comment): each constraint continues
+      // with the touch that looks the way it looked last increment.
+      if ((c.master_face != NO_INDEX || c2.master_face != NO_INDEX) && !c.offset_permanent &&
           !c2.offset_permanent) {
-        const Real own = c.master_face != NO_INDEX ? t.normal.dot(c.normal) : -2.0;
-        if (t.normal.dot(c2.normal) > own) std::swap(c, c2);
+        const auto alike = [](const SlaveTouch& now, const ContactConstraint& before) {
+          return now.face != NO_INDEX && before.master_face != NO_INDEX
+                     ? now.normal.dot(before.normal)
+                     : -2.0;
+        };
+        if (alike(t, c2) + alike(t2, c) > alike(t, c) + alike(t2, c2)) std::swap(c, c2);
       }
       prepare_spring(s, c, t, m_spring[2 * s], position, velocity_half, dt, dt_penalty, mass,
                      inverse_mass);
