@@ -76,6 +76,8 @@ constexpr const char* USAGE =
     "           tolerances, 1 different, 2 unusable input)\n"
     "  history  every history series of a result as CSV\n"
     "Every run and check writes JOB.summary.json (status, timing, energies).\n"
+    "OpenMP threads sleep at barriers (OMP_WAIT_POLICY=PASSIVE) unless OMP_WAIT_POLICY or\n"
+    "GOMP_SPINCOUNT is set (xpl run --help says more).\n"
     "Exit codes: 0 done, 1 deck or --import error, 2 usage, 3 the analysis failed,\n"
     "  4 I/O or internal error, 5 the job is already running, 130/143 SIGINT/SIGTERM.\n";
 
