@@ -12,6 +12,7 @@
 
 #include "common/error.hpp"
 #include "common/types.hpp"
+#include "common/units.hpp"
 #include "elements/plasticity.hpp"
 
 namespace xpl {
@@ -434,6 +435,9 @@ struct Model {
   std::string heading;  ///< the *HEADING lines joined by newlines, control characters escaped
   std::vector<DeckMessage> deck_messages;  ///< written to .msg by the solver at the start
   std::string job_name;                    ///< deck stem
+  /// The unit system the deck states (`** xpl: UNITS=`), or how its numbers are labelled when
+  /// it states none (common/units.hpp); the solver computes in the deck's numbers either way.
+  ModelUnits units;
 
   // --- nodes -------------------------------------------------------------------------------
   std::vector<ExternalId> node_ids;  ///< deck id of each node (n_nodes)
