@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "io/deck/deck_fields.hpp"
@@ -15,8 +16,29 @@
 
 namespace xpl::io {
 
-// --- Mesh and sets (deck_mesh.cpp, deck_surfaces.cpp; resolution in deck_resolve.cpp, element
-// shapes in deck_geometry.cpp)
+// --- Parts, assemblies and instances (deck_assembly.cpp)
+
+/// `*PART, NAME=`: opens a part; its part-level blocks are kept until `*END PART`.
+void read_part(DeckState& deck, const DeckBlock& block);
+/// `*END PART`.
+void read_end_part(DeckState& deck, const DeckBlock& block);
+/// `*ASSEMBLY, NAME=`.
+void read_assembly(DeckState& deck, const DeckBlock& block);
+/// `*END ASSEMBLY`.
+void read_end_assembly(DeckState& deck, const DeckBlock& block);
+/// `*INSTANCE, NAME=, PART=` with its translation and rotation lines: reads the part's blocks
+/// in the new instance's scope.
+void read_instance(DeckState& deck, const DeckBlock& block);
+/// `*END INSTANCE`.
+void read_end_instance(DeckState& deck, const DeckBlock& block);
+/// `*RESTART`: accepted with a note (xpl continues a run with `--import`).
+void read_restart(DeckState& deck, const DeckBlock& block);
+/// The instance whose scope holds `name` ("PART-1-1.5" or "PART-1-1.SET"): its scope (1-based)
+/// and the rest of the name; scope 0 if `name` is not qualified by a known instance.
+std::pair<Index, std::string> split_qualified(const DeckState& deck, const std::string& name);
+
+// --- Mesh and sets (deck_mesh.cpp, deck_surfaces.cpp; resolution in deck_resolve.cpp and
+// deck_references.cpp, element shapes in deck_geometry.cpp)
 
 /// `*HEADING`: the data lines become the title.
 void read_heading(DeckState& deck, const DeckBlock& block);

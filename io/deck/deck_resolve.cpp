@@ -1,5 +1,6 @@
 /// \file Resolution of references once the whole deck is read: element nodes, sets, initial
-/// conditions, boundary conditions, loads and output sets. Sections are resolved in
+/// conditions, boundary conditions, loads and output sets (a node or element reference itself
+/// in deck_references.cpp). Sections are resolved in
 /// deck_sections.cpp, surfaces in deck_surfaces.cpp, pressures and gravity in
 /// deck_pressure.cpp, contact pairs in deck_contact.cpp, rigid bodies in deck_rigid.cpp, point
 /// masses in deck_point_mass.cpp, distributions in deck_distribution.cpp, clearances in
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/deck/deck_assembly.hpp"
 #include "io/deck/deck_handlers.hpp"
 #include "io/deck/deck_numbers.hpp"
 
@@ -72,6 +74,7 @@ Model finish(DeckState& deck) {
                             std::to_string(deck.error_counts[k] - ERROR_CAP) + " more " +
                             categories[k] + " not listed");
   }
+  finish_instances(deck);  // last: the messages above name the ids as the deck wrote them
   return std::move(deck.model);
 }
 
@@ -88,8 +91,8 @@ void resolve_element_nodes(DeckState& deck) {
         capped_error(deck, deck.error_counts[UNDEFINED_NODES], deck.model.element_where(e),
                      "*ELEMENT",
                      "element " + std::to_string(deck.model.element_ids[e]) +
-                         " refers to undefined node " + std::to_string(id),
-                     "expected a *NODE with id " + std::to_string(id));
+                         " refers to undefined node " + deck.id_text(id),
+                     "expected a *NODE with id " + std::to_string(deck.local_id(id)));
         reported = true;
       }
     }
@@ -101,8 +104,8 @@ void resolve_element_nodes(DeckState& deck) {
     else
       capped_error(deck, deck.error_counts[UNDEFINED_NODES], element.where, "*ELEMENT",
                    "element " + std::to_string(element.id) + " refers to undefined node " +
-                       std::to_string(element.node_id),
-                   "expected a *NODE with id " + std::to_string(element.node_id));
+                       deck.id_text(element.node_id),
+                   "expected a *NODE with id " + std::to_string(deck.local_id(element.node_id)));
   }
 }
 
@@ -135,7 +138,7 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
           points.push_back(point->second);
         else if (node_sets || !deck.refused_element(item.first))
           deck.errors.add(item.where, item.keyword,
-                          "undefined " + what + " " + std::to_string(item.first),
+                          "undefined " + what + " " + deck.id_text(item.first),
                           "expected a defined " + what + " id");
         break;
       }
@@ -166,8 +169,8 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
         };
         if (members.size() + points.size() == before && (node_sets || !refused()))
           deck.errors.add(item.where, item.keyword,
-                          "range " + std::to_string(item.first) + ".." + std::to_string(item.last) +
-                              " contains no defined " + what,
+                          "range " + std::to_string(deck.local_id(item.first)) + ".." +
+                              deck.id_text(item.last) + " contains no defined " + what,
                           "expected a range over defined " + what + " ids");
         break;
       }
@@ -223,76 +226,6 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
   pending.state = 2;
-}
-
-std::vector<Index> resolve_nodes(DeckState& deck, const DeckReference& reference) {
-  if (reference.token.empty()) {
-    deck.errors.add(reference.where, reference.keyword, "missing node or node set",
-                    "expected a node id or a node set name first");
-    return {};
-  }
-  if (looks_numeric(reference.token)) {
-    const std::optional<long long> id = parse_integer(reference.token);
-    const auto it = id ? deck.node_index.find(*id) : deck.node_index.end();
-    if (it == deck.node_index.end()) {
-      deck.errors.add(reference.where, reference.keyword, "undefined node " + reference.token,
-                      "expected a defined node id or a node set name");
-      return {};
-    }
-    return {it->second};
-  }
-  const auto it = deck.node_set_by_name.find(reference.token);
-  if (it == deck.node_set_by_name.end()) {
-    deck.errors.add(reference.where, reference.keyword, "undefined node set " + reference.token,
-                    "expected *NSET, NSET=" + reference.token);
-    return {};
-  }
-  return deck.model.node_sets[static_cast<std::size_t>(it->second)].members;
-}
-
-std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& reference) {
-  if (reference.token.empty()) {
-    deck.errors.add(reference.where, reference.keyword, "missing element or element set",
-                    "expected an element id or an element set name first");
-    return {};
-  }
-  if (looks_numeric(reference.token)) {
-    const std::optional<long long> id = parse_integer(reference.token);
-    const auto it = id ? deck.element_index.find(*id) : deck.element_index.end();
-    if (it == deck.element_index.end()) {
-      if (id && deck.refused_element(*id)) return {};
-      deck.errors.add(reference.where, reference.keyword, "undefined element " + reference.token,
-                      "expected a defined element id or an element set name");
-      return {};
-    }
-    return {it->second};
-  }
-  const auto it = deck.element_set_by_name.find(reference.token);
-  if (it == deck.element_set_by_name.end()) {
-    if (deck.refused_element_set(reference.token)) return {};
-    deck.errors.add(reference.where, reference.keyword, "undefined element set " + reference.token,
-                    "expected *ELSET, ELSET=" + reference.token);
-    return {};
-  }
-  return deck.model.element_sets[static_cast<std::size_t>(it->second)].members;
-}
-
-std::string element_text(const DeckState& deck, Index e, const DeckReference& reference) {
-  std::string text =
-      std::string(element_type_name(deck.model.element_types[static_cast<std::size_t>(e)])) +
-      " element " + std::to_string(deck.model.element_ids[e]);
-  if (!looks_numeric(reference.token)) text += " of set " + reference.token;
-  return text;
-}
-
-Index resolve_amplitude(DeckState& deck, const std::string& name, const SourceLocation& where,
-                        const std::string& keyword) {
-  if (name.empty()) return NO_INDEX;
-  const Index amplitude = deck.model.find_amplitude(name);
-  if (amplitude == NO_INDEX)
-    deck.errors.add(where, keyword, "undefined amplitude " + name,
-                    "expected *AMPLITUDE, NAME=" + name);
-  return amplitude;
 }
 
 void resolve_initial_velocity(DeckState& deck) {

@@ -20,11 +20,19 @@
 
 namespace xpl::io {
 
+/// Node and element ids of a part instance live in their own range of the id maps (DeckState::
+/// id_key): key = scope · 2^SCOPE_SHIFT + id, scope 0 (model and assembly level) keeping the id
+/// itself, so that a flat deck reads exactly as before. Ids of a deck with parts stay below
+/// 2^SCOPE_SHIFT (about 10^12).
+constexpr int SCOPE_SHIFT = 40;
+constexpr ExternalId MAX_SCOPED_ID = (ExternalId(1) << SCOPE_SHIFT) - 1;
+
 /// A node or element given by id (numeric) or by set name, still to be resolved.
 struct DeckReference {
-  std::string token;  ///< id as written, or upper-case set name
+  std::string token;  ///< id as written, or upper-case set name (already scoped, see scoped_name)
   SourceLocation where;
   std::string keyword;  ///< "*BOUNDARY", for messages
+  Index scope = 0;  ///< of a numeric token: 0 model/assembly level, k: DeckState::instances[k-1]
 };
 
 /// Categories of capped_error, one counter each.
@@ -46,8 +54,9 @@ constexpr int ERROR_CAP = 20;
 struct SetItem {
   enum class Kind { Id, Range, SetName, NodesOfElementSet };
   Kind kind = Kind::Id;
-  long long first = 0, last = 0, increment = 1;  ///< Kind::Id (first), Kind::Range
-  std::string name;                              ///< Kind::SetName, Kind::NodesOfElementSet
+  /// Kind::Id (first), Kind::Range: id keys (DeckState::id_key) of the item's scope.
+  long long first = 0, last = 0, increment = 1;
+  std::string name;  ///< Kind::SetName, Kind::NodesOfElementSet
   SourceLocation where;
   std::string keyword;
 };
@@ -166,6 +175,28 @@ struct PointProperty {
   SourceLocation where;
 };
 
+/// `*PART, NAME=` … `*END PART`: its part-level blocks (KeywordPlace::Part), read once for each
+/// `*INSTANCE` of the part, in the instance's scope.
+struct PartDefinition {
+  std::string name;  ///< upper case
+  SourceLocation where;
+  std::vector<const DeckBlock*> blocks;  ///< into the deck's blocks, which outlive read_blocks
+  int instances = 0;
+};
+
+/// `*INSTANCE, NAME=, PART=` with its placement: translation t, then a rotation by `angle`
+/// (degrees, right-handed) about the axis from a to b, as Abaqus applies them:
+/// x' = a + R (x + t − a).
+struct DeckInstance {
+  std::string name, part;  ///< upper case
+  SourceLocation where;
+  std::array<Real, 3> translation{};
+  bool rotated = false;
+  std::array<Real, 3> axis_a{}, axis_b{};
+  Real angle = 0.0;                ///< degrees
+  std::array<Real, 9> rotation{};  ///< R, row major (when `rotated`)
+};
+
 /// The `*PLASTIC` and `*RATE DEPENDENT` lines of one material, valid or not (line 0: none):
 /// a bad `*PLASTIC` leaves Material::plastic empty but still counts as given, so that it draws
 /// no "no *PLASTIC" or "given twice" follow-up error.
@@ -245,6 +276,38 @@ struct DeckState {
   Index output = NO_INDEX;  ///< the latest *OUTPUT of the open step
   SourceLocation step_where;
   int error_counts[ERROR_CATEGORIES] = {};
+
+  // --- parts and assemblies (deck_assembly.cpp) ------------------------------------------------
+  std::vector<PartDefinition> parts;
+  std::vector<DeckInstance> instances;
+  /// A *PART, *ASSEMBLY or *INSTANCE was read: ids must stay below MAX_SCOPED_ID and every node
+  /// and element records its scope (node_scopes, element_scopes).
+  bool assembly_model = false;
+  std::vector<Index> node_scopes, element_scopes;  ///< parallel to the Model's nodes, elements
+  Index open_part = NO_INDEX;                      ///< the *PART whose blocks are being collected
+  bool in_assembly = false;                        ///< between *ASSEMBLY and *END ASSEMBLY
+  bool in_instance = false;                        ///< between *INSTANCE and *END INSTANCE
+  SourceLocation assembly_where, instance_where;
+  /// Scope of what is read: 0 model or assembly level, k: instances[k-1] (its part's blocks
+  /// and the blocks of its *INSTANCE … *END INSTANCE).
+  Index scope = 0;
+
+  /// Key of id `id` of scope `in_scope` in node_index, element_index & co.
+  static ExternalId id_key(Index in_scope, ExternalId id) {
+    return in_scope == 0 ? id : (static_cast<ExternalId>(in_scope) << SCOPE_SHIFT) + id;
+  }
+  /// The id as written of a key (the key itself in a deck without instances).
+  ExternalId local_id(ExternalId key) const {
+    return instances.empty() ? key : key & MAX_SCOPED_ID;
+  }
+  /// "5", or "5 of instance PART-1-2" for a key in an instance's range: ids in messages.
+  std::string id_text(ExternalId key) const;
+  /// A set or surface name as defined in scope `in_scope`: "INSTANCE.NAME" in an instance.
+  std::string scoped_name(Index in_scope, const std::string& name) const {
+    return in_scope == 0 || name.empty() ? name : instances[in_scope - 1].name + "." + name;
+  }
+  /// The same in the scope being read.
+  std::string scoped_name(const std::string& name) const { return scoped_name(scope, name); }
 };
 
 }  // namespace xpl::io

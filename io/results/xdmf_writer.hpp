@@ -35,6 +35,10 @@ struct XdmfMesh {
   bool shells = false;
   /// Models with a plastic material: frames may list PEEQ.
   bool plastic = false;
+  /// Assembly models: the instance names, comma-separated in index order (empty for a flat
+  /// deck); every frame then also has `node_instance`, `node_local_id`, `element_instance` and
+  /// `element_local_id`, so that a picked point or cell shows the instance and its own id.
+  std::string instance_names;
   /// Node and element sets (XDMF Set elements in JOB.xdmf, flag attributes in the
   /// last-frame file, which meshio reads).
   std::vector<XdmfSet> sets;

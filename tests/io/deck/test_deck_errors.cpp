@@ -24,11 +24,14 @@ TEST_CASE("unknown keyword", "[io][deck][errors]") {
   CHECK(errors.size() == 1);
 }
 
-TEST_CASE("assemblies are rejected, *PREPRINT is ignored", "[io][deck][errors]") {
-  const auto errors =
-      deck_errors("*PREPRINT, ECHO=NO\n*PART, NAME=P\n" + two_brick_model() + simple_step());
+TEST_CASE("a part left open is one error, *PREPRINT is ignored", "[io][deck][errors]") {
+  // Parts and assemblies themselves: test_deck_assembly.cpp.
+  const std::string deck =
+      "*PREPRINT, ECHO=NO\n*PART, NAME=P\n" + two_brick_model() + simple_step();
+  const auto errors = deck_errors(deck);
   REQUIRE(errors.size() == 1);
-  CHECK(has_error(errors, "t.inp:2: *PART: unknown keyword *PART"));
+  CHECK(has_error(errors, at(deck, "*STEP", "*STEP") +
+                              "part P is not closed; expected *END PART before *STEP"));
 }
 
 TEST_CASE("a refused element type is one error, not also its sets, sections and surfaces",
