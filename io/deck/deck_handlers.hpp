@@ -4,6 +4,7 @@
 /// the keyword table (deck_keywords.cpp) calls them. The `resolve_*` and `check_*` functions run
 /// in finish(), once the whole deck is known.
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -83,6 +84,38 @@ void check_element_geometry(DeckState& deck);
 void check_hex_geometry(DeckState& deck, Index element);
 /// One S4R element: degenerate (reported).
 void check_shell_geometry(DeckState& deck, Index element);
+
+// --- Mesh exports (deck_mesh_export.cpp): section-less lower-dimensional blocks as geometry
+
+/// Whether `type` is read as geometry without a section: CPS4, CPS3, T3D2, T3D3.
+bool is_geometry_type(std::string_view type);
+/// The supported element type nearest to an unsupported `type`, with why (for its error);
+/// empty if none is known.
+std::string nearest_supported_type(std::string_view type);
+/// `*ELEMENT, TYPE=CPS4|CPS3|T3D2|T3D3`: kept as geometry elements.
+void read_geometry_elements(DeckState& deck, const DeckBlock& block, const std::string& type);
+/// At the start of finish(): CPS4 geometry under a *SHELL SECTION becomes S4R elements (in deck
+/// order, after the elements read); other geometry under a section is reported.
+void promote_shell_geometry(DeckState& deck);
+/// Geometry element nodes that are not defined (reported, capped).
+void resolve_geometry_node_ids(DeckState& deck);
+/// After the element sets: each element set of geometry only becomes a node set of its nodes
+/// (unless a node set of that name exists); the .msg notes say what was done.
+void geometry_node_sets(DeckState& deck);
+/// The geometry elements a reference names (an id or an element set), unpromoted only.
+std::vector<Index> geometry_of(const DeckState& deck, const DeckReference& reference);
+/// Every hex face and shell of the model by its sorted distinct corner nodes.
+struct ModelFaceIndex {
+  std::vector<std::pair<std::array<Index, 4>, ElementFace>> faces;  ///< sorted by key
+};
+/// Builds the index of the model's faces (after the element nodes are resolved).
+ModelFaceIndex index_model_faces(const Model& model);
+/// Adds to `surface` the solid faces (or both sides of the shells) that the geometry faces
+/// `geometry` of surface line `item` lie on; reported if a face lies on none, inside the body,
+/// is an edge, or the line has a face label.
+void add_geometry_faces(DeckState& deck, const ModelFaceIndex& index,
+                        const std::vector<Index>& geometry, const PendingSurfaceItem& item,
+                        Surface& surface);
 
 // --- Materials, sections, amplitudes and initial conditions (deck_properties.cpp,
 // deck_sections.cpp)

@@ -131,6 +131,10 @@ void read_element(DeckState& deck, const DeckBlock& block) {
     read_point_elements(deck, block, *type == "ROTARYI");
     return;
   }
+  if (is_geometry_type(*type)) {
+    read_geometry_elements(deck, block, *type);
+    return;
+  }
   if (*type == "S4R" || *type == "S4") {
     element_type = ElementType::S4R;
   } else if (*type == "C3D8") {
@@ -143,8 +147,17 @@ void read_element(DeckState& deck, const DeckBlock& block) {
     refuse_elements(deck, block);
     return;
   } else if (*type != "C3D8R") {
-    error(deck, keyword.where, keyword, "element type " + *type + " is not supported yet",
-          "supported: C3D8R, C3D8, S4R (S4 is run as S4R), MASS, ROTARYI");
+    // One error per type, at its first block (gmsh and meshio write a block per entity).
+    const bool first = std::find(deck.refused_types.begin(), deck.refused_types.end(), *type) ==
+                       deck.refused_types.end();
+    if (first) {
+      deck.refused_types.push_back(*type);
+      const std::string nearest = nearest_supported_type(*type);
+      error(deck, keyword.where, keyword, "element type " + *type + " is not supported",
+            (nearest.empty() ? std::string() : "nearest supported: " + nearest + "; ") +
+                "supported: C3D8R, C3D8, S4R (S4 is run as S4R), MASS, ROTARYI; CPS4, CPS3, "
+                "T3D2, T3D3 without a section are read as geometry");
+    }
     refuse_elements(deck, block);
     return;
   }
@@ -196,7 +209,8 @@ void read_element(DeckState& deck, const DeckBlock& block) {
     const ExternalId key = DeckState::id_key(deck.scope, *id);
     const auto [it, inserted] = deck.element_index.emplace(key, deck.model.element_count());
     if (!inserted ||
-        (!deck.point_element_index.empty() && deck.point_element_index.contains(key))) {
+        (!deck.point_element_index.empty() && deck.point_element_index.contains(key)) ||
+        (!deck.geometry_index.empty() && deck.geometry_index.contains(key))) {
       if (inserted) deck.element_index.erase(it);
       error(deck, line.where(), keyword, "element " + id_text(*id) + " is defined twice",
             "expected each element id once");

@@ -87,7 +87,17 @@ std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& refere
                     "expected *ELSET, ELSET=" + reference.token);
     return {};
   }
-  return deck.model.element_sets[static_cast<std::size_t>(it->second)].members;
+  const std::vector<Index>& members =
+      deck.model.element_sets[static_cast<std::size_t>(it->second)].members;
+  if (members.empty() &&
+      !deck.element_sets[static_cast<std::size_t>(it->second)].geometry_members.empty())
+    deck.errors.add(reference.where, reference.keyword,
+                    "element set " + reference.token +
+                        " holds only geometry (elements of a block without a section)",
+                    "expected analysed elements; geometry defines node sets and element-based "
+                    "*SURFACEs (*SURFACE, NAME=...  with the line " +
+                        reference.token + ")");
+  return members;
 }
 
 std::string element_text(const DeckState& deck, Index e, const DeckReference& reference) {

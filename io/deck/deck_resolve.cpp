@@ -44,8 +44,11 @@ Model finish(DeckState& deck) {
   deck.model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
   deck.model.initial_angular_velocity = NodalVectors::Zero(n_nodes, 3);
 
+  promote_shell_geometry(deck);  // before anything counts the elements
   resolve_element_nodes(deck);
+  resolve_geometry_node_ids(deck);
   resolve_sets(deck, false);  // element sets first: *NSET, ELSET= needs them
+  geometry_node_sets(deck);
   resolve_sets(deck, true);
   check_plastic_materials(deck);  // before the sections check the materials
   resolve_sections(deck);
@@ -126,16 +129,30 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
   // MASS/ROTARYI elements of an element set: kept beside the Model's members.
   std::vector<Index>& points = pending.point_members;
   const bool has_points = !node_sets && !deck.point_element_index.empty();
+  // Geometry elements (section-less CPS4 & co.): kept beside too; those run as S4R are members.
+  std::vector<Index> geometry;
+  const bool has_geometry = !node_sets && !deck.geometry_elements.empty();
+  for (Index g : pending.geometry_members) {
+    const GeometryElement& element = deck.geometry_elements[static_cast<std::size_t>(g)];
+    if (element.promoted)
+      members.push_back(deck.element_index.at(element.id));
+    else
+      geometry.push_back(g);
+  }
   for (const SetItem& item : pending.items) {
     switch (item.kind) {
       case SetItem::Kind::Id: {
         const auto it = ids.find(item.first);
         const auto point =
             has_points ? deck.point_element_index.find(item.first) : deck.point_element_index.end();
+        const auto shape =
+            has_geometry ? deck.geometry_index.find(item.first) : deck.geometry_index.end();
         if (it != ids.end())
           members.push_back(it->second);
         else if (point != deck.point_element_index.end())
           points.push_back(point->second);
+        else if (shape != deck.geometry_index.end())
+          geometry.push_back(shape->second);
         else if (node_sets || !deck.refused_element(item.first))
           deck.errors.add(item.where, item.keyword,
                           "undefined " + what + " " + deck.id_text(item.first),
@@ -145,7 +162,7 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
       case SetItem::Kind::Range: {
         // Ids of the range that are not defined are skipped (GENERATE over sparse numbering);
         // cost is bounded by the smaller of the range and the number of defined ids.
-        const std::size_t before = members.size() + points.size();
+        const std::size_t before = members.size() + points.size() + geometry.size();
         const long long span = (item.last - item.first) / item.increment + 1;
         if (static_cast<unsigned long long>(span) <= ids.size()) {
           for (long long id = item.first; id <= item.last; id += item.increment) {
@@ -161,13 +178,17 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
           for (const auto& [id, index] : deck.point_element_index)
             if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
               points.push_back(index);
+        if (has_geometry)
+          for (const auto& [id, index] : deck.geometry_index)
+            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+              geometry.push_back(index);
         const auto refused = [&] {
           for (ExternalId id : deck.refused_element_ids)
             if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
               return true;
           return false;
         };
-        if (members.size() + points.size() == before && (node_sets || !refused()))
+        if (members.size() + points.size() + geometry.size() == before && (node_sets || !refused()))
           deck.errors.add(item.where, item.keyword,
                           "range " + std::to_string(deck.local_id(item.first)) + ".." +
                               deck.id_text(item.last) + " contains no defined " + what,
@@ -198,6 +219,8 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
         if (!node_sets) {
           const std::vector<Index>& other_points = deck.element_sets[it->second].point_members;
           points.insert(points.end(), other_points.begin(), other_points.end());
+          const std::vector<Index>& other_shapes = deck.element_sets[it->second].geometry_members;
+          geometry.insert(geometry.end(), other_shapes.begin(), other_shapes.end());
         }
         break;
       }
@@ -216,6 +239,13 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
         for (Index p : deck.element_sets[it->second].point_members)
           if (deck.point_elements[static_cast<std::size_t>(p)].node != NO_INDEX)
             members.push_back(deck.point_elements[static_cast<std::size_t>(p)].node);
+        for (Index g : deck.element_sets[it->second].geometry_members) {
+          const GeometryElement& shape = deck.geometry_elements[static_cast<std::size_t>(g)];
+          for (int k = 0; k < shape.n_nodes; ++k) {
+            const auto node = deck.node_index.find(shape.node_ids[static_cast<std::size_t>(k)]);
+            if (node != deck.node_index.end()) members.push_back(node->second);
+          }
+        }
         break;
       }
     }
@@ -225,6 +255,9 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
   sets[static_cast<std::size_t>(set)].members = std::move(members);
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::sort(geometry.begin(), geometry.end());
+  geometry.erase(std::unique(geometry.begin(), geometry.end()), geometry.end());
+  pending.geometry_members = std::move(geometry);
   pending.state = 2;
 }
 

@@ -62,6 +62,9 @@ struct SetItem {
 };
 struct PendingSet {
   std::vector<Index> members;  ///< members known while reading (*NODE, NSET= / *ELEMENT, ELSET=)
+  /// Element sets: geometry elements (into DeckState::geometry_elements) of section-less
+  /// lower-dimensional blocks; sorted and unique once resolved.
+  std::vector<Index> geometry_members;
   /// Element sets: MASS/ROTARYI elements (into point_elements), which the Model's element
   /// arrays do not hold; sorted and unique once resolved.
   std::vector<Index> point_members;
@@ -167,6 +170,27 @@ struct PointElement {
   Index property = NO_INDEX;  ///< into point_properties: the *MASS/*ROTARY INERTIA covering it
   SourceLocation where;
 };
+/// An element of a lower-dimensional block that a mesher writes for every physical surface or
+/// curve (gmsh: CPS4, CPS3 faces; T3D2, T3D3 edges): without a section it is geometry, not
+/// part of the analysis; its nodes form node sets and its faces can define *SURFACEs
+/// (deck_mesh_export.cpp). A CPS4 under a *SHELL SECTION runs as S4R (`promoted`).
+struct GeometryElement {
+  ExternalId id = 0;                     ///< key (DeckState::id_key)
+  std::array<ExternalId, 4> node_ids{};  ///< keys
+  int n_nodes = 0;
+  Index block = NO_INDEX;  ///< into DeckState::geometry_blocks
+  bool promoted = false;   ///< made an S4R element of the Model
+};
+/// A `*ELEMENT` block of geometry elements.
+struct GeometryBlock {
+  std::string type;         ///< CPS4, CPS3, T3D2 or T3D3
+  std::string element_set;  ///< ELSET=, scoped; empty if none
+  SourceLocation where;
+  Index count = 0, promoted = 0;
+  /// A section over the block's elements that they cannot take: reported once.
+  bool section_reported = false;
+};
+
 /// `*MASS` (mass in values[0]) or `*ROTARY INERTIA` (I11 I22 I33 I12 I13 I23).
 struct PointProperty {
   std::string element_set;
@@ -254,6 +278,11 @@ struct DeckState {
   std::vector<PendingTie> ties;                ///< parallel to Model::ties
   std::vector<PointElement> point_elements;
   std::unordered_map<ExternalId, Index> point_element_index;  ///< into point_elements
+  std::vector<GeometryElement> geometry_elements;
+  std::unordered_map<ExternalId, Index> geometry_index;  ///< key -> into geometry_elements
+  std::vector<GeometryBlock> geometry_blocks;
+  /// Types refused with a hint (C3D8RH, CAX4P, ...): reported at their first block only.
+  std::vector<std::string> refused_types;
   std::vector<PointProperty> point_properties;
   std::vector<PendingDistribution> distributions;  ///< parallel to Model::distributions
   std::vector<DistributionTable> distribution_tables;
