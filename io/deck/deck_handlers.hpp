@@ -295,6 +295,16 @@ void read_node_print(DeckState& deck, const DeckBlock& block);
 /// *EL PRINT, *CONTACT FILE, *CONTACT PRINT: accepted with a note, nothing written.
 void read_ignored_output(DeckState& deck, const DeckBlock& block, const std::string& why);
 
+/// `*STATIC` (deck_calculix.cpp): refused, one error; counts as the step's procedure.
+void read_static(DeckState& deck, const DeckBlock& block);
+/// `*EQUATION`: refused, one error.
+void read_equation(DeckState& deck, const DeckBlock& block);
+/// CalculiX's `*CLEARANCE, MASTER=, SLAVE=, VALUE=` of a contact pair.
+void read_clearance(DeckState& deck, const DeckBlock& block);
+/// The *CLEARANCE lines as clearances with ADJUST=NO of the first step (in finish(), after the
+/// contact pairs and the *CONTACT CLEARANCE assignments).
+void resolve_pair_clearances(DeckState& deck);
+
 /// *EL PRINT: accepted with a note (no element history output in xpl).
 void read_el_print(DeckState& deck, const DeckBlock& block);
 /// *CONTACT FILE or *CONTACT PRINT: accepted with a note naming xpl's contact output.

@@ -63,6 +63,7 @@ Model finish(DeckState& deck) {
   resolve_point_inertias(deck);
   resolve_distributions(deck);
   resolve_clearances(deck);  // after surfaces, contact pairs, rigid bodies and distributions
+  resolve_pair_clearances(deck);
   check_element_geometry(deck);
 
   const char* categories[ERROR_CATEGORIES] = {"elements with undefined nodes",

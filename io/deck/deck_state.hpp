@@ -160,6 +160,12 @@ struct PendingClearanceAssignment {
   std::string clearance;  ///< upper case
   ClearanceAssignment assignment;
 };
+/// CalculiX's `*CLEARANCE, MASTER=, SLAVE=, VALUE=` (names upper case).
+struct PendingPairClearance {
+  std::string master, slave;
+  Real value = 0.0;
+  SourceLocation where;
+};
 /// A `*ELEMENT, TYPE=MASS|ROTARYI` element: the solver has no point elements, so it stays
 /// out of the Model's element arrays; `*MASS`/`*ROTARY INERTIA` make it a PointInertia.
 struct PointElement {
@@ -290,6 +296,7 @@ struct DeckState {
   /// empty for a value.
   std::vector<std::string> clearance_distributions;
   std::vector<PendingClearanceAssignment> clearance_assignments;
+  std::vector<PendingPairClearance> pair_clearances;
   /// check_clearance_surface verdict per surface: 0 not checked, 1 fit, 2 reported.
   std::vector<std::uint8_t> clearance_surface_state;
 

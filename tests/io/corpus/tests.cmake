@@ -3,7 +3,8 @@
 # CalculiX-style decks. Each case reads its deck (counts, sets, coordinates) and runs it; none
 # needs gmsh or meshio installed (the exports are committed as written). Two to four runs of
 # at most 54 nodes per case: seconds.
-foreach(case cae_assembly gmsh_block gmsh_plate meshio_block)
+foreach(case cae_assembly gmsh_block gmsh_plate meshio_block calculix_massless
+             calculix_clearance calculix_refused)
   add_test(NAME io_corpus_${case}
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/corpus/check_corpus.py
                    $<TARGET_FILE:xpl> ${PROJECT_SOURCE_DIR}/tests/data/decks
