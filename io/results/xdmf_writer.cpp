@@ -134,6 +134,9 @@ std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameReq
     grid += "        <Information Name=\"step\" Value=\"" + std::to_string(step) + "\"/>\n";
     grid += "        <Information Name=\"step_name\" Value=\"" + xml_escape(step_name) + "\"/>\n";
     grid += "        <Information Name=\"step_time\" Value=\"" + exact(step_time) + "\"/>\n";
+    if (!m_mesh.instance_names.empty())
+      grid += "        <Information Name=\"instances\" Value=\"" +
+              xml_escape(m_mesh.instance_names) + "\"/>\n";
   }
   grid += "        <Topology TopologyType=\"" + m_mesh.topology_type + "\" NumberOfElements=\"" +
           cells + "\">\n          " +
@@ -145,6 +148,15 @@ std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameReq
   // ids: not the scalars ParaView colours by).
   grid += attribute("node_id", "GlobalId", true, nodes, "Int", "/mesh/node_ids");
   grid += attribute("element_id", "GlobalId", false, cells, "Int", "/mesh/element_ids");
+  if (!m_mesh.instance_names.empty()) {
+    // Assembly models: the instance (index into the names of Information "instances", -1 at
+    // the assembly level) and the id within it, as the deck wrote it (arrays, not scalars
+    // ParaView would colour by).
+    grid += attribute("node_instance", "None", true, nodes, "Int", "/mesh/node_instance");
+    grid += attribute("node_local_id", "None", true, nodes, "Int", "/mesh/node_local_ids");
+    grid += attribute("element_instance", "None", false, cells, "Int", "/mesh/element_instance");
+    grid += attribute("element_local_id", "None", false, cells, "Int", "/mesh/element_local_ids");
+  }
   const std::vector<const OutputVariable*> variables =
       frame_variables(what, {m_mesh.shells, m_mesh.plastic});
   const std::string_view colour = colour_field(variables);

@@ -35,6 +35,10 @@ struct XdmfMesh {
   bool shells = false;
   /// Models with a plastic material: frames may list PEEQ.
   bool plastic = false;
+  /// Assembly models: the instance names, comma-separated in index order (empty for a flat
+  /// deck); every frame then also has `node_instance`, `node_local_id`, `element_instance` and
+  /// `element_local_id`, so that a picked point or cell shows the instance and its own id.
+  std::string instance_names;
   /// Node and element sets, written as 0/1 attributes NSET_NAME / ELSET_NAME (not as XDMF Set
   /// elements, which ParaView's Xdmf3 reader draws as field-less blocks over the mesh).
   std::vector<XdmfSet> sets;
