@@ -126,8 +126,10 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
 }
 
 Real ContactDomain::weight(Index s, Index f, Index& pair) const {
-  if (m_slave_rigid[s]) return 0.0;
-  const Real full = m_face_rigid[f] ? 1.0 : 0.5;
+  // Rigid bodies touch deformable faces with their own nodes too, each view with its full
+  // weight (header comment); two rigid bodies do not touch.
+  if (m_slave_rigid[s] && m_face_rigid[f]) return 0.0;
+  const Real full = m_face_rigid[f] || m_slave_rigid[s] ? 1.0 : 0.5;
   if (m_everything) {
     pair = 0;
     return full;

@@ -211,7 +211,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
       SlaveTouch second;
-      if (!m_broad.candidates(s).empty() && !m_domain.slave_rigid(s)) {
+      if (!m_broad.candidates(s).empty()) {
         Real best_distance = std::numeric_limits<Real>::max();
         SlaveTouch candidate;
         Real distance = 0.0;
@@ -232,8 +232,12 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
             ++n_seen;
           }
         }
-        if (best.face != NO_INDEX) second = opposite_touch(best, penetrated, n_penetrated);
-        if (best.face != NO_INDEX && second.face == NO_INDEX && n_seen > PENETRATED_KEPT) {
+        // Pinched: penetrating its nearest face and one on its other side. A node outside its
+        // nearest face is not pinched, however deep it lies behind a face across its own body
+        // (a corner node of a squashed block behind the block's far side).
+        const bool pinched = best.face != NO_INDEX && best.gap < 0.0;
+        if (pinched) second = opposite_touch(best, penetrated, n_penetrated);
+        if (pinched && second.face == NO_INDEX && n_seen > PENETRATED_KEPT) {
           // More penetrated faces than kept (a node under the shared corner of many faces on
           // both sides): look for the other side among all of them.
           Real second_distance = std::numeric_limits<Real>::max();
@@ -284,7 +288,7 @@ std::vector<SlaveTouch> ContactEngine::penetrated_faces(Index s, const NodalVect
                                                         std::span<const Real> node_thickness,
                                                         Real tolerance) const {
   std::vector<std::pair<Real, SlaveTouch>> found;
-  if (!m_domain.slave_rigid(s)) {
+  {
     SlaveTouch candidate;
     Real distance = 0.0;
     const SlaveView view = slave_view(s, position, node_thickness);
@@ -451,7 +455,7 @@ void ContactEngine::prepare_spring(Index s, ContactConstraint& c, const SlaveTou
   for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
   spring.v_rel = v_rel;
   // A touch the increment's motion cannot have made starts without force (file comment).
-  if (m_updated && face.shell && !c.offset_permanent)
+  if (m_updated && !c.offset_permanent)
     c.offset = std::max(c.offset, onset_offset(c, t.face, t.gap, t.normal, v_rel, dt));
   c.gap = t.gap;
   c.normal = t.normal;

@@ -34,15 +34,15 @@
 /// Shell sides are at ±t/2 of the mid-surface (ContactFace), and a shell slave node carries
 /// half its own thickness: its gap is the distance to the face's contact surface minus t/2.
 ///
-/// Onset of a touch on a shell face: every rule above turns a face admissible for a node at
-/// some instant, and a node can be inside the face's slab at that instant (a folding wall
-/// turning a face towards a node beside its edge, the lateral rule admitting a node beside
-/// an edge a shell thickness behind the face's plane, a node past a shell's mid-surface
-/// seeing the other side). From the second update of the step on, a touch on another face
-/// than last increment's is only as deep as the relative approach of the increment made it
-/// (plus the penetration carried from a face on the same side); the rest becomes the node's
-/// offset (onset_offset, penalty.hpp), which shrinks as the node comes out (SPEC C3). So no
-/// spring starts with energy the motion did not put in, and a node that has crossed a wall is
+/// Onset of a touch: every rule above turns a face admissible for a node at some instant, and
+/// a node can be inside the face's slab at that instant (a folding wall turning a face towards
+/// a node beside its edge, the lateral rule admitting a node beside an edge a shell thickness
+/// behind the face's plane, a node past a shell's mid-surface seeing the other side, a shell
+/// node coming round the edge of a solid's face at speed). From the second update of the step on, a
+/// touch on another face than last increment's is only as deep as the relative approach of the
+/// increment made it (plus the penetration carried from a face on the same side); the rest becomes
+/// the node's offset (onset_offset, penalty.hpp), which shrinks as the node comes out (SPEC C3). So
+/// no spring starts with energy the motion did not put in, and a node that has crossed a wall is
 /// not pushed on through it by the other side (what a user of double-sided shell contact
 /// expects: a node found deep in a wall is not shot out of it). The first update of an
 /// engine takes its touches as they are: the deep ones the overclosure pass left to the

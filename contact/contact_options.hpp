@@ -77,7 +77,7 @@ inline constexpr Real OPPOSING_COSINE = 0.2;
 /// a thin wall never touches the inner skin of that wall.
 inline constexpr Real DEPTH_LIMIT_FRACTION = 0.5;
 
-/// A touch on a shell face other than last increment's is taken as it is while it is no
+/// A touch on a face other than last increment's is taken as it is while it is no
 /// deeper than this many times the relative approach of the increment along its normal (plus
 /// the penetration carried over from a face on the same side), else what lies beyond the
 /// approach becomes offset (onset_offset, penalty.hpp). 2 leaves the rounding and the face's

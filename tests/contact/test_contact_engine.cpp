@@ -414,3 +414,102 @@ TEST_CASE("a node pressed on one side only keeps its full default spring",
     CHECK(engine.normal_force(s) == Approx(k * 0.02).epsilon(1e-9));
   }
 }
+
+TEST_CASE(
+    "a solid face that turns admissible for a node already behind its plane starts without "
+    "force",
+    "[contact][engine][onset]") {
+  // Block A: 2×2×1 unit hexes, top at z = 1. Block B: a unit cube with its corner q held at
+  // (1, 1, 0.9), 0.1 below A's top, and first turned about q so that q's normal (the mean of
+  // its three faces, (−1, −1, −1)/√3 in B's own frame) is horizontal: A's top face does not
+  // look at q (cosine 0). In one increment B turns back about q, so q's normal leans down
+  // (cosine −0.58) and A's top face becomes admissible 0.1 deep, with no approach at all (q
+  // does not move). The mushrooming rim of a Taylor bar turns its nodes' normals like this.
+  // Offset, no force, no energy; sinking 0.01 further is resisted.
+  const Real dt = 1e-3;
+  test::ContactMesh reference;
+  test::add_hex_block(reference, 2, 2, 1, 1.0);
+  const Index first_b = reference.node_count();
+  test::add_hex_block(reference, 1, 1, 1, 1.0, Vec3(1.0, 1.0, 0.9));
+  const Index n = reference.node_count();
+  const Index q = first_b;  // B's node (0, 0, 0)
+  const Vec3 pivot(1.0, 1.0, 0.9);
+  const Vec3 corner_normal = Vec3(-1, -1, -1).normalized();
+  const Eigen::Matrix3d turn =
+      Eigen::Quaterniond::FromTwoVectors(corner_normal, Vec3(-1, -1, 0).normalized())
+          .toRotationMatrix();
+  NodalVectors x0 = reference.coordinates;
+  for (Index i = first_b; i < n; ++i) {
+    const Vec3 r = turn * (contact::node_point(reference.coordinates, i) - pivot) + pivot;
+    for (int d = 0; d < 3; ++d) x0(i, d) = r[d];
+  }
+  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  const Real k = contact::default_penalty_stiffness(1.0, 1.0, dt);
+  PhaseTimers timers;
+  contact::ContactEngine engine(
+      ContactDomain(all_exterior(), reference.topology(), reference.coordinates), {}, options, x0,
+      {});
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  engine.update(x0, NodalVectors::Zero(n, 3), 0.0, dt, {}, mass, inverse_mass, force, timers);
+  const Index s = engine.domain().slaves().slot(q);
+  REQUIRE(engine.touch(s).face == NO_INDEX);
+  const NodalVectors& x1 = reference.coordinates;
+  const NodalVectors v1 = (x1 - x0) / dt;
+  const contact::ContactTotals in =
+      engine.update(x1, v1, dt, dt, {}, mass, inverse_mass, force, timers);
+  const contact::SlaveTouch& touch = engine.touch(s);
+  REQUIRE(touch.face != NO_INDEX);
+  CHECK(engine.domain().faces()[touch.face].element < first_b);
+  CHECK(touch.gap == Approx(-0.1).margin(1e-12));
+  CHECK(engine.normal_force(s) == 0.0);
+  CHECK(engine.constraints()[s].offset == Approx(0.1).margin(1e-12));
+  CHECK(in.stored_energy >= 0.0);
+  NodalVectors x2 = x1;
+  for (Index i = first_b; i < n; ++i) x2(i, 2) -= 0.01;
+  NodalVectors v2 = NodalVectors::Zero(n, 3);
+  for (Index i = first_b; i < n; ++i) v2(i, 2) = -0.01 / dt;
+  engine.update(x2, v2, dt, dt, {}, mass, inverse_mass, force, timers);
+  CHECK(engine.touch(s).face == touch.face);
+  CHECK(engine.normal_force(s) == Approx(touch.weight * k * 0.01).epsilon(1e-9));
+}
+
+TEST_CASE("a rigid body's nodes touch a deformable face its corners would otherwise pass",
+          "[contact][engine][rigid]") {
+  // A deformable unit hex and a rigid 2×2×1 block of 0.25 elements whose centre node dips
+  // 0.01 into the hex's top face, far from the hex's corners: no node of the hex is near a
+  // rigid face, so only the rigid node's view sees the contact; its weight is 1.
+  const Real dt = 1e-3;
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 1, 1, 1, 1.0);
+  const Index first_rigid = mesh.node_count();
+  test::add_hex_block(mesh, 2, 2, 1, 0.25, Vec3(0.25, 0.25, 0.99));
+  const Index n = mesh.node_count();
+  const Index centre = first_rigid + 4;  // node (1, 1, 0) of the rigid block
+  DomainSpec spec = all_exterior();
+  spec.element_body.assign(mesh.kinds.size(), NO_INDEX);
+  for (std::size_t e = 1; e < mesh.kinds.size(); ++e) spec.element_body[e] = 0;
+  std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  for (Index i = first_rigid; i < n; ++i) inverse_mass[i] = 0.0;
+  contact::ContactOptions options;
+  options.margin = 0.3;
+  const NodalVectors& x = mesh.coordinates;
+  contact::ContactEngine engine(ContactDomain(spec, mesh.topology(), x), {}, options, x, {});
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  PhaseTimers timers;
+  engine.update(x, NodalVectors::Zero(n, 3), 0.0, dt, {}, mass, inverse_mass, force, timers);
+  const Index s = engine.domain().slaves().slot(centre);
+  REQUIRE(engine.domain().slave_rigid(s));
+  const contact::SlaveTouch& touch = engine.touch(s);
+  REQUIRE(touch.face != NO_INDEX);
+  CHECK(engine.domain().faces()[touch.face].element == 0);
+  CHECK(touch.weight == 1.0);
+  CHECK(touch.gap == Approx(-0.01).margin(1e-12));
+  const Real k = contact::default_penalty_stiffness(1.0, 1.0, dt);
+  CHECK(engine.normal_force(s) == Approx(k * 0.01).epsilon(1e-9));
+  // The hex's top corners, pushed up by their shares of that force.
+  Real up = 0.0;
+  for (Index i = 4; i < 8; ++i) up -= force(i, 2);
+  CHECK(up == Approx(-k * 0.01).epsilon(1e-9));
+}
