@@ -23,6 +23,22 @@ constexpr const char* COMPARE_USAGE =
     "usage: xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
     "                   [--fields U,S,...] [--frames last|all] [--json]\n";
 
+/// `xpl compare --help`: the synopsis and what the options mean.
+constexpr const char* COMPARE_HELP =
+    "\n"
+    "Compares two result files for a regression test: a value passes when\n"
+    "  |new - ref| <= A + R |ref| + F max|ref of the dataset|   (all 0 by default: bitwise)\n"
+    "Compared: the mesh coordinates, the overclosure tables, every history series of every\n"
+    "step on REF's times (NEW interpolated linearly) and the fields of the last frame;\n"
+    "nodes and elements are matched by deck id.\n"
+    "  --rtol R, --atol A, --ftol F  relative, absolute and fraction-of-largest tolerances\n"
+    "  --history          compare the history only (with --fields: and those fields)\n"
+    "  --fields U,S,...   compare these fields only (with --history: and the history)\n"
+    "  --frames last|all  the last frame (default) or every frame, paired in order\n"
+    "  --json             the report as JSON on stdout\n"
+    "Exit codes: 0 every value within the tolerance, 1 something differs, 2 unusable input\n"
+    "  (missing, not HDF5, other mesh, failed or truncated run) or a usage error.\n";
+
 /// A number argument; false (after a message) if it is not a finite number ≥ 0.
 bool parse_tolerance(const std::string& option, const std::string& text, double& value) {
   std::istringstream in(text);
@@ -77,6 +93,10 @@ int compare_main(const std::vector<std::string>& args) {
   bool json = false, history = false, fields = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& w = args[i];
+    if (w == "--help" || w == "-h") {
+      std::cout << COMPARE_USAGE << COMPARE_HELP;
+      return 0;
+    }
     const auto value = [&]() -> const std::string* {
       if (i + 1 >= args.size()) {
         std::cerr << "xpl compare: " << w << " needs a value\n" << COMPARE_USAGE;

@@ -1,11 +1,14 @@
 // `xpl history JOB.h5 [--step N] [--csv FILE]`: the history output of a result file as one
 // CSV table (time, then one column per variable and node), for spreadsheets and pandas.
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,6 +23,18 @@ namespace {
 constexpr int EXIT_UNUSABLE = 2;
 
 constexpr const char* HISTORY_USAGE = "usage: xpl history JOB.h5 [--step N] [--csv FILE]\n";
+
+/// `xpl history --help`: the synopsis and what the options mean.
+constexpr const char* HISTORY_HELP =
+    "\n"
+    "Writes the history output of a result file as one CSV table: a header `time`, then one\n"
+    "column per variable and node or pair (ALLKE, RF2@N17, CFN@ALL_EXTERIOR), 17\n"
+    "significant digits (the values read back bitwise); all steps one after another (the\n"
+    "union of their columns, empty cells where a step lacks one).\n"
+    "  --step N    step N only (1, 2, ...)\n"
+    "  --csv FILE  write FILE instead of stdout\n"
+    "Exit codes: 0 written, 2 unusable input (no such step, no history, not a result file)\n"
+    "  or a usage error, 4 the CSV could not be written.\n";
 
 /// The columns of one step: names and, per column, the dataset and its column.
 struct StepTable {
@@ -107,6 +122,59 @@ void write_csv(std::ostream& out, const std::vector<StepTable>& steps) {
   }
 }
 
+/// The step count of the model a result file holds: /summary's model.steps (written when the
+/// run ends), else the largest step of a frame, else 0 (unknown).
+long result_steps(hid_t file) {
+  if (io::h5::has_link(file, "/summary")) {
+    try {
+      return static_cast<long>(
+          io::h5::numeric_attribute<std::int64_t>(file, "/summary", "model.steps"));
+    } catch (const std::runtime_error&) {  // NOLINT(bugprone-empty-catch): try the frames
+    }
+  }
+  long steps = 0;
+  if (!io::h5::has_link(file, "/frames")) return 0;
+  for (const std::string& frame : io::h5::group_members(file, "/frames")) {
+    try {
+      steps = std::max(steps, static_cast<long>(io::h5::numeric_attribute<std::int64_t>(
+                                  file, "/frames/" + frame, "step")));
+    } catch (const std::runtime_error&) {  // NOLINT(bugprone-empty-catch): no step there
+    }
+  }
+  return steps;
+}
+
+/// "1", "1, 2", "1..4": the step numbers of `steps` (ascending) as the user would write them.
+std::string step_list(const std::vector<int>& steps) {
+  std::string text;
+  for (std::size_t i = 0; i < steps.size();) {
+    std::size_t j = i;
+    while (j + 1 < steps.size() && steps[j + 1] == steps[j] + 1) ++j;
+    text += (text.empty() ? "" : ", ") + std::to_string(steps[i]);
+    if (j > i) text += (j == i + 1 ? ", " : "..") + std::to_string(steps[j]);
+    i = j + 1;
+  }
+  return text;
+}
+
+/// Why a result has no history to write for `step` (0: any step), and what the user can do.
+std::string missing_history(hid_t file, int step, const std::vector<int>& with_history) {
+  const long steps = result_steps(file);
+  const std::string have = with_history.empty()
+                               ? std::string("no step has history output")
+                               : "history exists for step(s) " + step_list(with_history);
+  if (step == 0)
+    return "the file has no history output (/history); expected a result of a run (a data "
+           "check writes none) or of a deck with *OUTPUT, HISTORY";
+  if (steps > 0 && step > steps)
+    return "no step " + std::to_string(step) + ": the result has " +
+           (steps == 1 ? std::string("one step (1)")
+                       : std::to_string(steps) + " steps (1.." + std::to_string(steps) + ")") +
+           "; " + have;
+  return "step " + std::to_string(step) + " has no history output (" + have +
+         "); expected a step that ran, with history output";
+}
+
 }  // namespace
 
 int history_main(const std::vector<std::string>& args) {
@@ -114,6 +182,10 @@ int history_main(const std::vector<std::string>& args) {
   int step = 0;  // 0: every step
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& w = args[i];
+    if (w == "--help" || w == "-h") {
+      std::cout << HISTORY_USAGE << HISTORY_HELP;
+      return 0;
+    }
     if ((w == "--step" || w == "--csv") && i + 1 >= args.size()) {
       std::cerr << "xpl history: " << w << " needs a value\n" << HISTORY_USAGE;
       return EXIT_UNUSABLE;
@@ -151,16 +223,16 @@ int history_main(const std::vector<std::string>& args) {
     const io::h5::Handle file = io::h5::open_read_only(file_name);
     const std::vector<std::string> groups = io::h5::group_members(file.get(), "/history");
     std::vector<std::string> chosen;
+    std::vector<int> with_history;  // the steps that have a history group, in order
     for (int n = 1; n <= static_cast<int>(groups.size()) + 1; ++n) {  // numeric order
       const std::string g = "step_" + std::to_string(n);
-      if (io::h5::has_link(file.get(), "/history/" + g) && (step == 0 || step == n))
-        chosen.push_back(g);
+      if (!io::h5::has_link(file.get(), "/history/" + g)) continue;
+      with_history.push_back(n);
+      if (step == 0 || step == n) chosen.push_back(g);
     }
     if (chosen.empty()) {
       std::cerr << "xpl history: " << file_name << ": "
-                << (step == 0 ? std::string("the file has no history output (/history)")
-                              : "the file has no history of step " + std::to_string(step))
-                << "; expected a result with *OUTPUT, HISTORY\n";
+                << missing_history(file.get(), step, with_history) << "\n";
       return EXIT_UNUSABLE;
     }
     for (const std::string& g : chosen) steps.push_back(read_step(file.get(), "/history/" + g));

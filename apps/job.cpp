@@ -19,6 +19,7 @@
 #include "io/results/job_lock.hpp"
 #include "io/results/result_files.hpp"
 #include "solver/explicit_solver.hpp"
+#include "solver/output_schedule.hpp"
 #include "solver/thread_team.hpp"
 
 namespace xpl::apps {
@@ -48,8 +49,8 @@ void print_summary(const RunSummary& s, const Model& model, int threads) {
     std::printf("xpl: phase %s: %.3f s\n", std::string(phase_name(phase)).c_str(),
                 s.timers.seconds(phase));
   }
-  std::printf("xpl: largest energy balance drift: %.3g %% of the largest energy (t = %.6g s)\n",
-              100.0 * s.energy_drift, s.energy_drift_time);
+  std::printf("xpl: largest energy balance drift: %.3g %% of the largest energy (t = %.6g %s)\n",
+              100.0 * s.energy_drift, s.energy_drift_time, model.units.label("s").c_str());
   std::printf("xpl: peak memory: %.1f MB\n", peak_memory_mb());
 }
 
@@ -113,6 +114,12 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
   if (!args.import.empty() && !read_import(args, model, initial)) return EXIT_INPUT;
 
   if (stopped() != 0) return 128 + stopped();  // stopped before anything was written
+  // The .msg file has it too (OutputSchedule); on the terminal also with --quiet.
+  if (uses_default_output(model)) std::cerr << "xpl: warning: " << default_output_warning() << "\n";
+  if (model.units.dimensions_only)
+    std::cerr << "xpl: warning: the deck does not state its units and its material data are not "
+                 "SI: the results are labelled by dimension only ([stress], ...); see JOB.msg "
+                 "for the system they fit and the '** xpl: UNITS=' line that states it\n";
   std::optional<io::ResultFiles> files;
   try {
     // The solver's choice (one thread for a small model unless --threads insists).
@@ -136,15 +143,16 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     }
     const RunSummary summary = solver.run();
     if (summary.stop_signal != 0) {
-      std::fprintf(stderr, "xpl: %s interrupted by signal %d at t = %.6g s; results in %s\n",
+      std::fprintf(stderr, "xpl: %s interrupted by signal %d at t = %.6g %s; results in %s\n",
                    model.job_name.c_str(), summary.stop_signal, summary.final_time,
-                   files->h5_path().string().c_str());
+                   model.units.label("s").c_str(), files->h5_path().string().c_str());
       return 128 + summary.stop_signal;
     }
     if (!args.quiet) {
-      std::printf("xpl: %s completed: %ld increments to t = %.6g s; results in %s\n",
+      std::printf("xpl: %s completed: %ld increments to t = %.6g %s; results in %s\n",
                   model.job_name.c_str(), summary.increments, summary.final_time,
-                  files->h5_path().string().c_str());
+                  model.units.label("s").c_str(), files->h5_path().string().c_str());
+      std::printf("xpl: units: %s\n", model.units.summary().c_str());
       print_summary(summary, model, threads);
     }
     return EXIT_DONE;

@@ -18,18 +18,15 @@
 
 namespace {
 
-constexpr const char* USAGE =
+/// `xpl run --help`: the run's synopsis and options.
+constexpr const char* RUN_USAGE =
     "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]\n"
     "               [--energy-limit PERCENT]\n"
-    "       xpl check DECK.inp [-o DIR]\n"
-    "       xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
-    "                   [--fields U,S,...] [--frames last|all] [--json]\n"
-    "       xpl history JOB.h5 [--step N] [--csv FILE]\n"
-    "       xpl --help | --version\n"
     "\n"
-    "  run     read the deck, run every step, write JOB.h5, JOB.xdmf, JOB.sta, JOB.msg\n"
-    "  check   data check: read the deck, build the model, write frame 0 and the logs,\n"
-    "          stop before the first increment\n"
+    "Reads the deck, runs every step and writes JOB.h5, JOB.xdmf (ParaView), JOB.sta,\n"
+    "JOB.msg and JOB.summary.json into DIR; JOB is the deck's file name without its\n"
+    "extension. A deck without output requests gets the last frame of each step (U, V, S,\n"
+    "PEEQ where plastic) and the energy history, with a warning.\n"
     "  -o DIR  directory for the result files (default: the current directory)\n"
     "  --threads N  OpenMP threads (default: OMP_NUM_THREADS or all cores; one thread for\n"
     "               models of fewer than 10,000 elements); more than the cores is warned of\n"
@@ -40,26 +37,56 @@ constexpr const char* USAGE =
     "  --energy-limit PERCENT  the run fails (exit 3) when ETOTAL drifts by more than\n"
     "               PERCENT of the largest energy (default 10; a drift above 1 % is warned\n"
     "               of once in JOB.msg and JOB.sta)\n"
-    "  compare  compare two result files for a regression test: a value passes when\n"
-    "          |new - ref| <= A + R |ref| + F max|ref of the dataset| (default 0);\n"
-    "          history on REF's times\n"
-    "          (NEW interpolated), fields of the last frame (--frames all: every frame),\n"
-    "          nodes and elements matched by id; --history / --fields U,S select (default:\n"
-    "          everything); --json: the report as JSON. Exit 0 all pass, 1 something\n"
-    "          differs, 2 unusable input (missing, not HDF5, other mesh, failed or\n"
-    "          truncated run)\n"
-    "  history  every history series as CSV (time, then RF2@N17, ALLKE, ...), all steps or\n"
-    "          --step N, to stdout or --csv FILE\n"
-    "Every run and check writes JOB.summary.json (status, timing, energies).\n"
-    "The job name is the deck's file name without its extension. A run holds DIR/JOB.lck;\n"
-    "a second run of the job in DIR is refused. SIGINT/SIGTERM end the run after the\n"
-    "current increment with its last frame written (status interrupted).\n"
+    "A run holds DIR/JOB.lck; a second run of the job in DIR is refused. SIGINT/SIGTERM end\n"
+    "the run after the current increment with its last frame written (status interrupted).\n"
     "OpenMP threads wait passively (OMP_WAIT_POLICY=PASSIVE: they sleep instead of\n"
     "spinning, so a second job on the machine keeps its core) unless OMP_WAIT_POLICY or\n"
     "GOMP_SPINCOUNT is set; OMP_WAIT_POLICY=ACTIVE lets them spin (a little faster on a\n"
     "machine with nothing else to run).\n"
     "Exit codes: 0 done, 1 deck or --import error, 2 usage, 3 the analysis failed,\n"
     "  4 I/O or internal error, 5 the job is already running, 130/143 SIGINT/SIGTERM.\n";
+
+/// `xpl check --help`.
+constexpr const char* CHECK_USAGE =
+    "usage: xpl check DECK.inp [-o DIR] [--quiet] [--import PREV.h5]\n"
+    "\n"
+    "Data check: reads the deck, builds the model (contact search, initial overclosures),\n"
+    "writes frame 0, JOB.sta, JOB.msg and JOB.summary.json into DIR and stops before the\n"
+    "first increment. Every error in the deck is reported, as deck.inp:LINE: *KEYWORD: ...\n"
+    "  -o DIR  directory for the result files (default: the current directory)\n"
+    "  --quiet      no summary on the terminal\n"
+    "Exit codes: 0 checked, 1 deck or --import error, 2 usage, 4 I/O or internal error,\n"
+    "  5 the job is already running.\n";
+
+/// `xpl --help`: every command's synopsis.
+constexpr const char* USAGE =
+    "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]\n"
+    "               [--energy-limit PERCENT]\n"
+    "       xpl check DECK.inp [-o DIR]\n"
+    "       xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
+    "                   [--fields U,S,...] [--frames last|all] [--json]\n"
+    "       xpl history JOB.h5 [--step N] [--csv FILE]\n"
+    "       xpl --help | --version\n"
+    "       xpl COMMAND --help   (the command's options)\n"
+    "\n"
+    "  run      read the deck, run every step, write JOB.h5, JOB.xdmf, JOB.sta, JOB.msg\n"
+    "  check    data check: read the deck, build the model, write frame 0 and the logs,\n"
+    "           stop before the first increment\n"
+    "  compare  compare two result files for a regression test (exit 0 equal within the\n"
+    "           tolerances, 1 different, 2 unusable input)\n"
+    "  history  every history series of a result as CSV\n"
+    "Every run and check writes JOB.summary.json (status, timing, energies).\n"
+    "OpenMP threads sleep at barriers (OMP_WAIT_POLICY=PASSIVE) unless OMP_WAIT_POLICY or\n"
+    "GOMP_SPINCOUNT is set (xpl run --help says more).\n"
+    "Exit codes: 0 done, 1 deck or --import error, 2 usage, 3 the analysis failed,\n"
+    "  4 I/O or internal error, 5 the job is already running, 130/143 SIGINT/SIGTERM.\n";
+
+/// The commands xpl knows, for the message about an unknown one.
+constexpr const char* COMMANDS = "run, check, compare or history";
+
+bool is_help(const std::string& word) {
+  return word == "--help" || word == "-h";
+}
 
 /// Makes OpenMP threads sleep at barriers instead of spinning, unless the user chose
 /// (OMP_WAIT_POLICY or GOMP_SPINCOUNT set). libgomp reads its environment when it is loaded,
@@ -92,6 +119,7 @@ void install_stop_handlers() {
 
 struct Arguments : xpl::apps::JobArguments {
   std::string command;
+  bool help = false;  ///< --help among the words: print the command's usage, exit 0
 };
 
 /// Parses argv; returns false (after printing why) on a usage error.
@@ -104,6 +132,10 @@ bool parse(int argc, char** argv, Arguments& args) {
   args.command = words[0];
   for (std::size_t i = 1; i < words.size(); ++i) {
     const std::string& w = words[i];
+    if (is_help(w)) {
+      args.help = true;
+      return true;
+    }
     auto value = [&](const char* what) -> const std::string* {
       if (i + 1 >= words.size()) {
         std::cerr << "xpl: " << w << " needs " << what << "\n";
@@ -146,7 +178,8 @@ bool parse(int argc, char** argv, Arguments& args) {
     } else if (w == "--quiet" || w == "-q") {
       args.quiet = true;
     } else if (!w.empty() && w[0] == '-') {
-      std::cerr << "xpl: unknown option '" << w << "'\n" << USAGE;
+      std::cerr << "xpl " << args.command << ": unknown option '" << w << "'\n"
+                << (args.command == "check" ? CHECK_USAGE : RUN_USAGE);
       return false;
     } else if (args.deck.empty()) {
       args.deck = w;
@@ -156,7 +189,8 @@ bool parse(int argc, char** argv, Arguments& args) {
     }
   }
   if (args.deck.empty()) {
-    std::cerr << "xpl: " << args.command << ": no deck given\n" << USAGE;
+    std::cerr << "xpl " << args.command << ": no deck given\n"
+              << (args.command == "check" ? CHECK_USAGE : RUN_USAGE);
     return false;
   }
   return true;
@@ -166,17 +200,7 @@ bool parse(int argc, char** argv, Arguments& args) {
 
 int main(int argc, char** argv) {
   default_to_passive_wait(argv);  // first of all: before anything starts OpenMP threads
-  if (argc >= 2 && (std::string(argv[1]) == "compare" || std::string(argv[1]) == "history")) {
-    const std::vector<std::string> rest(argv + 2, argv + argc);
-    try {
-      return std::string(argv[1]) == "compare" ? xpl::apps::compare_main(rest)
-                                               : xpl::apps::history_main(rest);
-    } catch (const std::exception& e) {
-      std::cerr << "xpl " << argv[1] << ": error: " << xpl::apps::cause_of(e) << "\n";
-      return xpl::apps::EXIT_INTERNAL;
-    }
-  }
-  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+  if (argc == 2 && is_help(argv[1])) {
     std::cout << USAGE;
     return 0;
   }
@@ -184,11 +208,29 @@ int main(int argc, char** argv) {
     std::cout << "xpl " << XPL_VERSION << "\n";
     return 0;
   }
+  if (argc < 2) {
+    std::cerr << USAGE;
+    return 2;
+  }
+  const std::string command = argv[1];
+  if (command == "compare" || command == "history") {
+    const std::vector<std::string> rest(argv + 2, argv + argc);
+    try {
+      return command == "compare" ? xpl::apps::compare_main(rest) : xpl::apps::history_main(rest);
+    } catch (const std::exception& e) {
+      std::cerr << "xpl " << command << ": error: " << xpl::apps::cause_of(e) << "\n";
+      return xpl::apps::EXIT_INTERNAL;
+    }
+  }
+  if (command != "run" && command != "check") {
+    std::cerr << "xpl: unknown command '" << command << "'; expected " << COMMANDS << "\n" << USAGE;
+    return 2;
+  }
   Arguments args;
   if (!parse(argc, argv, args)) return 2;
-  if (args.command != "run" && args.command != "check") {
-    std::cerr << "xpl: unknown command '" << args.command << "'\n" << USAGE;
-    return 2;
+  if (args.help) {
+    std::cout << (command == "check" ? CHECK_USAGE : RUN_USAGE);
+    return 0;
   }
   if (args.threads > omp_get_num_procs())
     std::cerr << "xpl: warning: --threads " << args.threads << " is more than the "
@@ -196,6 +238,6 @@ int main(int argc, char** argv) {
               << " core(s) available: the threads take turns on the cores and every barrier "
                  "waits for a descheduled one (slower; the results are the same)\n";
   install_stop_handlers();
-  args.check = args.command == "check";
+  args.check = command == "check";
   return xpl::apps::run_job(args, &g_stop_signal);
 }

@@ -13,7 +13,6 @@ namespace xpl::contact {
 namespace {
 
 /// Face of a hex opposite face f (S1–S2, S3–S5, S4–S6).
-constexpr int OPPOSITE_HEX_FACE[6] = {1, 0, 4, 5, 2, 3};
 
 Vec3 face_centre(const Index* element_nodes, int f, const NodalVectors& x) {
   Vec3 c = Vec3::Zero();
@@ -127,8 +126,10 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
 }
 
 Real ContactDomain::weight(Index s, Index f, Index& pair) const {
-  if (m_slave_rigid[s]) return 0.0;
-  const Real full = m_face_rigid[f] ? 1.0 : 0.5;
+  // Rigid bodies touch deformable faces with their own nodes too, each view with its full
+  // weight (header comment); two rigid bodies do not touch.
+  if (m_slave_rigid[s] && m_face_rigid[f]) return 0.0;
+  const Real full = m_face_rigid[f] || m_slave_rigid[s] ? 1.0 : 0.5;
   if (m_everything) {
     pair = 0;
     return full;

@@ -13,8 +13,12 @@
 /// Weights: in a balanced pair both surfaces act as slave against the other, so every touch
 /// is seen twice (node of A on a face of B and node of B on a face of A) and each view
 /// carries half the force (weight ½, as Abaqus' balanced master–slave weighting). A one-sided
-/// pair (`*CONTACT PAIR`), and any pair whose master face belongs to a rigid body, has one view
-/// with weight 1: a rigid body is always the master, its nodes never act as slaves.
+/// pair (`*CONTACT PAIR`) has one view with weight 1. Between a rigid body and a deformable
+/// body both views act, each with weight 1: the deformable nodes on the rigid faces, and the
+/// rigid body's nodes on the deformable faces, so that a rigid body meshed finer than its
+/// partner (a rigid punch, a rod, a projectile) cannot pass with its corners between the
+/// partner's nodes. Where the meshes match both views hold a touch and the contact is twice
+/// as stiff, within the node budget of the engine. Two rigid bodies never touch.
 
 #include <cstdint>
 #include <string>
@@ -67,7 +71,7 @@ class ContactDomain {
   const std::vector<ContactFace>& faces() const { return m_faces; }
   const SlaveNodes& slaves() const { return m_slaves; }
   SlaveNodes& slaves() { return m_slaves; }
-  /// Whether slave slot s belongs to a rigid body (it never acts as a slave).
+  /// Whether slave slot s belongs to a rigid body (it touches deformable faces only).
   bool slave_rigid(Index s) const { return m_slave_rigid[s] != 0; }
   /// Whether every face around slave slot s is a shell side (a double-sided node).
   bool slave_double_sided(Index s) const { return m_slave_shell[s] != 0; }

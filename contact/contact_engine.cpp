@@ -41,6 +41,35 @@ BroadPhase make_broad_phase(const ContactOptions& options, const std::vector<Con
   return BroadPhase(base + half_t, 0.5 * base);
 }
 
+/// Keeps the `kept.size()` nearest of the touches offered (distance `distance`, m) in
+/// `kept`, nearest first; `count` is how many it holds.
+template <std::size_t N>
+void keep_nearest(std::array<SlaveTouch, N>& kept, std::array<Real, N>& kept_distance, int& count,
+                  const SlaveTouch& touch, Real distance) {
+  int at = count;
+  while (at > 0 && distance < kept_distance[at - 1]) --at;
+  if (at >= static_cast<int>(N)) return;
+  const int last = std::min(count, static_cast<int>(N) - 1);
+  for (int k = last; k > at; --k) {
+    kept[k] = kept[k - 1];
+    kept_distance[k] = kept_distance[k - 1];
+  }
+  kept[at] = touch;
+  kept_distance[at] = distance;
+  count = std::min(count + 1, static_cast<int>(N));
+}
+
+/// The nearest of the penetrated touches `penetrated` (nearest first) on the other side of
+/// the node from `best`: normals more than 120° apart (PINCH_COSINE); none when no such face.
+template <std::size_t N>
+SlaveTouch opposite_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>& penetrated,
+                          int count) {
+  for (int k = 0; k < count; ++k)
+    if (penetrated[k].face != best.face && penetrated[k].normal.dot(best.normal) < PINCH_COSINE)
+      return penetrated[k];
+  return SlaveTouch{};
+}
+
 }  // namespace
 
 ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> laws,
@@ -53,6 +82,12 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   const auto n = static_cast<std::size_t>(m_domain.slaves().size());
   m_constraints.assign(n, ContactConstraint{});
   m_touch.assign(n, SlaveTouch{});
+  m_second.assign(n, ContactConstraint{});
+  m_second_touch.assign(n, SlaveTouch{});
+  m_second_force.assign(3 * n, 0.0);
+  m_second_normal_force.assign(n, 0.0);
+  m_second_dissipation.assign(n, 0.0);
+  m_spring.assign(2 * n, Spring{});
   m_normal_force.assign(n, 0.0);
   m_slave_force.assign(3 * n, 0.0);
   m_dissipation.assign(n, 0.0);
@@ -62,8 +97,8 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   for (const InteractionLaw& law : m_laws)
     m_user_stiffness = m_user_stiffness || law.pressure_slope > 0.0;
   if (m_user_stiffness) {
-    m_user_k.assign(n, 0.0);
-    m_user_law.assign(n, NO_INDEX);
+    m_user_k.assign(2 * n, 0.0);
+    m_user_law.assign(2 * n, NO_INDEX);
   }
 }
 
@@ -73,6 +108,7 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   SlaveView v;
   v.slot = s;
   const Index node = m_domain.slaves().nodes()[s];
+  v.node = node;
   v.point = node_point(position, node);
   v.normal = m_domain.slaves().normal(s);
   v.double_sided = m_domain.slave_double_sided(s);
@@ -112,6 +148,8 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
       faces[f].face != held->face)
     return false;
+  // A face of the node's own hex (file comment).
+  if (faces[f].behind(v.node)) return false;
   // A shell face next to the shell node's own elements continues its own shell (file comment).
   if (double_sided && faces[f].shell) {
     bool own = false;
@@ -172,19 +210,48 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
-      if (!m_broad.candidates(s).empty() && !m_domain.slave_rigid(s)) {
+      SlaveTouch second;
+      if (!m_broad.candidates(s).empty()) {
         Real best_distance = std::numeric_limits<Real>::max();
         SlaveTouch candidate;
         Real distance = 0.0;
+        // The nearest penetrated faces, for the touch on the other side (file comment).
+        std::array<SlaveTouch, PENETRATED_KEPT> penetrated;
+        std::array<Real, PENETRATED_KEPT> penetrated_distance{};
+        int n_penetrated = 0;
+        int n_seen = 0;
         const SlaveView view = slave_view(s, position, node_thickness);
-        for (Index f : m_broad.candidates(s))
-          if (admissible(view, f, position, node_thickness, candidate, distance) &&
-              distance < best_distance) {
+        for (Index f : m_broad.candidates(s)) {
+          if (!admissible(view, f, position, node_thickness, candidate, distance)) continue;
+          if (distance < best_distance) {
             best_distance = distance;
             best = candidate;
           }
+          if (candidate.gap < 0.0) {
+            keep_nearest(penetrated, penetrated_distance, n_penetrated, candidate, distance);
+            ++n_seen;
+          }
+        }
+        // Pinched: penetrating its nearest face and one on its other side. A node outside its
+        // nearest face is not pinched, however deep it lies behind a face across its own body
+        // (a corner node of a squashed block behind the block's far side).
+        const bool pinched = best.face != NO_INDEX && best.gap < 0.0;
+        if (pinched) second = opposite_touch(best, penetrated, n_penetrated);
+        if (pinched && second.face == NO_INDEX && n_seen > PENETRATED_KEPT) {
+          // More penetrated faces than kept (a node under the shared corner of many faces on
+          // both sides): look for the other side among all of them.
+          Real second_distance = std::numeric_limits<Real>::max();
+          for (Index f : m_broad.candidates(s))
+            if (admissible(view, f, position, node_thickness, candidate, distance) &&
+                candidate.gap < 0.0 && candidate.face != best.face &&
+                candidate.normal.dot(best.normal) < PINCH_COSINE && distance < second_distance) {
+              second_distance = distance;
+              second = candidate;
+            }
+        }
       }
       m_touch[s] = best;
+      m_second_touch[s] = second;
     });
   errors.rethrow_if_any();
 }
@@ -221,7 +288,7 @@ std::vector<SlaveTouch> ContactEngine::penetrated_faces(Index s, const NodalVect
                                                         std::span<const Real> node_thickness,
                                                         Real tolerance) const {
   std::vector<std::pair<Real, SlaveTouch>> found;
-  if (!m_domain.slave_rigid(s)) {
+  {
     SlaveTouch candidate;
     Real distance = 0.0;
     const SlaveView view = slave_view(s, position, node_thickness);
@@ -258,76 +325,74 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   }
 
   ScopedTimer timer(timers, Phase::ContactForce);
+  // The springs' memory and stiffness, both sides of every slot.
   ParallelErrors errors;
 #pragma omp parallel for schedule(static)
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactForces, s, [&] {
       ContactConstraint& c = m_constraints[s];
+      ContactConstraint& c2 = m_second[s];
       const SlaveTouch& t = m_touch[s];
-      m_dissipation[s] = 0.0;
-      m_stored[s] = 0.0;
-      Vec3 f = Vec3::Zero();
-      Real fn = 0.0;
-      OutputStatus status = OutputStatus::Open;
-      if (m_user_stiffness) m_user_k[s] = 0.0;
-      if (t.face == NO_INDEX) {
-        c.master_face = NO_INDEX;
-        c.status = ContactStatus::Inactive;
-        c.tangential_force = Vec3::Zero();
-      } else {
-        const Index node = slaves.nodes()[s];
-        const Index ia = m_domain.interaction(s, t.face);
-        const InteractionLaw law = ia != NO_INDEX && ia < static_cast<Index>(m_laws.size())
-                                       ? m_laws[ia]
-                                       : InteractionLaw{};
-        const ContactFace& face = faces[t.face];
-        Vec3 v_rel = node_point(velocity_half, node);
-        for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
-        // A touch the increment's motion cannot have made starts without force (file comment).
-        if (m_updated && face.shell && !c.offset_permanent)
-          c.offset = std::max(c.offset, onset_offset(c, t.face, t.gap, t.normal, v_rel, dt));
-        c.gap = t.gap;
-        c.normal = t.normal;
-        const Real master_mass = master_mass_at_point(t.shape, face.nodes, mass, inverse_mass);
-        Real k = penalty_stiffness(law, slaves.areas()[s], mass[node], master_mass, dt_penalty,
-                                   m_options.penalty_scale);
-        k *= t.weight;
-        c.master_face = t.face;
-        c.xi = t.xi;
-        c.eta = t.eta;
-        fn = normal_contact_update(c, t.gap, k);
-        m_stored[s] = penalty_energy(t.gap, c.offset, k);
-        f = fn * t.normal;
-        if (law.pressure_slope > 0.0) {
-          // Counted while closed, or when the approach closes it within the look-ahead.
-          const Real ahead =
-              t.gap + PENALTY_LOOKAHEAD_INCREMENTS * dt_penalty * v_rel.dot(t.normal);
-          const bool acts = fn > 0.0 || penalty_force(ahead, c.offset, k) > 0.0;
-          m_user_k[s] = acts ? k : 0.0;
-          m_user_law[s] = ia;
-        }
-        if (law.friction > 0.0 && dt > 0.0) {
-          const FrictionUpdate fr =
-              friction_update(c.tangential_force, v_rel, t.normal, fn, law.friction, k, dt);
-          c.tangential_force = fr.force;
-          m_dissipation[s] = fr.dissipation;
-          if (k > 0.0) m_stored[s] += 0.5 * fr.force.dot(fr.force) / k;
-          f += fr.force;
-          if (fn > 0.0) status = fr.slipping ? OutputStatus::Slip : OutputStatus::Stick;
-        } else {
-          c.tangential_force = Vec3::Zero();
-          if (fn > 0.0) status = OutputStatus::Slip;
-        }
+      const SlaveTouch& t2 = m_second_touch[s];
+      // The memory of a side follows its side (file comment): each constraint continues
+      // with the touch that looks the way it looked last increment.
+      if ((c.master_face != NO_INDEX || c2.master_face != NO_INDEX) && !c.offset_permanent &&
+          !c2.offset_permanent) {
+        const auto alike = [](const SlaveTouch& now, const ContactConstraint& before) {
+          return now.face != NO_INDEX && before.master_face != NO_INDEX
+                     ? now.normal.dot(before.normal)
+                     : -2.0;
+        };
+        if (alike(t, c2) + alike(t2, c) > alike(t, c) + alike(t2, c2)) std::swap(c, c2);
       }
-      m_normal_force[s] = fn;
-      m_output_status[s] = status;
+      prepare_spring(s, c, t, m_spring[2 * s], position, velocity_half, dt, dt_penalty, mass,
+                     inverse_mass);
+      if (t2.face == NO_INDEX) {
+        // No face on the other side is penetrated: that side's offset is spent (C3).
+        c2.master_face = NO_INDEX;
+        c2.status = ContactStatus::Inactive;
+        c2.tangential_force = Vec3::Zero();
+        if (!c2.offset_permanent) c2.offset = 0.0;
+        c2.penalty_factor = 1.0;
+        m_spring[2 * s + 1].k = 0.0;
+        return;
+      }
+      // A node held with an offset at the start is held on both sides (C3, C6).
+      if (!m_updated && c2.master_face == NO_INDEX && c.offset > 0.0)
+        c2.offset = std::max(c2.offset, -t2.gap);
+      prepare_spring(s, c2, t2, m_spring[2 * s + 1], position, velocity_half, dt, dt_penalty, mass,
+                     inverse_mass);
+    });
+  errors.rethrow_if_any();
+
+  cap_default_springs(dt_penalty, mass, inverse_mass);
+
+#pragma omp parallel for schedule(static)
+  for (Index s = 0; s < n_slave; ++s)
+    errors.guard(ParallelSite::ContactForces, s, [&] {
+      m_dissipation[s] = 0.0;
+      m_second_dissipation[s] = 0.0;
+      m_stored[s] = 0.0;
+      OutputStatus status = OutputStatus::Open;
+      if (m_user_stiffness) m_user_k[2 * s] = m_user_k[2 * s + 1] = 0.0;
+      const Vec3 f = spring_force(s, 0, m_constraints[s], m_touch[s], dt, dt_penalty, status);
       for (int d = 0; d < 3; ++d) m_slave_force[3 * s + d] = f[d];
+      m_normal_force[s] = m_spring[2 * s].fn;
+      const Vec3 f2 =
+          m_second_touch[s].face == NO_INDEX
+              ? Vec3::Zero()
+              : spring_force(s, 1, m_second[s], m_second_touch[s], dt, dt_penalty, status);
+      for (int d = 0; d < 3; ++d) m_second_force[3 * s + d] = f2[d];
+      m_second_normal_force[s] = m_spring[2 * s + 1].fn;
+      m_output_status[s] = status;
     });
   errors.rethrow_if_any();
 
   // Assembly, sums and work, in slot order (independent of the thread count).
-  m_assembly.assemble(slaves, faces, m_touch, m_slave_force, m_normal_force, m_constraints,
-                      m_dissipation, velocity_half, dt, force_internal, totals);
+  m_assembly.assemble(
+      slaves, faces, {m_touch, m_slave_force, m_normal_force, m_constraints, m_dissipation},
+      {m_second_touch, m_second_force, m_second_normal_force, m_second, m_second_dissipation},
+      velocity_half, dt, force_internal, totals);
   for (Index s = 0; s < n_slave; ++s) totals.stored_energy += m_stored[s];
   // A face corner without candidates of its own that carries force: its area and normal
   // (read by the contact output) as the full pass would have made them.
@@ -353,12 +418,140 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   if (m_user_stiffness) {
     m_penalty_sum.reset(static_cast<Index>(mass.size()));
     for (Index s = 0; s < n_slave; ++s)
-      if (m_user_k[s] > 0.0)
-        m_penalty_sum.add_spring(slaves.nodes()[s], faces[m_touch[s].face].nodes, m_touch[s].shape,
-                                 m_user_k[s], m_user_law[s], inverse_mass);
+      for (int side = 0; side < 2; ++side) {
+        const SlaveTouch& t = side == 0 ? m_touch[s] : m_second_touch[s];
+        const Index j = 2 * s + side;
+        if (m_user_k[j] > 0.0)
+          m_penalty_sum.add_spring(slaves.nodes()[s], faces[t.face].nodes, t.shape, m_user_k[j],
+                                   m_user_law[j], inverse_mass);
+      }
     m_penalty_limit = m_penalty_sum.largest(inverse_mass);
   }
   return totals;
+}
+
+void ContactEngine::prepare_spring(Index s, ContactConstraint& c, const SlaveTouch& t,
+                                   Spring& spring, const NodalVectors& position,
+                                   const NodalVectors& velocity_half, Real dt, Real dt_penalty,
+                                   std::span<const Real> mass,
+                                   std::span<const Real> inverse_mass) const {
+  (void)position;
+  spring = Spring{};
+  if (t.face == NO_INDEX) {
+    c.master_face = NO_INDEX;
+    c.status = ContactStatus::Inactive;
+    c.tangential_force = Vec3::Zero();
+    return;
+  }
+  const SlaveNodes& slaves = m_domain.slaves();
+  const Index node = slaves.nodes()[s];
+  spring.interaction = m_domain.interaction(s, t.face);
+  spring.law =
+      spring.interaction != NO_INDEX && spring.interaction < static_cast<Index>(m_laws.size())
+          ? m_laws[spring.interaction]
+          : InteractionLaw{};
+  const ContactFace& face = m_domain.faces()[t.face];
+  Vec3 v_rel = node_point(velocity_half, node);
+  for (int a = 0; a < 4; ++a) v_rel -= t.shape[a] * node_point(velocity_half, face.nodes[a]);
+  spring.v_rel = v_rel;
+  // A touch the increment's motion cannot have made starts without force (file comment).
+  if (m_updated && !c.offset_permanent)
+    c.offset = std::max(c.offset, onset_offset(c, t.face, t.gap, t.normal, v_rel, dt));
+  c.gap = t.gap;
+  c.normal = t.normal;
+  const Real master_mass = master_mass_at_point(t.shape, face.nodes, mass, inverse_mass);
+  Real k = penalty_stiffness(spring.law, slaves.areas()[s], mass[node], master_mass, dt_penalty,
+                             m_options.penalty_scale);
+  k *= t.weight;
+  spring.k = k;
+  spring.acts = -t.gap - c.offset > 0.0;
+}
+
+void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> mass,
+                                        std::span<const Real> inverse_mass) {
+  const SlaveNodes& slaves = m_domain.slaves();
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  const Index n_slave = slaves.size();
+  auto touch_of = [&](Index j) -> const SlaveTouch& {
+    return j % 2 == 0 ? m_touch[j / 2] : m_second_touch[j / 2];
+  };
+  auto counted = [&](const Spring& spring) {
+    return spring.k > 0.0 && spring.acts && !(spring.law.pressure_slope > 0.0);
+  };
+  m_default_sum.reset(static_cast<Index>(mass.size()));
+  bool any = false;
+  for (Index j = 0; j < 2 * n_slave; ++j) {
+    const Spring& spring = m_spring[j];
+    if (!counted(spring)) continue;
+    const SlaveTouch& t = touch_of(j);
+    m_default_sum.add_spring(slaves.nodes()[j / 2], faces[t.face].nodes, t.shape, spring.k,
+                             NO_INDEX, inverse_mass);
+    any = true;
+  }
+  // The user's penalty scale raises every default spring, and the node budget with them.
+  const Real budget =
+      DEFAULT_PENALTY_NODE_BUDGET * m_options.penalty_scale / (dt_penalty * dt_penalty);
+  for (Index j = 0; j < 2 * n_slave; ++j) {
+    Spring& spring = m_spring[j];
+    ContactConstraint& c = j % 2 == 0 ? m_constraints[j / 2] : m_second[j / 2];
+    Real factor = 1.0;
+    if (any && counted(spring)) {
+      const SlaveTouch& t = touch_of(j);
+      Real largest = m_default_sum.row(slaves.nodes()[j / 2]) * inverse_mass[slaves.nodes()[j / 2]];
+      for (int a = 0; a < 4; ++a)
+        if (t.shape[a] > 0.0 && inverse_mass[faces[t.face].nodes[a]] > 0.0)
+          largest = std::max(largest, m_default_sum.row(faces[t.face].nodes[a]) *
+                                          inverse_mass[faces[t.face].nodes[a]]);
+      if (largest > budget) factor = budget / largest;
+    }
+    // A spring whose share rises would hold more energy at the same depth than the motion
+    // put in: the offset takes up the difference, so the stored energy stays (C3's offset
+    // never pushes).
+    if (factor > c.penalty_factor && spring.acts && !c.offset_permanent) {
+      const Real excess = -c.gap - c.offset;
+      c.offset = -c.gap - std::sqrt(c.penalty_factor / factor) * excess;
+    }
+    c.penalty_factor = spring.acts ? factor : 1.0;
+    if (factor < 1.0) spring.k *= factor;
+  }
+}
+
+Vec3 ContactEngine::spring_force(Index s, int side, ContactConstraint& c, const SlaveTouch& t,
+                                 Real dt, Real dt_penalty, OutputStatus& status) {
+  Spring& spring = m_spring[2 * s + side];
+  spring.fn = 0.0;
+  if (t.face == NO_INDEX) return Vec3::Zero();
+  const Real k = spring.k;
+  const InteractionLaw& law = spring.law;
+  c.master_face = t.face;
+  c.xi = t.xi;
+  c.eta = t.eta;
+  const Real fn = normal_contact_update(c, t.gap, k);
+  spring.fn = fn;
+  m_stored[s] += penalty_energy(t.gap, c.offset, k);
+  Vec3 f = fn * t.normal;
+  if (law.pressure_slope > 0.0) {
+    // Counted while closed, or when the approach closes it within the look-ahead.
+    const Real ahead =
+        t.gap + PENALTY_LOOKAHEAD_INCREMENTS * dt_penalty * spring.v_rel.dot(t.normal);
+    const bool acts = fn > 0.0 || penalty_force(ahead, c.offset, k) > 0.0;
+    m_user_k[2 * s + side] = acts ? k : 0.0;
+    m_user_law[2 * s + side] = spring.interaction;
+  }
+  if (law.friction > 0.0 && dt > 0.0) {
+    const FrictionUpdate fr =
+        friction_update(c.tangential_force, spring.v_rel, t.normal, fn, law.friction, k, dt);
+    c.tangential_force = fr.force;
+    (side == 0 ? m_dissipation : m_second_dissipation)[s] = fr.dissipation;
+    if (k > 0.0) m_stored[s] += 0.5 * fr.force.dot(fr.force) / k;
+    f += fr.force;
+    if (fn > 0.0 && status != OutputStatus::Stick)
+      status = fr.slipping ? OutputStatus::Slip : OutputStatus::Stick;
+  } else {
+    c.tangential_force = Vec3::Zero();
+    if (fn > 0.0 && status == OutputStatus::Open) status = OutputStatus::Slip;
+  }
+  return f;
 }
 
 PenaltyLimit ContactEngine::estimate_penalty_limit(std::span<const Real> inverse_mass) const {

@@ -24,25 +24,48 @@
 ///   with one of them): that face continues the node's own shell. Where an element is
 ///   narrower than the thickness, the node lies within t of it, beside its edge by less than
 ///   its penetration, and would touch it a thickness deep.
+/// - the face is not a face of a hex the node belongs to (ContactFace::behind): the node lies
+///   on that element's boundary, and when the element is squashed (the first layer of a Taylor
+///   bar flattening on a plate) its far nodes come within the depth limit of the face and, as
+///   the rim folds, their normals turn against it: a spring a whole element deep, from nowhere.
 /// A node pressed onto one side of a shell stays with that side: the other side of the same
 /// element is not admissible while the constraint is closed, so a deep penetration is pushed
 /// back rather than through.
 /// Shell sides are at ±t/2 of the mid-surface (ContactFace), and a shell slave node carries
 /// half its own thickness: its gap is the distance to the face's contact surface minus t/2.
 ///
-/// Onset of a touch on a shell face: every rule above turns a face admissible for a node at
-/// some instant, and a node can be inside the face's slab at that instant (a folding wall
-/// turning a face towards a node beside its edge, the lateral rule admitting a node beside
-/// an edge a shell thickness behind the face's plane, a node past a shell's mid-surface
-/// seeing the other side). From the second update of the step on, a touch on another face
-/// than last increment's is only as deep as the relative approach of the increment made it
-/// (plus the penetration carried from a face on the same side); the rest becomes the node's
-/// offset (onset_offset, penalty.hpp), which shrinks as the node comes out (SPEC C3). So no
-/// spring starts with energy the motion did not put in, and a node that has crossed a wall is
+/// Onset of a touch: every rule above turns a face admissible for a node at some instant, and
+/// a node can be inside the face's slab at that instant (a folding wall turning a face towards
+/// a node beside its edge, the lateral rule admitting a node beside an edge a shell thickness
+/// behind the face's plane, a node past a shell's mid-surface seeing the other side, a shell
+/// node coming round the edge of a solid's face at speed). From the second update of the step on, a
+/// touch on another face than last increment's is only as deep as the relative approach of the
+/// increment made it (plus the penetration carried from a face on the same side); the rest becomes
+/// the node's offset (onset_offset, penalty.hpp), which shrinks as the node comes out (SPEC C3). So
+/// no spring starts with energy the motion did not put in, and a node that has crossed a wall is
 /// not pushed on through it by the other side (what a user of double-sided shell contact
 /// expects: a node found deep in a wall is not shot out of it). The first update of an
 /// engine takes its touches as they are: the deep ones the overclosure pass left to the
 /// penalty ("ignored", C4) are pushed out as before.
+///
+/// A node pinched between two faces (a sheet between two dies, folded layers of a crushed
+/// tube) touches both: besides its nearest admissible face, the nearest penetrated admissible
+/// face on its other side (normals more than 120° apart, PINCH_COSINE) gets a second
+/// constraint with its own offset and memory. With one constraint the nearest face flips
+/// between the sides from one increment to the next and the node is pushed one way, then
+/// the other (energy from nowhere, or a deep onset taken as offset: the dies pass through).
+/// Each side keeps its memory while the touches change order: the touch that looks the way
+/// last increment's second touch looked continues it. A node held with an offset at the
+/// start holds its other side with its own depth there (C3, C6); a side no face penetrates
+/// any more has spent its offset.
+///
+/// Several springs on one node: the default penalty is sized so that one spring on a node
+/// stays within the central-difference limit with the elements; a node under several
+/// (pinched, folded layers, pressed corners, both views of a balanced pair) sees their sum.
+/// Every increment the row sums of the springs' stiffness matrices bound ω²Δt² per node
+/// (penalty_increment.hpp); where they exceed DEFAULT_PENALTY_NODE_BUDGET the springs on the
+/// node are scaled down to it. A spring whose share rises again moves its offset so that it
+/// holds no more energy than before (cap_default_springs).
 ///
 /// Force: f = w·k·max(0, d − d0) along the contact normal with w the view weight (½ for each
 /// view of a balanced pair) and k the penalty stiffness: k = slope·A (tributary area A) for a
@@ -110,6 +133,10 @@ class ContactEngine {
   std::vector<ContactConstraint>& constraints() { return m_constraints; }
   /// Normal force of the slave node's own constraint (weight included), N; per slave slot.
   Real normal_force(Index s) const { return m_normal_force[s]; }
+  /// The touch on the other side of slave slot s (a pinched node; face NO_INDEX: none) and
+  /// its normal force (weight included), N.
+  const SlaveTouch& second_touch(Index s) const { return m_second_touch[s]; }
+  Real second_normal_force(Index s) const { return m_second_normal_force[s]; }
   /// Total contact force on the node of slave slot s (as slave and as face corner), N.
   Vec3 nodal_force(Index s) const { return m_assembly.nodal_force(s); }
   OutputStatus output_status(Index s) const { return m_output_status[s]; }
@@ -143,6 +170,7 @@ class ContactEngine {
   /// face it is held on (side memory) or null.
   struct SlaveView {
     Index slot = NO_INDEX;
+    Index node = NO_INDEX;
     Vec3 point = Vec3::Zero();
     Vec3 normal = Vec3::Zero();
     bool double_sided = false;
@@ -158,6 +186,32 @@ class ContactEngine {
   };
   SlaveView slave_view(Index s, const NodalVectors& position,
                        std::span<const Real> node_thickness) const;
+  /// What the force pass needs of one spring (a side of a slave slot), from the pass before
+  /// it: stiffness (N/m, view weight included; capped by cap_default_springs), the interaction
+  /// and its law, the relative velocity of the node to the face point (m/s), whether the spring
+  /// is loaded beyond its offset, and the normal force it gave (N).
+  struct Spring {
+    Real k = 0.0;
+    Index interaction = NO_INDEX;
+    InteractionLaw law;
+    Vec3 v_rel = Vec3::Zero();
+    bool acts = false;
+    Real fn = 0.0;
+  };
+  /// The onset offset, memory (gap, normal) and stiffness of the spring of slot s on touch
+  /// `t` (none: the constraint becomes inactive), into `spring`.
+  void prepare_spring(Index s, ContactConstraint& c, const SlaveTouch& t, Spring& spring,
+                      const NodalVectors& position, const NodalVectors& velocity_half, Real dt,
+                      Real dt_penalty, std::span<const Real> mass,
+                      std::span<const Real> inverse_mass) const;
+  /// Scales the default-penalty springs down where the springs on one node together would
+  /// exceed DEFAULT_PENALTY_NODE_BUDGET (file comment), in slot order.
+  void cap_default_springs(Real dt_penalty, std::span<const Real> mass,
+                           std::span<const Real> inverse_mass);
+  /// Normal law, friction and energies of side `side` (0, 1) of slot s; returns the force on
+  /// the slave node (N) and raises `status` to what the spring does.
+  Vec3 spring_force(Index s, int side, ContactConstraint& c, const SlaveTouch& t, Real dt,
+                    Real dt_penalty, OutputStatus& status);
   /// Whether face f is admissible for the slave node `v` at `position` (file comment); if so,
   /// the touch is written to `out` and its distance to the closest point to `distance`.
   bool admissible(const SlaveView& v, Index f, const NodalVectors& position,
@@ -168,16 +222,25 @@ class ContactEngine {
   ContactOptions m_options;
   BroadPhase m_broad;
   std::vector<ContactConstraint> m_constraints;
-  std::vector<SlaveTouch> m_touch;   // per slave slot, written by search()
-  std::vector<Real> m_normal_force;  // (n_slave)
-  std::vector<Real> m_slave_force;   // (n_slave × 3): force on the slave node itself
-  std::vector<Real> m_dissipation;   // (n_slave)
-  std::vector<Real> m_stored;        // (n_slave): energy in the slot's springs, J
+  std::vector<SlaveTouch> m_touch;  // per slave slot, written by search()
+  // The other side of a pinched node (file comment): its constraint, touch, force on the
+  // slave node (n_slave × 3, N) and normal force (N), per slot.
+  std::vector<ContactConstraint> m_second;
+  std::vector<SlaveTouch> m_second_touch;
+  std::vector<Real> m_second_force;
+  std::vector<Real> m_second_normal_force;
+  std::vector<Real> m_second_dissipation;
+  std::vector<Spring> m_spring;       // (2 n_slave): side 0 at 2s, side 1 at 2s + 1
+  PenaltyStiffnessSum m_default_sum;  // row sums of the default springs (cap_default_springs)
+  std::vector<Real> m_normal_force;   // (n_slave)
+  std::vector<Real> m_slave_force;    // (n_slave × 3): force on the slave node itself
+  std::vector<Real> m_dissipation;    // (n_slave)
+  std::vector<Real> m_stored;         // (n_slave): energy in the slot's springs, J
   std::vector<OutputStatus> m_output_status;
   ForceAssembly m_assembly;       // nodal forces and pair sums (stage 5)
   bool m_user_stiffness = false;  // some law has its own stiffness (a LINEAR slope)
-  std::vector<Real> m_user_k;     // (n_slave) user-stiffness spring counted this update, N/m
-  std::vector<Index> m_user_law;  // (n_slave) its interaction
+  std::vector<Real> m_user_k;     // (2 n_slave) user-stiffness springs counted this update, N/m
+  std::vector<Index> m_user_law;  // (2 n_slave) their interaction
   bool m_updated = false;         // an update() has run: constraints hold last increment's touches
   // Slots with candidate faces at the last broad-phase build (n_slave) and the faces around
   // them (n_faces): update() refreshes the areas and normals of these slots only, the only

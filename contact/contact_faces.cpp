@@ -50,6 +50,15 @@ ContactFace make_face(const std::array<Index, 4>& nodes, Index element, std::uin
   return cf;
 }
 
+/// Hex face f of the element with nodes `element_nodes`, with the element's other nodes.
+ContactFace make_hex_face(const Index* element_nodes, std::uint8_t f, Index element,
+                          Index surface) {
+  ContactFace cf = make_face(hex_face_nodes(element_nodes, f), element, f, false, surface);
+  const int* c = HEX_FACE_CORNERS[OPPOSITE_HEX_FACE[f]];
+  for (int a = 0; a < 4; ++a) cf.back[a] = element_nodes[c[a]];
+  return cf;
+}
+
 Vec3 cross_diagonals(const Vec3 corner[4]) {
   return (corner[2] - corner[0]).cross(corner[3] - corner[1]);
 }
@@ -76,7 +85,7 @@ std::vector<ContactFace> exterior_faces(const ElementTopology& topology, Index s
     for (int f = 0; f < 6; ++f) {
       const auto nodes = hex_face_nodes(en, f);
       if (count.at(sorted_key(nodes)) == 1)
-        faces.push_back(make_face(nodes, e, static_cast<std::uint8_t>(f), false, surface));
+        faces.push_back(make_hex_face(en, static_cast<std::uint8_t>(f), e, surface));
     }
   }
   for (Index e = 0; e < n_elements; ++e) {
@@ -100,7 +109,7 @@ std::vector<ContactFace> surface_faces(const ElementTopology& topology,
     switch (topology.kinds[r.element]) {
       case ElementKind::Hex:
         if (r.face > 5) break;
-        faces.push_back(make_face(hex_face_nodes(en, r.face), r.element, r.face, false, surface));
+        faces.push_back(make_hex_face(en, r.face, r.element, surface));
         continue;
       case ElementKind::Shell:
         if (r.face > 1) break;

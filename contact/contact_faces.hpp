@@ -36,6 +36,8 @@ enum class ElementKind : std::uint8_t {
 /// cycle points INTO the element (Abaqus face numbering).
 inline constexpr int HEX_FACE_CORNERS[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1},
                                                {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}};
+/// The hex face opposite each face S1..S6 (0..5).
+inline constexpr int OPPOSITE_HEX_FACE[6] = {1, 0, 4, 5, 2, 3};
 /// Face numbers of a shell element (those of the deck's `*SURFACE` SNEG / SPOS).
 inline constexpr std::uint8_t SHELL_SNEG = 0;
 inline constexpr std::uint8_t SHELL_SPOS = 1;
@@ -64,6 +66,15 @@ struct ContactFace {
   /// Shell face: its contact surface is the mid-surface moved by half the node thickness
   /// along the face normal (outward, for SPOS and SNEG alike).
   bool shell = false;
+  /// Hex face: the element's four other nodes (those of the opposite face), which may never
+  /// touch this face: a node of the element lies on the element's own boundary, and a face
+  /// of its own element is "behind" it only because the element is squashed (NO_INDEX for a
+  /// shell face).
+  std::array<Index, 4> back{NO_INDEX, NO_INDEX, NO_INDEX, NO_INDEX};
+  /// Whether `node` is one of the element's nodes that are not corners of this face.
+  bool behind(Index node) const {
+    return back[0] == node || back[1] == node || back[2] == node || back[3] == node;
+  }
 };
 
 /// Exterior faces of the hexes (outward corner order, each once) followed by both sides of

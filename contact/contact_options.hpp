@@ -31,6 +31,24 @@ inline constexpr Real PENALTY_INCREMENT_BUDGET = DEFAULT_PENALTY_FACTOR;
 /// ω_cΔt = 1.49, 6 % at 1.67 and failed at 1.86.
 inline constexpr Real PENALTY_ALONE_BUDGET = 2.0;
 
+/// Largest ω²Δt² bound that the default-penalty springs on one node may reach together
+/// (row-sum bound of penalty_increment.hpp). A spring on a rigid master, or the two views of
+/// equal masses face to face, reach DEFAULT_PENALTY_FACTOR (½) by construction; a light node
+/// against a heavy face in a balanced pair reaches up to twice that (its own spring and its
+/// share of the other view's spring, each ½ k/m of the light node: 0.80–0.97 measured on the
+/// example decks). A node pinched between two faces, under folded shell layers or at a corner
+/// pressed from several sides would reach more: its springs are scaled down to this bound,
+/// which every single contact stays within. The bound is for the penalty scale factor 1: a
+/// user's factor s multiplies it (the scale is the user's choice of stiffness, not undone).
+/// The bound is loose (Gershgorin, and the contact direction is rarely the elements' stiffest
+/// mode): the contact stability stress tests hold at it.
+inline constexpr Real DEFAULT_PENALTY_NODE_BUDGET = 1.0;
+
+/// The nearest penetrated faces a slave node keeps in the search for the face on its other
+/// side (a pinched node); a node under more (the shared corner of four faces on each side)
+/// searches its candidates once more.
+inline constexpr int PENETRATED_KEPT = 8;
+
 /// A user-stiffness spring counts in the increment limit when it is closed, or open but
 /// closing within this many increments at its current normal approach speed: a spring that
 /// closes during the next increment is then already in the increment that takes it.
@@ -59,7 +77,7 @@ inline constexpr Real OPPOSING_COSINE = 0.2;
 /// a thin wall never touches the inner skin of that wall.
 inline constexpr Real DEPTH_LIMIT_FRACTION = 0.5;
 
-/// A touch on a shell face other than last increment's is taken as it is while it is no
+/// A touch on a face other than last increment's is taken as it is while it is no
 /// deeper than this many times the relative approach of the increment along its normal (plus
 /// the penetration carried over from a face on the same side), else what lies beyond the
 /// approach becomes offset (onset_offset, penalty.hpp). 2 leaves the rounding and the face's

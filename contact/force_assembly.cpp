@@ -14,45 +14,50 @@ ForceAssembly::ForceAssembly(Index n_slave, Index n_pairs) {
 }
 
 void ForceAssembly::assemble(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
-                             std::span<const SlaveTouch> touch, std::span<const Real> slave_force,
-                             std::span<const Real> normal_force,
-                             std::span<const ContactConstraint> constraints,
-                             std::span<const Real> dissipation, const NodalVectors& velocity_half,
-                             Real dt, NodalVectors& force_internal, ContactTotals& totals) {
+                             const SpringSet& first, const SpringSet& second,
+                             const NodalVectors& velocity_half, Real dt,
+                             NodalVectors& force_internal, ContactTotals& totals) {
   const Index n_slave = slaves.size();
   m_previous_force.swap(m_force);
   std::fill(m_force.begin(), m_force.end(), 0.0);
   std::fill(m_pair_normal.begin(), m_pair_normal.end(), 0.0);
   std::fill(m_pair_friction.begin(), m_pair_friction.end(), 0.0);
-  for (Index s = 0; s < n_slave; ++s) {
-    const SlaveTouch& t = touch[s];
-    if (t.face == NO_INDEX) continue;
-    const Vec3 f(slave_force[3 * s], slave_force[3 * s + 1], slave_force[3 * s + 2]);
-    if (f.dot(f) == 0.0) continue;
-    const Index node = slaves.nodes()[s];
-    for (int d = 0; d < 3; ++d) {
-      m_force[3 * s + d] += f[d];
-      force_internal(node, d) -= f[d];
-    }
-    const ContactFace& face = faces[t.face];
-    for (int a = 0; a < 4; ++a) {
-      const Index corner = face.nodes[a];
-      const Index cs = slaves.slot(corner);
-      for (int d = 0; d < 3; ++d) {
-        const Real share = t.shape[a] * f[d];
-        m_force[3 * cs + d] -= share;
-        force_internal(corner, d) += share;
-      }
-    }
-    ++totals.closed;
-    if (t.pair != NO_INDEX) {
-      m_pair_normal[t.pair] += normal_force[s];
-      const Vec3& ft = constraints[s].tangential_force;
-      m_pair_friction[t.pair] += std::sqrt(ft.dot(ft));
-    }
-    totals.friction_dissipation += dissipation[s];
-  }
+  for (Index s = 0; s < n_slave; ++s) add_spring(slaves, faces, first, s, force_internal, totals);
+  for (Index s = 0; s < n_slave; ++s)
+    if (second.touch[s].face != NO_INDEX)
+      add_spring(slaves, faces, second, s, force_internal, totals);
   if (dt > 0.0) add_work(slaves, velocity_half, dt, totals.work);
+}
+
+void ForceAssembly::add_spring(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
+                               const SpringSet& set, Index s, NodalVectors& force_internal,
+                               ContactTotals& totals) {
+  const SlaveTouch& t = set.touch[s];
+  if (t.face == NO_INDEX) return;
+  const Vec3 f(set.slave_force[3 * s], set.slave_force[3 * s + 1], set.slave_force[3 * s + 2]);
+  if (f.dot(f) == 0.0) return;
+  const Index node = slaves.nodes()[s];
+  for (int d = 0; d < 3; ++d) {
+    m_force[3 * s + d] += f[d];
+    force_internal(node, d) -= f[d];
+  }
+  const ContactFace& face = faces[t.face];
+  for (int a = 0; a < 4; ++a) {
+    const Index corner = face.nodes[a];
+    const Index cs = slaves.slot(corner);
+    for (int d = 0; d < 3; ++d) {
+      const Real share = t.shape[a] * f[d];
+      m_force[3 * cs + d] -= share;
+      force_internal(corner, d) += share;
+    }
+  }
+  ++totals.closed;
+  if (t.pair != NO_INDEX) {
+    m_pair_normal[t.pair] += set.normal_force[s];
+    const Vec3& ft = set.constraints[s].tangential_force;
+    m_pair_friction[t.pair] += std::sqrt(ft.dot(ft));
+  }
+  totals.friction_dissipation += set.dissipation[s];
 }
 
 void ForceAssembly::add_work(const SlaveNodes& slaves, const NodalVectors& velocity_half, Real dt,

@@ -38,19 +38,26 @@ class ForceAssembly {
   /// Room for `n_slave` slave slots and `n_pairs` included pairs, every force zero.
   ForceAssembly(Index n_slave, Index n_pairs);
 
-  /// One increment: per slave slot s with a touch (`touch`, written by the search), the force
-  /// on the slave node `slave_force` (n_slave × 3, N, normal plus friction, view weight
-  /// included) is subtracted from `force_internal` (n_nodes × 3, N) at the node and added at
-  /// the face corners with the weights N_I; the normal force `normal_force` (n_slave, N) and
-  /// the friction force magnitude of `constraints` go to the pair sums, the frictional
-  /// dissipation `dissipation` (n_slave, J) and the count of loaded nodes to `totals`. Then
+  /// The springs of one side of every slave slot (ContactEngine: the nearest face, and the
+  /// face on the other side of a pinched node), n_slave each.
+  struct SpringSet {
+    std::span<const SlaveTouch> touch;               ///< the touch, written by the search
+    std::span<const Real> slave_force;               ///< (n_slave × 3) force on the slave node, N
+    std::span<const Real> normal_force;              ///< normal force, N
+    std::span<const ContactConstraint> constraints;  ///< for the friction force
+    std::span<const Real> dissipation;               ///< frictional dissipation of the increment, J
+  };
+
+  /// One increment: per slave slot s with a touch in `first`, then per slot with one in
+  /// `second`, the force on the slave node (normal plus friction, view weight included) is
+  /// subtracted from `force_internal` (n_nodes × 3, N) at the node and added at the face
+  /// corners with the weights N_I; the normal force and the friction force magnitude go to the
+  /// pair sums, the frictional dissipation and the count of loaded springs to `totals`. Then
   /// the work of the nodal forces over the increment with velocities `velocity_half`
   /// (n_nodes × 3, m/s) and length dt (s; none when dt ≤ 0) is added to `totals.work`.
   void assemble(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
-                std::span<const SlaveTouch> touch, std::span<const Real> slave_force,
-                std::span<const Real> normal_force, std::span<const ContactConstraint> constraints,
-                std::span<const Real> dissipation, const NodalVectors& velocity_half, Real dt,
-                NodalVectors& force_internal, ContactTotals& totals);
+                const SpringSet& first, const SpringSet& second, const NodalVectors& velocity_half,
+                Real dt, NodalVectors& force_internal, ContactTotals& totals);
 
   /// Total contact force on the node of slave slot s (as slave and as face corner), N.
   Vec3 nodal_force(Index s) const {
@@ -62,6 +69,10 @@ class ForceAssembly {
   const std::vector<Real>& pair_friction_force() const { return m_pair_friction; }
 
  private:
+  /// The force of slot s's spring in `set` onto the nodes and the sums (assemble).
+  void add_spring(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
+                  const SpringSet& set, Index s, NodalVectors& force_internal,
+                  ContactTotals& totals);
   /// Trapezoidal work ½ (f_n + f_{n−1})·v_{n+1/2} Δt of the assembled forces, added to `work`.
   void add_work(const SlaveNodes& slaves, const NodalVectors& velocity_half, Real dt,
                 Real& work) const;

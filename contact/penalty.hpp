@@ -42,6 +42,9 @@ struct ContactConstraint {
   /// the onset rule of a touch on another face (ContactEngine).
   Real gap = 0.0;
   Vec3 normal = Vec3::Zero();
+  /// Share of its default stiffness the spring had at the last update (≤ 1: several springs
+  /// on one node share its budget, ContactEngine); 1 for a spring that was not loaded.
+  Real penalty_factor = 1.0;
 };
 
 /// Normal force magnitude f = k·max(0, d − d0) for gap g (d = −g, m), offset d0 (m) and

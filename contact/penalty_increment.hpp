@@ -50,6 +50,8 @@ class PenaltyStiffnessSum {
   void add_spring(Index slave_node, const std::array<Index, 4>& corners,
                   const std::array<Real, 4>& weights, Real k, Index interaction,
                   std::span<const Real> inverse_mass);
+  /// Row sum of node i so far, N/m (0 for a node no spring reaches).
+  Real row(Index i) const { return m_row[i]; }
   /// The node with the largest row sum times its inverse mass (ties: the lower node index).
   PenaltyLimit largest(std::span<const Real> inverse_mass) const;
 

@@ -8,6 +8,15 @@ PACKAGES=(
   build-essential cmake libeigen3-dev libhdf5-dev hdf5-tools catch2 libomp-dev
   python3-h5py python3-meshio python3-matplotlib python3-numpy
 )
+# XPL_WITH_PARAVIEW=1 adds ParaView's Python and a virtual X server, for the tests that look at
+# results the way ParaView shows them (app_viz_paraview, app_viz_screenshot; skipped without
+# them) and scripts/paraview_screenshot.py. Not by default: on the 2-core development VM (niced,
+# load ~15 from other builds) the install took 12 min (paraview, xvfb, xauth: 10.7 min, 73 of
+# 143 MB to download, 725 MB installed, most of the time unpacking; python3-paraview: 1.2 min),
+# a third of the CI budget for tests of ~40 s; an idle machine is faster, but not seconds.
+if [[ ${XPL_WITH_PARAVIEW:-0} == 1 ]]; then
+  PACKAGES+=(paraview python3-paraview xvfb xauth)
+fi
 
 is_installed() {
   # `dpkg -s` also succeeds for removed-but-not-purged packages: check the status line.

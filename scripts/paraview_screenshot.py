@@ -1,51 +1,57 @@
-"""Off-screen ParaView picture of an xpl result: shells coloured by MISES_MAX, plus the sets.
+"""Off-screen ParaView picture of an xpl result, made the way README.md tells a user to look.
 
 Run with ParaView's Python (5.11), under a virtual X server when there is no display:
 
     xvfb-run -a pvpython scripts/paraview_screenshot.py JOB.xdmf OUT.png [--frame N]
+        [--field NAME] [--sets] [--size WxH] [--title TEXT] [--zoom Z]
 
-Left view: the frame (default: the last) read with the Xdmf3 Reader S, warped by U (scale 1),
-the S4R shells coloured by the cell field MISES_MAX (largest Mises stress through the
-thickness), the other elements (rigid plates) translucent grey; the title names the
-element id of the peak cell (element_id cell data). Right view: the node and element sets
-the way ParaView's readers expose them, drawn on the undeformed mesh, one colour per set, and
-listed with their sizes.
+The view is what ParaView shows after *File > Open* JOB.xdmf (the Xdmf3 Reader S), *Apply*,
+*Last Frame* and *Filters > Warp By Vector* (U, scale 1), *Apply*: the deformed model coloured
+by the field the file makes the default (MISES_MAX on shell models, MISES on solids), or by
+`--field`. Shells and solids together: the solids are drawn translucent grey (rigid plates
+beside a crushed tube). The colour bar is labelled with the field's unit from JOB.h5 (MPa for
+a deck that states `** xpl: UNITS=MM-T-S`), and the title names the element of the peak.
+`--sets` adds a right-hand view of the deck's node and element sets, read from their 0/1
+arrays (NSET_NAME, ELSET_NAME) on the undeformed mesh, one colour per set.
 
-Why it is done this way (ParaView 5.11 as packaged by Debian, under xvfb):
-* The Xdmf3 reader turns every XDMF `Set` on by default and adds it as a block without any
-  cell data; those blocks lie on top of the mesh and are drawn in the solid colour, which is
-  what made an earlier attempt show grey surfaces under a correct scalar bar. Here its `Sets`
-  list is emptied, so the only block is the mesh with its fields.
-* The sets are read with the legacy XDMF Reader, whose `SetStatus` lists each set once and
-  names its blocks after the sets. The Xdmf3 reader lists every set once per frame
-  (`NAME`, `NAME[1]` ... `NAME[N]`), because each frame of JOB.xdmf repeats the `Set`
-  elements; the count of that list is printed in the picture too.
+Printed for tests: `colour ASSOCIATION FIELD` (the colouring ParaView chose when the file was
+shown), `bounds undeformed X0 X1 Y0 Y1 Z0 Z1` and `bounds deformed ...` (the reader's and the
+warped model's), `peak FIELD VALUE element_id ID`, `sets NAME ...` (with --sets), `wrote
+OUT.png`.
+
+ParaView 5.11 as packaged by Debian has no EGL or OSMesa build: off-screen rendering without an
+X server (`--force-offscreen-rendering`) crashes in XSync, hence xvfb-run. pvpython may abort
+while it tears down after the picture is written; the script ends with os._exit(0).
 """
 import argparse
+import math
 import os
-import re
 import sys
 
+import h5py
+import paraview.simple
 from paraview import servermanager
 from paraview.simple import (
     ColorBy,
     CreateLayout,
     CreateRenderView,
-    ExtractBlock,
+    ExtractSelection,
+    GetAnimationScene,
     GetColorTransferFunction,
     GetScalarBar,
+    Hide,
     MergeBlocks,
+    OpenDataFile,
     Render,
     SaveScreenshot,
+    SelectionQuerySource,
     Show,
     Text,
     Threshold,
     WarpByVector,
-    XDMFReader,
-    Xdmf3ReaderS,
 )
 
-# One colour per set in the right view (RGB, 0..1), cycled.
+# One colour per set in the sets view (RGB, 0..1), cycled.
 SET_COLOURS = [
     (0.89, 0.10, 0.11),
     (0.22, 0.49, 0.72),
@@ -57,12 +63,13 @@ SET_COLOURS = [
     (0.40, 0.40, 0.40),
 ]
 
-# What the shell fields mean, for the title.
+# What the fields mean, for the title.
 MEANING = {
-    "MISES_MAX": " (largest Mises through the thickness)",
-    "MISES_SPOS": " (Mises at the top surface, SPOS)",
-    "MISES_SNEG": " (Mises at the bottom surface, SNEG)",
-    "MISES": " (Mises at the middle section point)",
+    "MISES_MAX": "largest Mises stress through the thickness",
+    "MISES_SPOS": "Mises stress at the top surface (SPOS)",
+    "MISES_SNEG": "Mises stress at the bottom surface (SNEG)",
+    "MISES": "Mises stress",
+    "PEEQ": "equivalent plastic strain",
 }
 
 
@@ -72,212 +79,247 @@ def parse_args(argv):
     parser.add_argument("png", help="picture to write")
     parser.add_argument("--frame", type=int, default=-1,
                         help="frame index in JOB.xdmf (default -1: the last)")
-    parser.add_argument("--field", default="MISES_MAX", help="cell field to colour the shells by")
-    parser.add_argument("--size", default="1600x800", help="picture size WIDTHxHEIGHT in pixels")
+    parser.add_argument("--field", default="",
+                        help="cell field to colour by (default: the file's default colouring)")
+    parser.add_argument("--sets", action="store_true", help="add a view of the node and element sets")
+    parser.add_argument("--size", default="", help="picture size WIDTHxHEIGHT in pixels "
+                        "(default 900x700, 1600x800 with --sets)")
+    parser.add_argument("--title", default="", help="first line of the title (default: the job)")
+    parser.add_argument("--zoom", type=float, default=1.0, help="camera zoom of the model view")
     return parser.parse_args(argv)
 
 
-def blocks(data):
-    """(name, block) of every leaf of a fetched composite data set, in order."""
-    out = []
-    it = data.NewIterator()
-    it.InitTraversal()
-    while not it.IsDoneWithTraversal():
-        meta = it.GetCurrentMetaData()
-        name = meta.Get(data.NAME()) if meta is not None and meta.Has(data.NAME()) else ""
-        out.append((name, it.GetCurrentDataObject()))
-        it.GoToNextItem()
-    return out
+def first_block(data):
+    """The first vtkDataSet of a fetched (composite) data object."""
+    while not data.IsA("vtkDataSet"):
+        data = data.GetPiece(0) if data.IsA("vtkMultiPieceDataSet") else data.GetBlock(0)
+    return data
 
 
-def cell_array(block, name):
-    array = block.GetCellData().GetArray(name)
+def cell_values(source, name):
+    data = first_block(servermanager.Fetch(source))
+    array = data.GetCellData().GetArray(name)
     if array is None:
         sys.exit(f"paraview_screenshot.py: the reader gives no cell array {name}")
     return [array.GetValue(i) for i in range(array.GetNumberOfTuples())]
 
 
-def stress_view(xdmf, frame, field, size):
-    reader = Xdmf3ReaderS(registrationName="xdmf3", FileName=[xdmf])
-    reader.UpdatePipelineInformation()
-    times = list(reader.TimestepValues)
-    time = times[frame]
-    set_entries = list(reader.Sets)
-    reader.Sets = []  # set blocks carry no fields and would be drawn grey over the mesh
-    if field not in reader.CellArrays:
-        sys.exit(f"paraview_screenshot.py: {xdmf} has no cell field {field}")
-    reader.UpdatePipeline(time)
+def h5_of(xdmf):
+    """JOB.h5 beside JOB.xdmf."""
+    return os.path.join(os.path.dirname(xdmf), os.path.splitext(os.path.basename(xdmf))[0] + ".h5")
 
-    mesh = MergeBlocks(registrationName="mesh", Input=reader)
-    warped = WarpByVector(registrationName="warped", Input=mesh)
-    warped.Vectors = ["POINTS", "U"]
-    warped.ScaleFactor = 1.0
-    tube = Threshold(registrationName="shells", Input=warped)
-    # Shells are the cells with a finite local-axes stress (S_LOCAL is NaN on solids).
-    tube.Scalars = ["CELLS", "S_LOCAL"]
-    tube.LowerThreshold = -1e300
-    tube.UpperThreshold = 1e300
-    rest = Threshold(registrationName="solids", Input=warped)
-    rest.Scalars = ["CELLS", "S_LOCAL"]
-    rest.LowerThreshold = -1e300
-    rest.UpperThreshold = 1e300
-    rest.Invert = 1
-    for source in (tube, rest):
-        source.UpdatePipeline(time)
 
-    # Peak of the field over the shells, and the deck id of its element.
-    shells = servermanager.Fetch(tube)
-    values = cell_array(shells, field)
-    ids = cell_array(shells, "element_id")
-    peak = max(range(len(values)), key=lambda i: values[i])
+def units_of(xdmf, field, frame_index):
+    """(unit of `field`, unit of time) from JOB.h5 ('?' where it does not say)."""
+    with h5py.File(h5_of(xdmf), "r") as f:
+        frames = sorted(f["frames"])
+        frame = f["frames"][frames[frame_index]]
+        unit = frame[field].attrs.get("units", "?") if field in frame else "?"
+        time_unit = "?"
+        if "history" in f:
+            for step in f["history"].values():
+                time_unit = step["time"].attrs.get("units", "?")
+                break
+    text = lambda v: v.decode() if isinstance(v, bytes) else str(v)
+    return text(unit), text(time_unit)
 
+
+def white_view(size):
     view = CreateRenderView()
     view.ViewSize = size
-    view.ViewTime = time
     view.OrientationAxesVisibility = 1
     view.Background = [1.0, 1.0, 1.0]
     view.UseColorPaletteForBackground = 0
+    return view
 
-    shown = Show(tube, view)
+
+def aim(view, bounds, direction=(0.55, -0.75, 0.42), zoom=1.0):
+    """Looks at the middle of `bounds` from `direction`, z up, fitted and zoomed."""
+    centre = [(bounds[2 * i] + bounds[2 * i + 1]) / 2 for i in range(3)]
+    size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
+    norm = math.sqrt(sum(d * d for d in direction))
+    view.CameraFocalPoint = centre
+    view.CameraPosition = [c + 3 * size * d / norm for c, d in zip(centre, direction)]
+    view.CameraViewUp = [0.0, 0.0, 1.0]
+    view.ResetCamera(False)
+    view.GetActiveCamera().Dolly(zoom)
+
+
+def model_view(xdmf, frame, field, size, title, zoom):
+    view = white_view(size)
+    # File > Open (ParaView picks the Xdmf3 Reader S for .xdmf), Apply.
+    reader = OpenDataFile(xdmf)
+    shown = Show(reader, view)
+    default = list(shown.ColorArrayName)
+    times = list(reader.TimestepValues)
+    time = times[frame]
+    view.ViewTime = time
+    GetAnimationScene().AnimationTime = time
+    # Filters > Warp By Vector (U, the file's first vector, is its default), Apply.
+    warped = WarpByVector(registrationName="warped", Input=reader)
+    if list(warped.Vectors) != ["POINTS", "U"]:
+        sys.exit(f"paraview_screenshot.py: Warp By Vector offers {list(warped.Vectors)}, not U")
+    warped.UpdatePipeline(time)
+    Hide(reader, view)
+    field = field or default[1]
+    if not field:
+        sys.exit("paraview_screenshot.py: the file sets no default colouring; give --field")
+
+    mesh = MergeBlocks(registrationName="mesh", Input=warped)
+    mesh.UpdatePipeline(time)
+    shells, solids = mesh, None
+    if "S_LOCAL" in mesh.CellData.keys():
+        # Shell models: shells are the cells with a finite local-axes stress (NaN on solids).
+        shells = Threshold(registrationName="shells", Input=mesh, Scalars=["CELLS", "S_LOCAL"],
+                           LowerThreshold=-1e300, UpperThreshold=1e300)
+        solids = Threshold(registrationName="solids", Input=mesh, Scalars=["CELLS", "S_LOCAL"],
+                           LowerThreshold=-1e300, UpperThreshold=1e300, Invert=1)
+        solids.UpdatePipeline(time)
+        if solids.GetDataInformation().GetNumberOfCells() == 0:
+            solids = None
+    shells.UpdatePipeline(time)
+    values = cell_values(shells, field)
+    ids = cell_values(shells, "element_id")
+    finite = [i for i in range(len(values)) if values[i] == values[i]]
+    peak = max(finite, key=lambda i: values[i])
+
+    shown = Show(shells, view)
     shown.SetRepresentationType("Surface With Edges")
     shown.EdgeColor = [0.25, 0.25, 0.25]
     ColorBy(shown, ("CELLS", field))
     lut = GetColorTransferFunction(field)
     lut.ApplyPreset("Jet", True)
-    lut.RescaleTransferFunction(0.0, values[peak])
+    lut.RescaleTransferFunction(min(values[i] for i in finite), values[peak])
     lut.AutomaticRescaleRangeMode = "Never"
+    unit, time_unit = units_of(xdmf, field, frame)
     shown.SetScalarBarVisibility(view, True)
     bar = GetScalarBar(lut, view)
-    bar.Title = f"{field}, Pa (cell data)"
+    bar.Title = f"{field}, {unit}" if unit else field
     bar.ComponentTitle = ""
-    bar.RangeLabelFormat = "%-#6.2e"
+    bar.RangeLabelFormat = "%-#6.3g"
     bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
     bar.HorizontalTitle = 1
-    bar.TitleFontSize = 15
-    bar.LabelFontSize = 14
+    bar.TitleFontSize = 16
+    bar.LabelFontSize = 15
     bar.WindowLocation = "Any Location"
-    bar.Position = [0.80, 0.12]
-    bar.ScalarBarLength = 0.6
-
-    plates = Show(rest, view)
-    plates.SetRepresentationType("Surface")
-    plates.ColorArrayName = ["POINTS", ""]
-    plates.AmbientColor = plates.DiffuseColor = [0.7, 0.7, 0.7]
-    plates.Opacity = 0.3
+    bar.Position = [0.84, 0.10]
+    bar.ScalarBarLength = 0.5
+    if solids is not None:
+        plates = Show(solids, view)
+        plates.SetRepresentationType("Surface")
+        plates.ColorArrayName = ["POINTS", ""]
+        plates.AmbientColor = plates.DiffuseColor = [0.7, 0.7, 0.7]
+        plates.Opacity = 0.3
 
     name = os.path.splitext(os.path.basename(xdmf))[0]
-    title = Text(registrationName="title")
-    title.Text = (
-        f"{name}: frame {frame % len(times)} of {len(times) - 1}, t = {time * 1e3:.3f} ms, "
-        f"warped by U (x1)\n"
-        f"S4R shells coloured by {field}{MEANING.get(field, '')};\n"
-        f"peak {values[peak]:.3e} Pa in element_id {int(ids[peak])}; rigid plates translucent\n"
-        f"reader: Xdmf3ReaderS, Sets off ({len(set_entries)} set entries listed)"
+    label = Text(registrationName="title")
+    label.Text = (
+        f"{title or name}: frame {frame % len(times)} of {len(times) - 1}, "
+        f"t = {time:.4g} {time_unit}, warped by U (x1)\n"
+        f"coloured by {field}" + (f" ({MEANING[field]})" if field in MEANING else "") + "\n"
+        f"peak {values[peak]:.4g}{' ' + unit if unit else ''} in element_id {int(ids[peak])}"
+        + ("; solids translucent" if solids is not None else "")
     )
-    text = Show(title, view)
+    text = Show(label, view)
     text.WindowLocation = "Upper Left Corner"
     text.Justification = "Left"
     text.FontSize = 15
     text.Color = [0.0, 0.0, 0.0]
-
-    view.CameraPosition = [0.11, -0.13, 0.085]
-    view.CameraFocalPoint = [0.0, 0.0, 0.022]
-    view.CameraViewUp = [0.0, 0.0, 1.0]
-    view.ResetCamera(False)
-    view.CameraParallelScale = 0.03
+    aim(view, warped.GetDataInformation().GetBounds(), zoom=zoom)
+    print(f"colour {default[0]} {default[1]}")
+    print("bounds undeformed " + " ".join(repr(v) for v in reader.GetDataInformation().GetBounds()))
+    print("bounds deformed " + " ".join(repr(v) for v in warped.GetDataInformation().GetBounds()))
     print(f"peak {field} {values[peak]!r} element_id {int(ids[peak])}")
-    return view, set_entries
+    return view, reader
 
 
-def set_view(xdmf, set_entries, size):
-    reader = XDMFReader(registrationName="xdmf_legacy", FileNames=[xdmf])
-    reader.UpdatePipelineInformation()
-    names = list(reader.SetStatus)
-    reader.SetStatus = names
-    reader.PointArrayStatus = []
-    reader.CellArrayStatus = []
-    reader.UpdatePipeline(reader.TimestepValues[0])
-    data = servermanager.Fetch(reader)
-    found = {name: block for name, block in blocks(data) if name in names}
-
-    view = CreateRenderView()
-    view.ViewSize = size
-    view.OrientationAxesVisibility = 1
-    view.Background = [1.0, 1.0, 1.0]
-    view.UseColorPaletteForBackground = 0
-
-    node_sets = sorted((n for n in names if n.startswith("NSET_") and n in found),
-                       key=lambda n: -found[n].GetNumberOfPoints())
-    sizes = {n: max(9 - 3 * rank, 4) for rank, n in enumerate(node_sets)}
-    lines = ["Sets in ParaView (XDMF Reader, SetStatus), frame 0, undeformed:"]
+def set_view(reader, size):
+    """The node and element sets from their 0/1 arrays, on the undeformed first frame."""
+    view = white_view(size)
+    time = reader.TimestepValues[0]
+    mesh = MergeBlocks(registrationName="undeformed", Input=reader)
+    mesh.UpdatePipeline(time)
+    info = mesh.GetDataInformation()
+    points, cells = list(mesh.PointData.keys()), list(mesh.CellData.keys())
+    names = sorted(n for n in points if n.startswith("NSET_")) + sorted(
+        n for n in cells if n.startswith("ELSET_"))
+    lines = ["Sets (0/1 arrays NSET_*, ELSET_*), frame 0, undeformed:"]
+    node_sets = []
     for index, name in enumerate(names):
-        block = found.get(name)
         colour = SET_COLOURS[index % len(SET_COLOURS)]
-        part = ExtractBlock(registrationName=name, Input=reader)
-        part.Selectors = [f"/Root/{name}"]
+        if name.startswith("NSET_"):
+            query = SelectionQuerySource(registrationName=f"query_{name}", ElementType="Point Data",
+                                         QueryString=f"{name} == 1")
+            part = ExtractSelection(registrationName=name, Input=mesh, Selection=query)
+            part.UpdatePipeline(time)
+            count = part.GetDataInformation().GetNumberOfPoints()
+            node_sets.append((count, name))
+            lines.append(f"  {name}: {count} node(s)")
+        else:
+            part = Threshold(registrationName=name, Input=mesh, Scalars=["CELLS", name],
+                             LowerThreshold=0.5, UpperThreshold=1.5)
+            part.UpdatePipeline(time)
+            count = part.GetDataInformation().GetNumberOfCells()
+            lines.append(f"  {name}: {count} element(s)")
         shown = Show(part, view)
         shown.ColorArrayName = ["POINTS", ""]
         shown.AmbientColor = shown.DiffuseColor = list(colour)
         if name.startswith("NSET_"):
-            count = block.GetNumberOfPoints() if block is not None else 0
             shown.SetRepresentationType("Points")
+            rank = sorted(node_sets, reverse=True).index((count, name)) if count >= 5 else 0
             # Larger sets get larger points, so that a subset drawn over them leaves a ring.
-            shown.PointSize = 11 if count < 5 else sizes.get(name, 5)
+            shown.PointSize = 11 if count < 5 else max(9 - 3 * rank, 4)
             shown.RenderPointsAsSpheres = 1
-            lines.append(f"  {name}: {count} node(s)")
         else:
-            count = block.GetNumberOfCells() if block is not None else 0
             shown.SetRepresentationType("Surface")
-            shown.Opacity = 0.35 if name != "ELSET_TUBE" else 0.6
-            lines.append(f"  {name}: {count} element(s)")
+            shown.Opacity = 0.45
         label = Text(registrationName=f"label_{name}")
         label.Text = lines[-1].strip()
         label_shown = Show(label, view)
         label_shown.WindowLocation = "Any Location"
-        label_shown.Position = [0.02, 0.78 - 0.045 * index]
+        label_shown.Position = [0.02, 0.90 - 0.04 * index]
         label_shown.FontSize = 15
         label_shown.Bold = 1
         label_shown.Color = list(colour)
-    distinct = sorted({re.sub(r"\[\d+\]$", "", entry) for entry in set_entries})
-    same = "these" if distinct == sorted(names) else "other"
     header = Text(registrationName="set_list")
-    header.Text = (
-        lines[0]
-        + f"\nXdmf3ReaderS Sets: {len(set_entries)} entries, {same} {len(distinct)} names"
-        + " once per frame (NAME, NAME[1], ...)"
-    )
+    header.Text = lines[0]
     head = Show(header, view)
     head.WindowLocation = "Upper Left Corner"
     head.Justification = "Left"
     head.FontSize = 15
     head.Color = [0.0, 0.0, 0.0]
-
-    view.CameraPosition = [0.11, -0.13, 0.10]
-    view.CameraFocalPoint = [0.0, 0.0, 0.03]
-    view.CameraViewUp = [0.0, 0.0, 1.0]
-    view.ResetCamera(False)
-    view.GetActiveCamera().Dolly(0.9)
+    aim(view, info.GetBounds(), zoom=0.75)
     return view, names
 
 
 def main(argv):
     args = parse_args(argv)
-    width, height = (int(v) for v in args.size.split("x"))
-    half = [width // 2, height]
+    # The first Render would reset the camera, and with it the zoom chosen in aim().
+    paraview.simple._DisableFirstRenderCameraReset()
+    width, height = (int(v) for v in (args.size or ("1600x800" if args.sets else "900x700"))
+                     .split("x"))
     xdmf = os.path.abspath(args.xdmf)
-    left, set_entries = stress_view(xdmf, args.frame, args.field, half)
-    right, names = set_view(xdmf, set_entries, half)
-    layout = CreateLayout("xpl")
-    layout.SplitHorizontal(0, 0.5)
-    layout.AssignView(1, left)
-    layout.AssignView(2, right)
-    layout.SetSize(width, height)
-    Render(left)
-    Render(right)
-    SaveScreenshot(args.png, layout, SaveAllViews=1, ImageResolution=[width, height],
-                   CompressionLevel="9")
-    print(f"sets {' '.join(names)}")
+    if not args.sets:
+        view, _ = model_view(xdmf, args.frame, args.field, [width, height], args.title, args.zoom)
+        Render(view)
+        SaveScreenshot(args.png, view, ImageResolution=[width, height], CompressionLevel="9")
+    else:
+        half = [width // 2, height]
+        left, reader = model_view(xdmf, args.frame, args.field, half, args.title, args.zoom)
+        right, names = set_view(reader, half)
+        layout = CreateLayout("xpl")
+        layout.SplitHorizontal(0, 0.5)
+        layout.AssignView(1, left)
+        layout.AssignView(2, right)
+        layout.SetSize(width, height)
+        Render(left)
+        Render(right)
+        SaveScreenshot(args.png, layout, SaveAllViews=1, ImageResolution=[width, height],
+                       CompressionLevel="9")
+        print(f"sets {' '.join(names)}")
     print(f"wrote {args.png}")
+    sys.stdout.flush()
+    os._exit(0)  # pvpython 5.11 may abort in its teardown after the picture is written
 
 
 if __name__ == "__main__":

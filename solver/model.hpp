@@ -12,6 +12,7 @@
 
 #include "common/error.hpp"
 #include "common/types.hpp"
+#include "common/units.hpp"
 #include "elements/plasticity.hpp"
 
 namespace xpl {
@@ -423,6 +424,17 @@ struct Step {
   std::vector<FixedMassScaling> mass_scaling;
 };
 
+/// A part instance of an assembly (`*INSTANCE, NAME=, PART=`): its nodes and elements carry
+/// the ids of the part, which repeat from instance to instance; the model numbers them
+/// `offset + local id` (Model::node_ids, element_ids) and keeps the local ids beside.
+struct PartInstance {
+  std::string name;                                ///< upper-case instance name
+  std::string part;                                ///< upper-case part name
+  ExternalId node_offset = 0, element_offset = 0;  ///< model id = offset + local id
+  Index nodes = 0, elements = 0;                   ///< how many the instance has
+  SourceLocation where;                            ///< the *INSTANCE line
+};
+
 /// Something the deck reader wants the user to see in the .msg file (not an error).
 struct DeckMessage {
   bool warning = false;  ///< false: a note
@@ -434,6 +446,9 @@ struct Model {
   std::string heading;  ///< the *HEADING lines joined by newlines, control characters escaped
   std::vector<DeckMessage> deck_messages;  ///< written to .msg by the solver at the start
   std::string job_name;                    ///< deck stem
+  /// The unit system the deck states (`** xpl: UNITS=`), or how its numbers are labelled when
+  /// it states none (common/units.hpp); the solver computes in the deck's numbers either way.
+  ModelUnits units;
 
   // --- nodes -------------------------------------------------------------------------------
   std::vector<ExternalId> node_ids;  ///< deck id of each node (n_nodes)
@@ -480,6 +495,17 @@ struct Model {
   /// `TYPE=ROTATING VELOCITY` on shell nodes (the only nodes with rotations); zero unless given.
   NodalVectors initial_angular_velocity;
   std::vector<Step> steps;
+
+  // --- assembly: decks with *PART and *INSTANCE; all empty for a flat deck ----------------------
+  std::vector<PartInstance> instances;
+  /// Instance of each node / element (n_nodes / n_elements): into `instances`, -1 for the
+  /// assembly level (nodes and elements defined outside any part).
+  std::vector<std::int32_t> node_instance, element_instance;
+  /// Ids as the deck wrote them in the part (n_nodes / n_elements); node_ids and element_ids
+  /// are unique over the model (PartInstance offsets).
+  std::vector<ExternalId> node_local_ids, element_local_ids;
+  /// Model-level offset of nodes and elements defined at the assembly level.
+  ExternalId assembly_node_offset = 0, assembly_element_offset = 0;
 
   /// Whether any element is a shell (then nodes carry rotations; P2: otherwise nothing
   /// rotational is allocated or computed).

@@ -22,6 +22,8 @@ void OutputDriver::note_short_intervals(Real dt) {
 }
 
 void OutputDriver::report_notes() {
+  for (const std::string& warning : m_schedule.take_warnings())
+    m_sink.message(Severity::Warning, warning);
   for (const std::string& note : m_schedule.take_notes()) m_sink.message(Severity::Note, note);
 }
 

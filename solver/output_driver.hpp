@@ -30,7 +30,8 @@ class OutputDriver {
   /// Notes the output requests whose interval is shorter than the increment `dt` (s)
   /// (OutputSchedule) and writes the notes to the .msg file.
   void note_short_intervals(Real dt);
-  /// Writes the notes on merged requests of the step to the .msg file.
+  /// Writes the warnings (default output) and the notes on merged requests of the step to
+  /// the .msg file.
   void report_notes();
 
   /// Whether the step has field / history output at all.

@@ -61,6 +61,31 @@ std::string joined(const std::vector<std::string>& names) {
 
 }  // namespace
 
+bool uses_default_output(const Model& model) {
+  return std::all_of(model.steps.begin(), model.steps.end(),
+                     [](const Step& s) { return s.outputs.empty(); });
+}
+
+std::vector<OutputRequest> default_output_requests() {
+  OutputRequest field;
+  field.kind = OutputRequest::Kind::Field;
+  field.number_interval = 1;  // the end of the step
+  field.node_variables = {"U", "V"};
+  field.element_variables = {"S", "PEEQ"};  // PEEQ is left out of elastic models
+  OutputRequest history;
+  history.kind = OutputRequest::Kind::History;
+  history.number_interval = 200;
+  history.energy = true;  // every energy of the model
+  return {field, history};
+}
+
+std::string default_output_warning() {
+  return "the deck has no output requests (*OUTPUT, *NODE OUTPUT, ...); xpl writes its "
+         "default output: the last frame of each step (U, V, S, and PEEQ of plastic models) "
+         "besides frame 0, and the whole-model energies 200 times a step. Add *OUTPUT, FIELD "
+         "and *OUTPUT, HISTORY requests to choose what is written";
+}
+
 void OutputSchedule::begin_step(const Model& model, int step) {
   const Step& s = model.steps[step];
   m_period = s.time_period;
@@ -71,7 +96,11 @@ void OutputSchedule::begin_step(const Model& model, int step) {
   m_series_owner.clear();
   m_history_repeats.clear();
   const OutputScope scope = output_scope(model);
-  for (const OutputRequest& r : s.outputs) {
+  const bool defaults = uses_default_output(model);
+  if (defaults && step == 0) m_warnings.push_back(default_output_warning());
+  const std::vector<OutputRequest> default_requests =
+      defaults ? default_output_requests() : std::vector<OutputRequest>{};
+  for (const OutputRequest& r : defaults ? default_requests : s.outputs) {
     if (r.kind == OutputRequest::Kind::Field) {
       FieldRequest f;
       f.when.interval = interval_of(r, m_period, 20);

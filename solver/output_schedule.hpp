@@ -15,6 +15,20 @@
 
 namespace xpl {
 
+/// Whether `model` asks for no output at all (no step has an output request, SPEC I6): each of
+/// its steps then gets default_output_requests() instead of writing nothing.
+bool uses_default_output(const Model& model);
+
+/// The output of every step of a deck without output requests, as Abaqus/CAE requests output
+/// by default (field preselect, history energies), but with one frame per step: field U, V, S
+/// (with PEEQ on plastic models; on shell models also UR, VR and the section-point stresses)
+/// at the end of the step (frame 0 is the initial state), and history of every whole-model
+/// energy 200 times a step (the Abaqus/Explicit default interval).
+std::vector<OutputRequest> default_output_requests();
+
+/// The warning a run of such a deck gives on the terminal and in the .msg file.
+std::string default_output_warning();
+
 /// The output requests of one step and their next due times.
 class OutputSchedule {
  public:
@@ -39,6 +53,13 @@ class OutputSchedule {
     std::vector<std::string> notes;
     notes.swap(m_notes);
     return notes;
+  }
+  /// Warnings for the .msg file (default output of a deck without requests), since the last
+  /// take_warnings().
+  std::vector<std::string> take_warnings() {
+    std::vector<std::string> warnings;
+    warnings.swap(m_warnings);
+    return warnings;
   }
 
   /// Whether any field/history output exists in the step (P2: nothing to do otherwise).
@@ -91,6 +112,7 @@ class OutputSchedule {
   };
   std::vector<Repeat> m_history_repeats;
   std::vector<std::string> m_notes;
+  std::vector<std::string> m_warnings;
 
   Real m_period = 0.0;
   std::vector<FieldRequest> m_field;

@@ -260,7 +260,11 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
       const Eigen::Vector3d x_r_next = x_r + dt_next * v_new;
       const Eigen::Vector3d x_ref0 = row(state.reference, r);
       for (Index i : body.members) {
-        const Eigen::Vector3d target = x_r_next + rot_next * (row(state.reference, i) - x_ref0);
+        // As the member's reference position plus the body's motion, so that a body at rest
+        // and unrotated (a held die, a fixed plate) keeps its members exactly where they are.
+        const Eigen::Vector3d arm0 = row(state.reference, i) - x_ref0;
+        const Eigen::Vector3d target = row(state.reference, i) + (x_r_next - x_ref0) +
+                                       (rot_next - Eigen::Matrix3d::Identity()) * arm0;
         const Eigen::Vector3d v_i = (target - row(state.position, i)) / dt_next;
         const Eigen::Vector3d arm = row(state.position, i) - x_r;
         const Eigen::Vector3d v_i_whole = v_whole + w_whole.cross(arm);

@@ -20,8 +20,9 @@ constexpr const char* PROPERTY_LINE =
 constexpr const char* CONTROLS_LINE = ", , penalty scale factor";
 
 /// CalculiX contact formulations: all run as node-to-face penalty contact.
-constexpr std::array<std::string_view, 6> PAIR_TYPES = {
-    "NODE TO SURFACE", "SURFACE TO SURFACE", "MORTAR", "LINMORTAR", "PGMORTAR", "PGLINMORTAR"};
+constexpr std::array<std::string_view, 7> PAIR_TYPES = {
+    "NODE TO SURFACE", "SURFACE TO SURFACE", "MORTAR",  "LINMORTAR",
+    "PGMORTAR",        "PGLINMORTAR",        "MASSLESS"};
 
 }  // namespace
 
@@ -236,13 +237,21 @@ void read_contact_pair(DeckState& deck, const DeckBlock& block) {
   const std::string type = optional_name(keyword, "TYPE");
   if (!type.empty() && std::find(PAIR_TYPES.begin(), PAIR_TYPES.end(), type) == PAIR_TYPES.end())
     error(deck, keyword.where, keyword, "unknown TYPE=" + type,
-          "expected TYPE=NODE TO SURFACE or SURFACE TO SURFACE (CalculiX)");
+          "expected TYPE=NODE TO SURFACE, SURFACE TO SURFACE or MASSLESS (CalculiX)");
   // What xpl does not do differently is said once, in the .msg file.
   std::string unused;
   const auto add_unused = [&](const std::string& text) {
     unused += (unused.empty() ? "" : ", ") + text;
   };
-  if (!type.empty() && type != "NODE TO SURFACE") add_unused("TYPE=" + type);
+  if (type == "MASSLESS")
+    note(deck, keyword.where, keyword,
+         "TYPE=MASSLESS (CalculiX's explicit contact: massless slave nodes held on the master "
+         "surface by contact forces solved each increment, no penetration) runs as xpl's "
+         "node-to-face penalty contact: the slave nodes keep their mass, and a penalty spring "
+         "(the default stiffness, or the *SURFACE BEHAVIOR LINEAR slope) pushes back in "
+         "proportion to a small penetration");
+  else if (!type.empty() && type != "NODE TO SURFACE")
+    add_unused("TYPE=" + type);
   if (find_parameter(keyword, "SMALL SLIDING") != nullptr) add_unused("SMALL SLIDING");
   if (const std::string adjust = optional_name(keyword, "ADJUST"); !adjust.empty())
     add_unused("ADJUST=" + adjust);

@@ -182,6 +182,16 @@ DeckReference reference(const DeckDataLine& line, const DeckKeyword& keyword, st
   return ref;
 }
 
+DeckReference reference(const DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword,
+                        std::size_t i) {
+  DeckReference ref = reference(line, keyword, i);
+  if (looks_numeric(ref.token))
+    ref.scope = deck.scope;
+  else
+    ref.token = deck.scoped_name(ref.token);
+  return ref;
+}
+
 Index node_set_index(DeckState& deck, const std::string& name, const SourceLocation& where) {
   const auto [it, inserted] =
       deck.node_set_by_name.emplace(name, static_cast<Index>(deck.model.node_sets.size()));

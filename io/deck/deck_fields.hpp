@@ -60,6 +60,10 @@ bool check_field_count(DeckState& deck, const DeckDataLine& line, const DeckKeyw
 bool check_surface_pair(DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword);
 /// Field i of a data line as a node/element reference (id or upper-case set name).
 DeckReference reference(const DeckDataLine& line, const DeckKeyword& keyword, std::size_t i);
+/// The same in the scope being read: an id keeps the scope, a name is qualified with the
+/// instance (part-level data read for an instance).
+DeckReference reference(const DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword,
+                        std::size_t i);
 /// Index of the node set `name`, created (defined at `where`) if new.
 Index node_set_index(DeckState& deck, const std::string& name, const SourceLocation& where);
 /// Index of the element set `name`, created (defined at `where`) if new.

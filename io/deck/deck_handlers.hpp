@@ -4,10 +4,12 @@
 /// the keyword table (deck_keywords.cpp) calls them. The `resolve_*` and `check_*` functions run
 /// in finish(), once the whole deck is known.
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "io/deck/deck_fields.hpp"
@@ -15,8 +17,29 @@
 
 namespace xpl::io {
 
-// --- Mesh and sets (deck_mesh.cpp, deck_surfaces.cpp; resolution in deck_resolve.cpp, element
-// shapes in deck_geometry.cpp)
+// --- Parts, assemblies and instances (deck_assembly.cpp)
+
+/// `*PART, NAME=`: opens a part; its part-level blocks are kept until `*END PART`.
+void read_part(DeckState& deck, const DeckBlock& block);
+/// `*END PART`.
+void read_end_part(DeckState& deck, const DeckBlock& block);
+/// `*ASSEMBLY, NAME=`.
+void read_assembly(DeckState& deck, const DeckBlock& block);
+/// `*END ASSEMBLY`.
+void read_end_assembly(DeckState& deck, const DeckBlock& block);
+/// `*INSTANCE, NAME=, PART=` with its translation and rotation lines: reads the part's blocks
+/// in the new instance's scope.
+void read_instance(DeckState& deck, const DeckBlock& block);
+/// `*END INSTANCE`.
+void read_end_instance(DeckState& deck, const DeckBlock& block);
+/// `*RESTART`: accepted with a note (xpl continues a run with `--import`).
+void read_restart(DeckState& deck, const DeckBlock& block);
+/// The instance whose scope holds `name` ("PART-1-1.5" or "PART-1-1.SET"): its scope (1-based)
+/// and the rest of the name; scope 0 if `name` is not qualified by a known instance.
+std::pair<Index, std::string> split_qualified(const DeckState& deck, const std::string& name);
+
+// --- Mesh and sets (deck_mesh.cpp, deck_surfaces.cpp; resolution in deck_resolve.cpp and
+// deck_references.cpp, element shapes in deck_geometry.cpp)
 
 /// `*HEADING`: the data lines become the title.
 void read_heading(DeckState& deck, const DeckBlock& block);
@@ -61,6 +84,38 @@ void check_element_geometry(DeckState& deck);
 void check_hex_geometry(DeckState& deck, Index element);
 /// One S4R element: degenerate (reported).
 void check_shell_geometry(DeckState& deck, Index element);
+
+// --- Mesh exports (deck_mesh_export.cpp): section-less lower-dimensional blocks as geometry
+
+/// Whether `type` is read as geometry without a section: CPS4, CPS3, T3D2, T3D3.
+bool is_geometry_type(std::string_view type);
+/// The supported element type nearest to an unsupported `type`, with why (for its error);
+/// empty if none is known.
+std::string nearest_supported_type(std::string_view type);
+/// `*ELEMENT, TYPE=CPS4|CPS3|T3D2|T3D3`: kept as geometry elements.
+void read_geometry_elements(DeckState& deck, const DeckBlock& block, const std::string& type);
+/// At the start of finish(): CPS4 geometry under a *SHELL SECTION becomes S4R elements (in deck
+/// order, after the elements read); other geometry under a section is reported.
+void promote_shell_geometry(DeckState& deck);
+/// Geometry element nodes that are not defined (reported, capped).
+void resolve_geometry_node_ids(DeckState& deck);
+/// After the element sets: each element set of geometry only becomes a node set of its nodes
+/// (unless a node set of that name exists); the .msg notes say what was done.
+void geometry_node_sets(DeckState& deck);
+/// The geometry elements a reference names (an id or an element set), unpromoted only.
+std::vector<Index> geometry_of(const DeckState& deck, const DeckReference& reference);
+/// Every hex face and shell of the model by its sorted distinct corner nodes.
+struct ModelFaceIndex {
+  std::vector<std::pair<std::array<Index, 4>, ElementFace>> faces;  ///< sorted by key
+};
+/// Builds the index of the model's faces (after the element nodes are resolved).
+ModelFaceIndex index_model_faces(const Model& model);
+/// Adds to `surface` the solid faces (or both sides of the shells) that the geometry faces
+/// `geometry` of surface line `item` lie on; reported if a face lies on none, inside the body,
+/// is an edge, or the line has a face label.
+void add_geometry_faces(DeckState& deck, const ModelFaceIndex& index,
+                        const std::vector<Index>& geometry, const PendingSurfaceItem& item,
+                        Surface& surface);
 
 // --- Materials, sections, amplitudes and initial conditions (deck_properties.cpp,
 // deck_sections.cpp)
@@ -239,6 +294,16 @@ void read_file_output(DeckState& deck, const DeckBlock& block, bool node);
 void read_node_print(DeckState& deck, const DeckBlock& block);
 /// *EL PRINT, *CONTACT FILE, *CONTACT PRINT: accepted with a note, nothing written.
 void read_ignored_output(DeckState& deck, const DeckBlock& block, const std::string& why);
+
+/// `*STATIC` (deck_calculix.cpp): refused, one error; counts as the step's procedure.
+void read_static(DeckState& deck, const DeckBlock& block);
+/// `*EQUATION`: refused, one error.
+void read_equation(DeckState& deck, const DeckBlock& block);
+/// CalculiX's `*CLEARANCE, MASTER=, SLAVE=, VALUE=` of a contact pair.
+void read_clearance(DeckState& deck, const DeckBlock& block);
+/// The *CLEARANCE lines as clearances with ADJUST=NO of the first step (in finish(), after the
+/// contact pairs and the *CONTACT CLEARANCE assignments).
+void resolve_pair_clearances(DeckState& deck);
 
 /// *EL PRINT: accepted with a note (no element history output in xpl).
 void read_el_print(DeckState& deck, const DeckBlock& block);

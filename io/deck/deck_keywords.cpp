@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "io/deck/deck_assembly.hpp"
 #include "io/deck/deck_handlers.hpp"
 
 namespace xpl::io {
@@ -43,36 +44,45 @@ void read_el_file(DeckState& deck, const DeckBlock& block) {
 constexpr KeywordSpec KEYWORDS[] = {
     {"HEADING", Model, None, read_heading},
     {"INCLUDE", Anywhere, None, nullptr},  // read_deck_blocks follows it; never dispatched
-    {"NODE", Model, None, read_node},
-    {"ELEMENT", Model, None, read_element},
-    {"NSET", Model, None, read_nset},
-    {"ELSET", Model, None, read_elset},
-    {"SURFACE", Model, None, read_surface},
+    {"PART", Model, None, read_part},
+    {"END PART", Model, None, read_end_part},
+    {"ASSEMBLY", Model, None, read_assembly},
+    {"INSTANCE", Model, None, read_instance},
+    {"END INSTANCE", Model, None, read_end_instance},
+    {"END ASSEMBLY", Model, None, read_end_assembly},
+    {"NODE", Part, None, read_node},
+    {"ELEMENT", Part, None, read_element},
+    {"NSET", Part, None, read_nset},
+    {"ELSET", Part, None, read_elset},
+    {"SURFACE", Part, None, read_surface},
     {"MATERIAL", Model, None, read_material},
     {"DENSITY", Model, Material, read_density},
     {"ELASTIC", Model, Material, read_elastic},
     {"PLASTIC", Model, Material, read_plastic},
     {"RATE DEPENDENT", Model, Material, read_rate_dependent},
-    {"SOLID SECTION", Model, None, read_solid_section},
-    {"SHELL SECTION", Model, None, read_shell_section},
-    {"SHELL GENERAL SECTION", Model, None, read_shell_general_section, false},
+    {"SOLID SECTION", Part, None, read_solid_section},
+    {"SHELL SECTION", Part, None, read_shell_section},
+    {"SHELL GENERAL SECTION", Part, None, read_shell_general_section, false},
     {"SECTION CONTROLS", Model, None, read_section_controls},
-    {"MASS", Model, None, read_mass},
-    {"ROTARY INERTIA", Model, None, read_rotary_inertia},
-    {"RIGID BODY", Model, None, read_rigid_body},
+    {"MASS", Part, None, read_mass},
+    {"ROTARY INERTIA", Part, None, read_rotary_inertia},
+    {"RIGID BODY", Part, None, read_rigid_body},
     {"TIE", Model, None, read_tie},
     {"SURFACE INTERACTION", Model, None, read_surface_interaction},
     {"FRICTION", Model, Interaction, read_friction},
     {"SURFACE BEHAVIOR", Model, Interaction, read_surface_behavior},
     {"CONTACT PAIR", ModelOrStep, None, read_contact_pair},
     {"CONTACT CLEARANCE", ModelOrStep, None, read_contact_clearance},
+    {"CLEARANCE", Model, None, read_clearance},
     {"DISTRIBUTION", Model, None, read_distribution},
     {"DISTRIBUTION TABLE", Model, None, read_distribution_table},
     {"AMPLITUDE", Model, None, read_amplitude},
+    {"EQUATION", ModelOrStep, None, read_equation, false},
     {"INITIAL CONDITIONS", Model, None, read_initial_conditions},
     {"BOUNDARY", ModelOrStep, None, read_boundary},
     {"STEP", Anywhere, None, read_step},
     {"DYNAMIC", Step, None, read_dynamic},
+    {"STATIC", Step, None, read_static, false},
     {"BULK VISCOSITY", Step, None, read_bulk_viscosity},
     {"FIXED MASS SCALING", Step, None, read_fixed_mass_scaling},
     {"CLOAD", Step, None, read_cload},
@@ -99,6 +109,7 @@ constexpr KeywordSpec KEYWORDS[] = {
     {"END STEP", Anywhere, None, read_end_step},
     // Only echo control of the Abaqus pre-processor: nothing to do, safe to ignore.
     {"PREPRINT", Anywhere, None, nullptr},
+    {"RESTART", Anywhere, None, read_restart},
     {"DIAGNOSTICS", Anywhere, None, read_diagnostics},
 };
 
@@ -120,11 +131,16 @@ std::span<const KeywordSpec> keyword_table() {
   return KEYWORDS;
 }
 
+const KeywordSpec* find_keyword(std::string_view name) {
+  const auto spec = std::find_if(std::begin(KEYWORDS), std::end(KEYWORDS),
+                                 [&](const KeywordSpec& s) { return s.name == name; });
+  return spec != std::end(KEYWORDS) ? &*spec : nullptr;
+}
+
 void read_block(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  const auto spec = std::find_if(std::begin(KEYWORDS), std::end(KEYWORDS),
-                                 [&](const KeywordSpec& s) { return s.name == keyword.name; });
-  const bool known = spec != std::end(KEYWORDS);
+  const KeywordSpec* spec = find_keyword(keyword.name);
+  const bool known = spec != nullptr;
 
   // *DENSITY, *ELASTIC, *PLASTIC, ... belong to the material opened just before, *FRICTION and
   // *SURFACE BEHAVIOR to the interaction, *NODE OUTPUT & co. to the latest *OUTPUT. Any other
@@ -142,7 +158,8 @@ void read_block(DeckState& deck, const DeckBlock& block) {
           "supported keywords: " + supported_list());
     return;
   }
-  const KeywordPlace place = spec->place;
+  if (!assembly_allows(deck, *spec, keyword)) return;
+  const KeywordPlace place = spec->place == Part ? Model : spec->place;
   if (place == Model && deck.in_step) {
     error(deck, keyword.where, keyword, "model data cannot appear inside a step",
           "expected it before the first *STEP");
@@ -168,7 +185,9 @@ void read_block(DeckState& deck, const DeckBlock& block) {
 }
 
 void read_blocks(DeckState& deck, const std::vector<DeckBlock>& blocks) {
-  for (const DeckBlock& block : blocks) read_block(deck, block);
+  for (const DeckBlock& block : blocks)
+    if (!collect_part_block(deck, block)) read_block(deck, block);
+  close_assembly(deck);
 }
 
 }  // namespace xpl::io

@@ -14,7 +14,11 @@ namespace xpl::io {
 
 /// Where a keyword may appear in a deck.
 enum class KeywordPlace {
-  Model,        ///< model data: before the first *STEP
+  Model,  ///< model data: before the first *STEP
+  /// Model data that a *PART may hold (mesh, sets, surfaces, sections): read once for each
+  /// *INSTANCE of the part, in the instance's scope; also allowed in an *INSTANCE block, at the
+  /// assembly level and in a flat deck.
+  Part,
   ModelOrStep,  ///< model data (before the first *STEP) or history data inside a step
   Step,         ///< history data: between *STEP and *END STEP
   StepContact,  ///< general contact and its options: inside a step only (as in Abaqus/Explicit)
@@ -44,11 +48,15 @@ struct KeywordSpec {
 /// lists them.
 std::span<const KeywordSpec> keyword_table();
 
+/// The keyword named `name` (upper case, without the star), or nullptr.
+const KeywordSpec* find_keyword(std::string_view name);
+
 /// Reads one keyword block: checks that the keyword is known and allowed where it stands
 /// (reported if not), then calls its handler.
 void read_block(DeckState& deck, const DeckBlock& block);
 
-/// Reads the blocks in deck order.
+/// Reads the blocks in deck order; the blocks of a *PART are kept and read for each of its
+/// instances (deck_assembly.cpp).
 void read_blocks(DeckState& deck, const std::vector<DeckBlock>& blocks);
 
 }  // namespace xpl::io

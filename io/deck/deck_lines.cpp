@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "io/deck/deck_file.hpp"
@@ -69,11 +70,23 @@ struct PhysicalLine {
   int number = 0;
 };
 
+/// The text after "xpl:" of a comment line `** xpl: ...` (case-insensitive, blanks allowed
+/// after the stars), or nothing.
+std::optional<std::string_view> xpl_directive(std::string_view comment) {
+  std::string_view rest = comment.substr(2);
+  while (!rest.empty() && (rest.front() == '*' || is_blank(rest.front()))) rest.remove_prefix(1);
+  if (rest.size() < 4 || to_upper(std::string(rest.substr(0, 4))) != "XPL:") return std::nullopt;
+  return trim(rest.substr(4));
+}
+
 /// Walks the physical lines of a file (as std::getline would split them).
 struct LineCursor {
   std::string_view text;
   std::size_t position = 0;
   int number = 0;
+  /// Receives the `** xpl:` comments; each is taken once, by the cursor that first passes it
+  /// (copies of the cursor look ahead and may pass a line again).
+  std::vector<PhysicalLine>* directives = nullptr;
 
   /// The next significant line, skipping comments and blank lines; false at the end.
   bool next(PhysicalLine& out) {
@@ -83,7 +96,13 @@ struct LineCursor {
       const std::string_view line = trim(text.substr(position, stop - position));
       position = end == std::string_view::npos ? text.size() : end + 1;
       ++number;
-      if (line.empty() || line.starts_with("**")) continue;
+      if (line.empty()) continue;
+      if (line.starts_with("**")) {
+        if (directives != nullptr && (directives->empty() || directives->back().number < number))
+          if (const auto directive = xpl_directive(line))
+            directives->push_back({*directive, number});
+        continue;
+      }
       out = {line, number};
       return true;
     }
@@ -199,7 +218,16 @@ DeckKeyword parse_keyword(std::string_view line, const SourceLocation& where, In
 
 void Lexer::read(std::string_view text, const std::string& file_name, int depth) {
   const std::uint32_t file = storage.add_file(file_name);
+  std::vector<PhysicalLine> directives;
   LineCursor cursor{text};
+  cursor.directives = &directives;
+  // An *INCLUDE is read in the middle of this file: its directives go before the later ones.
+  std::size_t kept = 0;
+  const auto keep_directives = [&] {
+    for (; kept < directives.size(); ++kept)
+      storage.directives.push_back(
+          {std::string(directives[kept].text), {file_name, directives[kept].number}});
+  };
   PhysicalLine current;
   std::string joined_text;
   while (cursor.next(current)) {
@@ -229,6 +257,7 @@ void Lexer::read(std::string_view text, const std::string& file_name, int depth)
       const SourceLocation where{file_name, current.number};
       DeckKeyword keyword = parse_keyword(joined, where, errors);
       if (keyword.name == "INCLUDE") {
+        keep_directives();
         include(keyword, file_name, depth);
         continue;
       }
@@ -248,6 +277,7 @@ void Lexer::read(std::string_view text, const std::string& file_name, int depth)
                  "expected a closing \"");
     blocks.back().data.push_back({joined, file, current.number});
   }
+  keep_directives();
 }
 
 void Lexer::include(const DeckKeyword& keyword, const std::string& file_name, int depth) {

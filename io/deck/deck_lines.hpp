@@ -35,10 +35,21 @@ struct DeckKeyword {
   std::string label() const { return "*" + name; }
 };
 
+/// A comment line addressed to xpl, `** xpl: NAME=value, ...` (Abaqus ignores it): the text
+/// after "xpl:" and where it stands.
+struct DeckDirective {
+  std::string text;
+  SourceLocation where;
+};
+
 /// Owns the text that data lines view besides the main deck: included files, their names and
-/// continuation lines joined into one. Elements never move once added.
+/// continuation lines joined into one. Elements never move once added. Also collects the
+/// `** xpl:` comments of the deck and its included files, in the order they are read.
 class DeckStorage {
  public:
+  /// The `** xpl:` comments read so far.
+  std::vector<DeckDirective> directives;
+
   /// Stores a file name; returns its index.
   std::uint32_t add_file(std::string name);
   const std::string& file(std::uint32_t index) const { return m_files[index]; }

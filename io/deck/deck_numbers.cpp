@@ -64,7 +64,12 @@ std::optional<long long> parse_integer(std::string_view text) {
   const char* begin = text.data() + start;
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(begin, end, value);
-  if (ec != std::errc() || ptr != end) return std::nullopt;
+  if (ec != std::errc() || ptr == begin) return std::nullopt;
+  if (ptr == end) return value;
+  // An integral float as some exporters write ids ("12.", "12.0"): a point and zeros only.
+  if (*ptr != '.') return std::nullopt;
+  for (const char* c = ptr + 1; c != end; ++c)
+    if (*c != '0') return std::nullopt;
   return value;
 }
 

@@ -12,7 +12,8 @@ namespace xpl::io {
 /// Returns nothing for anything else (`1.0e`, `abc`, `1,5`, `inf`, `nan`) or on overflow.
 std::optional<Real> parse_real(std::string_view text);
 
-/// Parses a (possibly signed) decimal integer that fits in 64 bits.
+/// Parses a (possibly signed) decimal integer that fits in 64 bits; an integral float written
+/// with a point and zeros ("12.", "12.0", as some mesh exporters write ids) is that integer.
 std::optional<long long> parse_integer(std::string_view text);
 
 /// Whether a field looks like a number (starts with a digit, sign or dot): used to tell

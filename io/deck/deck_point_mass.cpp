@@ -20,7 +20,7 @@ constexpr const char* INERTIA_LINE = "I11, I22, I33[, I12, I13, I23]";
 void read_point_elements(DeckState& deck, const DeckBlock& block, bool rotary) {
   const DeckKeyword& keyword = block.keyword;
   const std::string type = rotary ? "ROTARYI" : "MASS";
-  const std::string set_name = optional_name(keyword, "ELSET");
+  const std::string set_name = deck.scoped_name(optional_name(keyword, "ELSET"));
   const Index set = set_name.empty() ? NO_INDEX : element_set_index(deck, set_name, keyword.where);
   for (const DeckDataLine& line : block.data) {
     const std::optional<long long> id = integer_field(deck, line, keyword, 0, "element id");
@@ -40,14 +40,15 @@ void read_point_elements(DeckState& deck, const DeckBlock& block, bool rotary) {
     const std::optional<long long> node = integer_field(deck, line, keyword, 1, "node id");
     if (!node) continue;
     const Index index = static_cast<Index>(deck.point_elements.size());
-    if (deck.element_index.contains(*id) || !deck.point_element_index.emplace(*id, index).second) {
+    const ExternalId key = DeckState::id_key(deck.scope, *id);
+    if (deck.element_index.contains(key) || !deck.point_element_index.emplace(key, index).second) {
       error(deck, line.where(), keyword, "element " + std::to_string(*id) + " is defined twice",
             "expected each element id once");
       continue;
     }
     PointElement element;
     element.id = *id;
-    element.node_id = *node;
+    element.node_id = DeckState::id_key(deck.scope, *node);
     element.rotary = rotary;
     element.where = line.where();
     deck.point_elements.push_back(element);
@@ -58,7 +59,8 @@ void read_point_elements(DeckState& deck, const DeckBlock& block, bool rotary) {
 void read_point_property(DeckState& deck, const DeckBlock& block, bool rotary) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(deck, keyword, {{"ELSET"}});
-  const std::optional<std::string> element_set = required_name(deck, keyword, "ELSET");
+  std::optional<std::string> element_set = required_name(deck, keyword, "ELSET");
+  if (element_set) element_set = deck.scoped_name(*element_set);
   PointProperty property;
   property.rotary = rotary;
   property.where = keyword.where;

@@ -6,6 +6,7 @@
 #include "io/deck/deck_handlers.hpp"
 #include "io/deck/deck_keywords.hpp"
 #include "io/deck/deck_lines.hpp"
+#include "io/deck/deck_units.hpp"
 #include "io/deck/model_checks.hpp"
 
 namespace xpl::io {
@@ -23,9 +24,11 @@ Model build_model(std::string_view text, const std::string& file_name, ModelChec
     DeckStorage storage;
     const std::vector<DeckBlock> blocks = read_deck_blocks(text, file_name, storage, errors);
     read_blocks(deck, blocks);
+    read_directives(storage.directives, deck.model, errors);
   }
   if (owned_text != nullptr) std::string().swap(*owned_text);
   Model model = finish(deck);
+  settle_units(model);
   // The whole-model checks need a complete model, so they run only on an otherwise clean deck.
   if (checks != ModelChecks::Skip && errors.empty()) {
     for (const std::string& message : unsupported_features(model)) errors.add_plain(message);

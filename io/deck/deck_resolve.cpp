@@ -1,5 +1,6 @@
 /// \file Resolution of references once the whole deck is read: element nodes, sets, initial
-/// conditions, boundary conditions, loads and output sets. Sections are resolved in
+/// conditions, boundary conditions, loads and output sets (a node or element reference itself
+/// in deck_references.cpp). Sections are resolved in
 /// deck_sections.cpp, surfaces in deck_surfaces.cpp, pressures and gravity in
 /// deck_pressure.cpp, contact pairs in deck_contact.cpp, rigid bodies in deck_rigid.cpp, point
 /// masses in deck_point_mass.cpp, distributions in deck_distribution.cpp, clearances in
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/deck/deck_assembly.hpp"
 #include "io/deck/deck_handlers.hpp"
 #include "io/deck/deck_numbers.hpp"
 
@@ -42,8 +44,11 @@ Model finish(DeckState& deck) {
   deck.model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
   deck.model.initial_angular_velocity = NodalVectors::Zero(n_nodes, 3);
 
+  promote_shell_geometry(deck);  // before anything counts the elements
   resolve_element_nodes(deck);
+  resolve_geometry_node_ids(deck);
   resolve_sets(deck, false);  // element sets first: *NSET, ELSET= needs them
+  geometry_node_sets(deck);
   resolve_sets(deck, true);
   check_plastic_materials(deck);  // before the sections check the materials
   resolve_sections(deck);
@@ -58,6 +63,7 @@ Model finish(DeckState& deck) {
   resolve_point_inertias(deck);
   resolve_distributions(deck);
   resolve_clearances(deck);  // after surfaces, contact pairs, rigid bodies and distributions
+  resolve_pair_clearances(deck);
   check_element_geometry(deck);
 
   const char* categories[ERROR_CATEGORIES] = {"elements with undefined nodes",
@@ -72,6 +78,7 @@ Model finish(DeckState& deck) {
                             std::to_string(deck.error_counts[k] - ERROR_CAP) + " more " +
                             categories[k] + " not listed");
   }
+  finish_instances(deck);  // last: the messages above name the ids as the deck wrote them
   return std::move(deck.model);
 }
 
@@ -88,8 +95,8 @@ void resolve_element_nodes(DeckState& deck) {
         capped_error(deck, deck.error_counts[UNDEFINED_NODES], deck.model.element_where(e),
                      "*ELEMENT",
                      "element " + std::to_string(deck.model.element_ids[e]) +
-                         " refers to undefined node " + std::to_string(id),
-                     "expected a *NODE with id " + std::to_string(id));
+                         " refers to undefined node " + deck.id_text(id),
+                     "expected a *NODE with id " + std::to_string(deck.local_id(id)));
         reported = true;
       }
     }
@@ -101,8 +108,8 @@ void resolve_element_nodes(DeckState& deck) {
     else
       capped_error(deck, deck.error_counts[UNDEFINED_NODES], element.where, "*ELEMENT",
                    "element " + std::to_string(element.id) + " refers to undefined node " +
-                       std::to_string(element.node_id),
-                   "expected a *NODE with id " + std::to_string(element.node_id));
+                       deck.id_text(element.node_id),
+                   "expected a *NODE with id " + std::to_string(deck.local_id(element.node_id)));
   }
 }
 
@@ -123,26 +130,40 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
   // MASS/ROTARYI elements of an element set: kept beside the Model's members.
   std::vector<Index>& points = pending.point_members;
   const bool has_points = !node_sets && !deck.point_element_index.empty();
+  // Geometry elements (section-less CPS4 & co.): kept beside too; those run as S4R are members.
+  std::vector<Index> geometry;
+  const bool has_geometry = !node_sets && !deck.geometry_elements.empty();
+  for (Index g : pending.geometry_members) {
+    const GeometryElement& element = deck.geometry_elements[static_cast<std::size_t>(g)];
+    if (element.promoted)
+      members.push_back(deck.element_index.at(element.id));
+    else
+      geometry.push_back(g);
+  }
   for (const SetItem& item : pending.items) {
     switch (item.kind) {
       case SetItem::Kind::Id: {
         const auto it = ids.find(item.first);
         const auto point =
             has_points ? deck.point_element_index.find(item.first) : deck.point_element_index.end();
+        const auto shape =
+            has_geometry ? deck.geometry_index.find(item.first) : deck.geometry_index.end();
         if (it != ids.end())
           members.push_back(it->second);
         else if (point != deck.point_element_index.end())
           points.push_back(point->second);
+        else if (shape != deck.geometry_index.end())
+          geometry.push_back(shape->second);
         else if (node_sets || !deck.refused_element(item.first))
           deck.errors.add(item.where, item.keyword,
-                          "undefined " + what + " " + std::to_string(item.first),
+                          "undefined " + what + " " + deck.id_text(item.first),
                           "expected a defined " + what + " id");
         break;
       }
       case SetItem::Kind::Range: {
         // Ids of the range that are not defined are skipped (GENERATE over sparse numbering);
         // cost is bounded by the smaller of the range and the number of defined ids.
-        const std::size_t before = members.size() + points.size();
+        const std::size_t before = members.size() + points.size() + geometry.size();
         const long long span = (item.last - item.first) / item.increment + 1;
         if (static_cast<unsigned long long>(span) <= ids.size()) {
           for (long long id = item.first; id <= item.last; id += item.increment) {
@@ -158,16 +179,20 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
           for (const auto& [id, index] : deck.point_element_index)
             if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
               points.push_back(index);
+        if (has_geometry)
+          for (const auto& [id, index] : deck.geometry_index)
+            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+              geometry.push_back(index);
         const auto refused = [&] {
           for (ExternalId id : deck.refused_element_ids)
             if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
               return true;
           return false;
         };
-        if (members.size() + points.size() == before && (node_sets || !refused()))
+        if (members.size() + points.size() + geometry.size() == before && (node_sets || !refused()))
           deck.errors.add(item.where, item.keyword,
-                          "range " + std::to_string(item.first) + ".." + std::to_string(item.last) +
-                              " contains no defined " + what,
+                          "range " + std::to_string(deck.local_id(item.first)) + ".." +
+                              deck.id_text(item.last) + " contains no defined " + what,
                           "expected a range over defined " + what + " ids");
         break;
       }
@@ -195,6 +220,8 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
         if (!node_sets) {
           const std::vector<Index>& other_points = deck.element_sets[it->second].point_members;
           points.insert(points.end(), other_points.begin(), other_points.end());
+          const std::vector<Index>& other_shapes = deck.element_sets[it->second].geometry_members;
+          geometry.insert(geometry.end(), other_shapes.begin(), other_shapes.end());
         }
         break;
       }
@@ -213,6 +240,13 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
         for (Index p : deck.element_sets[it->second].point_members)
           if (deck.point_elements[static_cast<std::size_t>(p)].node != NO_INDEX)
             members.push_back(deck.point_elements[static_cast<std::size_t>(p)].node);
+        for (Index g : deck.element_sets[it->second].geometry_members) {
+          const GeometryElement& shape = deck.geometry_elements[static_cast<std::size_t>(g)];
+          for (int k = 0; k < shape.n_nodes; ++k) {
+            const auto node = deck.node_index.find(shape.node_ids[static_cast<std::size_t>(k)]);
+            if (node != deck.node_index.end()) members.push_back(node->second);
+          }
+        }
         break;
       }
     }
@@ -222,77 +256,10 @@ void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
   sets[static_cast<std::size_t>(set)].members = std::move(members);
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::sort(geometry.begin(), geometry.end());
+  geometry.erase(std::unique(geometry.begin(), geometry.end()), geometry.end());
+  pending.geometry_members = std::move(geometry);
   pending.state = 2;
-}
-
-std::vector<Index> resolve_nodes(DeckState& deck, const DeckReference& reference) {
-  if (reference.token.empty()) {
-    deck.errors.add(reference.where, reference.keyword, "missing node or node set",
-                    "expected a node id or a node set name first");
-    return {};
-  }
-  if (looks_numeric(reference.token)) {
-    const std::optional<long long> id = parse_integer(reference.token);
-    const auto it = id ? deck.node_index.find(*id) : deck.node_index.end();
-    if (it == deck.node_index.end()) {
-      deck.errors.add(reference.where, reference.keyword, "undefined node " + reference.token,
-                      "expected a defined node id or a node set name");
-      return {};
-    }
-    return {it->second};
-  }
-  const auto it = deck.node_set_by_name.find(reference.token);
-  if (it == deck.node_set_by_name.end()) {
-    deck.errors.add(reference.where, reference.keyword, "undefined node set " + reference.token,
-                    "expected *NSET, NSET=" + reference.token);
-    return {};
-  }
-  return deck.model.node_sets[static_cast<std::size_t>(it->second)].members;
-}
-
-std::vector<Index> resolve_elements(DeckState& deck, const DeckReference& reference) {
-  if (reference.token.empty()) {
-    deck.errors.add(reference.where, reference.keyword, "missing element or element set",
-                    "expected an element id or an element set name first");
-    return {};
-  }
-  if (looks_numeric(reference.token)) {
-    const std::optional<long long> id = parse_integer(reference.token);
-    const auto it = id ? deck.element_index.find(*id) : deck.element_index.end();
-    if (it == deck.element_index.end()) {
-      if (id && deck.refused_element(*id)) return {};
-      deck.errors.add(reference.where, reference.keyword, "undefined element " + reference.token,
-                      "expected a defined element id or an element set name");
-      return {};
-    }
-    return {it->second};
-  }
-  const auto it = deck.element_set_by_name.find(reference.token);
-  if (it == deck.element_set_by_name.end()) {
-    if (deck.refused_element_set(reference.token)) return {};
-    deck.errors.add(reference.where, reference.keyword, "undefined element set " + reference.token,
-                    "expected *ELSET, ELSET=" + reference.token);
-    return {};
-  }
-  return deck.model.element_sets[static_cast<std::size_t>(it->second)].members;
-}
-
-std::string element_text(const DeckState& deck, Index e, const DeckReference& reference) {
-  std::string text =
-      std::string(element_type_name(deck.model.element_types[static_cast<std::size_t>(e)])) +
-      " element " + std::to_string(deck.model.element_ids[e]);
-  if (!looks_numeric(reference.token)) text += " of set " + reference.token;
-  return text;
-}
-
-Index resolve_amplitude(DeckState& deck, const std::string& name, const SourceLocation& where,
-                        const std::string& keyword) {
-  if (name.empty()) return NO_INDEX;
-  const Index amplitude = deck.model.find_amplitude(name);
-  if (amplitude == NO_INDEX)
-    deck.errors.add(where, keyword, "undefined amplitude " + name,
-                    "expected *AMPLITUDE, NAME=" + name);
-  return amplitude;
 }
 
 void resolve_initial_velocity(DeckState& deck) {

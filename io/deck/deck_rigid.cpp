@@ -21,13 +21,15 @@ void read_rigid_body(DeckState& deck, const DeckBlock& block) {
   }
   if (!reference->has_value || reference->value.empty()) return;  // check_parameters reported it
   PendingRigidBody pending;
-  pending.reference_node.token =
-      looks_numeric(reference->value) ? reference->value : normalize_name(reference->value);
+  pending.reference_node.token = looks_numeric(reference->value)
+                                     ? reference->value
+                                     : deck.scoped_name(normalize_name(reference->value));
+  pending.reference_node.scope = looks_numeric(reference->value) ? deck.scope : 0;
   pending.reference_node.where = keyword.where;
   pending.reference_node.keyword = keyword.label();
-  pending.element_set = optional_name(keyword, "ELSET");
-  pending.pin_node_set = optional_name(keyword, "PIN NSET");
-  pending.tie_node_set = optional_name(keyword, "TIE NSET");
+  pending.element_set = deck.scoped_name(optional_name(keyword, "ELSET"));
+  pending.pin_node_set = deck.scoped_name(optional_name(keyword, "PIN NSET"));
+  pending.tie_node_set = deck.scoped_name(optional_name(keyword, "TIE NSET"));
   if (pending.element_set.empty() && pending.pin_node_set.empty() && pending.tie_node_set.empty()) {
     error(deck, keyword.where, keyword, "no ELSET, PIN NSET or TIE NSET",
           "expected the elements (ELSET=) or nodes (PIN NSET=, TIE NSET=) of the rigid body");
@@ -54,7 +56,8 @@ void resolve_rigid_bodies(DeckState& deck) {
 
     if (looks_numeric(reference.token)) {
       const std::optional<long long> id = parse_integer(reference.token);
-      const auto it = id ? deck.node_index.find(*id) : deck.node_index.end();
+      const auto it = id ? deck.node_index.find(DeckState::id_key(reference.scope, *id))
+                         : deck.node_index.end();
       if (it == deck.node_index.end())
         deck.errors.add(body.where, keyword, "undefined reference node " + reference.token,
                         "expected REF NODE= a defined node id or a node set of one node");

@@ -19,7 +19,8 @@ constexpr const char* SHELL_DATA_LINE = "thickness[, number of integration point
 void read_solid_section(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(deck, keyword, {{"ELSET"}, {"MATERIAL"}, {"CONTROLS"}});
-  const std::optional<std::string> element_set = required_name(deck, keyword, "ELSET");
+  std::optional<std::string> element_set = required_name(deck, keyword, "ELSET");
+  if (element_set) element_set = deck.scoped_name(*element_set);
   const std::optional<std::string> material = required_name(deck, keyword, "MATERIAL");
   // Abaqus allows one data line (a thickness-like number for solids); it means nothing here.
   if (block.data.size() > 1 || (block.data.size() == 1 && block.data.front().fields.size() > 1))
@@ -43,7 +44,8 @@ void read_shell_section(DeckState& deck, const DeckBlock& block) {
                     {"CONTROLS"},
                     {"SECTION INTEGRATION"},
                     {"ROTARY INERTIA"}});
-  const std::optional<std::string> element_set = required_name(deck, keyword, "ELSET");
+  std::optional<std::string> element_set = required_name(deck, keyword, "ELSET");
+  if (element_set) element_set = deck.scoped_name(*element_set);
   const std::optional<std::string> material = required_name(deck, keyword, "MATERIAL");
   ShellSection section;
   section.where = keyword.where;
@@ -135,7 +137,7 @@ void read_shell_general_section(DeckState& deck, const DeckBlock& block) {
   error(deck, keyword.where, keyword,
         "general shell sections (section stiffness given directly) are not supported",
         "expected *SHELL SECTION, ELSET=, MATERIAL= with the thickness on the data line");
-  const std::string element_set = optional_name(keyword, "ELSET");
+  const std::string element_set = deck.scoped_name(optional_name(keyword, "ELSET"));
   if (!element_set.empty()) deck.refused_section_sets.push_back(element_set);
 }
 

@@ -20,11 +20,19 @@
 
 namespace xpl::io {
 
+/// Node and element ids of a part instance live in their own range of the id maps (DeckState::
+/// id_key): key = scope · 2^SCOPE_SHIFT + id, scope 0 (model and assembly level) keeping the id
+/// itself, so that a flat deck reads exactly as before. Ids of a deck with parts stay below
+/// 2^SCOPE_SHIFT (about 10^12).
+constexpr int SCOPE_SHIFT = 40;
+constexpr ExternalId MAX_SCOPED_ID = (ExternalId(1) << SCOPE_SHIFT) - 1;
+
 /// A node or element given by id (numeric) or by set name, still to be resolved.
 struct DeckReference {
-  std::string token;  ///< id as written, or upper-case set name
+  std::string token;  ///< id as written, or upper-case set name (already scoped, see scoped_name)
   SourceLocation where;
   std::string keyword;  ///< "*BOUNDARY", for messages
+  Index scope = 0;  ///< of a numeric token: 0 model/assembly level, k: DeckState::instances[k-1]
 };
 
 /// Categories of capped_error, one counter each.
@@ -46,13 +54,17 @@ constexpr int ERROR_CAP = 20;
 struct SetItem {
   enum class Kind { Id, Range, SetName, NodesOfElementSet };
   Kind kind = Kind::Id;
-  long long first = 0, last = 0, increment = 1;  ///< Kind::Id (first), Kind::Range
-  std::string name;                              ///< Kind::SetName, Kind::NodesOfElementSet
+  /// Kind::Id (first), Kind::Range: id keys (DeckState::id_key) of the item's scope.
+  long long first = 0, last = 0, increment = 1;
+  std::string name;  ///< Kind::SetName, Kind::NodesOfElementSet
   SourceLocation where;
   std::string keyword;
 };
 struct PendingSet {
   std::vector<Index> members;  ///< members known while reading (*NODE, NSET= / *ELEMENT, ELSET=)
+  /// Element sets: geometry elements (into DeckState::geometry_elements) of section-less
+  /// lower-dimensional blocks; sorted and unique once resolved.
+  std::vector<Index> geometry_members;
   /// Element sets: MASS/ROTARYI elements (into point_elements), which the Model's element
   /// arrays do not hold; sorted and unique once resolved.
   std::vector<Index> point_members;
@@ -148,6 +160,12 @@ struct PendingClearanceAssignment {
   std::string clearance;  ///< upper case
   ClearanceAssignment assignment;
 };
+/// CalculiX's `*CLEARANCE, MASTER=, SLAVE=, VALUE=` (names upper case).
+struct PendingPairClearance {
+  std::string master, slave;
+  Real value = 0.0;
+  SourceLocation where;
+};
 /// A `*ELEMENT, TYPE=MASS|ROTARYI` element: the solver has no point elements, so it stays
 /// out of the Model's element arrays; `*MASS`/`*ROTARY INERTIA` make it a PointInertia.
 struct PointElement {
@@ -158,12 +176,55 @@ struct PointElement {
   Index property = NO_INDEX;  ///< into point_properties: the *MASS/*ROTARY INERTIA covering it
   SourceLocation where;
 };
+/// An element of a lower-dimensional block that a mesher writes for every physical surface or
+/// curve (gmsh: CPS4, CPS3 faces; T3D2, T3D3 edges): without a section it is geometry, not
+/// part of the analysis; its nodes form node sets and its faces can define *SURFACEs
+/// (deck_mesh_export.cpp). A CPS4 under a *SHELL SECTION runs as S4R (`promoted`).
+struct GeometryElement {
+  ExternalId id = 0;                     ///< key (DeckState::id_key)
+  std::array<ExternalId, 4> node_ids{};  ///< keys
+  int n_nodes = 0;
+  Index block = NO_INDEX;  ///< into DeckState::geometry_blocks
+  bool promoted = false;   ///< made an S4R element of the Model
+};
+/// A `*ELEMENT` block of geometry elements.
+struct GeometryBlock {
+  std::string type;         ///< CPS4, CPS3, T3D2 or T3D3
+  std::string element_set;  ///< ELSET=, scoped; empty if none
+  SourceLocation where;
+  Index count = 0, promoted = 0;
+  /// A section over the block's elements that they cannot take: reported once.
+  bool section_reported = false;
+};
+
 /// `*MASS` (mass in values[0]) or `*ROTARY INERTIA` (I11 I22 I33 I12 I13 I23).
 struct PointProperty {
   std::string element_set;
   bool rotary = false;
   Real values[6] = {0, 0, 0, 0, 0, 0};
   SourceLocation where;
+};
+
+/// `*PART, NAME=` … `*END PART`: its part-level blocks (KeywordPlace::Part), read once for each
+/// `*INSTANCE` of the part, in the instance's scope.
+struct PartDefinition {
+  std::string name;  ///< upper case
+  SourceLocation where;
+  std::vector<const DeckBlock*> blocks;  ///< into the deck's blocks, which outlive read_blocks
+  int instances = 0;
+};
+
+/// `*INSTANCE, NAME=, PART=` with its placement: translation t, then a rotation by `angle`
+/// (degrees, right-handed) about the axis from a to b, as Abaqus applies them:
+/// x' = a + R (x + t − a).
+struct DeckInstance {
+  std::string name, part;  ///< upper case
+  SourceLocation where;
+  std::array<Real, 3> translation{};
+  bool rotated = false;
+  std::array<Real, 3> axis_a{}, axis_b{};
+  Real angle = 0.0;                ///< degrees
+  std::array<Real, 9> rotation{};  ///< R, row major (when `rotated`)
 };
 
 /// The `*PLASTIC` and `*RATE DEPENDENT` lines of one material, valid or not (line 0: none):
@@ -223,6 +284,11 @@ struct DeckState {
   std::vector<PendingTie> ties;                ///< parallel to Model::ties
   std::vector<PointElement> point_elements;
   std::unordered_map<ExternalId, Index> point_element_index;  ///< into point_elements
+  std::vector<GeometryElement> geometry_elements;
+  std::unordered_map<ExternalId, Index> geometry_index;  ///< key -> into geometry_elements
+  std::vector<GeometryBlock> geometry_blocks;
+  /// Types refused with a hint (C3D8RH, CAX4P, ...): reported at their first block only.
+  std::vector<std::string> refused_types;
   std::vector<PointProperty> point_properties;
   std::vector<PendingDistribution> distributions;  ///< parallel to Model::distributions
   std::vector<DistributionTable> distribution_tables;
@@ -230,6 +296,7 @@ struct DeckState {
   /// empty for a value.
   std::vector<std::string> clearance_distributions;
   std::vector<PendingClearanceAssignment> clearance_assignments;
+  std::vector<PendingPairClearance> pair_clearances;
   /// check_clearance_surface verdict per surface: 0 not checked, 1 fit, 2 reported.
   std::vector<std::uint8_t> clearance_surface_state;
 
@@ -245,6 +312,38 @@ struct DeckState {
   Index output = NO_INDEX;  ///< the latest *OUTPUT of the open step
   SourceLocation step_where;
   int error_counts[ERROR_CATEGORIES] = {};
+
+  // --- parts and assemblies (deck_assembly.cpp) ------------------------------------------------
+  std::vector<PartDefinition> parts;
+  std::vector<DeckInstance> instances;
+  /// A *PART, *ASSEMBLY or *INSTANCE was read: ids must stay below MAX_SCOPED_ID and every node
+  /// and element records its scope (node_scopes, element_scopes).
+  bool assembly_model = false;
+  std::vector<Index> node_scopes, element_scopes;  ///< parallel to the Model's nodes, elements
+  Index open_part = NO_INDEX;                      ///< the *PART whose blocks are being collected
+  bool in_assembly = false;                        ///< between *ASSEMBLY and *END ASSEMBLY
+  bool in_instance = false;                        ///< between *INSTANCE and *END INSTANCE
+  SourceLocation assembly_where, instance_where;
+  /// Scope of what is read: 0 model or assembly level, k: instances[k-1] (its part's blocks
+  /// and the blocks of its *INSTANCE … *END INSTANCE).
+  Index scope = 0;
+
+  /// Key of id `id` of scope `in_scope` in node_index, element_index & co.
+  static ExternalId id_key(Index in_scope, ExternalId id) {
+    return in_scope == 0 ? id : (static_cast<ExternalId>(in_scope) << SCOPE_SHIFT) + id;
+  }
+  /// The id as written of a key (the key itself in a deck without instances).
+  ExternalId local_id(ExternalId key) const {
+    return instances.empty() ? key : key & MAX_SCOPED_ID;
+  }
+  /// "5", or "5 of instance PART-1-2" for a key in an instance's range: ids in messages.
+  std::string id_text(ExternalId key) const;
+  /// A set or surface name as defined in scope `in_scope`: "INSTANCE.NAME" in an instance.
+  std::string scoped_name(Index in_scope, const std::string& name) const {
+    return in_scope == 0 || name.empty() ? name : instances[in_scope - 1].name + "." + name;
+  }
+  /// The same in the scope being read.
+  std::string scoped_name(const std::string& name) const { return scoped_name(scope, name); }
 };
 
 }  // namespace xpl::io

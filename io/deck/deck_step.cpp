@@ -106,7 +106,8 @@ void read_dynamic(DeckState& deck, const DeckBlock& block) {
                    {{"EXPLICIT", false, true},
                     {"DIRECT USER CONTROL", false},
                     {"SCALE FACTOR"},
-                    {"ELEMENT BY ELEMENT", false}});
+                    {"ELEMENT BY ELEMENT", false},
+                    {"ALPHA"}});
   Step& step = deck.model.steps.back();
   if (deck.step_has_dynamic) {
     error(deck, keyword.where, keyword, "second procedure in step " + step.name,
@@ -128,6 +129,18 @@ void read_dynamic(DeckState& deck, const DeckBlock& block) {
               "not supported",
           "expected EXPLICIT, EXPLICIT=2 or EXPLICIT=3");
     return;
+  }
+  if (const DeckParameter* alpha = find_parameter(keyword, "ALPHA");
+      alpha != nullptr && alpha->has_value && !alpha->value.empty()) {
+    if (!parse_real(alpha->value))
+      error(deck, keyword.where, keyword, "bad ALPHA=" + alpha->value,
+            "expected a number (CalculiX: the alpha of its implicit scheme, -1/3 to 0)");
+    else
+      note(deck, keyword.where, keyword,
+           "ALPHA=" + alpha->value +
+               " ignored: it sets the numerical damping of an implicit (alpha-method) step, and "
+               "the explicit central-difference method has no alpha; xpl damps high "
+               "frequencies with bulk viscosity (*BULK VISCOSITY)");
   }
   if (find_parameter(keyword, "ELEMENT BY ELEMENT") != nullptr)
     note(deck, keyword.where, keyword,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 
 #include "io/deck/deck_handlers.hpp"
 
@@ -23,6 +24,7 @@ std::array<Index, 4> hex_face_key(const Model& model, Index e, int face) {
 }  // namespace
 
 void resolve_surfaces(DeckState& deck) {
+  std::optional<ModelFaceIndex> face_index;  // built for the first line naming geometry
   for (std::size_t s = 0; s < deck.model.surfaces.size(); ++s) {
     Surface& surface = deck.model.surfaces[s];
     std::vector<Index> solids;  // of lines without a face label: one search for the surface
@@ -31,6 +33,15 @@ void resolve_surfaces(DeckState& deck) {
         const std::vector<Index> nodes = resolve_nodes(deck, item.target);
         surface.nodes.insert(surface.nodes.end(), nodes.begin(), nodes.end());
         continue;
+      }
+      // Faces of section-less CPS4/CPS3 (mesh exports): matched to the faces they lie on.
+      if (const std::vector<Index> geometry = geometry_of(deck, item.target); !geometry.empty()) {
+        if (!face_index) face_index = index_model_faces(deck.model);
+        add_geometry_faces(deck, *face_index, geometry, item, surface);
+        const Index set = deck.model.find_element_set(item.target.token);
+        if (set == NO_INDEX ||
+            deck.model.element_sets[static_cast<std::size_t>(set)].members.empty())
+          continue;
       }
       const std::vector<Index> elements = resolve_elements(deck, item.target);
       if (item.all_faces) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "io/results/job_lock.hpp"
+#include "io/results/progress_line.hpp"
 #include "io/results/results_h5.hpp"
 #include "io/results/results_log.hpp"
 #include "io/results/run_summary_file.hpp"
@@ -75,6 +76,8 @@ struct ResultFiles::Impl {
   Clock::time_point start = Clock::now();
   Clock::time_point last_progress{};        ///< when the progress line was last updated
   Clock::time_point opened = Clock::now();  ///< when the files were opened
+  std::optional<ProgressMeter> meter;       ///< the progress line's rates (from begin_run)
+  bool meter_started = false;               ///< the meter has its reference line
   SummaryRecord summary;                    ///< JOB.summary.json, filled as the run goes
 
   Impl(const std::filesystem::path& directory, const std::string& job, ResultOptions opts)
@@ -107,16 +110,23 @@ struct ResultFiles::Impl {
 
   /// Updates the progress line on stderr (only on a terminal, after PROGRESS_DELAY).
   void progress(const StatusLine& line) {
-    if (!progress_tty || seconds_since(start) < PROGRESS_DELAY) return;
+    if (!progress_tty) return;
+    // The first status line is the reference of the rates, shown or not.
+    if (meter && !meter_started) {
+      meter->text(line, step + 1, step_period, seconds_since(opened));
+      meter_started = true;
+    }
+    if (seconds_since(start) < PROGRESS_DELAY) return;
     const auto now = Clock::now();
     if (progress_shown &&
         std::chrono::duration<double>(now - last_progress).count() < PROGRESS_INTERVAL) {
       return;
     }
     last_progress = now;
-    const double percent = step_period > 0.0 ? 100.0 * line.step_time / step_period : 0.0;
-    std::fprintf(stderr, "\rstep %d  t = %.4e / %.4e s (%5.1f%%)  increment %ld  dt = %.3e   ",
-                 step + 1, line.step_time, step_period, percent, line.increment, line.dt);
+    if (!meter) return;
+    const std::string text = meter->text(line, step + 1, step_period, seconds_since(opened));
+    // Blanks after the text clear the end of a longer line it replaces.
+    std::fprintf(stderr, "\r%s   ", text.c_str());
     std::fflush(stderr);
     progress_shown = true;
   }
@@ -182,11 +192,16 @@ ResultFiles::~ResultFiles() {
 
 void ResultFiles::begin_run(const Model& model) {
   m_impl->start = Clock::now();
+  Real analysis_time = 0.0;
+  for (const Step& s : model.steps) analysis_time += s.time_period;
+  m_impl->meter.emplace(analysis_time, static_cast<int>(model.steps.size()),
+                        model.units.label("s"));
   m_impl->xdmf_file.set_mesh(m_impl->h5_file.write_mesh(model));
   m_impl->msg_file.summary(model);
   m_impl->summary.nodes = model.node_count();
   m_impl->summary.elements = model.element_count();
   m_impl->summary.steps = static_cast<int>(model.steps.size());
+  m_impl->summary.units = model.units;
   if (const std::string& owner = m_impl->lock.stale_owner(); !owner.empty())
     m_impl->msg_file.message(Severity::Note, "the lock file " + m_impl->lock.path().string() +
                                                  " of process " + owner +
@@ -223,7 +238,7 @@ void ResultFiles::append_history(Real time, std::span<const Real> values) {
 }
 
 void ResultFiles::status(const StatusLine& line) {
-  m_impl->sta_file.line(m_impl->step + 1, line);
+  m_impl->sta_file.line(m_impl->step + 1, line, seconds_since(m_impl->opened));
   m_impl->time_reached = line.total_time;
   m_impl->summary.add_status(line);
   m_impl->progress(line);

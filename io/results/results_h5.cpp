@@ -1,6 +1,7 @@
 #include "io/results/results_h5.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -347,9 +348,18 @@ void ResultsH5::with_file(const std::function<void(hid_t)>& write) {
 
 XdmfMesh ResultsH5::write_mesh(const Model& model) {
   XdmfMesh mesh;
+  m_units = model.units;
   with_file([&](hid_t file) {
     h5::set_string_attribute(file, "heading", model.heading);
+    // The numbers are the deck's; these say in which units (common/units.hpp).
+    h5::set_string_attribute(file, "unit_system", m_units.system_name());
+    h5::set_string_attribute(file, "units",
+                             m_units.explanation.empty() ? m_units.summary() : m_units.explanation);
     mesh = write_mesh_group(file, model);
+    const h5::Handle coordinates{h5::check_id(H5Dopen2(file, "mesh/coordinates", H5P_DEFAULT),
+                                              "cannot open /mesh/coordinates"),
+                                 H5Dclose};
+    h5::set_string_attribute(coordinates.get(), "units", m_units.label("m"));
   });
   return mesh;
 }
@@ -364,7 +374,7 @@ void ResultsH5::declare_history(const std::vector<HistorySeries>& series) {
   if (m_history.active()) {
     throw std::logic_error("declare_history called twice in step " + std::to_string(m_step + 1));
   }
-  with_file([&](hid_t file) { m_history.begin(file, m_step + 1, series); });
+  with_file([&](hid_t file) { m_history.begin(file, m_step + 1, series, m_units); });
 }
 
 void ResultsH5::append_history(Real time, std::span<const Real> values) {
@@ -395,7 +405,7 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
 
     for (const OutputVariable* v : frame_variables(what, output_scope(model))) {
       write_variable(g, *v, model, state);
-      describe(g, std::string(v->name), component_list(*v), v->unit, v->description);
+      describe(g, std::string(v->name), component_list(*v), m_units.label(v->unit), v->description);
     }
     if (what.stress) write_xdmf_tensors(file, std::string("xdmf/") + name, model, state);
     if (what.stress && !state.hourglass_state.empty()) {
@@ -408,6 +418,18 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
   });
   ++m_frames;
   return name;
+}
+
+std::string ResultsH5::with_length_unit(const std::string& text) const {
+  const std::string length = m_units.label("m");
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const bool alone =
+        text[i] == 'm' && (i == 0 || !std::isalnum(static_cast<unsigned char>(text[i - 1]))) &&
+        (i + 1 == text.size() || !std::isalnum(static_cast<unsigned char>(text[i + 1])));
+    out += alone ? length : std::string(1, text[i]);
+  }
+  return out;
 }
 
 void ResultsH5::write_table(const ResultTable& table) {
@@ -432,7 +454,9 @@ void ResultsH5::write_table(const ResultTable& table) {
             h5::Handle(h5::check_id(H5Dopen2(group.get(), c.name.c_str(), H5P_DEFAULT),
                                     "cannot open " + c.name),
                        H5Dclose);
-        h5::set_string_attribute(data.get(), "description", c.description);
+        // The solver describes lengths in m (SI): in the model's units instead.
+        h5::set_string_attribute(data.get(), "description",
+                                 c.integer ? c.description : with_length_unit(c.description));
       }
     }
   });

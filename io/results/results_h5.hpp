@@ -71,6 +71,9 @@ class ResultsH5 {
   int frame_count() const { return m_frames; }
 
  private:
+  /// `text` with each word "m" (a length in the solver's SI descriptions) in the model's
+  /// length unit.
+  std::string with_length_unit(const std::string& text) const;
   /// Opens JOB.h5 for writing (waiting while a reader holds HDF5's lock on it), calls
   /// `write` with the file id, then flushes and closes the file; on an exception the file is
   /// closed too and the exception passes on.
@@ -78,6 +81,7 @@ class ResultsH5 {
 
   h5::Handle m_access;  ///< file access properties (a property list, not an open file)
   HistoryWriter m_history;
+  ModelUnits m_units;  ///< how the model's numbers are labelled (from write_mesh)
   std::function<void(const std::string&)> m_wait_notice;
   std::string m_path;
   int m_step = 0;  ///< zero-based current step

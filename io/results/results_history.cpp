@@ -19,14 +19,15 @@ void check_series_path(const std::string& path, int step) {
 
 }  // namespace
 
-void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>& series) {
+void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>& series,
+                          const ModelUnits& units) {
   if (pending()) throw std::logic_error("HistoryWriter::begin: rows of the last step not written");
   end();
   m_step = step;
   const std::string group = "history/step_" + std::to_string(step);
   h5::require_group(file, group);
   m_time.emplace(file, group + "/time", 0);
-  h5::set_string_attribute(m_time->open(file).get(), "units", "s");
+  h5::set_string_attribute(m_time->open(file).get(), "units", units.label("s"));
   m_columns.clear();
   m_row_width = 0;
   for (const HistorySeries& s : series) {
@@ -50,7 +51,7 @@ void HistoryWriter::begin(hid_t file, int step, const std::vector<HistorySeries>
     }
     // Issue 19: what the columns are (node series: this component of node node_ids[j]).
     if (!s.component.empty()) h5::set_string_attribute(dataset.get(), "components", s.component);
-    if (!s.unit.empty()) h5::set_string_attribute(dataset.get(), "units", s.unit);
+    if (!s.unit.empty()) h5::set_string_attribute(dataset.get(), "units", units.label(s.unit));
     m_columns.push_back(m_row_width);
     m_row_width += static_cast<hsize_t>(s.width);
   }

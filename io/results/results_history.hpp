@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "common/units.hpp"
 #include "io/results/h5_handles.hpp"
 #include "solver/output_sink.hpp"
 
@@ -22,8 +23,10 @@ class HistoryWriter {
   static constexpr std::size_t ROWS_PER_WRITE = 256;
 
   /// Starts the history of `step` (1-based; group /history/step_N of the open `file`) with
-  /// the given columns. Ends the history of a previous step first.
-  void begin(hid_t file, int step, const std::vector<HistorySeries>& series);
+  /// the given columns, their `units` attributes labelled in `units` (the series give SI
+  /// units). Ends the history of a previous step first.
+  void begin(hid_t file, int step, const std::vector<HistorySeries>& series,
+             const ModelUnits& units);
   /// Whether a step's history is open.
   bool active() const { return m_time.has_value(); }
   /// Buffers one row; `values` holds every series' columns back to back. Returns true when

@@ -122,9 +122,9 @@ StaFile::StaFile(const std::filesystem::path& path, const std::string& job)
 void StaFile::begin_step(int step, const std::string& name) {
   m_out << "\n STEP " << step << "  " << escape_control(name) << "\n\n"
         << "  STEP  INCREMENT   TOTAL TIME    STEP TIME       STABLE     CRITICAL      KINETIC"
-           "        TOTAL\n"
+           "        TOTAL    WALL TIME\n"
         << "                                              INCREMENT      ELEMENT       ENERGY"
-           "       ENERGY\n";
+           "       ENERGY          (s)\n";
   m_out.flush();
 }
 
@@ -133,20 +133,14 @@ void StaFile::note(const std::string& text) {
   m_out.flush();
 }
 
-void StaFile::line(int step, const StatusLine& line) {
-  if (line.critical_contact_node != 0) {
-    // A contact penalty limits the increment: "node N" in the critical column.
-    const std::string critical = "node " + std::to_string(line.critical_contact_node);
-    m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12s %12.4E %12.4E\n", step, line.increment,
-                    line.total_time, line.step_time, line.dt, critical.c_str(),
-                    line.energies.kinetic, line.energies.total());
-    m_out.flush();
-    return;
-  }
-  m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12lld %12.4E %12.4E\n", step, line.increment,
-                  line.total_time, line.step_time, line.dt,
-                  static_cast<long long>(line.critical_element), line.energies.kinetic,
-                  line.energies.total());
+void StaFile::line(int step, const StatusLine& line, double wall) {
+  // A contact penalty that limits the increment shows as "node N" in the critical column.
+  const std::string critical = line.critical_contact_node != 0
+                                   ? "node " + std::to_string(line.critical_contact_node)
+                                   : std::to_string(static_cast<long long>(line.critical_element));
+  m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12s %12.4E %12.4E %12.2f\n", step,
+                  line.increment, line.total_time, line.step_time, line.dt, critical.c_str(),
+                  line.energies.kinetic, line.energies.total(), wall);
   m_out.flush();
 }
 
@@ -166,6 +160,11 @@ MsgFile::MsgFile(const std::filesystem::path& path, const std::string& job)
 void MsgFile::summary(const Model& model) {
   m_out << " MODEL SUMMARY\n";
   if (!model.heading.empty()) m_out << "   heading: " << escape_control(model.heading) << "\n";
+  // The numbers are the deck's: say which units they are in (common/units.hpp).
+  m_out << "   units: "
+        << escape_control(model.units.explanation.empty() ? model.units.summary()
+                                                          : model.units.explanation)
+        << "\n";
   m_out << format("   %-28s %10d\n", "nodes", model.node_count());
   m_out << format("   %-28s %10d\n", "elements", model.element_count());
   for (ElementType type : {ElementType::C3D8R, ElementType::C3D8, ElementType::S4R}) {

@@ -19,8 +19,9 @@ class StaFile {
   StaFile(const std::filesystem::path& path, const std::string& job);
   /// Header of step `step` (1-based) with the column titles.
   void begin_step(int step, const std::string& name);
-  /// One status line of step `step` (1-based).
-  void line(int step, const StatusLine& line);
+  /// One status line of step `step` (1-based), `wall` seconds after the job's files were
+  /// opened (the last column, WALL TIME).
+  void line(int step, const StatusLine& line, double wall);
   /// A free text line (a summary between status lines), indented by one blank.
   void note(const std::string& text);
   /// The completion line, the error text if any, the phase timings and the speed.
@@ -36,7 +37,7 @@ class MsgFile {
  public:
   /// Creates (truncates) `path` and writes the header (xpl version, job, date).
   MsgFile(const std::filesystem::path& path, const std::string& job);
-  /// Model summary: nodes, elements per type, materials, sets, surfaces, steps.
+  /// Model summary: the units, nodes, elements per type, materials, sets, surfaces, steps.
   void summary(const Model& model);
   /// Header of step `step` (zero-based index into model.steps).
   void begin_step(const Model& model, int step);

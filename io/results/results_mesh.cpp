@@ -93,6 +93,32 @@ void write_sets(hid_t file, hid_t mesh, const std::string& group_name,
   }
 }
 
+/// Instances of an assembly model: /mesh/node_instance and /mesh/element_instance (index into
+/// the instance list, -1 at the assembly level), /mesh/node_local_ids and
+/// /mesh/element_local_ids (the ids in the part as the deck wrote them), and the instance and
+/// part names (attributes `instances`, `instance_parts`, comma-separated, in index order).
+/// Returns the names, comma-separated.
+std::string write_instances(hid_t mesh, const Model& model) {
+  std::string names, parts;
+  for (const PartInstance& instance : model.instances) {
+    names += (names.empty() ? "" : ",") + instance.name;
+    parts += (parts.empty() ? "" : ",") + instance.part;
+  }
+  const auto as_int64 = [](const auto& values) {
+    return std::vector<std::int64_t>(values.begin(), values.end());
+  };
+  const std::vector<std::int64_t> node_instance = as_int64(model.node_instance);
+  const std::vector<std::int64_t> element_instance = as_int64(model.element_instance);
+  h5::write_int64(mesh, "node_instance", node_instance, {node_instance.size()});
+  h5::write_int64(mesh, "element_instance", element_instance, {element_instance.size()});
+  h5::write_int64(mesh, "node_local_ids", model.node_local_ids, {model.node_local_ids.size()});
+  h5::write_int64(mesh, "element_local_ids", model.element_local_ids,
+                  {model.element_local_ids.size()});
+  h5::set_string_attribute(mesh, "instances", names);
+  h5::set_string_attribute(mesh, "instance_parts", parts);
+  return names;
+}
+
 }  // namespace
 
 const char* xdmf_cell_name(ElementType type) {
@@ -158,6 +184,7 @@ XdmfMesh write_mesh_group(hid_t file, const Model& model) {
     xdmf.topology_dimensions =
         std::to_string(xdmf.cells) + " " + std::to_string(nodes_per_element(type));
   }
+  if (!model.instances.empty()) xdmf.instance_names = write_instances(mesh.get(), model);
   write_sets(file, mesh.get(), "node_sets", model.node_sets, model.node_ids, true, xdmf.sets);
   write_sets(file, mesh.get(), "element_sets", model.element_sets, model.element_ids, false,
              xdmf.sets);

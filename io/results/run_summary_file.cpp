@@ -7,6 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include "solver/output_variables.hpp"
 
@@ -90,6 +91,17 @@ JsonValue SummaryRecord::json() const {
   model.set("nodes", static_cast<long>(nodes));
   model.set("elements", static_cast<long>(elements));
   model.set("steps", steps);
+  JsonValue& labels = out.set("units", JsonValue::object());
+  labels.set("system", units.system_name());
+  labels.set("stated", units.stated != nullptr);
+  labels.set("description", units.explanation.empty() ? units.summary() : units.explanation);
+  for (const auto& [key, si] : {std::pair<const char*, const char*>{"length", "m"},
+                                {"mass", "kg"},
+                                {"time", "s"},
+                                {"force", "N"},
+                                {"stress", "Pa"},
+                                {"energy", "J"}})
+    labels.set(key, units.label(si));
   out.set("threads", threads);
   out.set("steps_started", steps_started);
   out.set("increments", increments);

@@ -9,6 +9,7 @@
 
 #include "common/timer.hpp"
 #include "common/types.hpp"
+#include "common/units.hpp"
 #include "io/results/json_value.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/state.hpp"
@@ -27,6 +28,7 @@ struct SummaryRecord {
   Index nodes = 0;               ///< nodes of the model
   Index elements = 0;            ///< elements of the model
   int steps = 0;                 ///< steps of the model
+  ModelUnits units;              ///< the units of the model's numbers
   int steps_started = 0;         ///< steps begun by the run
   long increments = 0;           ///< increments at the last status line
   Real simulated_time = 0;       ///< total time at the last status line, s

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "solver/output_variables.hpp"
 
@@ -44,10 +45,27 @@ std::string exact(Real value) {
   return text;
 }
 
-/// XDMF AttributeType of a variable with `width` components.
-const char* attribute_type(int width) {
+/// XDMF AttributeType of a variable with `width` components. ParaView's Xdmf3 reader makes
+/// the first "Scalar" of a grid its active scalars, which ParaView colours by when the data
+/// is shown, and the first "Vector" the active vectors, which Warp By Vector offers first:
+/// so the one scalar `colour` (colour_field) is "Scalar", every other one "None" (an array
+/// like any other), and U, the first vector of a frame, is the one Warp By Vector takes.
+const char* attribute_type(int width, bool colour) {
   if (width == 6) return "Tensor6";
-  return width == 3 ? "Vector" : "Scalar";
+  if (width == 3) return "Vector";
+  return colour ? "Scalar" : "None";
+}
+
+/// The field a frame's model is coloured by when ParaView shows it: the largest Mises stress
+/// through the thickness on shell models, else the Mises stress, else the first scalar of the
+/// frame (PEEQ, EVOL, contact pressure, ...); "" for a frame without one.
+std::string_view colour_field(const std::vector<const OutputVariable*>& variables) {
+  for (const std::string_view preferred : {"MISES_MAX", "MISES"})
+    for (const OutputVariable* v : variables)
+      if (v->name == preferred) return v->name;
+  for (const OutputVariable* v : variables)
+    if (v->width == 1) return v->name;
+  return "";
 }
 
 /// Writes `text` to a sibling file and renames it over `path`: readers never see a partial
@@ -97,7 +115,7 @@ std::string XdmfWriter::data_item(const std::string& dims, const char* type,
 
 std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameRequest& what,
                              int step, const std::string& step_name, Real step_time,
-                             bool set_elements) const {
+                             bool temporal) const {
   const std::string nodes = std::to_string(m_mesh.nodes);
   const std::string cells = std::to_string(m_mesh.cells);
   const std::string prefix = "/frames/" + frame + "/";
@@ -111,11 +129,14 @@ std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameReq
   std::string grid = "      <Grid Name=\"frame_" + frame + "\" GridType=\"Uniform\">\n";
   // meshio.read rejects Time and Information elements (other than its own) in a single
   // grid: the last-frame file carries neither (its frame's time is in JOB.xdmf and JOB.h5).
-  if (set_elements) {
+  if (temporal) {
     grid += "        <Time Value=\"" + exact(time) + "\"/>\n";
     grid += "        <Information Name=\"step\" Value=\"" + std::to_string(step) + "\"/>\n";
     grid += "        <Information Name=\"step_name\" Value=\"" + xml_escape(step_name) + "\"/>\n";
     grid += "        <Information Name=\"step_time\" Value=\"" + exact(step_time) + "\"/>\n";
+    if (!m_mesh.instance_names.empty())
+      grid += "        <Information Name=\"instances\" Value=\"" +
+              xml_escape(m_mesh.instance_names) + "\"/>\n";
   }
   grid += "        <Topology TopologyType=\"" + m_mesh.topology_type + "\" NumberOfElements=\"" +
           cells + "\">\n          " +
@@ -123,10 +144,23 @@ std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameReq
           "\n        </Topology>\n";
   grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
           data_item(nodes + " 3", "Float", "/mesh/coordinates") + "\n        </Geometry>\n";
-  // Deck ids, so that a picked point or cell shows its node or element number.
-  grid += attribute("node_id", "Scalar", true, nodes, "Int", "/mesh/node_ids");
-  grid += attribute("element_id", "Scalar", false, cells, "Int", "/mesh/element_ids");
-  for (const OutputVariable* v : frame_variables(what, {m_mesh.shells, m_mesh.plastic})) {
+  // Deck ids, so that a picked point or cell shows its node or element number (as global
+  // ids: not the scalars ParaView colours by).
+  grid += attribute("node_id", "GlobalId", true, nodes, "Int", "/mesh/node_ids");
+  grid += attribute("element_id", "GlobalId", false, cells, "Int", "/mesh/element_ids");
+  if (!m_mesh.instance_names.empty()) {
+    // Assembly models: the instance (index into the names of Information "instances", -1 at
+    // the assembly level) and the id within it, as the deck wrote it (arrays, not scalars
+    // ParaView would colour by).
+    grid += attribute("node_instance", "None", true, nodes, "Int", "/mesh/node_instance");
+    grid += attribute("node_local_id", "None", true, nodes, "Int", "/mesh/node_local_ids");
+    grid += attribute("element_instance", "None", false, cells, "Int", "/mesh/element_instance");
+    grid += attribute("element_local_id", "None", false, cells, "Int", "/mesh/element_local_ids");
+  }
+  const std::vector<const OutputVariable*> variables =
+      frame_variables(what, {m_mesh.shells, m_mesh.plastic});
+  const std::string_view colour = colour_field(variables);
+  for (const OutputVariable* v : variables) {
     const std::string name(v->name);
     const bool node = v->location == OutputLocation::Node;
     std::string dims = node ? nodes : cells;
@@ -141,18 +175,17 @@ std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameReq
       }
       continue;
     }
-    grid += attribute(name, attribute_type(v->width), node, dims, "Float", prefix + name);
+    grid += attribute(name, attribute_type(v->width, v->name == colour), node, dims, "Float",
+                      prefix + name);
   }
+  // Sets as 0/1 attributes (NSET_NAME on the nodes, ELSET_NAME on the cells), not as XDMF
+  // Set elements: ParaView's Xdmf3 reader turns every Set on and draws each as a block without
+  // fields over the mesh (a grey model under a correct colour bar), and meshio reads no Set.
+  // A set is then an array to colour by or to threshold.
   for (const XdmfSet& set : m_mesh.sets) {
     const std::string kind = set.node ? "NSET_" : "ELSET_";
-    if (set_elements) {
-      grid += "        <Set Name=\"" + xml_escape(kind + set.name) + "\" SetType=\"" +
-              (set.node ? "Node" : "Cell") + "\">\n          " +
-              data_item(std::to_string(set.size), "Int", set.rows_dataset) + "\n        </Set>\n";
-    } else {
-      grid += attribute(kind + set.name, "Scalar", set.node, set.node ? nodes : cells, "UInt",
-                        set.flag_dataset);
-    }
+    grid += attribute(kind + set.name, "None", set.node, set.node ? nodes : cells, "UInt",
+                      set.flag_dataset);
   }
   grid += "      </Grid>\n";
   return grid;

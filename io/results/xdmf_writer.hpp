@@ -16,7 +16,7 @@ struct XdmfSet {
   std::string name;          ///< deck name (XML-escaped when written)
   bool node = true;          ///< node set (else element set)
   Index size = 0;            ///< members
-  std::string rows_dataset;  ///< HDF5 path of its zero-based rows (int64)
+  std::string rows_dataset;  ///< HDF5 path of its zero-based rows (int64; for h5py users)
   std::string flag_dataset;  ///< HDF5 path of its 0/1 flag per node or element (uint8)
 };
 
@@ -35,8 +35,12 @@ struct XdmfMesh {
   bool shells = false;
   /// Models with a plastic material: frames may list PEEQ.
   bool plastic = false;
-  /// Node and element sets (XDMF Set elements in JOB.xdmf, flag attributes in the
-  /// last-frame file, which meshio reads).
+  /// Assembly models: the instance names, comma-separated in index order (empty for a flat
+  /// deck); every frame then also has `node_instance`, `node_local_id`, `element_instance` and
+  /// `element_local_id`, so that a picked point or cell shows the instance and its own id.
+  std::string instance_names;
+  /// Node and element sets, written as 0/1 attributes NSET_NAME / ELSET_NAME (not as XDMF Set
+  /// elements, which ParaView's Xdmf3 reader draws as field-less blocks over the mesh).
   std::vector<XdmfSet> sets;
 };
 
@@ -58,10 +62,10 @@ class XdmfWriter {
 
  private:
   void write() const;
-  /// The grid of one frame; `sets` as XDMF Set elements (ParaView) or as flag attributes
-  /// (meshio reads no Set element).
+  /// The grid of one frame; `temporal`: with its Time and step Information elements (JOB.xdmf;
+  /// meshio.read refuses them in the single grid of JOB_last.xdmf).
   std::string grid(const std::string& frame, Real time, const FrameRequest& what, int step,
-                   const std::string& step_name, Real step_time, bool set_elements) const;
+                   const std::string& step_name, Real step_time, bool temporal) const;
   std::string data_item(const std::string& dims, const char* type,
                         const std::string& dataset) const;
 

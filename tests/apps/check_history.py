@@ -6,8 +6,8 @@ Usage: check_history.py XPL RESULTS_DIR JOB
 Runs `XPL history DIR/JOB.h5` (stdout), `--csv FILE` and `--step 1`, parses each with
 Python's csv module and checks: the header is `time`, then one column per energy (ALLKE) and
 per variable and node (RF1@N1000) of every /history dataset; every cell equals the .h5 value
-bitwise (the CSV carries 17 significant digits). `--step 2` of a one-step job, a missing file
-and an unknown option exit 2.
+bitwise (the CSV carries 17 significant digits). `--step 2` of a one-step job (saying there is
+no step 2 and that the result has one step), a missing file and an unknown option exit 2.
 """
 
 import csv
@@ -81,7 +81,8 @@ def main():
     if result.returncode != 0 or result.stdout:
         fail(f"--csv: exit {result.returncode}, stdout {result.stdout[:80]!r}: {result.stderr}")
     check_table(csv_path.read_text(), columns, "--csv")
-    for words, needle in ((["--step", "2"], "no history of step 2"),
+    # A step the result does not have is named as such, with the steps it has (issue 34).
+    for words, needle in ((["--step", "2"], "no step 2: the result has one step (1)"),
                           (["--bogus"], "unknown option")):
         result = subprocess.run([xpl, "history", str(h5_path), *words], capture_output=True,
                                 text=True, timeout=60)

@@ -1,5 +1,10 @@
 #!/usr/bin/python3
-"""Command-line usage of xpl: --help, --version and usage errors (exit code 2).
+"""Command-line usage of xpl: --help, --version, each command's --help and usage errors (exit
+code 2).
+
+`xpl run|check|compare|history --help` (and -h, and --help after other words) print that
+command's usage on stdout and exit 0 (issue 34, SPEC I6); an unknown command is named as such,
+with the usage, and exits 2, with or without a deck after it.
 
 Usage: check_usage.py XPL DECK WORK_DIR
 
@@ -42,6 +47,35 @@ def main():
     for word in ("xpl run DECK.inp", "xpl check DECK.inp", "--threads", "-o DIR"):
         check(word in result.stdout, f"--help does not mention '{word}':\n{result.stdout}")
 
+    command_help = {
+        ("run", "--help"): "usage: xpl run DECK.inp",
+        ("run", "-h"): "usage: xpl run DECK.inp",
+        ("run", deck, "-o", "out_help", "--help"): "usage: xpl run DECK.inp",
+        ("check", "--help"): "usage: xpl check DECK.inp",
+        ("compare", "--help"): "usage: xpl compare REF.h5 NEW.h5",
+        ("compare", "a.h5", "-h"): "usage: xpl compare REF.h5 NEW.h5",
+        ("history", "--help"): "usage: xpl history JOB.h5",
+    }
+    for args, first in command_help.items():
+        result = run(*args)
+        check(result.returncode == 0, f"{' '.join(args)}: exit code {result.returncode}, expected 0"
+              f"\nstderr:\n{result.stderr}")
+        check(result.stdout.startswith(first),
+              f"{' '.join(args)}: stdout does not start with {first!r}:\n{result.stdout}")
+        check(result.stderr == "", f"{' '.join(args)}: wrote on stderr: {result.stderr!r}")
+    for option in ("--energy-limit", "--import", "--threads"):
+        check(option in run("run", "--help").stdout, f"run --help does not explain {option}")
+    for option in ("--rtol", "--history", "--frames", "--json"):
+        check(option in run("compare", "--help").stdout, f"compare --help does not explain {option}")
+    check("--step" in run("history", "--help").stdout, "history --help does not explain --step")
+
+    for args in (["frobnicate", deck], ["frobnicate"], ["--frobnicate"]):
+        result = run(*args)
+        check(result.returncode == 2 and f"unknown command '{args[0]}'" in result.stderr
+              and "usage: xpl run" in result.stderr,
+              f"{' '.join(args)}: exit {result.returncode}, expected 2 with \"unknown command "
+              f"'{args[0]}'\" and the usage; stderr:\n{result.stderr}")
+
     usage_errors = {
         "no arguments": [],
         "unknown command": ["frobnicate", deck],
@@ -62,7 +96,8 @@ def main():
 
     if failures:
         sys.exit(f"check_usage.py: {len(failures)} check(s) failed")
-    print(f"check_usage.py: --version, --help and {len(usage_errors)} usage errors OK")
+    print(f"check_usage.py: --version, --help, {len(command_help)} command helps and "
+          f"{len(usage_errors)} usage errors OK")
 
 
 if __name__ == "__main__":

@@ -293,3 +293,223 @@ TEST_CASE(
     CHECK(engine.normal_force(s) == Approx(engine.touch(s).weight * k * 0.15).epsilon(1e-9));
   }
 }
+
+TEST_CASE("a node never touches a face of its own hex, however squashed the hex is",
+          "[contact][engine]") {
+  // One hex squashed to a fifth of its height: its top nodes lie 0.2 above its bottom face,
+  // within the depth limit of that face (half the height as read, 0.5), with normals (+z at
+  // the top face's corners, leaning outward) against the bottom face's −z. They are corners
+  // of the element whose bottom face that is: no contact (a Taylor bar's mushrooming rim made
+  // 10 J springs per node of this). A separate block 0.1 below still touches as before.
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 1, 1, 1, 1.0);
+  test::add_hex_block(mesh, 1, 1, 1, 1.0, Vec3(0.0, 0.0, -1.05));
+  const NodalVectors reference = mesh.coordinates;
+  NodalVectors x = reference;
+  for (Index i = 4; i < 8; ++i) x(i, 2) = 0.2;     // block 1's top nodes
+  for (Index i = 12; i < 16; ++i) x(i, 2) = 0.05;  // block 2's top nodes, 0.05 into block 1
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), reference), {},
+                                options, reference, {});
+  engine.probe(x, {});
+  const ContactDomain& domain = engine.domain();
+  for (Index node = 4; node < 8; ++node) {
+    const contact::SlaveTouch& touch = engine.touch(domain.slaves().slot(node));
+    CHECK((touch.face == NO_INDEX || domain.faces()[touch.face].element != 0));
+  }
+  for (Index node = 12; node < 16; ++node) {
+    const contact::SlaveTouch& touch = engine.touch(domain.slaves().slot(node));
+    REQUIRE(touch.face != NO_INDEX);
+    CHECK(domain.faces()[touch.face].element == 0);
+    CHECK(touch.gap == Approx(-0.05).margin(1e-12));
+  }
+}
+
+namespace {
+
+/// An S4R sheet (t = 0.2, in z = 0) between two unit hexes: the lower one's top 0.1 − `low`
+/// below the sheet's mid-plane, so that it penetrates the sheet's lower side by `low`, the
+/// upper one's bottom likewise by `high`. The sheet is the slave surface of a one-sided pair,
+/// the blocks its master; block nodes are heavy (1e6) and sheet nodes weigh 1.
+struct Sandwich {
+  test::ContactMesh mesh;
+  std::vector<Real> thickness, mass, inverse_mass;
+  DomainSpec spec;
+  Sandwich(Real low, Real high) {
+    const Real t = 0.2;
+    const Index s0 = mesh.add_node(0.2, 0.2, 0), s1 = mesh.add_node(0.8, 0.2, 0),
+                s2 = mesh.add_node(0.8, 0.8, 0), s3 = mesh.add_node(0.2, 0.8, 0);
+    mesh.add_element(contact::ElementKind::Shell, {s0, s1, s2, s3});
+    test::add_hex_block(mesh, 1, 1, 1, 1.0, Vec3(0, 0, -0.5 * t + low - 1.0));
+    test::add_hex_block(mesh, 1, 1, 1, 1.0, Vec3(0, 0, 0.5 * t - high));
+    const Index n = mesh.node_count();
+    thickness.assign(n, 0.0);
+    for (Index i = 0; i < 4; ++i) thickness[i] = t;
+    mass.assign(n, 1e6);
+    for (Index i = 0; i < 4; ++i) mass[i] = 1.0;
+    for (Index i = 0; i < n; ++i) inverse_mass.push_back(1.0 / mass[i]);
+    spec.surfaces.push_back({"SHEET", false, {{0, contact::SHELL_SNEG}, {0, contact::SHELL_SPOS}}});
+    spec.surfaces.push_back({"DIES", false, {{1, 1}, {2, 0}}});  // lower top S2, upper bottom S1
+    spec.inclusions.push_back({0, 1, true});
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a node pinched between two faces is pushed by both, each spring from its own side",
+          "[contact][engine][pinch]") {
+  // The sheet's corner nodes penetrate the lower block by 0.03 and the upper one by 0.02.
+  // With one spring the node would feel the nearer (lower) face alone, and flip to the upper
+  // one as soon as it had been pushed past the middle: now both act, each from its side.
+  const Real dt = 1e-3;
+  Sandwich sandwich(0.03, 0.02);
+  const NodalVectors& x = sandwich.mesh.coordinates;
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  contact::ContactEngine engine(ContactDomain(sandwich.spec, sandwich.mesh.topology(), x), {},
+                                options, x, sandwich.thickness);
+  NodalVectors force = NodalVectors::Zero(sandwich.mesh.node_count(), 3);
+  PhaseTimers timers;
+  engine.update(x, NodalVectors::Zero(sandwich.mesh.node_count(), 3), 0.0, dt, sandwich.thickness,
+                sandwich.mass, sandwich.inverse_mass, force, timers);
+  const Real k = contact::default_penalty_stiffness(1.0, 1e6, dt);
+  for (Index node = 0; node < 4; ++node) {
+    const Index s = engine.domain().slaves().slot(node);
+    const contact::SlaveTouch& first = engine.touch(s);
+    const contact::SlaveTouch& second = engine.second_touch(s);
+    REQUIRE(first.face != NO_INDEX);
+    REQUIRE(second.face != NO_INDEX);
+    CHECK(first.gap == Approx(-0.03).margin(1e-12));
+    CHECK(second.gap == Approx(-0.02).margin(1e-12));
+    CHECK(first.normal.dot(second.normal) == Approx(-1.0).margin(1e-12));
+    // Two springs, each 2k in the row-sum bound (heavy but moving corners): 4k/m·Δt² = 2 is
+    // over the node budget of 1, so each spring carries half its default stiffness.
+    const Real share = contact::DEFAULT_PENALTY_NODE_BUDGET / (4.0 * k * dt * dt);
+    CHECK(engine.normal_force(s) == Approx(share * k * 0.03).epsilon(1e-9));
+    CHECK(engine.second_normal_force(s) == Approx(share * k * 0.02).epsilon(1e-9));
+    CHECK(force(node, 2) == Approx(-share * k * 0.01).epsilon(1e-9));  // net push up
+  }
+}
+
+TEST_CASE("a node pressed on one side only keeps its full default spring",
+          "[contact][engine][pinch]") {
+  // Only the upper block penetrates (0.02); the lower one is 0.05 away: one spring, its row
+  // sum 2k/m·Δt² = 1 within the node budget, so it is not scaled.
+  const Real dt = 1e-3;
+  Sandwich sandwich(-0.05, 0.02);
+  const NodalVectors& x = sandwich.mesh.coordinates;
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  contact::ContactEngine engine(ContactDomain(sandwich.spec, sandwich.mesh.topology(), x), {},
+                                options, x, sandwich.thickness);
+  NodalVectors force = NodalVectors::Zero(sandwich.mesh.node_count(), 3);
+  PhaseTimers timers;
+  engine.update(x, NodalVectors::Zero(sandwich.mesh.node_count(), 3), 0.0, dt, sandwich.thickness,
+                sandwich.mass, sandwich.inverse_mass, force, timers);
+  const Real k = contact::default_penalty_stiffness(1.0, 1e6, dt);
+  for (Index node = 0; node < 4; ++node) {
+    const Index s = engine.domain().slaves().slot(node);
+    CHECK(engine.second_touch(s).face == NO_INDEX);
+    CHECK(engine.normal_force(s) == Approx(k * 0.02).epsilon(1e-9));
+  }
+}
+
+TEST_CASE(
+    "a solid face that turns admissible for a node already behind its plane starts without "
+    "force",
+    "[contact][engine][onset]") {
+  // Block A: 2×2×1 unit hexes, top at z = 1. Block B: a unit cube with its corner q held at
+  // (1, 1, 0.9), 0.1 below A's top, and first turned about q so that q's normal (the mean of
+  // its three faces, (−1, −1, −1)/√3 in B's own frame) is horizontal: A's top face does not
+  // look at q (cosine 0). In one increment B turns back about q, so q's normal leans down
+  // (cosine −0.58) and A's top face becomes admissible 0.1 deep, with no approach at all (q
+  // does not move). The mushrooming rim of a Taylor bar turns its nodes' normals like this.
+  // Offset, no force, no energy; sinking 0.01 further is resisted.
+  const Real dt = 1e-3;
+  test::ContactMesh reference;
+  test::add_hex_block(reference, 2, 2, 1, 1.0);
+  const Index first_b = reference.node_count();
+  test::add_hex_block(reference, 1, 1, 1, 1.0, Vec3(1.0, 1.0, 0.9));
+  const Index n = reference.node_count();
+  const Index q = first_b;  // B's node (0, 0, 0)
+  const Vec3 pivot(1.0, 1.0, 0.9);
+  const Vec3 corner_normal = Vec3(-1, -1, -1).normalized();
+  const Eigen::Matrix3d turn =
+      Eigen::Quaterniond::FromTwoVectors(corner_normal, Vec3(-1, -1, 0).normalized())
+          .toRotationMatrix();
+  NodalVectors x0 = reference.coordinates;
+  for (Index i = first_b; i < n; ++i) {
+    const Vec3 r = turn * (contact::node_point(reference.coordinates, i) - pivot) + pivot;
+    for (int d = 0; d < 3; ++d) x0(i, d) = r[d];
+  }
+  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  const Real k = contact::default_penalty_stiffness(1.0, 1.0, dt);
+  PhaseTimers timers;
+  contact::ContactEngine engine(
+      ContactDomain(all_exterior(), reference.topology(), reference.coordinates), {}, options, x0,
+      {});
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  engine.update(x0, NodalVectors::Zero(n, 3), 0.0, dt, {}, mass, inverse_mass, force, timers);
+  const Index s = engine.domain().slaves().slot(q);
+  REQUIRE(engine.touch(s).face == NO_INDEX);
+  const NodalVectors& x1 = reference.coordinates;
+  const NodalVectors v1 = (x1 - x0) / dt;
+  const contact::ContactTotals in =
+      engine.update(x1, v1, dt, dt, {}, mass, inverse_mass, force, timers);
+  const contact::SlaveTouch& touch = engine.touch(s);
+  REQUIRE(touch.face != NO_INDEX);
+  CHECK(engine.domain().faces()[touch.face].element < first_b);
+  CHECK(touch.gap == Approx(-0.1).margin(1e-12));
+  CHECK(engine.normal_force(s) == 0.0);
+  CHECK(engine.constraints()[s].offset == Approx(0.1).margin(1e-12));
+  CHECK(in.stored_energy >= 0.0);
+  NodalVectors x2 = x1;
+  for (Index i = first_b; i < n; ++i) x2(i, 2) -= 0.01;
+  NodalVectors v2 = NodalVectors::Zero(n, 3);
+  for (Index i = first_b; i < n; ++i) v2(i, 2) = -0.01 / dt;
+  engine.update(x2, v2, dt, dt, {}, mass, inverse_mass, force, timers);
+  CHECK(engine.touch(s).face == touch.face);
+  CHECK(engine.normal_force(s) == Approx(touch.weight * k * 0.01).epsilon(1e-9));
+}
+
+TEST_CASE("a rigid body's nodes touch a deformable face its corners would otherwise pass",
+          "[contact][engine][rigid]") {
+  // A deformable unit hex and a rigid 2×2×1 block of 0.25 elements whose centre node dips
+  // 0.01 into the hex's top face, far from the hex's corners: no node of the hex is near a
+  // rigid face, so only the rigid node's view sees the contact; its weight is 1.
+  const Real dt = 1e-3;
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 1, 1, 1, 1.0);
+  const Index first_rigid = mesh.node_count();
+  test::add_hex_block(mesh, 2, 2, 1, 0.25, Vec3(0.25, 0.25, 0.99));
+  const Index n = mesh.node_count();
+  const Index centre = first_rigid + 4;  // node (1, 1, 0) of the rigid block
+  DomainSpec spec = all_exterior();
+  spec.element_body.assign(mesh.kinds.size(), NO_INDEX);
+  for (std::size_t e = 1; e < mesh.kinds.size(); ++e) spec.element_body[e] = 0;
+  std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  for (Index i = first_rigid; i < n; ++i) inverse_mass[i] = 0.0;
+  contact::ContactOptions options;
+  options.margin = 0.3;
+  const NodalVectors& x = mesh.coordinates;
+  contact::ContactEngine engine(ContactDomain(spec, mesh.topology(), x), {}, options, x, {});
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  PhaseTimers timers;
+  engine.update(x, NodalVectors::Zero(n, 3), 0.0, dt, {}, mass, inverse_mass, force, timers);
+  const Index s = engine.domain().slaves().slot(centre);
+  REQUIRE(engine.domain().slave_rigid(s));
+  const contact::SlaveTouch& touch = engine.touch(s);
+  REQUIRE(touch.face != NO_INDEX);
+  CHECK(engine.domain().faces()[touch.face].element == 0);
+  CHECK(touch.weight == 1.0);
+  CHECK(touch.gap == Approx(-0.01).margin(1e-12));
+  const Real k = contact::default_penalty_stiffness(1.0, 1.0, dt);
+  CHECK(engine.normal_force(s) == Approx(k * 0.01).epsilon(1e-9));
+  // The hex's top corners, pushed up by their shares of that force.
+  Real up = 0.0;
+  for (Index i = 4; i < 8; ++i) up -= force(i, 2);
+  CHECK(up == Approx(-k * 0.01).epsilon(1e-9));
+}

@@ -1,8 +1,11 @@
 // A CalculiX-style deck: model-level *CONTACT PAIR, *SURFACE BEHAVIOR with CalculiX's extra
 // values, *STEP, INC=, and the *NODE FILE / *EL FILE / *NODE PRINT / *EL PRINT /
-// *CONTACT FILE / *CONTACT PRINT output keywords, each mapped or noted.
+// *CONTACT FILE / *CONTACT PRINT output keywords, each mapped or noted; MASSLESS pairs, ALPHA=,
+// *CLEARANCE, and the refused *STATIC, *EQUATION, C3D20 (issue 34 item 3).
 
 #include <catch2/catch.hpp>
+
+#include <algorithm>
 
 #include "deck/deck_test_support.hpp"
 
@@ -150,4 +153,115 @@ TEST_CASE("CalculiX output keywords: sets and errors", "[io][deck][contact][calc
   CHECK(m.deck_messages[0].text ==
         at(deck, "*NODE FILE", "*NODE FILE") +
             "nothing written: no variable is available in xpl; dropped (not available in xpl): NT");
+}
+
+namespace {
+
+/// CalculiX's explicit contact deck: the bricks' top under the plate, MASSLESS, ALPHA=.
+std::string massless_deck(const std::string& pair_type, const std::string& dynamic) {
+  return two_brick_model() +
+         "*SURFACE, NAME=TOPS\nBRICKS, S2\n"
+         "*SURFACE, NAME=BOTTOMS\nBRICKS, S1\n"
+         "*CONTACT PAIR, INTERACTION=SI1, TYPE=" +
+         pair_type +
+         "\nTOPS, BOTTOMS\n"
+         "*SURFACE INTERACTION, NAME=SI1\n"
+         "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n"
+         "*STEP, NLGEOM\n" +
+         dynamic + "\n1.E-8, 1.E-3\n*END STEP\n";
+}
+
+}  // namespace
+
+TEST_CASE("CalculiX's MASSLESS contact pairs and ALPHA= of an explicit step",
+          "[io][deck][contact][calculix]") {
+  const std::string deck = massless_deck("MASSLESS", "*DYNAMIC, ALPHA=-0.05, EXPLICIT");
+  const Model m = io::read_deck_text(deck, "t.inp");
+  REQUIRE(m.contact_pairs.size() == 1);
+  std::vector<std::string> texts;
+  for (const DeckMessage& message : m.deck_messages) texts.push_back(message.text);
+  CHECK(std::count_if(texts.begin(), texts.end(), [&](const std::string& t) {
+          return t.rfind(at(deck, "*CONTACT PAIR", "*CONTACT PAIR") +
+                             "TYPE=MASSLESS (CalculiX's explicit contact",
+                         0) == 0 &&
+                 t.find(
+                     "runs as xpl's node-to-face penalty contact: the slave nodes keep their "
+                     "mass") != std::string::npos;
+        }) == 1);
+  CHECK(std::count_if(texts.begin(), texts.end(), [&](const std::string& t) {
+          return t.rfind(at(deck, "*DYNAMIC", "*DYNAMIC") + "ALPHA=-0.05 ignored", 0) == 0 &&
+                 t.find("the explicit central-difference method has no alpha") != std::string::npos;
+        }) == 1);
+  // ALPHA= on an implicit step is still the implicit step's error; a bad ALPHA one error.
+  CHECK(test::has_error(deck_errors(massless_deck("MASSLESS", "*DYNAMIC, ALPHA=-0.05")),
+                        at(deck, "*DYNAMIC", "*DYNAMIC"), "implicit dynamics is not supported"));
+  const std::vector<std::string> bad =
+      deck_errors(massless_deck("MASSLESS", "*DYNAMIC, ALPHA=x, EXPLICIT"));
+  CHECK(bad == std::vector<std::string>{at(deck, "*DYNAMIC", "*DYNAMIC") +
+                                        "bad ALPHA=x; expected a number (CalculiX: the alpha of "
+                                        "its implicit scheme, -1/3 to 0)"});
+}
+
+TEST_CASE("CalculiX's *CLEARANCE of a contact pair", "[io][deck][contact][calculix]") {
+  const std::string base = massless_deck("NODE TO SURFACE", "*DYNAMIC, EXPLICIT");
+  const std::string line = "*CLEARANCE, MASTER=BOTTOMS, SLAVE=TOPS, VALUE=0.02\n";
+  const std::string deck =
+      base.substr(0, base.find("*STEP")) + line + base.substr(base.find("*STEP"));
+  const Model m = io::read_deck_text(deck, "t.inp", io::ModelChecks::Skip);
+  REQUIRE(m.contact_clearances.size() == 1);
+  CHECK_FALSE(m.contact_clearances[0].adjust);
+  CHECK(m.contact_clearances[0].value == 0.02);
+  REQUIRE(m.steps[0].contact.has_value());
+  CHECK_FALSE(m.steps[0].contact->all_exterior);
+  CHECK(m.steps[0].contact->inclusions.empty());
+  REQUIRE(m.steps[0].contact->clearances.size() == 1);
+  const ClearanceAssignment& a = m.steps[0].contact->clearances[0];
+  CHECK(a.first == m.find_surface("TOPS"));
+  CHECK(a.second == m.find_surface("BOTTOMS"));
+  CHECK(a.view == ClearanceAssignment::View::Slave);
+  CHECK(std::any_of(m.deck_messages.begin(), m.deck_messages.end(), [&](const DeckMessage& n) {
+    return n.text.rfind(at(deck, "*CLEARANCE", "*CLEARANCE") +
+                            "VALUE=0.02 runs as xpl's contact clearance with ADJUST=NO",
+                        0) == 0;
+  }));
+
+  SECTION("an interference, or no such pair: one error each") {
+    std::string bad = deck;
+    bad.replace(bad.find("VALUE=0.02"), 10, "VALUE=-0.1");
+    CHECK(deck_errors(bad) ==
+          std::vector<std::string>{at(deck, "*CLEARANCE", "*CLEARANCE") +
+                                   "VALUE=-0.1 is an interference (a negative clearance); "
+                                   "expected VALUE >= 0: xpl's clearance is a gap; an initial "
+                                   "overclosure of the pair is removed in the first step without "
+                                   "*CLEARANCE (SPEC C2)"});
+    std::string swapped = deck;
+    swapped.replace(swapped.find("MASTER=BOTTOMS, SLAVE=TOPS"), 26, "MASTER=TOPS, SLAVE=BOTTOMS");
+    CHECK(deck_errors(swapped) ==
+          std::vector<std::string>{at(deck, "*CLEARANCE", "*CLEARANCE") +
+                                   "no *CONTACT PAIR with slave BOTTOMS and master TOPS in the "
+                                   "model data or the first step; expected *CLEARANCE for a "
+                                   "contact pair in effect from the start"});
+  }
+}
+
+TEST_CASE("CalculiX's *STATIC, *EQUATION and C3D20: one error each",
+          "[io][deck][calculix][errors]") {
+  const std::string deck = two_brick_model() +
+                           "*ELEMENT, TYPE=C3D20, ELSET=QUAD\n"
+                           "9, 1000001, 1000002, 1000003, 1000004, 1000007, 1000008, 1000009, "
+                           "1000010, 1000001, 1000002, 1000003, 1000004, 1000007, 1000008, "
+                           "1000009, 1000010, 1000001, 1000002, 1000003, 1000004\n"
+                           "*SOLID SECTION, ELSET=QUAD, MATERIAL=STEEL\n"
+                           "*EQUATION\n2\n1000001, 1, 1., 1000002, 1, -1.\n"
+                           "*STEP\n*STATIC\n*BOUNDARY\nALLN, 1, 3\n*END STEP\n"
+                           "*STEP\n*DYNAMIC, EXPLICIT\n, 1e-3\n*END STEP\n";
+  const std::vector<std::string> e = deck_errors(deck);
+  CHECK(e.size() == 3);
+  CHECK(test::has_error(e, at(deck, "TYPE=C3D20", "*ELEMENT"),
+                        "element type C3D20 is not supported; nearest supported: C3D8R: "
+                        "quadratic hexahedra are not supported"));
+  CHECK(test::has_error(e, at(deck, "*EQUATION", "*EQUATION"),
+                        "linear constraint equations are not supported; expected *TIE"));
+  CHECK(test::has_error(e, at(deck, "*STATIC", "*STATIC"),
+                        "static analysis is not supported; expected *DYNAMIC, EXPLICIT"));
 }

@@ -93,7 +93,8 @@ TEST_CASE("contact errors are all reported, each at its line", "[io][deck][conta
           std::to_string(line_of(deck, "NAME=A\n*FRICTION")) +
           "; expected each surface interaction name once",
       at(deck, "TYPE=EDGE", "*CONTACT PAIR") +
-          "unknown TYPE=EDGE; expected TYPE=NODE TO SURFACE or SURFACE TO SURFACE (CalculiX)",
+          "unknown TYPE=EDGE; expected TYPE=NODE TO SURFACE, SURFACE TO SURFACE or MASSLESS "
+          "(CalculiX)",
       at(deck, "TOP\nTOP, PTS", "*CONTACT PAIR") +
           "missing master surface; expected slave surface, master surface",
       at(deck, "*CONTACT INCLUSIONS\nTOP, TOP", "*CONTACT INCLUSIONS") +

@@ -24,11 +24,14 @@ TEST_CASE("unknown keyword", "[io][deck][errors]") {
   CHECK(errors.size() == 1);
 }
 
-TEST_CASE("assemblies are rejected, *PREPRINT is ignored", "[io][deck][errors]") {
-  const auto errors =
-      deck_errors("*PREPRINT, ECHO=NO\n*PART, NAME=P\n" + two_brick_model() + simple_step());
+TEST_CASE("a part left open is one error, *PREPRINT is ignored", "[io][deck][errors]") {
+  // Parts and assemblies themselves: test_deck_assembly.cpp.
+  const std::string deck =
+      "*PREPRINT, ECHO=NO\n*PART, NAME=P\n" + two_brick_model() + simple_step();
+  const auto errors = deck_errors(deck);
   REQUIRE(errors.size() == 1);
-  CHECK(has_error(errors, "t.inp:2: *PART: unknown keyword *PART"));
+  CHECK(has_error(errors, at(deck, "*STEP", "*STEP") +
+                              "part P is not closed; expected *END PART before *STEP"));
 }
 
 TEST_CASE("a refused element type is one error, not also its sets, sections and surfaces",
@@ -149,8 +152,9 @@ TEST_CASE("two errors in one deck are both reported", "[io][deck][errors]") {
 TEST_CASE("unsupported element type, implicit dynamics, no step", "[io][deck][errors]") {
   const auto no_step = deck_errors(two_brick_model() + "*ELEMENT, TYPE=S3R\n1, 1, 2, 3\n");
   CHECK(has_error(no_step,
-                  "t.inp:23: *ELEMENT: element type S3R is not supported yet; "
-                  "supported: C3D8R, C3D8, S4R (S4 is run as S4R)"));
+                  "t.inp:23: *ELEMENT: element type S3R is not supported; nearest supported: S4R "
+                  "(four-node quadrilateral shell, reduced integration); supported: C3D8R, C3D8, "
+                  "S4R (S4 is run as S4R)"));
   CHECK(has_error(no_step, "t.inp: the deck has no step"));
   const auto implicit = deck_errors(two_brick_model() + "*STEP\n*DYNAMIC\n0.1, 1.\n*END STEP\n");
   CHECK(has_error(implicit,

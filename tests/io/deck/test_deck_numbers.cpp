@@ -27,7 +27,15 @@ TEST_CASE("integers", "[io][deck][numbers]") {
   CHECK(io::parse_integer("1000000000000") == 1000000000000LL);
   CHECK(io::parse_integer("+12") == 12);
   CHECK(io::parse_integer("-3") == -3);
-  CHECK_FALSE(io::parse_integer("1.0").has_value());
+  // Integral floats, as mesh exporters write ids (issue 34); a fraction or exponent is not one.
+  CHECK(io::parse_integer("1.0") == 1);
+  CHECK(io::parse_integer("12.") == 12);
+  CHECK(io::parse_integer("-3.000") == -3);
+  CHECK_FALSE(io::parse_integer("1.5").has_value());
+  CHECK_FALSE(io::parse_integer("1.01").has_value());
+  CHECK_FALSE(io::parse_integer("1.0e3").has_value());
+  CHECK_FALSE(io::parse_integer(".0").has_value());
+  CHECK_FALSE(io::parse_integer("1..0").has_value());
   CHECK_FALSE(io::parse_integer("12a").has_value());
   CHECK_FALSE(io::parse_integer("99999999999999999999").has_value());
   CHECK(io::looks_numeric("12"));

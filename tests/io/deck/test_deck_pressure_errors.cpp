@@ -125,8 +125,9 @@ TEST_CASE("every shell error of a deck is reported together", "[io][deck][shell]
           "expected an odd number of points from 1 to 99 "
           "(Simpson's rule through the thickness), e.g. 5",
       at(deck, "*ELEMENT, TYPE=S3R", "*ELEMENT") +
-          "element type S3R is not supported yet; supported: C3D8R, C3D8, S4R (S4 is run as S4R), "
-          "MASS, ROTARYI",
+          "element type S3R is not supported; nearest supported: S4R (four-node quadrilateral "
+          "shell, reduced integration); supported: C3D8R, C3D8, S4R (S4 is run as S4R), MASS, "
+          "ROTARYI; CPS4, CPS3, T3D2, T3D3 without a section are read as geometry",
       at(deck, "*SOLID SECTION", "*SOLID SECTION") +
           "element 11 is an S4R shell element; expected a *SHELL SECTION for it (*SOLID SECTION "
           "is for C3D8R and C3D8 elements)",

@@ -6,5 +6,6 @@ xpl_add_test_executable(
   deck/test_deck_contact_errors.cpp deck/test_deck_calculix.cpp deck/test_deck_rigid_errors.cpp
   deck/test_deck_clearance.cpp deck/test_deck_clearance_errors.cpp deck/test_deck_keywords.cpp
   deck/test_model_checks.cpp deck/test_deck_plastic.cpp deck/test_deck_plastic_errors.cpp
-  deck/test_deck_initial_rotation.cpp deck/test_deck_dynamic.cpp)
+  deck/test_deck_initial_rotation.cpp deck/test_deck_dynamic.cpp deck/test_deck_assembly.cpp
+  deck/test_deck_mesh_export.cpp)
 target_link_libraries(xpl_tests_io_deck PRIVATE xpl::io_deck)

@@ -11,8 +11,9 @@ a temporal collection), compared with the datasets in JOB.h5; the cell data must
 the cells (shell-only fields are NaN exactly on the hexahedra). Tensors reach the XDMF in VTK
 order (XX YY ZZ XY YZ XZ = S11 S22 S33 S12 S23 S13) and global axes from /xdmf/NNNNNN (issue
 19); solids' rows there are their S columns reordered, shells' local-axes copies are S_LOCAL
-etc. The XDMF also carries node_id / element_id (deck ids) and, in JOB_last.xdmf, one 0/1
-attribute per set (NSET_NAME / ELSET_NAME). Exits non-zero on the first mismatch.
+etc. The XDMF also carries node_id / element_id (deck ids) and, in both XDMF files, one 0/1
+attribute per set (NSET_NAME / ELSET_NAME; issue 34: no XDMF Set elements). Exits non-zero on
+the first mismatch.
 """
 
 import pathlib
@@ -231,7 +232,30 @@ def check_fields(point_data, cell_data, cells, frame, what):
                 check(finite == (cell.type == "quad"), f"{what}: {field} on {cell.type} cells")
 
 
-def check_time_series(path, coordinates, blocks, data, times):
+def deck_sets(h5_path):
+    """(node ids, element ids, {NSET_NAME / ELSET_NAME: (node set?, deck ids)}) of JOB.h5."""
+    with h5py.File(h5_path, "r") as f:
+        node_ids, element_ids = f["mesh/node_ids"][()], f["mesh/element_ids"][()]
+        sets = {"NSET_" + n: (True, f["mesh/node_sets"][n][()]) for n in f["mesh/node_sets"]}
+        sets.update({"ELSET_" + n: (False, f["mesh/element_sets"][n][()])
+                     for n in f["mesh/element_sets"]})
+    check(sets, "the test models have sets")
+    return node_ids, element_ids, sets
+
+
+def pop_sets(point_data, cell_data, h5_path, what):
+    """Checks and removes the 0/1 set arrays from meshio's point and cell data."""
+    node_ids, element_ids, sets = deck_sets(h5_path)
+    for name, (node, members) in sets.items():
+        data = point_data.pop(name, None) if node else cell_data.pop(name, None)
+        check(data is not None, f"{what}: set {name} missing")
+        flags = data if node else np.concatenate(data)
+        ids = node_ids if node else element_ids
+        check(np.array_equal(np.sort(ids[flags.astype(bool)]), np.sort(members)),
+              f"{what}: set {name} members")
+
+
+def check_time_series(path, coordinates, blocks, data, times, h5_path):
     with meshio.xdmf.TimeSeriesReader(path) as reader:
         points, cells = reader.read_points_cells()
         check(np.array_equal(points, coordinates), "XDMF geometry differs from /mesh/coordinates")
@@ -240,6 +264,8 @@ def check_time_series(path, coordinates, blocks, data, times):
         for k, frame in enumerate(data):
             t, point_data, cell_data = reader.read_data(k)
             check(t == times[k], f"time of step {k}: {t} != {times[k]}")
+            point_data, cell_data = dict(point_data), dict(cell_data)
+            pop_sets(point_data, cell_data, h5_path, f"XDMF step {k}")
             check_fields(point_data, cell_data, cells, frame, f"XDMF step {k}")
     return reader.num_steps
 
@@ -250,20 +276,8 @@ def check_last_frame(path, coordinates, blocks, frame, h5_path):
     mesh = meshio.read(path)
     check(np.array_equal(mesh.points, coordinates), "meshio.read: points")
     check_cells(mesh.cells, blocks, "meshio.read")
-    with h5py.File(h5_path, "r") as f:
-        node_ids, element_ids = f["mesh/node_ids"][()], f["mesh/element_ids"][()]
-        sets = {"NSET_" + n: (True, f["mesh/node_sets"][n][()]) for n in f["mesh/node_sets"]}
-        sets.update({"ELSET_" + n: (False, f["mesh/element_sets"][n][()])
-                     for n in f["mesh/element_sets"]})
-    check(sets, "the test models have sets")
     point_data, cell_data = dict(mesh.point_data), dict(mesh.cell_data)
-    for name, (node, members) in sets.items():
-        data = point_data.pop(name, None) if node else cell_data.pop(name, None)
-        check(data is not None, f"meshio.read: set {name} missing")
-        flags = data if node else np.concatenate(data)
-        ids = node_ids if node else element_ids
-        check(np.array_equal(np.sort(ids[flags.astype(bool)]), np.sort(members)),
-              f"meshio.read: set {name} members")
+    pop_sets(point_data, cell_data, h5_path, "meshio.read")
     check_fields(point_data, cell_data, mesh.cells, frame, "meshio.read JOB_last.xdmf")
 
 
@@ -273,7 +287,7 @@ def main():
     directory, job = pathlib.Path(sys.argv[1]), sys.argv[2]
     coordinates, blocks, data, times = check_h5(directory / f"{job}.h5")
     xdmf = directory / f"{job}.xdmf"
-    steps = check_time_series(xdmf, coordinates, blocks, data, times)
+    steps = check_time_series(xdmf, coordinates, blocks, data, times, directory / f"{job}.h5")
     check_last_frame(directory / f"{job}_last.xdmf", coordinates, blocks, data[-1],
                      directory / f"{job}.h5")
     types = ", ".join(f"{len(rows)} {kind}" for kind, rows in blocks)

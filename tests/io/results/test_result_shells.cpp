@@ -106,7 +106,12 @@ TEST_CASE("results: a hex between two shells writes per-type meshes and shell fi
           3);
     CHECK(count(xdmf, "<Attribute Name=\"S_SPOS\" AttributeType=\"Tensor6\" Center=\"Cell\">") ==
           3);
-    CHECK(count(xdmf, "<Attribute Name=\"STH\" AttributeType=\"Scalar\" Center=\"Cell\">") == 3);
+    // Issue 34: one "Scalar" per frame, the field ParaView colours by (MISES_MAX on shell
+    // models); the other scalars are plain arrays ("None").
+    CHECK(count(xdmf, "<Attribute Name=\"STH\" AttributeType=\"None\" Center=\"Cell\">") == 3);
+    CHECK(count(xdmf, "<Attribute Name=\"MISES_MAX\" AttributeType=\"Scalar\" Center=\"Cell\">") ==
+          3);
+    CHECK(count(xdmf, "AttributeType=\"Scalar\"") == 3);
     CHECK(count(xdmf,
                 "Dimensions=\"3 6\" DataType=\"Float\" Precision=\"8\" Format=\"HDF\">"
                 "job.h5:/frames/000002/S_SNEG<") == 0);
@@ -168,8 +173,11 @@ TEST_CASE("results: hex-only models write no shell datasets, even when STH is as
   CHECK(count(xdmf,
               "Dimensions=\"2 8\" DataType=\"Int\" Precision=\"8\" Format=\"HDF\">"
               "job.h5:/mesh/C3D8R/connectivity<") == 1);
-  // Issue 19: the 7 fields and the deck ids node_id and element_id.
-  CHECK(count(xdmf, "<Attribute ") == 9);
+  // Issue 19: the 7 fields and the deck ids node_id and element_id; issue 34: besides them,
+  // the sets' 0/1 arrays.
+  CHECK(count(xdmf, "<Attribute ") - count(xdmf, "<Attribute Name=\"NSET_") -
+            count(xdmf, "<Attribute Name=\"ELSET_") ==
+        9);
   for (const char* name : {"\"UR\"", "\"VR\"", "\"RM\"", "S_SNEG", "S_SPOS", "STH"}) {
     CHECK(count(xdmf, name) == 0);
   }

@@ -3,7 +3,7 @@ xpl_add_test_executable(
   xpl_tests_io_results results/test_result_files.cpp results/test_result_errors.cpp
   results/test_result_shells.cpp results/test_output_schedule_shells.cpp results/test_output_schedule_merge.cpp
   results/test_results_python.cpp results/test_import_state.cpp
-  results/test_output_variables.cpp)
+  results/test_output_variables.cpp results/test_progress_line.cpp)
 target_link_libraries(xpl_tests_io_results PRIVATE xpl::io_results hdf5::hdf5)
 set(XPL_RESULTS_PYTHON_DIR ${CMAKE_CURRENT_BINARY_DIR}/results_python)
 target_compile_definitions(xpl_tests_io_results
