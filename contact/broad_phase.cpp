@@ -29,7 +29,8 @@ BroadPhase::BroadPhase(Real margin, Real rebuild_motion)
 }
 
 void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
-                       const NodalVectors& position, std::span<const Real> node_thickness) {
+                       const NodalVectors& position, std::span<const Real> node_thickness,
+                       std::span<const Real> back_depth) {
   const auto n_faces = static_cast<Index>(faces.size());
   const auto n_slave = static_cast<Index>(slave_nodes.size());
   const auto n_nodes = static_cast<Index>(position.rows());
@@ -46,12 +47,19 @@ void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index
   for (Index f = 0; f < n_faces; ++f) {
     Vec3 corner[4];
     face_corners(faces[f], position, node_thickness, corner);
+    // The slab behind the face: its corners moved back along the unit normal.
+    Vec3 back = Vec3::Zero();
+    if (!back_depth.empty() && back_depth[f] > 0.0) {
+      const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+      const Real len = std::sqrt(n.dot(n));
+      if (len > 0.0) back = -(back_depth[f] / len) * n;
+    }
     Real extent = 0.0;
     for (int d = 0; d < 3; ++d) {
       Real lo = corner[0][d], hi = corner[0][d];
-      for (int a = 1; a < 4; ++a) {
-        lo = std::min(lo, corner[a][d]);
-        hi = std::max(hi, corner[a][d]);
+      for (int a = 0; a < 4; ++a) {
+        lo = std::min({lo, corner[a][d], corner[a][d] + back[d]});
+        hi = std::max({hi, corner[a][d], corner[a][d] + back[d]});
       }
       m_box_lo[3 * f + d] = lo - m_margin;
       m_box_hi[3 * f + d] = hi + m_margin;

@@ -1,7 +1,8 @@
 #pragma once
 /// \file Broad phase of node-to-face contact: candidate faces for every slave node (stage 2).
 ///
-/// Face bounding boxes, inflated by the search margin, are binned into a uniform grid of
+/// Face bounding boxes, with the slab behind the face a node may touch it from and inflated by
+/// the search margin, are binned into a uniform grid of
 /// buckets over their joint bounding box; a slave node looks only at the faces of the bucket
 /// it lies in and keeps those whose inflated box contains it. The list stays valid while no
 /// node has moved more than half the margin since the build: a node and a face then close in
@@ -30,10 +31,14 @@ class BroadPhase {
 
   /// Builds the grid and the candidate lists of the slave nodes `slave_nodes` (node indices,
   /// n_slave) against `faces`, on positions (n_nodes × 3, m) with shell node thickness
-  /// (n_nodes, m, or empty). A face is never a candidate of its own corner nodes. Remembers
-  /// the positions of every face node and slave node for needs_rebuild().
+  /// (n_nodes, m, or empty). `back_depth` (n_faces, m, or empty): how deep behind each face a
+  /// node may still touch it; the face's box then also holds the slab of that depth behind
+  /// it, so a node that went that deep within one increment (a fast impact) is a candidate
+  /// however small the margin. A face is never a candidate of its own corner nodes.
+  /// Remembers the positions of every face node and slave node for needs_rebuild().
   void build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
-             const NodalVectors& position, std::span<const Real> node_thickness);
+             const NodalVectors& position, std::span<const Real> node_thickness,
+             std::span<const Real> back_depth = {});
 
   /// Whether any node tracked at the last build has moved more than the rebuild motion since it
   /// (true before the first build). Parallel max-reduction, no allocation.

@@ -82,6 +82,7 @@ class ContactDomain {
   /// How deep (m) a node may be below face f and still be taken as touching it: half the
   /// element's depth behind a solid face, half the thickness of a shell (the mid-surface).
   Real face_depth(Index f) const { return m_face_depth[f]; }
+  std::span<const Real> face_depths() const { return m_face_depth; }
 
   /// Weight of the touch of slave slot s on face f: 0 when they may not touch, ½ for a view
   /// of a balanced pair, 1 for a one-sided one. The included pair that matches first is

@@ -82,6 +82,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   const auto n = static_cast<std::size_t>(m_domain.slaves().size());
   m_constraints.assign(n, ContactConstraint{});
   m_touch.assign(n, SlaveTouch{});
+  m_lost_depth.assign(n, 0.0);
   m_second.assign(n, ContactConstraint{});
   m_second_touch.assign(n, SlaveTouch{});
   m_second_force.assign(3 * n, 0.0);
@@ -135,6 +136,9 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   if (before.status == ContactStatus::Closed && before.master_face >= 0 &&
       faces[before.master_face].shell)
     v.held = &faces[before.master_face];
+  if (m_updated && before.status == ContactStatus::Closed && before.master_face >= 0 &&
+      !faces[before.master_face].shell)
+    v.continuing = before.master_face;
   return v;
 }
 
@@ -197,6 +201,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
     if (lateral_sq > gap * gap) return false;
   }
   const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
+  if (f == v.continuing) depth *= 2.0;  // contact at speed (file comment)
   if (!kept_side && -gap > depth + half_t + v.allowance) return false;
   out = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
   distance = cp.distance;
@@ -211,7 +216,9 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
       SlaveTouch second;
-      if (!m_broad.candidates(s).empty()) {
+      m_lost_depth[s] = 0.0;
+      if (!m_broad.candidates(s).empty() ||
+          (m_updated && m_constraints[s].status == ContactStatus::Closed)) {
         Real best_distance = std::numeric_limits<Real>::max();
         SlaveTouch candidate;
         Real distance = 0.0;
@@ -221,8 +228,8 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         int n_penetrated = 0;
         int n_seen = 0;
         const SlaveView view = slave_view(s, position, node_thickness);
-        for (Index f : m_broad.candidates(s)) {
-          if (!admissible(view, f, position, node_thickness, candidate, distance)) continue;
+        const auto consider = [&](Index f) {
+          if (!admissible(view, f, position, node_thickness, candidate, distance)) return;
           if (distance < best_distance) {
             best_distance = distance;
             best = candidate;
@@ -231,7 +238,14 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
             keep_nearest(penetrated, penetrated_distance, n_penetrated, candidate, distance);
             ++n_seen;
           }
-        }
+        };
+        const std::span<const Index> listed = m_broad.candidates(s);
+        for (Index f : listed) consider(f);
+        // The face pressed last increment, deeper than the broad phase's slab (contact at speed).
+        if (view.continuing != NO_INDEX &&
+            !std::binary_search(listed.begin(), listed.end(), view.continuing))
+          consider(view.continuing);
+        m_lost_depth[s] = best.face == NO_INDEX ? released_depth(view, position) : 0.0;
         // Pinched: penetrating its nearest face and one on its other side. A node outside its
         // nearest face is not pinched, however deep it lies behind a face across its own body
         // (a corner node of a squashed block behind the block's far side).
@@ -256,6 +270,18 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
   errors.rethrow_if_any();
 }
 
+Real ContactEngine::released_depth(const SlaveView& v, const NodalVectors& position) const {
+  if (v.continuing == NO_INDEX) return 0.0;
+  const ContactFace& face = m_domain.faces()[v.continuing];
+  Vec3 corner[4];
+  face_corners(face, position, {}, corner);
+  const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+  // Beside the face (its edge or corner), the node has slid off it rather than gone through.
+  if (cp.region != QuadRegion::Interior) return 0.0;
+  const Real depth = -cp.gap;
+  return depth > 2.0 * m_domain.face_depth(v.continuing) + v.allowance ? depth : 0.0;
+}
+
 void ContactEngine::widen_search(Real extra) {
   if (!(extra > 0.0)) return;
   m_broad = BroadPhase(m_broad.margin() + extra, m_broad.rebuild_motion());
@@ -265,7 +291,7 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
                                         std::span<const Real> node_thickness) {
   SlaveNodes& slaves = m_domain.slaves();
   if (!m_broad.needs_rebuild(position)) return false;
-  m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness);
+  m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness, m_domain.face_depths());
   const Index n_slave = slaves.size();
   m_active_slot.assign(static_cast<std::size_t>(n_slave), 0);
   m_active_face.assign(m_domain.faces().size(), 0);
@@ -322,6 +348,16 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     else
       slaves.update_areas(faces, position, m_active_slot, m_active_face);
     search(position, node_thickness);
+    for (Index s = 0; s < n_slave; ++s) {
+      if (!(m_lost_depth[s] > 0.0)) continue;
+      ++totals.lost;
+      if (m_lost_depth[s] <= totals.lost_depth) continue;
+      const ContactFace& face = faces[m_constraints[s].master_face];
+      totals.lost_depth = m_lost_depth[s];
+      totals.lost_node = slaves.nodes()[s];
+      totals.lost_element = face.element;
+      totals.lost_element_depth = 2.0 * m_domain.face_depth(m_constraints[s].master_face);
+    }
   }
 
   ScopedTimer timer(timers, Phase::ContactForce);
@@ -353,7 +389,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
         c2.status = ContactStatus::Inactive;
         c2.tangential_force = Vec3::Zero();
         if (!c2.offset_permanent) c2.offset = 0.0;
-        c2.penalty_factor = 1.0;
+        c2.stiffness = 0.0;
         m_spring[2 * s + 1].k = 0.0;
         return;
       }
@@ -504,15 +540,20 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
                                           inverse_mass[faces[t.face].nodes[a]]);
       if (largest > budget) factor = budget / largest;
     }
-    // A spring whose share rises would hold more energy at the same depth than the motion
-    // put in: the offset takes up the difference, so the stored energy stays (C3's offset
-    // never pushes).
-    if (factor > c.penalty_factor && spring.acts && !c.offset_permanent) {
-      const Real excess = -c.gap - c.offset;
-      c.offset = -c.gap - std::sqrt(c.penalty_factor / factor) * excess;
-    }
-    c.penalty_factor = spring.acts ? factor : 1.0;
     if (factor < 1.0) spring.k *= factor;
+    // A default spring whose stiffness changes while loaded (its share of the node's budget,
+    // the increment it is tied to as the elements are squashed, the master mass at a sliding
+    // point) would hold another energy at the same depth than the motion put in, and give it
+    // back as it opens: the offset moves so that the stored energy stays. Both ways, so that
+    // the offset depends on the stiffness now, not on the path: a stiffness that goes up and
+    // down again leaves it where it was (a softening spring's offset stops at zero).
+    const bool user = spring.law.pressure_slope > 0.0;
+    if (!user && spring.acts && c.stiffness > 0.0 && spring.k != c.stiffness &&
+        !c.offset_permanent) {
+      const Real excess = -c.gap - c.offset;
+      c.offset = std::max(0.0, -c.gap - std::sqrt(c.stiffness / spring.k) * excess);
+    }
+    c.stiffness = !user && spring.acts ? spring.k : 0.0;
   }
 }
 

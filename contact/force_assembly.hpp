@@ -26,7 +26,15 @@ struct ContactTotals {
   /// ALLPW should equal it (issue 20, item 4); what the springs hold beyond ALLPW was created
   /// by contact (ContactEnergyCheck).
   Real stored_energy = 0.0;
-  Index closed = 0;      ///< slave nodes with a normal force
+  Index closed = 0;  ///< slave nodes with a normal force
+  /// Slave nodes released deeper than the element behind the solid face they were pressed on
+  /// (ContactEngine, contact at speed), and the deepest of them: its node index, depth (m),
+  /// the face's element index and the depth of that element (m).
+  Index lost = 0;
+  Index lost_node = NO_INDEX;
+  Real lost_depth = 0.0;
+  Index lost_element = NO_INDEX;
+  Real lost_element_depth = 0.0;
   bool rebuilt = false;  ///< the broad phase was rebuilt
 };
 

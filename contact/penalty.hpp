@@ -42,9 +42,11 @@ struct ContactConstraint {
   /// the onset rule of a touch on another face (ContactEngine).
   Real gap = 0.0;
   Vec3 normal = Vec3::Zero();
-  /// Share of its default stiffness the spring had at the last update (≤ 1: several springs
-  /// on one node share its budget, ContactEngine); 1 for a spring that was not loaded.
-  Real penalty_factor = 1.0;
+  /// Stiffness of the default-penalty spring at the last update while it was loaded (N/m,
+  /// view weight and node budget included), 0 when it was not: a spring whose stiffness
+  /// changes while loaded moves its offset so that it holds the energy the motion put in
+  /// (ContactEngine).
+  Real stiffness = 0.0;
 };
 
 /// Normal force magnitude f = k·max(0, d − d0) for gap g (d = −g, m), offset d0 (m) and

@@ -26,12 +26,12 @@ std::string describe(Real created, Real stored, Real allpw, Real scale) {
 std::string ContactEnergyCheck::check(const State& state, Real stored, ExternalId critical_id) {
   const Energies& e = state.energies;
   m_scale = std::max({m_scale, e.kinetic, e.internal(), std::abs(e.external_work), stored});
-  if (state.increment - m_step_first_increment < CONTACT_CHECK_WARMUP) return {};
   if (m_baseline_pending) {
     m_baseline = stored - e.contact;
     m_baseline_pending = false;
   }
   m_created = stored - e.contact - m_baseline;
+  if (state.increment - m_step_first_increment < CONTACT_CHECK_WARMUP) return {};
   if (!(m_scale > 0.0) || !(m_created > CREATION_FLOOR)) return {};
   if (m_created > CONTACT_CREATION_LIMIT * m_scale)
     throw SolverError("NaN/instability at increment " + std::to_string(state.increment) +

@@ -238,6 +238,38 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
   state.energies.friction += t.friction_dissipation;
   state.energies.contact += -t.work - t.friction_dissipation;
   m_stored_energy = t.stored_energy;
+  if (t.lost == 0) return;
+  if (m_lost == 0)
+    m_sink.message(
+        Severity::Warning,
+        "increment " + std::to_string(state.increment) + ", t = " + format_real(state.time) +
+            " s: contact lost at speed: node " + std::to_string(m_model.node_ids[t.lost_node]) +
+            " went " + format_real(t.lost_depth) + " m behind the face of element " +
+            std::to_string(m_model.element_ids[t.lost_element]) +
+            ", deeper than the element behind it (" + format_real(t.lost_element_depth) +
+            " m), and was released inside it" +
+            (t.lost > 1 ? " (with " + std::to_string(t.lost - 1) + " more nodes)" : "") +
+            ": the bodies may pass through each other. The penalty stops a node within about "
+            "v*dt of its approach: refine the mesh where it hits, or lower the time scale "
+            "factor" +
+            (m_engine->options().penalty_scale < contact::DEFAULT_PENALTY_SCALE
+                 ? ", or raise the penalty scale factor (" +
+                       format_real(m_engine->options().penalty_scale) + ", below the default " +
+                       format_real(contact::DEFAULT_PENALTY_SCALE) + ")"
+                 : std::string()));
+  m_lost += t.lost;
+  ++m_lost_increments;
+}
+
+void ContactStage::end_step() {
+  m_penalty.end_span();
+  if (m_lost > 1)
+    m_sink.message(Severity::Warning,
+                   "contact lost at speed: " + std::to_string(m_lost) + " releases of nodes " +
+                       "deeper than the element behind their face, in " +
+                       std::to_string(m_lost_increments) + " increments of the step");
+  m_lost = 0;
+  m_lost_increments = 0;
 }
 
 Real ContactStage::penalty_increment(Real raw_dt, Real dt_elements, int step, const State& state) {

@@ -57,7 +57,9 @@ class ContactStage {
   /// Deck id of the contact node that governs the last penalty_increment(), 0 when none.
   ExternalId critical_contact_node() const { return m_penalty.critical_node(); }
   /// Ends the step: the summary of a span in which contact governed the increment.
-  void end_step() { m_penalty.end_span(); }
+  /// Ends the step: the summary of a span in which contact governed the increment, and of
+  /// the nodes released inside another body (contact at speed) beyond the first one warned of.
+  void end_step();
   /// `xpl check`: a warning when a LINEAR penalty will govern the increment once in contact,
   /// estimated on the slave nodes' tributary areas (ContactEngine::estimate_penalty_limit)
   /// with `inverse_mass` (n_nodes, 1/kg), the element estimate `raw_dt` and increment
@@ -97,6 +99,8 @@ class ContactStage {
   PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
   std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
+  long m_lost = 0;                        ///< releases in the step (ContactTotals::lost)
+  long m_lost_increments = 0;             ///< increments with a release in the step
 };
 
 }  // namespace xpl

@@ -65,7 +65,7 @@ TEST_CASE("the pair rule weighs balanced, one-sided, excluded and rigid pairs",
     CHECK(domain.weight(s, bottom_of_b, pair) == 0.5);
     CHECK(pair == 0);
   }
-  SECTION("a rigid master takes the whole force and its nodes are never slaves") {
+  SECTION("a rigid master takes the whole force, and so do its nodes on a deformable face") {
     DomainSpec spec = all_exterior();
     spec.element_body.assign(blocks.mesh.kinds.size(), NO_INDEX);
     for (Index e = blocks.a_elements; e < static_cast<Index>(spec.element_body.size()); ++e)
@@ -77,7 +77,9 @@ TEST_CASE("the pair rule weighs balanced, one-sided, excluded and rigid pairs",
     CHECK(domain.weight(domain.slaves().slot(node), bottom_of_b, pair) == 1.0);
     const Index b_node = 18 + 4;  // node (1, 1, 0) of block B
     CHECK(domain.slave_rigid(domain.slaves().slot(b_node)));
-    CHECK(domain.weight(domain.slaves().slot(b_node), top_of_a, pair) == 0.0);
+    CHECK(domain.weight(domain.slaves().slot(b_node), top_of_a, pair) == 1.0);
+    // Rigid against rigid: none (here a face of its own body).
+    CHECK(domain.weight(domain.slaves().slot(b_node), bottom_of_b, pair) == 0.0);
   }
   SECTION("a one-sided pair has one view; an exclusion removes a pair") {
     DomainSpec spec;
@@ -477,9 +479,9 @@ TEST_CASE(
 
 TEST_CASE("a rigid body's nodes touch a deformable face its corners would otherwise pass",
           "[contact][engine][rigid]") {
-  // A deformable unit hex and a rigid 2×2×1 block of 0.25 elements whose centre node dips
-  // 0.01 into the hex's top face, far from the hex's corners: no node of the hex is near a
-  // rigid face, so only the rigid node's view sees the contact; its weight is 1.
+  // A deformable unit hex and a rigid 2×2×1 block of 0.25 elements whose bottom nodes (3×3)
+  // dip 0.01 into the hex's top face, away from the hex's corners: no node of the hex is near
+  // a rigid face, so only the rigid nodes' view sees the contact; its weight is 1.
   const Real dt = 1e-3;
   test::ContactMesh mesh;
   test::add_hex_block(mesh, 1, 1, 1, 1.0);
@@ -506,10 +508,78 @@ TEST_CASE("a rigid body's nodes touch a deformable face its corners would otherw
   CHECK(engine.domain().faces()[touch.face].element == 0);
   CHECK(touch.weight == 1.0);
   CHECK(touch.gap == Approx(-0.01).margin(1e-12));
+  // Every bottom node of the rigid block presses with at most one default spring (the nine
+  // springs on the hex's top corners share their budget, so they may be scaled down).
   const Real k = contact::default_penalty_stiffness(1.0, 1.0, dt);
-  CHECK(engine.normal_force(s) == Approx(k * 0.01).epsilon(1e-9));
-  // The hex's top corners, pushed up by their shares of that force.
-  Real up = 0.0;
-  for (Index i = 4; i < 8; ++i) up -= force(i, 2);
-  CHECK(up == Approx(-k * 0.01).epsilon(1e-9));
+  Real pressed = 0.0;
+  int touching = 0;
+  for (Index i = first_rigid; i < first_rigid + 9; ++i) {
+    const Index slot = engine.domain().slaves().slot(i);
+    if (engine.touch(slot).face == NO_INDEX) continue;
+    ++touching;
+    CHECK(engine.touch(slot).gap == Approx(-0.01).margin(1e-12));
+    CHECK(engine.normal_force(slot) > 0.0);
+    CHECK(engine.normal_force(slot) <= k * 0.01 * (1.0 + 1e-12));
+    pressed += engine.normal_force(slot);
+  }
+  CHECK(touching == 9);
+  // The hex's top corners are pushed down by the sum of those forces (the internal force
+  // array holds minus the contact force).
+  Real down = 0.0;
+  for (Index i = 4; i < 8; ++i) down += force(i, 2);
+  CHECK(down == Approx(pressed).epsilon(1e-9));
+}
+
+TEST_CASE(
+    "contact at speed: a node deeper than the margin in one increment is caught, and "
+    "kept down to the element behind the face; beyond it the release is counted",
+    "[contact][engine][speed]") {
+  // Block A (2×2×1, h = 1) under block B (2×2×1) shifted by (0.5, 0.5): B's bottom centre node
+  // lies over the interior of a top face of A. B is moved down by 0.4 per increment, four
+  // times the search margin and within half the element (a new touch's depth limit).
+  const Real dt = 1e-3;
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 2, 2, 1, 1.0);
+  const Index first_b = mesh.node_count();
+  test::add_hex_block(mesh, 2, 2, 1, 1.0, Vec3(0.5, 0.5, 1.0));
+  const Index n = mesh.node_count();
+  const Index node = first_b + 4;  // (1.5, 1.5, 1): over the interior of A's face (1..2)²
+  contact::ContactOptions options;
+  options.margin = 0.1;
+  std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  NodalVectors x = mesh.coordinates;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, options, x,
+                                {});
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  NodalVectors v = NodalVectors::Zero(n, 3);
+  PhaseTimers timers;
+  engine.update(x, v, 0.0, dt, {}, mass, inverse_mass, force, timers);
+  const Index s = engine.domain().slaves().slot(node);
+  const auto step = [&](Real dz) {
+    for (Index i = first_b; i < n; ++i) {
+      x(i, 2) -= dz;
+      v(i, 2) = -dz / dt;
+    }
+    force.setZero();
+    return engine.update(x, v, dt, dt, {}, mass, inverse_mass, force, timers);
+  };
+  // 0.4 deep after one increment: found through the slab behind the face, force at once.
+  contact::ContactTotals t = step(0.4);
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(engine.domain().faces()[engine.touch(s).face].element < 4);
+  CHECK(engine.touch(s).gap == Approx(-0.4).margin(1e-12));
+  CHECK(engine.normal_force(s) > 0.0);
+  CHECK(t.lost == 0);
+  // 0.8 deep: beyond a new touch's limit, within the element behind the face it was pressed on.
+  t = step(0.4);
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(engine.touch(s).gap == Approx(-0.8).margin(1e-12));
+  CHECK(engine.normal_force(s) > 0.0);
+  CHECK(t.lost == 0);
+  // 1.2 deep: through block A; released, and counted with its depth.
+  t = step(0.4);
+  CHECK(engine.touch(s).face == NO_INDEX);
+  CHECK(t.lost >= 1);
+  CHECK(t.lost_depth >= 1.2 - 1e-12);
+  CHECK(t.lost_element_depth == Approx(1.0));
 }
