@@ -567,7 +567,7 @@ def read_known(path, extra=()):
     `ID-OR-NAME CRITERION REASON...`; `#` starts a comment. Unknown criteria (beyond CRITERIA and
     EXTRA) and malformed lines are errors: a typo must not excuse a failure."""
     known = {}
-    allowed = CRITERIA + tuple(extra)
+    allowed = CRITERIA + ("length", "wall") + tuple(extra)
     for number, line in enumerate(pathlib.Path(path).read_text().splitlines(), 1):
         line = line.split("#", 1)[0].strip()
         if not line:
