@@ -503,6 +503,14 @@ void ContactEngine::prepare_spring(Index s, ContactConstraint& c, const SlaveTou
   spring.acts = -t.gap - c.offset > 0.0;
 }
 
+void ContactEngine::set_rigid_bodies(std::vector<Index> node_body,
+                                     std::vector<std::array<Real, 3>> body_translation_mass) {
+  m_node_body = std::move(node_body);
+  m_body_mass = std::move(body_translation_mass);
+  m_body_row.assign(m_body_mass.size(), {0.0, 0.0, 0.0});
+  m_body_factor.assign(m_body_mass.size(), 1.0);
+}
+
 void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> mass,
                                         std::span<const Real> inverse_mass) {
   const SlaveNodes& slaves = m_domain.slaves();
@@ -527,6 +535,32 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
   // The user's penalty scale raises every default spring, and the node budget with them.
   const Real budget =
       DEFAULT_PENALTY_NODE_BUDGET * m_options.penalty_scale / (dt_penalty * dt_penalty);
+  // The rigid body a spring pushes (its slave node's or its face's), NO_INDEX: none.
+  auto body_of = [&](Index j) {
+    if (m_node_body.empty()) return NO_INDEX;
+    const Index slave_body = m_node_body[slaves.nodes()[j / 2]];
+    if (slave_body != NO_INDEX) return slave_body;
+    return m_node_body[faces[touch_of(j).face].nodes[0]];
+  };
+  if (!m_body_mass.empty()) {
+    for (auto& r : m_body_row) r = {0.0, 0.0, 0.0};
+    for (Index j = 0; j < 2 * n_slave; ++j) {
+      const Spring& spring = m_spring[j];
+      if (!counted(spring)) continue;
+      const Index b = body_of(j);
+      if (b == NO_INDEX) continue;
+      const Vec3& n = touch_of(j).normal;
+      const Real spread = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
+      for (int d = 0; d < 3; ++d) m_body_row[b][d] += spring.k * std::abs(n[d]) * spread;
+    }
+    for (std::size_t b = 0; b < m_body_mass.size(); ++b) {
+      Real largest = 0.0;
+      for (int d = 0; d < 3; ++d)
+        if (std::isfinite(m_body_mass[b][d]) && m_body_mass[b][d] > 0.0)
+          largest = std::max(largest, m_body_row[b][d] / m_body_mass[b][d]);
+      m_body_factor[b] = largest > budget ? budget / largest : 1.0;
+    }
+  }
   for (Index j = 0; j < 2 * n_slave; ++j) {
     Spring& spring = m_spring[j];
     ContactConstraint& c = j % 2 == 0 ? m_constraints[j / 2] : m_second[j / 2];
@@ -539,6 +573,10 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
           largest = std::max(largest, m_default_sum.row(faces[t.face].nodes[a]) *
                                           inverse_mass[faces[t.face].nodes[a]]);
       if (largest > budget) factor = budget / largest;
+      if (!m_body_mass.empty()) {
+        const Index b = body_of(j);
+        if (b != NO_INDEX) factor = std::min(factor, m_body_factor[b]);
+      }
     }
     if (factor < 1.0) spring.k *= factor;
     // A default spring whose stiffness changes while loaded (its share of the node's budget,

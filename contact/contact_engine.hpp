@@ -73,7 +73,10 @@
 /// (pinched, folded layers, pressed corners, both views of a balanced pair) sees their sum.
 /// Every increment the row sums of the springs' stiffness matrices bound ω²Δt² per node
 /// (penalty_increment.hpp); where they exceed DEFAULT_PENALTY_NODE_BUDGET the springs on the
-/// node are scaled down to it. A default spring whose stiffness changes while loaded (its
+/// node are scaled down to it. A rigid body is one node with the body's mass: its rows (per
+/// free translation, Σ k·|n_d|·Σ_j|n_j| over the springs that push it) bound ω²Δt² with the
+/// body's mass, not a member node's (a light free rigid part hit by many nodes); its rotation
+/// is not bounded yet. A default spring whose stiffness changes while loaded (its
 /// share of the budget, the increment it is tied to shrinking as the elements are squashed in
 /// a fast impact, the master mass at a sliding point) moves its offset so that it holds the
 /// same energy (cap_default_springs): a spring that stiffened under load would give back more
@@ -167,6 +170,12 @@ class ContactEngine {
   /// with its tributary area, on a master of its own kind (row sum 2k/m); nodal masses as
   /// inverse masses (n_nodes, 1/kg).
   PenaltyLimit estimate_penalty_limit(std::span<const Real> inverse_mass) const;
+  /// The rigid bodies the default springs may push (cap_default_springs): the body of each
+  /// node (n_nodes, NO_INDEX for deformable nodes; empty: none) and, per body, its mass for
+  /// each translation (kg; +inf where the current step prescribes that translation of its
+  /// reference node). Set at the start of every step.
+  void set_rigid_bodies(std::vector<Index> node_body,
+                        std::vector<std::array<Real, 3>> body_translation_mass);
   /// Widens the search margin by `extra` (m, > 0) for contact surfaces moved out towards the
   /// slave nodes by negative permanent offsets (clearances); the next search rebuilds the lists.
   void widen_search(Real extra);
@@ -256,10 +265,14 @@ class ContactEngine {
   std::vector<Real> m_second_dissipation;
   std::vector<Spring> m_spring;       // (2 n_slave): side 0 at 2s, side 1 at 2s + 1
   PenaltyStiffnessSum m_default_sum;  // row sums of the default springs (cap_default_springs)
-  std::vector<Real> m_normal_force;   // (n_slave)
-  std::vector<Real> m_slave_force;    // (n_slave × 3): force on the slave node itself
-  std::vector<Real> m_dissipation;    // (n_slave)
-  std::vector<Real> m_stored;         // (n_slave): energy in the slot's springs, J
+  std::vector<Index> m_node_body;     // set_rigid_bodies
+  std::vector<std::array<Real, 3>> m_body_mass;
+  std::vector<std::array<Real, 3>> m_body_row;  // (n_bodies) per translation, N/m
+  std::vector<Real> m_body_factor;              // (n_bodies) scale of the springs on it
+  std::vector<Real> m_normal_force;             // (n_slave)
+  std::vector<Real> m_slave_force;              // (n_slave × 3): force on the slave node itself
+  std::vector<Real> m_dissipation;              // (n_slave)
+  std::vector<Real> m_stored;                   // (n_slave): energy in the slot's springs, J
   std::vector<OutputStatus> m_output_status;
   ForceAssembly m_assembly;       // nodal forces and pair sums (stage 5)
   bool m_user_stiffness = false;  // some law has its own stiffness (a LINEAR slope)

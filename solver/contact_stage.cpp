@@ -24,7 +24,10 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
   // The definition in force: the latest *CONTACT up to this step, and every *CONTACT PAIR.
   const Step& s = m_model.steps[step];
   const bool changed = step == 0 || s.contact || !s.contact_pairs.empty();
-  if (!changed) return;
+  if (!changed) {
+    set_rigid_bodies(rigid);
+    return;
+  }
   const GeneralContact* general = nullptr;
   for (int k = step; k >= 0 && general == nullptr; --k)
     if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
@@ -56,6 +59,7 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
                                      std::to_string(n_faces) + " faces and " +
                                      std::to_string(n_slaves) + " slave nodes, search margin " +
                                      format_real(m_engine->broad_phase().margin()) + " m");
+  set_rigid_bodies(rigid);
   resolve_overclosures(step, previous.get(), state, elements, rigid, prescribed);
 }
 
@@ -227,6 +231,11 @@ std::vector<contact::ClearanceView> ContactStage::clearance_views(
       add(assignment.second, assignment.first);
   }
   return views;
+}
+
+void ContactStage::set_rigid_bodies(const RigidBodies& rigid) {
+  if (m_engine && !rigid.empty())
+    m_engine->set_rigid_bodies(rigid.node_body(), rigid.translation_mass());
 }
 
 void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty) {

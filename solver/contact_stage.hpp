@@ -79,6 +79,9 @@ class ContactStage {
   /// m_pair_names in the engine's pair order.
   contact::DomainSpec domain_spec(const GeneralContact* general,
                                   const std::vector<ContactPair>& pairs);
+  /// The rigid bodies' nodes and masses of the current step to the engine (its bound on the
+  /// springs that push a body).
+  void set_rigid_bodies(const RigidBodies& rigid);
   /// Initial overclosures of a newly built engine (SPEC C2–C6): adjusts (step 1) or stores
   /// offsets (later step, import); with an engine of an earlier step, carries its offsets
   /// over instead.

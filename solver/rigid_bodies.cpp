@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -122,6 +123,16 @@ std::vector<std::string> RigidBodies::setup(const Model& model, const std::vecto
     messages.push_back(text.str());
   }
   return messages;
+}
+
+std::vector<std::array<Real, 3>> RigidBodies::translation_mass() const {
+  std::vector<std::array<Real, 3>> out(m_bodies.size());
+  for (std::size_t b = 0; b < m_bodies.size(); ++b) {
+    out[b].fill(m_bodies[b].mass);
+    for (const PrescribedDof& d : m_bodies[b].prescribed)
+      if (d.component < 3) out[b][d.component] = std::numeric_limits<Real>::infinity();
+  }
+  return out;
 }
 
 Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed) {

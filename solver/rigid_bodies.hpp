@@ -49,6 +49,11 @@ class RigidBodies {
   const std::vector<Index>& element_body() const { return m_element_body; }
   /// Whether node i moves with a body (member or reference node).
   bool is_rigid_node(Index i) const { return !m_node_body.empty() && m_node_body[i] != NO_INDEX; }
+  /// Body of each node (n_nodes, NO_INDEX for deformable ones); empty when no bodies.
+  const std::vector<Index>& node_body() const { return m_node_body; }
+  /// Per body, its mass for each translation in the current step (kg, after setup()): +inf
+  /// where begin_step() took a prescribed translation of its reference node.
+  std::vector<std::array<Real, 3>> translation_mass() const;
 
   /// Mass, centre of mass and inertia of every body from the nodal masses `mass` (n_nodes, kg,
   /// rigid elements' lumped mass and `*MASS` included) and the reference nodes' rotary inertia;

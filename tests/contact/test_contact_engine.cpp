@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "contact/contact_domain.hpp"
@@ -582,4 +583,47 @@ TEST_CASE(
   CHECK(t.lost >= 1);
   CHECK(t.lost_depth >= 1.2 - 1e-12);
   CHECK(t.lost_element_depth == Approx(1.0));
+}
+
+TEST_CASE("the springs that push a free rigid body are bounded with the body's mass",
+          "[contact][engine][rigid]") {
+  // The scene above: a rigid 2×2×1 block whose nine bottom nodes dip 0.01 into a deformable
+  // unit hex. Held (infinite mass in every translation) the springs are as without bodies;
+  // free and light (1e-3 kg against the hex's 1 kg corners) their sum along z is at most the
+  // budget times the body's mass over Δt².
+  const Real dt = 1e-3;
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 1, 1, 1, 1.0);
+  const Index first_rigid = mesh.node_count();
+  test::add_hex_block(mesh, 2, 2, 1, 0.25, Vec3(0.25, 0.25, 0.99));
+  const Index n = mesh.node_count();
+  DomainSpec spec = all_exterior();
+  spec.element_body.assign(mesh.kinds.size(), NO_INDEX);
+  for (std::size_t e = 1; e < mesh.kinds.size(); ++e) spec.element_body[e] = 0;
+  std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  for (Index i = first_rigid; i < n; ++i) inverse_mass[i] = 0.0;
+  std::vector<Index> node_body(n, NO_INDEX);
+  for (Index i = first_rigid; i < n; ++i) node_body[i] = 0;
+  const NodalVectors& x = mesh.coordinates;
+  const auto pressing = [&](Real body_mass) {
+    contact::ContactOptions options;
+    options.margin = 0.3;
+    contact::ContactEngine engine(ContactDomain(spec, mesh.topology(), x), {}, options, x, {});
+    engine.set_rigid_bodies(node_body, {{body_mass, body_mass, body_mass}});
+    NodalVectors force = NodalVectors::Zero(n, 3);
+    PhaseTimers timers;
+    engine.update(x, NodalVectors::Zero(n, 3), 0.0, dt, {}, mass, inverse_mass, force, timers);
+    Real sum = 0.0;
+    for (Index i = first_rigid; i < first_rigid + 9; ++i)
+      sum += engine.normal_force(engine.domain().slaves().slot(i));
+    return sum;
+  };
+  const Real held = pressing(std::numeric_limits<Real>::infinity());
+  const Real light = 1e-3;
+  const Real free = pressing(light);
+  CHECK(held > 0.0);
+  CHECK(free > 0.0);
+  CHECK(free < 0.5 * held);
+  // Σ k ≤ budget·M/Δt² with every spring 0.01 deep along z.
+  CHECK(free <= contact::DEFAULT_PENALTY_NODE_BUDGET * light / (dt * dt) * 0.01 * (1.0 + 1e-9));
 }
