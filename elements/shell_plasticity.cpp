@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include "elements/plasticity_root.hpp"
 
 namespace xpl::elements {
 
@@ -14,6 +17,9 @@ namespace {
 /// stress of a point returned in the last increment lies on the surface to round-off, and a
 /// zero-strain pass (dt = 0) must not send it through the return again.
 constexpr Real YIELD_TOLERANCE = 1e-12;
+
+/// |g| / σ_y at which a return has converged.
+constexpr Real NEWTON_TOLERANCE = 1e-12;
 
 /// Whether any lane of `m` is set.
 bool any_lane(simd::Mask m) {
@@ -29,6 +35,51 @@ struct LaneReturn {
   Vec yield;          ///< σ_y at the end, with the rate factor
   Vec dgamma;         ///< Δγ
 };
+
+/// The state of one lane at the end of its return.
+struct LaneEnd {
+  Real dgamma, f1, f2, dpeeq, yield;
+};
+
+/// The plane-stress return of one lane by bisection on Δγ (plasticity_root.hpp), for a lane
+/// whose Newton did not converge: [lo, hi] is the bracket Newton left (hi may be +inf: it is
+/// found by doubling, g → −σ_y < 0 as Δγ grows). Eigen-components and the flow stress as in
+/// return_lanes (`linear`: the table segment σ_y = seg_stress + seg_slope Δε̄ᵖ). At a jump of
+/// the flow stress between two adjacent doubles the stress is the one at the lower end and
+/// σ_y its von Mises norm (on the surface, between the flow stresses of the two ends).
+LaneEnd bisect_lane(const Plasticity& law, bool linear, Real seg_stress, Real seg_slope, Real a,
+                    Real c, Real p1_trial, Real p2_trial, Real peeq, Real inv_dt, Real lo,
+                    Real hi) {
+  const auto state = [&](Real dg) {
+    LaneEnd e{dg, 1.0 / (1.0 + a * dg), 1.0 / (1.0 + c * dg), 0.0, 0.0};
+    const Real vm = std::sqrt(p1_trial * e.f1 * e.f1 + p2_trial * e.f2 * e.f2);
+    e.dpeeq = (2.0 / 3.0) * dg * vm;
+    e.yield = linear ? seg_stress + seg_slope * e.dpeeq
+                     : flow_stress(law, peeq + e.dpeeq, e.dpeeq * inv_dt).stress;
+    return std::pair<LaneEnd, Real>(e, vm);
+  };
+  const auto residual = [&](Real dg, Real& scale) {
+    const auto [e, vm] = state(dg);
+    scale = e.yield;
+    return vm - e.yield;
+  };
+  if (!(hi < std::numeric_limits<Real>::infinity())) {
+    // Doubling from 1/c (the Δγ that halves the deviatoric stress) reaches the largest double
+    // within ~1100 steps; g < 0 long before.
+    Real x = std::max(2.0 * lo, 1.0 / c);
+    for (int k = 0; k < 1100; ++k, x *= 2.0) {
+      Real scale = 0.0;
+      const Real g = residual(x, scale);
+      if (!(g > 0.0)) break;
+      lo = x;
+    }
+    hi = std::max(x, lo);
+  }
+  const BracketedRoot root = bisect_root(residual, lo, hi, NEWTON_TOLERANCE);
+  auto [end, vm] = state(root.x);
+  if (!root.converged) end.yield = vm;
+  return end;
+}
 
 /// The plane-stress return of the lanes in `active`, all lanes at once: Newton on Δγ with
 /// SIMD arithmetic, the flow stress per active lane (laws[l], ε̄ᵖ_n = peeq[l]). Lanes that
@@ -55,7 +106,7 @@ struct LaneReturn {
 LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::Mask linear,
                         Vec seg_stress, Vec seg_slope, Vec q11, Vec q12, Vec shear, Vec sxx,
                         Vec syy, Vec sxy, Vec peeq, Real dt) {
-  constexpr Real TOLERANCE = 1e-12;               // |g| / σ_y at convergence
+  constexpr Real TOLERANCE = NEWTON_TOLERANCE;
   const Real inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;  // rate-free laws ignore the rate
   const Vec sum = sxx + syy, diff = sxx - syy;
   const Vec a = (q11 + q12) * (1.0 / 3.0), c = 2.0 * shear;
@@ -93,7 +144,8 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
       }
     const Vec g = vm - yield;
     const simd::Mask bracketed = hi < inf;
-    const simd::Mask done = ((g <= TOLERANCE * yield) & (g >= -TOLERANCE * yield)) |
+    // (An overflowing flow stress is no solution: −inf ≥ −1e-12 · inf would hold.)
+    const simd::Mask done = ((g <= TOLERANCE * yield) & (g >= -TOLERANCE * yield) & (yield < inf)) |
                             (bracketed & (hi - lo <= 1e-15 * hi));
     open &= ~done;
     if (!any_lane(open)) break;
@@ -123,6 +175,20 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
     next = simd::select(newton, next, fallback);
     dg = simd::select(open, next, dg);
   }
+  // Lanes whose Newton did not converge (steep laws, plasticity_root.hpp): bisection on the
+  // bracket Newton leaves. Lanes that converged keep their Newton solution bit for bit.
+  if (any_lane(open))
+    for (int l = 0; l < simd::W; ++l) {
+      if (!open[l]) continue;
+      const LaneEnd end =
+          bisect_lane(*laws[l], linear[l] != 0, seg_stress[l], seg_slope[l], a[l], c[l],
+                      p1_trial[l], p2_trial[l], peeq[l], inv_dt, lo[l], hi[l]);
+      dg[l] = end.dgamma;
+      f1[l] = end.f1;
+      f2[l] = end.f2;
+      dpeeq[l] = end.dpeeq;
+      yield[l] = end.yield;
+    }
   LaneReturn r;
   r.sxx = simd::select(active, 0.5 * (sum * f1 + diff * f2), sxx);
   r.syy = simd::select(active, 0.5 * (sum * f1 - diff * f2), syy);
