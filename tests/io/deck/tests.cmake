@@ -8,5 +8,5 @@ xpl_add_test_executable(
   deck/test_deck_clearance.cpp deck/test_deck_clearance_errors.cpp deck/test_deck_keywords.cpp
   deck/test_model_checks.cpp deck/test_deck_plastic.cpp deck/test_deck_plastic_errors.cpp
   deck/test_deck_initial_rotation.cpp deck/test_deck_dynamic.cpp deck/test_deck_assembly.cpp
-  deck/test_deck_mesh_export.cpp)
+  deck/test_deck_mesh_export.cpp deck/test_deck_refusals.cpp)
 target_link_libraries(xpl_tests_io_deck PRIVATE xpl::io_deck)
