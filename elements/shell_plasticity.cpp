@@ -20,6 +20,8 @@ constexpr Real YIELD_TOLERANCE = 1e-12;
 
 /// |g| / σ_y at which a return has converged.
 constexpr Real NEWTON_TOLERANCE = 1e-12;
+/// Newton iterations before the bisection takes over (plasticity_root.hpp).
+constexpr int NEWTON_ITERATIONS = 200;
 
 /// Whether any lane of `m` is set.
 bool any_lane(simd::Mask m) {
@@ -34,6 +36,10 @@ struct LaneReturn {
   Vec dpeeq;          ///< Δε̄ᵖ (0 in lanes not returned)
   Vec yield;          ///< σ_y at the end, with the rate factor
   Vec dgamma;         ///< Δγ
+  /// Lanes whose Newton did not converge, and the bracket [lo, hi] of Δγ it left them
+  /// (finish_unconverged completes them).
+  simd::Mask unconverged;
+  Vec lo, hi;
 };
 
 /// The state of one lane at the end of its return.
@@ -47,9 +53,9 @@ struct LaneEnd {
 /// return_lanes (`linear`: the table segment σ_y = seg_stress + seg_slope Δε̄ᵖ). At a jump of
 /// the flow stress between two adjacent doubles the stress is the one at the lower end and
 /// σ_y its von Mises norm (on the surface, between the flow stresses of the two ends).
-LaneEnd bisect_lane(const Plasticity& law, bool linear, Real seg_stress, Real seg_slope, Real a,
-                    Real c, Real p1_trial, Real p2_trial, Real peeq, Real inv_dt, Real lo,
-                    Real hi) {
+[[gnu::noinline]] LaneEnd bisect_lane(const Plasticity& law, bool linear, Real seg_stress,
+                                      Real seg_slope, Real a, Real c, Real p1_trial, Real p2_trial,
+                                      Real peeq, Real inv_dt, Real lo, Real hi) {
   const auto state = [&](Real dg) {
     LaneEnd e{dg, 1.0 / (1.0 + a * dg), 1.0 / (1.0 + c * dg), 0.0, 0.0};
     const Real vm = std::sqrt(p1_trial * e.f1 * e.f1 + p2_trial * e.f2 * e.f2);
@@ -117,8 +123,9 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
   Vec yield = zero, hardening = zero;
   const simd::Mask nonlinear = active & ~linear;
   const bool any_nonlinear = any_lane(nonlinear);
-  simd::Mask open = active;  // lanes still iterating
-  for (int iteration = 0; iteration < 200; ++iteration) {
+  simd::Mask open = active;                         // lanes still iterating
+  simd::Mask unconverged = active & (active == 0);  // all clear
+  for (int iteration = 0; iteration < NEWTON_ITERATIONS; ++iteration) {
     Vec p1 = p1_trial, p2 = p2_trial;
     if (iteration > 0) {
       const Vec u1 = 1.0 + a * dg, u2 = 1.0 + c * dg;
@@ -139,18 +146,23 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
       for (int l = 0; l < simd::W; ++l) {
         if (!(open[l] & nonlinear[l])) continue;
         const FlowStress f = flow_stress(*laws[l], peeq[l] + dpeeq[l], dpeeq[l] * inv_dt);
-        yield[l] = f.stress;
+        // An overflowing flow stress is no solution (|−inf| ≤ 1e-12 · inf would hold): the
+        // largest double keeps the stop test honest and the bracket on the right side.
+        yield[l] = std::min(f.stress, std::numeric_limits<Real>::max());
         hardening[l] = f.d_strain + f.d_rate * inv_dt;
       }
     const Vec g = vm - yield;
     const simd::Mask bracketed = hi < inf;
-    // (An overflowing flow stress is no solution: −inf ≥ −1e-12 · inf would hold.)
-    const simd::Mask done = ((g <= TOLERANCE * yield) & (g >= -TOLERANCE * yield) & (yield < inf)) |
+    const simd::Mask done = ((g <= TOLERANCE * yield) & (g >= -TOLERANCE * yield)) |
                             (bracketed & (hi - lo <= 1e-15 * hi));
     open &= ~done;
     if (!any_lane(open)) break;
     lo = simd::select(open & (g > 0.0), dg, lo);
     hi = simd::select(open & (g <= 0.0), dg, hi);
+    if (iteration == NEWTON_ITERATIONS - 1) [[unlikely]] {
+      unconverged = open;  // finish_unconverged bisects their bracket
+      break;
+    }
     // vm · d(σ_y/vm − 1)/dΔγ, positive but where the law softens.
     const Vec slope = hardening * (2.0 / 3.0) * (vm + dg * dvm) - (yield * inv_vm) * dvm;
     const Vec inv_slope = 1.0 / slope;
@@ -175,20 +187,6 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
     next = simd::select(newton, next, fallback);
     dg = simd::select(open, next, dg);
   }
-  // Lanes whose Newton did not converge (steep laws, plasticity_root.hpp): bisection on the
-  // bracket Newton leaves. Lanes that converged keep their Newton solution bit for bit.
-  if (any_lane(open))
-    for (int l = 0; l < simd::W; ++l) {
-      if (!open[l]) continue;
-      const LaneEnd end =
-          bisect_lane(*laws[l], linear[l] != 0, seg_stress[l], seg_slope[l], a[l], c[l],
-                      p1_trial[l], p2_trial[l], peeq[l], inv_dt, lo[l], hi[l]);
-      dg[l] = end.dgamma;
-      f1[l] = end.f1;
-      f2[l] = end.f2;
-      dpeeq[l] = end.dpeeq;
-      yield[l] = end.yield;
-    }
   LaneReturn r;
   r.sxx = simd::select(active, 0.5 * (sum * f1 + diff * f2), sxx);
   r.syy = simd::select(active, 0.5 * (sum * f1 - diff * f2), syy);
@@ -196,7 +194,33 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
   r.dpeeq = simd::select(active, dpeeq, zero);
   r.yield = yield;
   r.dgamma = simd::select(active, dg, zero);
+  r.unconverged = unconverged;
+  r.lo = lo;
+  r.hi = hi;
   return r;
+}
+
+/// Completes the lanes of `r` whose Newton did not converge by bisect_lane, from the trial
+/// (sxx, syy, sxy), moduli and segments return_lanes had.
+[[gnu::noinline]] void finish_unconverged(LaneReturn& r, const Plasticity* const* laws,
+                                          simd::Mask linear, Vec seg_stress, Vec seg_slope, Vec q11,
+                                          Vec q12, Vec shear, Vec sxx, Vec syy, Vec sxy, Vec peeq,
+                                          Real dt) {
+  const Real inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
+  for (int l = 0; l < simd::W; ++l) {
+    if (!r.unconverged[l]) continue;
+    const Real sum = sxx[l] + syy[l], diff = sxx[l] - syy[l];
+    const LaneEnd end = bisect_lane(*laws[l], linear[l] != 0, seg_stress[l], seg_slope[l],
+                                    (q11[l] + q12[l]) * (1.0 / 3.0), 2.0 * shear[l],
+                                    0.25 * sum * sum, 0.75 * diff * diff + 3.0 * (sxy[l] * sxy[l]),
+                                    peeq[l], inv_dt, r.lo[l], r.hi[l]);
+    r.sxx[l] = 0.5 * (sum * end.f1 + diff * end.f2);
+    r.syy[l] = 0.5 * (sum * end.f1 - diff * end.f2);
+    r.sxy[l] = sxy[l] * end.f2;
+    r.dpeeq[l] = end.dpeeq;
+    r.yield[l] = end.yield;
+    r.dgamma[l] = end.dgamma;
+  }
 }
 
 /// Whether the flow stress of `law` is piecewise linear in ε̄ᵖ alone (tabular, rate-free).
@@ -260,10 +284,16 @@ LaneReturn solve_lanes(const Plasticity* const* laws, simd::Mask active, Vec q11
   }
   LaneReturn r = return_lanes(laws, active, linear, seg_stress, seg_slope, q11, q12, shear, sxx,
                               syy, sxy, peeq, dt);
+  if (any_lane(r.unconverged)) [[unlikely]]
+    finish_unconverged(r, laws, linear, seg_stress, seg_slope, q11, q12, shear, sxx, syy, sxy, peeq,
+                       dt);
   const simd::Mask crossed = linear & (peeq + r.dpeeq > seg_end);
   if (!any_lane(crossed)) return r;
-  const LaneReturn again = return_lanes(laws, crossed, crossed & (crossed == 0), seg_stress,
-                                        seg_slope, q11, q12, shear, sxx, syy, sxy, peeq, dt);
+  LaneReturn again = return_lanes(laws, crossed, crossed & (crossed == 0), seg_stress, seg_slope,
+                                  q11, q12, shear, sxx, syy, sxy, peeq, dt);
+  if (any_lane(again.unconverged)) [[unlikely]]
+    finish_unconverged(again, laws, crossed & (crossed == 0), seg_stress, seg_slope, q11, q12,
+                       shear, sxx, syy, sxy, peeq, dt);
   r.sxx = simd::select(crossed, again.sxx, r.sxx);
   r.syy = simd::select(crossed, again.syy, r.syy);
   r.sxy = simd::select(crossed, again.sxy, r.sxy);
