@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/error.hpp"
 #include "io/results/compare_values.hpp"
 #include "io/results/result_compare.hpp"
 #include "subcommands.hpp"
@@ -58,29 +59,36 @@ std::string describe(const io::CompareValue& v) {
          ", |diff| " + io::format_number(v.difference);
 }
 
+/// `text` as printed: names and messages from a file may hold control characters, which
+/// must not reach the terminal raw (escaped as --import and the logs do).
+std::string shown(const std::string& text) {
+  return escape_control(text);
+}
+
 void print_text(const io::CompareReport& report, const io::CompareOptions& options,
                 const std::string& ref, const std::string& cand) {
   std::printf(
       "xpl compare: %s (REF) vs %s (NEW): pass when |new - ref| <= %s + %s |ref| + %s max|ref|\n",
-      ref.c_str(), cand.c_str(), io::format_number(options.atol).c_str(),
+      shown(ref).c_str(), shown(cand).c_str(), io::format_number(options.atol).c_str(),
       io::format_number(options.rtol).c_str(), io::format_number(options.ftol).c_str());
   long failed = 0;
   for (const io::DatasetComparison& d : report.datasets) {
+    const std::string name = shown(d.name);
     if (!d.problem.empty()) {
-      std::printf("FAIL %s: %s\n", d.name.c_str(), d.problem.c_str());
+      std::printf("FAIL %s: %s\n", name.c_str(), shown(d.problem).c_str());
     } else if (d.failed > 0) {
-      std::printf("FAIL %s: %ld of %ld values differ; worst %s > tolerance %s\n", d.name.c_str(),
-                  d.failed, d.compared, describe(d.worst).c_str(),
+      std::printf("FAIL %s: %ld of %ld values differ; worst %s > tolerance %s\n", name.c_str(),
+                  d.failed, d.compared, shown(describe(d.worst)).c_str(),
                   io::format_number(d.worst.tolerance).c_str());
     } else if (d.has_largest) {
-      std::printf("pass %s: %ld values; largest %s\n", d.name.c_str(), d.compared,
-                  describe(d.largest).c_str());
+      std::printf("pass %s: %ld values; largest %s\n", name.c_str(), d.compared,
+                  shown(describe(d.largest)).c_str());
     } else {
-      std::printf("pass %s: empty in both\n", d.name.c_str());
+      std::printf("pass %s: empty in both\n", name.c_str());
     }
     failed += d.passed() ? 0 : 1;
   }
-  for (const std::string& note : report.notes) std::printf("note: %s\n", note.c_str());
+  for (const std::string& note : report.notes) std::printf("note: %s\n", shown(note).c_str());
   std::printf("xpl compare: %s: %ld of %zu datasets differ\n", failed > 0 ? "DIFFERENT" : "PASSED",
               failed, report.datasets.size());
 }
@@ -156,7 +164,7 @@ int compare_main(const std::vector<std::string>& args) {
       print_text(report, options, files[0], files[1]);
     return report.passed() ? 0 : EXIT_DIFFERS;
   } catch (const io::UnusableInput& e) {
-    std::cerr << "xpl compare: cannot compare: " << e.what() << "\n";
+    std::cerr << "xpl compare: cannot compare: " << shown(e.what()) << "\n";
     if (json) {
       io::JsonValue out = io::JsonValue::object();
       out.set("reference", files[0]);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/error.hpp"
 #include "io/results/compare_values.hpp"
 #include "io/results/h5_reader.hpp"
 #include "subcommands.hpp"
@@ -101,7 +102,8 @@ void write_csv(std::ostream& out, const std::vector<StepTable>& steps) {
     for (const std::string& n : s.names)
       if (index.emplace(n, names.size()).second) names.push_back(n);
   out << "time";
-  for (const std::string& n : names) out << "," << csv_field(n);
+  // Column names come from the file's datasets: control characters escaped, as everywhere.
+  for (const std::string& n : names) out << "," << csv_field(escape_control(n));
   out << "\n";
   char number[32];
   for (const StepTable& s : steps) {
@@ -238,13 +240,15 @@ int history_main(const std::vector<std::string>& args) {
     for (const std::string& g : chosen) steps.push_back(read_step(file.get(), "/history/" + g));
     const std::string status = io::h5::string_attribute(file.get(), "/", "status").value_or("");
     if (status != "completed")
-      std::cerr << "xpl history: note: " << file_name << " has status '" << status
-                << "': its history ends where the run stopped\n";
+      std::cerr << "xpl history: note: " << escape_control(file_name) << " has status '"
+                << escape_control(status) << "': its history ends where the run stopped\n";
   } catch (const io::h5::FormatError& e) {
-    std::cerr << "xpl history: " << file_name << ": " << e.what() << "; " << e.expected() << "\n";
+    std::cerr << "xpl history: " << escape_control(file_name) << ": " << escape_control(e.what())
+              << "; " << e.expected() << "\n";
     return EXIT_UNUSABLE;
   } catch (const io::h5::Error& e) {
-    std::cerr << "xpl history: " << file_name << ": " << e.what() << "\n";
+    std::cerr << "xpl history: " << escape_control(file_name) << ": " << escape_control(e.what())
+              << "\n";
     return EXIT_UNUSABLE;
   }
   if (csv.empty()) {

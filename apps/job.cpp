@@ -124,6 +124,10 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
   try {
     // The solver's choice (one thread for a small model unless --threads insists).
     const int threads = team_size(model, args.threads, omp_get_max_threads());
+    // The team starts here, before the lock and the files: one the system cannot start (libgomp
+    // then stops the program with its own message) leaves nothing behind, no status "running".
+#pragma omp parallel num_threads(threads)
+    {}
     io::ResultOptions ropts;
     ropts.progress = !args.quiet;
     ropts.threads = threads;

@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
@@ -17,6 +18,10 @@
 #include "subcommands.hpp"
 
 namespace {
+
+/// Most OpenMP threads --threads accepts: more than the hardware threads of any machine xpl
+/// runs on (libgomp itself fails to start a team of ~40,000 and crashes at 65,536).
+constexpr int MAX_THREADS = 1024;
 
 /// `xpl run --help`: the run's synopsis and options.
 constexpr const char* RUN_USAGE =
@@ -153,9 +158,11 @@ bool parse(int argc, char** argv, Arguments& args) {
       try {
         std::size_t used = 0;
         args.threads = std::stoi(*v, &used);
-        if (used != v->size() || args.threads < 1) throw std::invalid_argument(*v);
+        if (used != v->size() || args.threads < 1 || args.threads > MAX_THREADS)
+          throw std::invalid_argument(*v);
       } catch (const std::exception&) {
-        std::cerr << "xpl: --threads: '" << *v << "' is not a positive whole number\n";
+        std::cerr << "xpl: --threads: '" << *v << "' is not a whole number from 1 to "
+                  << MAX_THREADS << "\n";
         return false;
       }
     } else if (w == "--energy-limit") {
@@ -164,11 +171,11 @@ bool parse(int argc, char** argv, Arguments& args) {
       try {
         std::size_t used = 0;
         args.energy_limit = std::stod(*v, &used);
-        if (used != v->size() || !(args.energy_limit > 0.0) || args.energy_limit > 1e6)
+        if (used != v->size() || !(args.energy_limit > 0.0) || !std::isfinite(args.energy_limit))
           throw std::invalid_argument(*v);
       } catch (const std::exception&) {
         std::cerr << "xpl: --energy-limit: '" << *v
-                  << "' is not a percentage > 0 (such as 10 for 10 %)\n";
+                  << "' is not a finite number > 0 (a percentage, such as 10 for 10 %)\n";
         return false;
       }
     } else if (w == "--import") {

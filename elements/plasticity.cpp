@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "elements/plasticity_root.hpp"
 
 namespace xpl::elements {
 
@@ -12,6 +15,13 @@ namespace {
 /// 1e-25 /s and less), so that Newton sees the true slope there; large enough that the
 /// slope stays finite for exponents down to 0.01.
 constexpr Real TINY_STRAIN = 1e-100;
+
+constexpr Real INFINITE = std::numeric_limits<Real>::infinity();
+
+/// Relative residual |g|/σ_y at which a return has converged.
+constexpr Real TOLERANCE = 1e-12;
+/// Newton iterations before the bisection takes over (plasticity_root.hpp).
+constexpr int NEWTON_ITERATIONS = 100;
 
 /// σ_0(ε̄ᵖ) and its slope.
 void static_curve(const Plasticity& law, Real peeq, Real& stress, Real& slope) {
@@ -67,6 +77,19 @@ Real Plasticity::initial_yield() const {
                                              : (yield_stress.empty() ? 0.0 : yield_stress[0]);
 }
 
+Real Plasticity::largest_flow_stress() const {
+  // σ_0 rises with ε̄ᵖ for Johnson–Cook (B ≥ 0) and R with ε̇ᵖ (C ≥ 0, D, n > 0): the largest
+  // σ_y is the largest static stress times the largest rate factor.
+  Real static_largest = 0.0, slope = 0.0;
+  if (hardening == Hardening::JohnsonCook)
+    static_curve(*this, PLAUSIBLE_PLASTIC_STRAIN, static_largest, slope);
+  else
+    for (const Real s : yield_stress) static_largest = std::max(static_largest, s);
+  Real factor = 1.0;
+  rate_factor(*this, PLAUSIBLE_STRAIN_RATE, factor, slope);
+  return static_largest * factor;
+}
+
 bool Plasticity::softens() const {
   if (hardening == Hardening::JohnsonCook) return jc_b < 0.0;
   for (std::size_t i = 1; i < yield_stress.size(); ++i)
@@ -94,16 +117,17 @@ PlasticIncrement radial_return(const Plasticity& law, Real q_trial, Real three_g
   Real delta = (q_trial - start.stress) / (three_g + std::max(start.d_strain, 0.0));
   delta = std::min(delta, hi);
   PlasticIncrement result{delta, start.stress};
-  for (int iteration = 0; iteration < 100; ++iteration) {
+  for (int iteration = 0; iteration < NEWTON_ITERATIONS; ++iteration) {
     const FlowStress f = flow_stress(law, peeq + delta, delta * inv_dt);
     const Real g = q_trial - three_g * delta - f.stress;
     result = {delta, f.stress};
-    if (std::abs(g) <= 1e-12 * f.stress) break;
+    // (An overflowing flow stress is no solution: |−inf| ≤ 1e-12 · inf would hold.)
+    if (std::abs(g) <= TOLERANCE * f.stress && f.stress < INFINITE) return result;
     if (g > 0.0)
       lo = delta;
     else
       hi = delta;
-    if (hi - lo <= 1e-15 * hi) break;
+    if (hi - lo <= 1e-15 * hi) return result;
     const Real slope = three_g + f.d_strain + f.d_rate * inv_dt;
     Real next = slope > 0.0 ? delta + g / slope : -1.0;
     if (!(next > lo && next < hi)) {
@@ -116,7 +140,16 @@ PlasticIncrement radial_return(const Plasticity& law, Real q_trial, Real three_g
     }
     delta = next;
   }
-  return result;
+  // Newton did not converge (a steep law: it creeps, see plasticity_root.hpp): bisect the
+  // bracket it leaves. The stress is the one on the surface, q_trial − 3GΔ, which at a jump
+  // of the flow stress between two adjacent doubles lies between the flow stresses there.
+  const auto residual = [&](Real x, Real& scale) {
+    scale = flow_stress(law, peeq + x, x * inv_dt).stress;
+    return q_trial - three_g * x - scale;
+  };
+  const BracketedRoot root = bisect_root(residual, lo, hi, TOLERANCE);
+  if (root.converged) return {root.x, flow_stress(law, peeq + root.x, root.x * inv_dt).stress};
+  return {root.x, q_trial - three_g * root.x};
 }
 
 }  // namespace xpl::elements

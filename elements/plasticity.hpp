@@ -57,9 +57,22 @@ struct Plasticity {
 
   /// σ_y at ε̄ᵖ = 0, ε̇ᵖ = 0, Pa.
   Real initial_yield() const;
+  /// The largest σ_y at plastic strains up to PLAUSIBLE_PLASTIC_STRAIN and strain rates up to
+  /// PLAUSIBLE_STRAIN_RATE, Pa; +inf or NaN when the constants overflow there (a Cowper–Symonds
+  /// D of 1e-300, an exponent n of 1e-3, a Johnson–Cook C of 1e308): the deck reader refuses
+  /// such a law. Every law whose value is finite is solved by radial_return and
+  /// plane_stress_return (beyond these bounds the flow stress may overflow; the returns'
+  /// bisection takes +inf as above the trial stress).
+  Real largest_flow_stress() const;
   /// Whether the static hardening curve falls anywhere (softening), for the .msg report.
   bool softens() const;
 };
+
+/// Plastic strain up to which the deck reader requires a finite flow stress, -.
+inline constexpr Real PLAUSIBLE_PLASTIC_STRAIN = 10.0;
+/// Strain rate up to which the deck reader requires a finite flow stress, 1/s (beyond the
+/// 1e6–1e7 /s of ballistic impacts).
+inline constexpr Real PLAUSIBLE_STRAIN_RATE = 1e8;
 
 /// Flow stress and its partial derivatives at one state.
 struct FlowStress {
@@ -83,8 +96,12 @@ struct PlasticIncrement {
 /// 3G per unit of Δε̄ᵖ: solves q_trial − 3G Δε̄ᵖ = σ_y(ε̄ᵖ_n + Δε̄ᵖ, Δε̄ᵖ/dt) for Δε̄ᵖ.
 /// Exact (one step) for linear hardening without rate dependence; otherwise Newton on the
 /// consistency condition, safeguarded by bisection on [0, q_trial/3G], to a relative residual
-/// of 1e-12 of σ_y (or Δε̄ᵖ to 1e-15). `three_g` = 3G (Pa), `peeq` = ε̄ᵖ_n, `dt` > 0 (s; rate laws
-/// only). The deviatoric trial stress is then scaled by σ_y/q_trial.
+/// of 1e-12 of σ_y (or Δε̄ᵖ to 1e-15). Where Newton does not converge in 100 iterations (steep
+/// rate laws and hardening exponents), bisection on the bracket it leaves finishes the solve
+/// (plasticity_root.hpp): every law the reader accepts ends on the yield surface, at the
+/// residual's root or between two adjacent doubles that bracket it (then σ_y = q_trial − 3GΔ).
+/// `three_g` = 3G (Pa), `peeq` = ε̄ᵖ_n, `dt` > 0 (s; rate laws only). The deviatoric trial
+/// stress is then scaled by σ_y/q_trial.
 PlasticIncrement radial_return(const Plasticity& law, Real q_trial, Real three_g, Real peeq,
                                Real dt);
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include "elements/plasticity_root.hpp"
 
 namespace xpl::elements {
 
@@ -14,6 +17,11 @@ namespace {
 /// stress of a point returned in the last increment lies on the surface to round-off, and a
 /// zero-strain pass (dt = 0) must not send it through the return again.
 constexpr Real YIELD_TOLERANCE = 1e-12;
+
+/// |g| / σ_y at which a return has converged.
+constexpr Real NEWTON_TOLERANCE = 1e-12;
+/// Newton iterations before the bisection takes over (plasticity_root.hpp).
+constexpr int NEWTON_ITERATIONS = 200;
 
 /// Whether any lane of `m` is set.
 bool any_lane(simd::Mask m) {
@@ -28,7 +36,56 @@ struct LaneReturn {
   Vec dpeeq;          ///< Δε̄ᵖ (0 in lanes not returned)
   Vec yield;          ///< σ_y at the end, with the rate factor
   Vec dgamma;         ///< Δγ
+  /// Lanes whose Newton did not converge, and the bracket [lo, hi] of Δγ it left them
+  /// (finish_unconverged completes them).
+  simd::Mask unconverged;
+  Vec lo, hi;
 };
+
+/// The state of one lane at the end of its return.
+struct LaneEnd {
+  Real dgamma, f1, f2, dpeeq, yield;
+};
+
+/// The plane-stress return of one lane by bisection on Δγ (plasticity_root.hpp), for a lane
+/// whose Newton did not converge: [lo, hi] is the bracket Newton left (hi may be +inf: it is
+/// found by doubling, g → −σ_y < 0 as Δγ grows). Eigen-components and the flow stress as in
+/// return_lanes (`linear`: the table segment σ_y = seg_stress + seg_slope Δε̄ᵖ). At a jump of
+/// the flow stress between two adjacent doubles the stress is the one at the lower end and
+/// σ_y its von Mises norm (on the surface, between the flow stresses of the two ends).
+[[gnu::noinline]] LaneEnd bisect_lane(const Plasticity& law, bool linear, Real seg_stress,
+                                      Real seg_slope, Real a, Real c, Real p1_trial, Real p2_trial,
+                                      Real peeq, Real inv_dt, Real lo, Real hi) {
+  const auto state = [&](Real dg) {
+    LaneEnd e{dg, 1.0 / (1.0 + a * dg), 1.0 / (1.0 + c * dg), 0.0, 0.0};
+    const Real vm = std::sqrt(p1_trial * e.f1 * e.f1 + p2_trial * e.f2 * e.f2);
+    e.dpeeq = (2.0 / 3.0) * dg * vm;
+    e.yield = linear ? seg_stress + seg_slope * e.dpeeq
+                     : flow_stress(law, peeq + e.dpeeq, e.dpeeq * inv_dt).stress;
+    return std::pair<LaneEnd, Real>(e, vm);
+  };
+  const auto residual = [&](Real dg, Real& scale) {
+    const auto [e, vm] = state(dg);
+    scale = e.yield;
+    return vm - e.yield;
+  };
+  if (!(hi < std::numeric_limits<Real>::infinity())) {
+    // Doubling from 1/c (the Δγ that halves the deviatoric stress) reaches the largest double
+    // within ~1100 steps; g < 0 long before.
+    Real x = std::max(2.0 * lo, 1.0 / c);
+    for (int k = 0; k < 1100; ++k, x *= 2.0) {
+      Real scale = 0.0;
+      const Real g = residual(x, scale);
+      if (!(g > 0.0)) break;
+      lo = x;
+    }
+    hi = std::max(x, lo);
+  }
+  const BracketedRoot root = bisect_root(residual, lo, hi, NEWTON_TOLERANCE);
+  auto [end, vm] = state(root.x);
+  if (!root.converged) end.yield = vm;
+  return end;
+}
 
 /// The plane-stress return of the lanes in `active`, all lanes at once: Newton on Δγ with
 /// SIMD arithmetic, the flow stress per active lane (laws[l], ε̄ᵖ_n = peeq[l]). Lanes that
@@ -55,7 +112,7 @@ struct LaneReturn {
 LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::Mask linear,
                         Vec seg_stress, Vec seg_slope, Vec q11, Vec q12, Vec shear, Vec sxx,
                         Vec syy, Vec sxy, Vec peeq, Real dt) {
-  constexpr Real TOLERANCE = 1e-12;               // |g| / σ_y at convergence
+  constexpr Real TOLERANCE = NEWTON_TOLERANCE;
   const Real inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;  // rate-free laws ignore the rate
   const Vec sum = sxx + syy, diff = sxx - syy;
   const Vec a = (q11 + q12) * (1.0 / 3.0), c = 2.0 * shear;
@@ -66,8 +123,9 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
   Vec yield = zero, hardening = zero;
   const simd::Mask nonlinear = active & ~linear;
   const bool any_nonlinear = any_lane(nonlinear);
-  simd::Mask open = active;  // lanes still iterating
-  for (int iteration = 0; iteration < 200; ++iteration) {
+  simd::Mask open = active;                         // lanes still iterating
+  simd::Mask unconverged = active & (active == 0);  // all clear
+  for (int iteration = 0; iteration < NEWTON_ITERATIONS; ++iteration) {
     Vec p1 = p1_trial, p2 = p2_trial;
     if (iteration > 0) {
       const Vec u1 = 1.0 + a * dg, u2 = 1.0 + c * dg;
@@ -88,7 +146,9 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
       for (int l = 0; l < simd::W; ++l) {
         if (!(open[l] & nonlinear[l])) continue;
         const FlowStress f = flow_stress(*laws[l], peeq[l] + dpeeq[l], dpeeq[l] * inv_dt);
-        yield[l] = f.stress;
+        // An overflowing flow stress is no solution (|−inf| ≤ 1e-12 · inf would hold): the
+        // largest double keeps the stop test honest and the bracket on the right side.
+        yield[l] = std::min(f.stress, std::numeric_limits<Real>::max());
         hardening[l] = f.d_strain + f.d_rate * inv_dt;
       }
     const Vec g = vm - yield;
@@ -99,6 +159,10 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
     if (!any_lane(open)) break;
     lo = simd::select(open & (g > 0.0), dg, lo);
     hi = simd::select(open & (g <= 0.0), dg, hi);
+    if (iteration == NEWTON_ITERATIONS - 1) [[unlikely]] {
+      unconverged = open;  // finish_unconverged bisects their bracket
+      break;
+    }
     // vm · d(σ_y/vm − 1)/dΔγ, positive but where the law softens.
     const Vec slope = hardening * (2.0 / 3.0) * (vm + dg * dvm) - (yield * inv_vm) * dvm;
     const Vec inv_slope = 1.0 / slope;
@@ -130,7 +194,33 @@ LaneReturn return_lanes(const Plasticity* const* laws, simd::Mask active, simd::
   r.dpeeq = simd::select(active, dpeeq, zero);
   r.yield = yield;
   r.dgamma = simd::select(active, dg, zero);
+  r.unconverged = unconverged;
+  r.lo = lo;
+  r.hi = hi;
   return r;
+}
+
+/// Completes the lanes of `r` whose Newton did not converge by bisect_lane, from the trial
+/// (sxx, syy, sxy), moduli and segments return_lanes had.
+[[gnu::noinline]] void finish_unconverged(LaneReturn& r, const Plasticity* const* laws,
+                                          simd::Mask linear, Vec seg_stress, Vec seg_slope, Vec q11,
+                                          Vec q12, Vec shear, Vec sxx, Vec syy, Vec sxy, Vec peeq,
+                                          Real dt) {
+  const Real inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
+  for (int l = 0; l < simd::W; ++l) {
+    if (!r.unconverged[l]) continue;
+    const Real sum = sxx[l] + syy[l], diff = sxx[l] - syy[l];
+    const LaneEnd end = bisect_lane(*laws[l], linear[l] != 0, seg_stress[l], seg_slope[l],
+                                    (q11[l] + q12[l]) * (1.0 / 3.0), 2.0 * shear[l],
+                                    0.25 * sum * sum, 0.75 * diff * diff + 3.0 * (sxy[l] * sxy[l]),
+                                    peeq[l], inv_dt, r.lo[l], r.hi[l]);
+    r.sxx[l] = 0.5 * (sum * end.f1 + diff * end.f2);
+    r.syy[l] = 0.5 * (sum * end.f1 - diff * end.f2);
+    r.sxy[l] = sxy[l] * end.f2;
+    r.dpeeq[l] = end.dpeeq;
+    r.yield[l] = end.yield;
+    r.dgamma[l] = end.dgamma;
+  }
 }
 
 /// Whether the flow stress of `law` is piecewise linear in ε̄ᵖ alone (tabular, rate-free).
@@ -194,10 +284,16 @@ LaneReturn solve_lanes(const Plasticity* const* laws, simd::Mask active, Vec q11
   }
   LaneReturn r = return_lanes(laws, active, linear, seg_stress, seg_slope, q11, q12, shear, sxx,
                               syy, sxy, peeq, dt);
+  if (any_lane(r.unconverged)) [[unlikely]]
+    finish_unconverged(r, laws, linear, seg_stress, seg_slope, q11, q12, shear, sxx, syy, sxy, peeq,
+                       dt);
   const simd::Mask crossed = linear & (peeq + r.dpeeq > seg_end);
   if (!any_lane(crossed)) return r;
-  const LaneReturn again = return_lanes(laws, crossed, crossed & (crossed == 0), seg_stress,
-                                        seg_slope, q11, q12, shear, sxx, syy, sxy, peeq, dt);
+  LaneReturn again = return_lanes(laws, crossed, crossed & (crossed == 0), seg_stress, seg_slope,
+                                  q11, q12, shear, sxx, syy, sxy, peeq, dt);
+  if (any_lane(again.unconverged)) [[unlikely]]
+    finish_unconverged(again, laws, crossed & (crossed == 0), seg_stress, seg_slope, q11, q12,
+                       shear, sxx, syy, sxy, peeq, dt);
   r.sxx = simd::select(crossed, again.sxx, r.sxx);
   r.syy = simd::select(crossed, again.syy, r.syy);
   r.sxy = simd::select(crossed, again.sxy, r.sxy);

@@ -11,7 +11,8 @@
 /// plane-stress elasticity C and P:
 ///   (σxx+σyy)/√2 scaled by 1/(1 + Δγ E/(3(1−ν))),
 ///   (σyy−σxx)/√2 and σxy scaled by 1/(1 + 2GΔγ),
-/// so the consistency condition is one scalar equation in Δγ, solved by safeguarded Newton.
+/// so the consistency condition is one scalar equation in Δγ, solved by safeguarded Newton,
+/// finished by bisection where Newton does not converge (steep laws: plasticity_root.hpp).
 /// The transverse shear stresses stay elastic (as in Belytschko–Tsay codes): they are not
 /// part of the yield condition.
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Install missing dependencies, build xpl with a preset and run its test suite, then fuzz the
-# deck reader under address+undefined sanitizers.
+# deck reader (and run the generated decks it accepts) under address+undefined sanitizers.
 # Usage: scripts/run_tests.sh [preset]    (release by default)
 #   XPL_FUZZ_DECKS=N  mutated decks checked in process (tests/fuzz/xpl_fuzz_check: batches of
 #                     decks through the code of `xpl check`, each isolated) under address+
@@ -8,6 +8,11 @@
 #   XPL_FUZZ_PROCESS_DECKS=N  mutated decks checked by `xpl check` as a process each under the
 #                     sanitizers, the whole command line (default 300, 0 skips them; about
 #                     0.25 s of CPU per deck, most of it starting the process)
+#   XPL_FUZZ_GENERATED_DECKS=N  generated decks of plasticity, rate laws, ties, mass scaling
+#                     and contact inclusions/exclusions (tests/fuzz/generate_decks.py), each
+#                     checked and, when accepted, run (`xpl run`, a few hundred increments at
+#                     most) as a process under the sanitizers (default 80, 0 skips them;
+#                     about 0.5 s of CPU per deck)
 #                     The fuzz stage builds only xpl and xpl_fuzz_check with the sanitize preset.
 # Exit code: ctest's, else the fuzzer's (1 when it found a crash, hang or sanitizer report).
 set -euo pipefail
@@ -33,17 +38,23 @@ if [[ $status -ne 0 ]]; then exit "$status"; fi
 
 fuzz_decks="${XPL_FUZZ_DECKS:-3000}"
 fuzz_process_decks="${XPL_FUZZ_PROCESS_DECKS:-300}"
-if [[ $fuzz_decks -gt 0 || $fuzz_process_decks -gt 0 ]]; then
+fuzz_generated_decks="${XPL_FUZZ_GENERATED_DECKS:-80}"
+if [[ $fuzz_decks -gt 0 || $fuzz_process_decks -gt 0 || $fuzz_generated_decks -gt 0 ]]; then
   [[ $preset == sanitize ]] || bash scripts/build.sh sanitize xpl xpl_fuzz_check
   fuzz_status=0
   if [[ $fuzz_decks -gt 0 ]]; then
     python3 tests/fuzz/fuzz_decks.py --in-process build/sanitize/tests/fuzz/xpl_fuzz_check \
-      --count "$fuzz_decks" --seed 1 --timeout 10 --keep build/sanitize/fuzz-findings ||
-      fuzz_status=1
+      --count "$fuzz_decks" --seed 1 --timeout 10 --generated-fraction 0.2 \
+      --keep build/sanitize/fuzz-findings || fuzz_status=1
   fi
   if [[ $fuzz_process_decks -gt 0 ]]; then
     python3 tests/fuzz/fuzz_decks.py --xpl build/sanitize/apps/xpl --count "$fuzz_process_decks" \
       --seed 2 --timeout 10 --keep build/sanitize/fuzz-findings-process || fuzz_status=1
+  fi
+  if [[ $fuzz_generated_decks -gt 0 ]]; then
+    python3 tests/fuzz/fuzz_decks.py --xpl build/sanitize/apps/xpl --generate --run \
+      --count "$fuzz_generated_decks" --seed 3 --timeout 30 \
+      --keep build/sanitize/fuzz-findings-generated || fuzz_status=1
   fi
   exit "$fuzz_status"
 fi

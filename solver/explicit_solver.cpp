@@ -202,6 +202,7 @@ void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_me
                                          "stabilisation; C3D8R elements run it as STIFFNESS");
   for (const std::string& m : rigid_messages) m_sink.message(Severity::Info, m);
   for (const std::string& m : m_ties.messages()) m_sink.message(Severity::Info, m);
+  for (const std::string& m : m_ties.warnings()) m_sink.message(Severity::Warning, m);
   m_elements.report_setup(m_state.reference, m_sink);
 }
 

@@ -17,7 +17,12 @@ struct MasterFace {
   std::array<Index, 4> corner{};
   bool shell = false;
   Eigen::Vector3d low, high;  ///< bounding box of the corners, m
+  Real diagonal = 0.0;        ///< mean of the two diagonals, m: the size of its element
 };
+
+/// Slave nodes searched for the nearest distance of a tie that binds none (the search is
+/// pruned only by that distance, so it is capped: a sample of this many, evenly spaced).
+constexpr std::size_t NEAREST_SAMPLE = 1000;
 
 /// Number of untied slave node ids listed in the .msg file.
 constexpr std::size_t LISTED_IDS = 10;
@@ -62,11 +67,12 @@ Ties::Ties(const Model& model, State& state) {
         face.high = face.high.cwiseMax(point(state.reference, c));
         on_master[c] = 1;
       }
-      diagonal_sum +=
+      face.diagonal =
           0.5 * ((point(state.reference, face.corner[2]) - point(state.reference, face.corner[0]))
                      .norm() +
                  (point(state.reference, face.corner[3]) - point(state.reference, face.corner[1]))
                      .norm());
+      diagonal_sum += face.diagonal;
       faces.push_back(face);
     }
     const Real tolerance = tie.tolerance ? *tie.tolerance
@@ -76,18 +82,22 @@ Ties::Ties(const Model& model, State& state) {
     Index tied = 0;
     Real largest = 0.0;
     std::vector<Index> untied;
-    for (Index s : model.surface_nodes(model.surfaces[tie.slave])) {
-      if (on_master[s]) continue;  // a node of its own master surface stays untied
+    // Slave nodes ADJUST=YES moves by more than the size of the face they bind to.
+    Index far_moves = 0;
+    Real far_move = 0.0, far_diagonal = 0.0;
+    Index far_node = NO_INDEX;
+    /// The closest point of node s on the master faces no farther than `limit`; best = +inf
+    /// when there is none.
+    const auto nearest = [&](Index s, Real limit, Real& best, contact::ClosestPoint& closest,
+                             std::size_t& best_face) {
       const Eigen::Vector3d p = point(state.reference, s);
-      Real best = std::numeric_limits<Real>::infinity();
-      contact::ClosestPoint closest;
-      std::size_t best_face = 0;
+      best = std::numeric_limits<Real>::infinity();
       for (std::size_t k = 0; k < faces.size(); ++k) {
         const MasterFace& face = faces[k];
         // Distance to the bounding box: a lower bound of the distance to the face.
         const Eigen::Vector3d outside =
             (face.low - p).cwiseMax(p - face.high).cwiseMax(Eigen::Vector3d::Zero());
-        if (outside.norm() > std::min(best, tolerance)) continue;
+        if (outside.norm() > std::min(best, limit)) continue;
         contact::Vec3 corner[4];
         for (int c = 0; c < 4; ++c) corner[c] = point(state.reference, face.corner[c]);
         const contact::ClosestPoint cp = contact::closest_point_on_quad(corner, p);
@@ -97,11 +107,27 @@ Ties::Ties(const Model& model, State& state) {
           best_face = k;
         }
       }
+    };
+    const std::vector<Index> slaves = model.surface_nodes(model.surfaces[tie.slave]);
+    for (Index s : slaves) {
+      if (on_master[s]) continue;  // a node of its own master surface stays untied
+      Real best = 0.0;
+      contact::ClosestPoint closest;
+      std::size_t best_face = 0;
+      nearest(s, tolerance, best, closest, best_face);
       if (!(best <= tolerance)) {
         untied.push_back(s);
         continue;
       }
       const MasterFace& face = faces[best_face];
+      if (tie.adjust && best > face.diagonal) {
+        ++far_moves;
+        if (best > far_move) {
+          far_move = best;
+          far_diagonal = face.diagonal;
+          far_node = s;
+        }
+      }
       Binding b;
       b.slave = s;
       b.corner = face.corner;
@@ -133,6 +159,36 @@ Ties::Ties(const Model& model, State& state) {
       if (untied.size() > LISTED_IDS) text += ", ...";
     }
     m_messages.push_back(text);
+    if (tied == 0) {
+      // The nearest slave node anyway (a sample of a large surface): the tolerance it needs.
+      Real closest_distance = std::numeric_limits<Real>::infinity();
+      const std::size_t stride = std::max<std::size_t>(1, untied.size() / NEAREST_SAMPLE);
+      for (std::size_t k = 0; k < untied.size(); k += stride) {
+        Real best = 0.0;
+        contact::ClosestPoint closest;
+        std::size_t best_face = 0;
+        nearest(untied[k], closest_distance, best, closest, best_face);
+        closest_distance = std::min(closest_distance, best);
+      }
+      std::string warning = "tie " + tie.name + " ties no node: ";
+      if (untied.empty())
+        warning += "every node of slave surface " + model.surfaces[tie.slave].name +
+                   " is a node of master surface " + model.surfaces[tie.master].name;
+      else
+        warning += "none of the " + std::to_string(untied.size()) + " slave node(s) of " +
+                   model.surfaces[tie.slave].name + " lies within the position tolerance " +
+                   number(tolerance) + " m of " + model.surfaces[tie.master].name +
+                   " (the nearest " + (stride > 1 ? "of a sample " : "") + "is " +
+                   number(closest_distance) + " m away)";
+      m_warnings.push_back(warning + "; the tie has no effect");
+    }
+    if (far_moves > 0)
+      m_warnings.push_back(
+          "tie " + tie.name + ": ADJUST=YES moves " + std::to_string(far_moves) +
+          " slave node(s) by more than the size of the master face they are tied to (node " +
+          std::to_string(model.node_ids[far_node]) + " by " + number(far_move) +
+          " m, its face's diagonal " + number(far_diagonal) + " m; position tolerance " +
+          number(tolerance) + " m): check POSITION TOLERANCE=, or tie with ADJUST=NO");
   }
   // Per master node, its entries in binding order.
   std::vector<Index> count(static_cast<std::size_t>(n), 0);

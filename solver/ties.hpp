@@ -73,6 +73,10 @@ class Ties {
   void follow(State& state) const;
   /// One message per tie for the .msg file: tied slave nodes, largest adjustment, untied ones.
   const std::vector<std::string>& messages() const { return m_messages; }
+  /// Warnings for the .msg file: a tie that binds no slave node (with the nearest distance
+  /// against the tolerance), and ADJUST=YES moving slave nodes by more than the size of the
+  /// master face they bind to (with the largest move).
+  const std::vector<std::string>& warnings() const { return m_warnings; }
 
  private:
   struct Binding {
@@ -89,6 +93,7 @@ class Ties {
   std::vector<std::pair<Index, int>> m_entries;
   std::vector<char> m_tied;
   std::vector<std::string> m_messages;
+  std::vector<std::string> m_warnings;
 };
 
 }  // namespace xpl

@@ -64,6 +64,35 @@ std::optional<SurfacePair> surface_pair(DeckState& deck, const DeckDataLine& lin
   return pair;
 }
 
+namespace {
+
+/// "A, B" or "A (self contact)" ("all exterior faces" for a blank surface), as messages name
+/// a pair.
+std::string pair_text(const DeckState& deck, const SurfacePair& pair) {
+  const auto name = [&](Index s) {
+    return s == NO_INDEX ? std::string("all exterior faces")
+                         : deck.model.surfaces[static_cast<std::size_t>(s)].name;
+  };
+  if (pair.first == pair.second) return name(pair.first) + " (self contact)";
+  return name(pair.first) + ", " + name(pair.second);
+}
+
+/// Whether `pair` of the current step's general contact came from an earlier step's
+/// definition (OP=MOD), not from a line of this step.
+bool inherited(const DeckState& deck, const SurfacePair& pair, bool inclusions) {
+  const std::vector<Step>& steps = deck.model.steps;
+  for (std::size_t s = 0; s + 1 < steps.size(); ++s) {
+    if (!steps[s].contact) continue;
+    const std::vector<SurfacePair>& earlier =
+        inclusions ? steps[s].contact->inclusions : steps[s].contact->exclusions;
+    for (const SurfacePair& p : earlier)
+      if (p.where.line == pair.where.line && p.where.file == pair.where.file) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void read_contact(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
   check_parameters(deck, keyword, {{"OP"}});
@@ -157,10 +186,29 @@ void read_contact_inclusions(DeckState& deck, const DeckBlock& block, bool inclu
               PAIR_LINE);
     return;
   }
+  std::vector<SurfacePair>& pairs = inclusions ? contact->inclusions : contact->exclusions;
   for (const DeckDataLine& line : block.data) {
     check_field_count(deck, line, keyword, 2, PAIR_LINE);
     const std::optional<SurfacePair> pair = surface_pair(deck, line, keyword);
-    if (pair) (inclusions ? contact->inclusions : contact->exclusions).push_back(*pair);
+    if (!pair) continue;
+    const auto same = std::find_if(pairs.begin(), pairs.end(), [&](const SurfacePair& p) {
+      return (p.first == pair->first && p.second == pair->second) ||
+             (p.first == pair->second && p.second == pair->first);
+    });
+    if (same == pairs.end()) {
+      pairs.push_back(*pair);
+    } else if (inherited(deck, *same, inclusions)) {
+      // OP=MOD adds to the earlier steps' definition, which already holds the pair.
+      note(deck, line.where(), keyword,
+           "the pair " + pair_text(deck, *pair) + " is in effect since " +
+               location_text(same->where) + "; given again, it changes nothing");
+      same->where = pair->where;  // now given in this step: a third time is an error
+    } else {
+      error(deck, line.where(), keyword,
+            "the pair " + pair_text(deck, *pair) + " is given twice in step " +
+                deck.model.steps.back().name + " (first at " + location_text(same->where) + ")",
+            "expected each surface pair once per step");
+    }
   }
 }
 

@@ -170,6 +170,9 @@ void read_dynamic(DeckState& deck, const DeckBlock& block);
 void read_bulk_viscosity(DeckState& deck, const DeckBlock& block);
 /// *FIXED MASS SCALING (deck_mass_scaling.cpp).
 void read_fixed_mass_scaling(DeckState& deck, const DeckBlock& block);
+/// Refuses a *FIXED MASS SCALING whose ELSET= holds only rigid-body elements (after the sets
+/// and rigid bodies are resolved).
+void check_mass_scaling_sets(DeckState& deck);
 /// `*BOUNDARY`.
 void read_boundary(DeckState& deck, const DeckBlock& block);
 /// OP= of *CLOAD, *DLOAD, *DSLOAD: false (reported) if bad; sets `reset` for OP=NEW.

@@ -234,11 +234,16 @@ void Lexer::read(std::string_view text, const std::string& file_name, int depth)
     std::string_view joined = current.text;
     const bool is_keyword = joined.front() == '*';
     const bool is_heading = open_block && blocks.back().keyword.name == "HEADING";
-    // A line ending with a comma continues on the next line, unless that is a keyword line,
-    // a keyword line's next line is data (parameters start with a letter), or an element's
-    // line already holds all its nodes (CalculiX and Abaqus write "1, 1, 2, ..., 8," too).
-    const int complete = !is_keyword && open_block ? element_line_fields(blocks.back().keyword) : 0;
-    if (!(is_heading && !is_keyword) && joined.back() == ',' &&
+    // A line ending with a comma continues on the next line where Abaqus defines it: a keyword
+    // line (continued by a line of parameters, which start with a letter; a number starts the
+    // keyword's data) and an *ELEMENT data line (continued by its remaining nodes, unless it
+    // already holds them all: CalculiX and Abaqus write "1, 1, 2, ..., 8," too). Any other data
+    // line ends at its line end: a trailing comma only leaves its last field empty, so that
+    // `BS,` then `PS,` of a *CONTACT EXCLUSIONS block stay two self-contact lines.
+    const bool continues_data =
+        !is_keyword && open_block && blocks.back().keyword.name == "ELEMENT";
+    const int complete = continues_data ? element_line_fields(blocks.back().keyword) : 0;
+    if ((is_keyword || continues_data) && joined.back() == ',' &&
         (complete == 0 || filled_fields(joined) < complete)) {
       bool joining = false;
       PhysicalLine next;

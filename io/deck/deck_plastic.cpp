@@ -5,6 +5,7 @@
 /// *RATE DEPENDENT and the material draw no follow-up error.
 
 #include <algorithm>
+#include <cmath>
 #include <string_view>
 
 #include "io/deck/deck_handlers.hpp"
@@ -154,6 +155,18 @@ bool read_johnson_cook(DeckState& deck, const DeckBlock& block, Plasticity& law)
   law.jc_m = *m;
   law.jc_melt = *melt;
   law.jc_transition = *transition;
+  if (ok && !std::isfinite(law.largest_flow_stress())) {
+    error(deck, line.where(), keyword,
+          "A = " + number_text(*a) + ", B = " + number_text(*b) + ", n = " + number_text(*n) +
+              " give a flow stress of " +
+              (std::isnan(law.largest_flow_stress()) ? std::string("NaN")
+                                                     : number_text(law.largest_flow_stress())) +
+              " at plastic strain " + number_text(elements::PLAUSIBLE_PLASTIC_STRAIN),
+          "expected constants for which A + B (plastic strain)^n stays finite up to plastic "
+          "strain " +
+              number_text(elements::PLAUSIBLE_PLASTIC_STRAIN));
+    ok = false;
+  }
   return ok;
 }
 
@@ -277,7 +290,7 @@ void read_rate_dependent(DeckState& deck, const DeckBlock& block) {
     }
   }
   if (!ok || !material.plastic) return;  // a bad *PLASTIC is reported already
-  Plasticity& law = *material.plastic;
+  Plasticity law = *material.plastic;
   if (johnson_cook) {
     law.rate = RateDependence::JohnsonCook;
     law.rate_c = *first;
@@ -287,6 +300,22 @@ void read_rate_dependent(DeckState& deck, const DeckBlock& block) {
     law.power_d = *first;
     law.power_n = *second;
   }
+  // The returns solve every law whose flow stress is finite (elements/plasticity.hpp); one
+  // that overflows at a plausible rate is a mistake in its constants.
+  const Real largest = law.largest_flow_stress();
+  if (!std::isfinite(largest)) {
+    const std::string rate = number_text(elements::PLAUSIBLE_STRAIN_RATE);
+    error(deck, line.where(), keyword,
+          std::string(johnson_cook ? "C = " : "D = ") + number_text(*first) +
+              (johnson_cook ? ", reference strain rate " : ", n = ") + number_text(*second) +
+              " give material " + material.name + " a flow stress of " +
+              (std::isnan(largest) ? std::string("NaN") : number_text(largest)) +
+              " at a strain rate of " + rate + " /s",
+          "expected rate constants for which the flow stress stays finite up to " + rate + " /s" +
+              (johnson_cook ? "" : " (a larger D or n)"));
+    return;
+  }
+  *material.plastic = std::move(law);
 }
 
 void check_plastic_materials(DeckState& deck) {

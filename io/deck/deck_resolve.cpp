@@ -59,7 +59,8 @@ Model finish(DeckState& deck) {
   resolve_gravity(deck);
   resolve_contact_pairs(deck);
   resolve_rigid_bodies(deck);
-  resolve_ties(deck);  // after rigid bodies and steps (node conflicts)
+  check_mass_scaling_sets(deck);  // after rigid bodies
+  resolve_ties(deck);             // after rigid bodies and steps (node conflicts)
   resolve_point_inertias(deck);
   resolve_distributions(deck);
   resolve_clearances(deck);  // after surfaces, contact pairs, rigid bodies and distributions

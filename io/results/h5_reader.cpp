@@ -226,4 +226,66 @@ std::optional<std::vector<std::int64_t>> int64_array_attribute(hid_t file, const
   return values;
 }
 
+void check_element_rows(hid_t file, const std::vector<std::int64_t>& element_ids,
+                        const std::string& expected) {
+  struct Group {
+    std::string path;
+    std::vector<std::int64_t> ids;
+    std::size_t next = 0;  ///< the next of `ids` to meet in row order
+  };
+  std::vector<Group> groups;
+  for (const char* type : {"C3D8R", "C3D8", "S4R"}) {
+    const std::string path = std::string("/mesh/") + type;
+    if (!has_link(file, path)) continue;
+    groups.push_back(
+        {path, read_array<std::int64_t>(file, path + "/element_ids", std::nullopt, 0, expected)});
+  }
+  const auto id_text = [](std::int64_t id) { return std::to_string(id); };
+  std::vector<char> listed(element_ids.size(), 0);
+  for (Group& g : groups) {
+    if (!has_link(file, g.path + "/element_rows")) continue;
+    const auto rows =
+        read_array<std::int64_t>(file, g.path + "/element_rows", g.ids.size(), 0, expected);
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      const std::int64_t row = rows[j];
+      if (row < 0 || static_cast<std::size_t>(row) >= element_ids.size() ||
+          (j > 0 && row <= rows[j - 1]))
+        refuse(g.path + "/element_rows lists row " + id_text(row) + " for element " +
+                   id_text(g.ids[j]) + ", outside /mesh/element_ids or out of order",
+               expected);
+      if (element_ids[static_cast<std::size_t>(row)] != g.ids[j])
+        refuse("/mesh/element_ids has element " +
+                   id_text(element_ids[static_cast<std::size_t>(row)]) + " at row " + id_text(row) +
+                   ", where " + g.path + " has element " + id_text(g.ids[j]) +
+                   " (the rows of the element fields would go to other elements)",
+               expected);
+      listed[static_cast<std::size_t>(row)] = 1;
+    }
+    g.next = g.ids.size();
+  }
+  // Groups without element_rows (a single-type mesh): their elements are the remaining rows,
+  // each group in its own order.
+  for (std::size_t r = 0; r < element_ids.size(); ++r) {
+    if (listed[r]) continue;
+    bool found = false;
+    for (Group& g : groups)
+      if (g.next < g.ids.size() && g.ids[g.next] == element_ids[r]) {
+        ++g.next;
+        found = true;
+        break;
+      }
+    if (!found)
+      refuse("/mesh/element_ids has element " + id_text(element_ids[r]) + " at row " +
+                 id_text(static_cast<std::int64_t>(r)) +
+                 ", which no /mesh/TYPE group lists next (the rows of the element fields "
+                 "would go to other elements)",
+             expected);
+  }
+  for (const Group& g : groups)
+    if (g.next < g.ids.size())
+      refuse(g.path + "/element_ids lists element " + id_text(g.ids[g.next]) +
+                 ", which is not at its row of /mesh/element_ids",
+             expected);
+}
+
 }  // namespace xpl::io::h5

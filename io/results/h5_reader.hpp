@@ -76,4 +76,13 @@ std::optional<std::string> string_attribute(hid_t file, const std::string& path,
 std::optional<std::vector<std::int64_t>> int64_array_attribute(hid_t file, const std::string& path,
                                                                const char* name);
 
+/// Checks /mesh/element_ids (`element_ids`, the rows of every cell field) against the type
+/// groups /mesh/C3D8R, /mesh/C3D8, /mesh/S4R that exist: each group lists its elements in row
+/// order, at the rows its /mesh/TYPE/element_rows gives (a mixed mesh) or else as the next
+/// rows of its type (results_mesh.hpp), and the groups together list every row once. A file
+/// whose /mesh/element_ids was reordered without its fields (which would put each element's
+/// values on another) throws FormatError naming the first row that disagrees.
+void check_element_rows(hid_t file, const std::vector<std::int64_t>& element_ids,
+                        const std::string& expected = RESULT_FILE);
+
 }  // namespace xpl::io::h5

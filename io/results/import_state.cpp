@@ -269,6 +269,8 @@ ImportedState read_file(hid_t file, const Model& model) {
   const auto element_ids = read_array<std::int64_t>(file, "/mesh/element_ids", std::nullopt, 0);
   const std::vector<Index> element_of_row =
       map_rows(element_ids, model.element_ids, "element", "/mesh/element_ids");
+  // The element fields' rows follow /mesh/element_ids: it must agree with the type groups.
+  h5::check_element_rows(file, element_ids, XPL_FILE);
   std::unordered_map<ExternalId, Index> element_of_id;
   for (Index e = 0; e < model.element_count(); ++e) {
     element_of_id.emplace(model.element_ids[static_cast<std::size_t>(e)], e);

@@ -52,6 +52,8 @@ ResultFile open_result(const std::filesystem::path& path) {
       unusable(result, "unknown status '" + *status + "'");
     result.node_ids = h5::read_array<std::int64_t>(f, "/mesh/node_ids", std::nullopt, 0);
     result.element_ids = h5::read_array<std::int64_t>(f, "/mesh/element_ids", std::nullopt, 0);
+    // Fields are matched by these ids: they must agree with the type groups.
+    h5::check_element_rows(f, result.element_ids);
   } catch (const h5::FormatError& e) {
     unusable(result, std::string(e.what()) + "; " + e.expected());
   } catch (const h5::Error& e) {
@@ -160,6 +162,22 @@ void compare_frames(const ResultFile& ref, const ResultFile& cand, const Compare
       pairs.emplace_back(ref_frames[k], cand_frames[k]);
   } else {
     pairs.emplace_back(ref_frames.back(), cand_frames.back());
+  }
+  // A field asked for by name must be in REF's frames: a typo must not pass as "0 differ".
+  for (const std::string& name : options.names) {
+    const bool found = std::any_of(pairs.begin(), pairs.end(), [&](const auto& pair) {
+      return h5::has_link(ref.file.get(), "/frames/" + pair.first + "/" + name);
+    });
+    if (!found) {
+      std::string present;
+      for (const auto& pair : pairs)
+        for (const std::string& field : h5::group_members(ref.file.get(), "/frames/" + pair.first))
+          if (present.find(" " + field + ",") == std::string::npos) present += " " + field + ",";
+      if (!present.empty()) present.pop_back();
+      throw UnusableInput(ref.label + ": --fields " + name + ": no such field in the frame" +
+                          (pairs.size() == 1 ? "" : "s") + " compared (" +
+                          (present.empty() ? std::string("no fields") : "fields:" + present) + ")");
+    }
   }
   const RowMaps maps{&node_map, &element_map, is_nodal_field};
   for (const auto& [ref_name, cand_name] : pairs) {

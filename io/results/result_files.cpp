@@ -145,10 +145,33 @@ struct ResultFiles::Impl {
     const double available = static_cast<double>(disk.f_bavail) * disk.f_frsize;
     const double needed = 2.0 * static_cast<double>(frame_size) + SPACE_MARGIN;
     if (available < needed)
-      throw std::runtime_error("disk full: " + std::to_string(disk.f_bavail * disk.f_frsize) +
-                               " bytes free for " + h5.string() + ", the next frame needs about " +
-                               std::to_string(frame_size) +
-                               " (frames written so far are complete)");
+      throw std::runtime_error(
+          "disk full: " + std::to_string(disk.f_bavail * disk.f_frsize) + " bytes free for " +
+          h5.string() + ", less than the " + std::to_string(static_cast<std::uintmax_t>(needed)) +
+          " bytes xpl keeps free before a frame (twice the last frame's " +
+          std::to_string(frame_size) + " bytes, and " +
+          std::to_string(static_cast<std::uintmax_t>(SPACE_MARGIN)) +
+          " bytes for the end of the run); frames written so far are complete");
+  }
+
+  /// Writes the mesh. HDF5 leaves a file whose write failed half way unreadable (no frame,
+  /// no status can be read from it): such a JOB.h5 is removed, and the error says so.
+  XdmfMesh write_mesh(const Model& model) {
+    try {
+      return h5_file.write_mesh(model);
+    } catch (const std::exception& e) {
+      std::string cause = e.what();
+      struct statvfs disk {};
+      if (statvfs(h5.parent_path().empty() ? "." : h5.parent_path().c_str(), &disk) == 0 &&
+          static_cast<double>(disk.f_bavail) * disk.f_frsize < SPACE_MARGIN)
+        cause = "disk full (" + std::to_string(disk.f_bavail * disk.f_frsize) +
+                " bytes free) while writing the mesh: " + cause;
+      std::error_code error;
+      const bool removed = std::filesystem::remove(h5, error);
+      throw std::runtime_error(cause + "; " + h5.string() +
+                               (removed ? " was removed (a half-written mesh leaves it unreadable)"
+                                        : " could not be removed and is not readable"));
+    }
   }
 
   /// Completes the summary record for a run that ends with `status`.
@@ -196,7 +219,7 @@ void ResultFiles::begin_run(const Model& model) {
   for (const Step& s : model.steps) analysis_time += s.time_period;
   m_impl->meter.emplace(analysis_time, static_cast<int>(model.steps.size()),
                         model.units.label("s"));
-  m_impl->xdmf_file.set_mesh(m_impl->h5_file.write_mesh(model));
+  m_impl->xdmf_file.set_mesh(m_impl->write_mesh(model));
   m_impl->msg_file.summary(model);
   m_impl->summary.nodes = model.node_count();
   m_impl->summary.elements = model.element_count();

@@ -19,12 +19,21 @@ Two ways to check a deck:
   terminal, in .msg or .sta) is a finding too.
 The mutations are the same in both modes (the same seed gives the same decks).
 
+Generated decks (--generate, or --generated-fraction of the decks): small models of the
+keywords that decide the physics (*PLASTIC, *RATE DEPENDENT, *TIE, *FIXED MASS SCALING,
+*CONTACT INCLUSIONS/EXCLUSIONS; generate_decks.py) with plausible, boundary and nonsense
+values, a third of them mutated once more. With --run (process per deck) every deck that
+`xpl check` accepts is also run (`xpl run`, seconds each): a signal, a sanitizer report, a
+hang, an exit code other than 0, 1 or 3, or a summary whose status disagrees with the exit
+code is a finding.
+
 The mutations are deck-aware (lines, keyword parameters, numbers, ids) plus raw byte damage,
 driven by one seed so that a run is reproducible:
 
     fuzz_decks.py --xpl build/sanitize/apps/xpl --count 300 --seed 1
     fuzz_decks.py --in-process build/sanitize/tests/fuzz/xpl_fuzz_check --count 3000 --seed 1
     fuzz_decks.py --xpl build/release/apps/xpl --replay tests/fuzz/regressions
+    fuzz_decks.py --xpl build/sanitize/apps/xpl --generate --run --count 80 --seed 3
 
 Exit code: 0 when no finding, 1 otherwise, 2 on a usage error.
 """
@@ -40,6 +49,9 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import generate_decks  # noqa: E402  (beside this file)
 
 REPO = Path(__file__).resolve().parents[2]
 DEFAULT_SEEDS = [REPO / "examples", REPO / "tests" / "data" / "decks"]
@@ -188,9 +200,21 @@ def prepare_workspace(seed, work_root, index):
     return work / "deck" / seed.name, work / "out"
 
 
+GENERATED = Path("generated.inp")  # the "seed" of a generated deck (written beside a seed's copy)
+
+
 def mutated_deck(args, index, seeds, vocabulary):
-    """Mutated deck number `index` of the run: its seed deck, the mutations and the text."""
+    """Deck number `index` of the run: its seed deck (GENERATED for a generated one), the
+    mutations and the text."""
     rng = random.Random(args.seed * 1_000_003 + index)
+    if args.generate or rng.random() < args.generated_fraction:
+        text, what = generate_decks.generated_deck(rng)
+        text = text.encode()
+        steps = [f"generated: {what}"]
+        if rng.random() < 0.3:
+            text, what = mutate(text, rng, vocabulary, seeds)
+            steps.append(what)
+        return seeds[0].parent / GENERATED, steps, text
     seed = rng.choice(seeds)
     text = seed.read_bytes()
     steps = []
@@ -205,6 +229,10 @@ def fuzz_one(args, index, seeds, vocabulary, work_root):
     deck_path, out_dir = prepare_workspace(seed, work_root, index)
     deck_path.write_bytes(text)
     outcome, rc, err, elapsed = run_check(args.xpl, deck_path, out_dir, args.timeout)
+    if args.run and outcome == "ok" and rc == 0:
+        outcome, rc, err, run_time = generate_decks.run_outcome(
+            args.xpl, deck_path, out_dir, args.timeout, check_environment(), SANITIZER_MARKS)
+        elapsed += run_time
     shutil.rmtree(deck_path.parent.parent, ignore_errors=True)
     return index, seed, steps, text, outcome, rc, err, elapsed
 
@@ -340,17 +368,25 @@ def main():
                         help="decks per driver process in --in-process mode")
     parser.add_argument("--seeds", nargs="*", type=Path, default=DEFAULT_SEEDS,
                         help="seed decks or directories (default: examples, tests/data/decks)")
-    parser.add_argument("--count", type=int, default=3000, help="mutated decks to run")
+    parser.add_argument("--count", type=int, default=3000, help="decks to run")
     parser.add_argument("--seed", type=int, default=1, help="random seed")
     parser.add_argument("--timeout", type=float, default=10.0, help="seconds per deck")
     parser.add_argument("--jobs", type=int, default=2, help="decks checked at once")
     parser.add_argument("--keep", type=Path, default=Path("fuzz-findings"),
                         help="directory for findings")
     parser.add_argument("--replay", type=Path, help="run the decks of a directory instead")
+    parser.add_argument("--generate", action="store_true",
+                        help="generated decks only (generate_decks.py), not mutated seeds")
+    parser.add_argument("--generated-fraction", type=float, default=0.0,
+                        help="fraction of the decks that are generated (without --generate)")
+    parser.add_argument("--run", action="store_true",
+                        help="also run (xpl run) every deck xpl check accepts (--xpl only)")
     args = parser.parse_args()
     program = args.in_process or args.xpl
-    if (args.xpl is None) == (args.in_process is None) or (args.replay and args.in_process):
-        print("fuzz_decks: give --xpl or --in-process (--replay needs --xpl)", file=sys.stderr)
+    if (args.xpl is None) == (args.in_process is None) or (args.replay and args.in_process) or \
+            (args.run and args.in_process):
+        print("fuzz_decks: give --xpl or --in-process (--replay and --run need --xpl)",
+              file=sys.stderr)
         return 2
     if not program.exists():
         print(f"fuzz_decks: {program} does not exist", file=sys.stderr)
@@ -394,7 +430,10 @@ def main():
     wall = time.monotonic() - start
     codes = ", ".join(f"{k}: {v}" for k, v in sorted(exit_codes.items(), key=lambda kv: str(kv[0])))
     mode = "in process" if args.in_process else "one process each"
-    print(f"fuzz_decks: {args.count} mutated decks ({mode}) from {len(seeds)} seeds "
+    if args.run:
+        mode += ", accepted ones run"
+    kind = "generated" if args.generate else "mutated"
+    print(f"fuzz_decks: {args.count} {kind} decks ({mode}) from {len(seeds)} seeds "
           f"(seed {args.seed}) in {wall:.0f} s, slowest {slowest:.1f} s; exit codes {{{codes}}}; "
           f"findings: {findings} "
           f"({', '.join(f'{k} {v}' for k, v in sorted(outcomes.items()) if k != 'ok') or 'none'})")

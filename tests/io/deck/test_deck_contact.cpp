@@ -82,7 +82,7 @@ const std::string CONTACT_DECK =
     "*CONTACT INCLUSIONS, ALL EXTERIOR\n"
     "*CONTACT INCLUSIONS\n"
     "BODY, SKIN\n"
-    "SKIN\n"  // a trailing comma would continue the line: surface 2 is simply left out
+    "SKIN\n"  // surface 2 left out: self contact
     ", BODY\n"
     "*CONTACT EXCLUSIONS\n"
     "TOPS, TOPS\n"
