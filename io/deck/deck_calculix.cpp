@@ -90,6 +90,8 @@ void resolve_pair_clearances(DeckState& deck) {
                       "one gap (on shells xpl's clearance sign means a side of the shell)");
       continue;
     }
+    // A deck without a step has that error already; there is no first step to carry it.
+    if (deck.model.steps.empty()) continue;
     ContactClearance clearance;
     clearance.name = "*CLEARANCE " + pending.slave + "/" + pending.master;
     clearance.adjust = false;
