@@ -324,17 +324,30 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
     ke += ke_rotation;
   }
   Real work = 0.0;
-  if (!rigid.empty())
+  RigidJumps jumps;
+  if (!rigid.empty()) {
+    JumpTest jump_test;
+    if (m_first_update)
+      jump_test = [&](const PrescribedDof& d, Real v_old, Real v_new) {
+        return is_jump(d, state, inc, v_old, v_new);
+      };
     ke += rigid.update(
         m_model, m_boundary, state, elements.force_internal(), loaded ? &m_force_external : nullptr,
         dt_prev, dt_next, inc.w_new, inc.w_before,
         {state.step_time + 0.5 * dt_next, t_next_half, state.step_time + dt_next, t_next_end},
-        work);
+        jump_test, work, jumps);
+  }
   // Jumps of the prescribed motion: found before the update, their work corrected after it
   // (the update itself stays as it is for every other DOF).
   if (m_jump_work_pending != 0.0) {
     work += m_jump_work_pending;  // the second half of the impulses one update ago
     m_jump_work_pending = 0.0;
+  }
+  if (jumps.dofs > 0) {  // rigid bodies' jumps: booked like those of free DOFs
+    m_jump_work_pending += jumps.pending;
+    m_jump.dofs += jumps.dofs;
+    m_jump.energy += jumps.energy;
+    m_jump.largest = std::max(m_jump.largest, jumps.largest);
   }
   if (m_first_update) find_jumps(state, inc);
   Real ke_fix = update_prescribed(state, translation, rotation, inc, work);

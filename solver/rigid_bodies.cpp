@@ -147,7 +147,8 @@ Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed) {
 Real RigidBodies::update(const Model& model, const BoundaryState& boundary, State& state,
                          const NodalVectors& force_internal, const NodalVectors* force_external,
                          Real dt_prev, Real dt_next, Real w_new, Real w_before,
-                         const std::array<Real, 4>& times, Real& work) {
+                         const std::array<Real, 4>& times, const JumpTest& jump_test, Real& work,
+                         RigidJumps& jumps) {
   const Real dt_avg = 0.5 * (dt_prev + dt_next);
   const bool rotations = state.angular_velocity_half.rows() > 0;
   Real ke_correction = 0.0;
@@ -199,20 +200,41 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
       v_target[k] = v_new;
       acc[k] = dt_avg > 0.0 ? (v_new - old) / dt_avg : 0.0;
     }
-    // Free rows: M_FF a_F = b_F − M_FP a_P, solved with the prescribed rows made trivial.
-    Matrix6 system = mass_matrix;
-    Vector6 b = rhs - mass_matrix * acc;
-    for (int k = 0; k < 6; ++k)
-      if (fixed[k]) {
-        system.row(k).setZero();
-        system.col(k).setZero();
-        system(k, k) = 1.0;
-        b[k] = 0.0;
-      }
-    const Vector6 free_acc = system.ldlt().solve(b);
-    for (int k = 0; k < 6; ++k)
-      if (!fixed[k]) acc[k] = free_acc[k];
+    // Free rows: M_FF a_F = b_F − M_FP a_P, solved with the prescribed rows made trivial;
+    // returns every row's acceleration for the prescribed ones `acc_p`.
+    auto solve = [&](const Vector6& acc_p) {
+      Matrix6 system = mass_matrix;
+      Vector6 b = rhs - mass_matrix * acc_p;
+      for (int k = 0; k < 6; ++k)
+        if (fixed[k]) {
+          system.row(k).setZero();
+          system.col(k).setZero();
+          system(k, k) = 1.0;
+          b[k] = 0.0;
+        }
+      const Vector6 free_acc = system.ldlt().solve(b);
+      Vector6 all = acc_p;
+      for (int k = 0; k < 6; ++k)
+        if (!fixed[k]) all[k] = free_acc[k];
+      return all;
+    };
+    acc = solve(acc);
     const Vector6 reaction = mass_matrix * acc - rhs;
+    // A jump of the prescribed motion: the reactions' smooth part (the body held at zero
+    // prescribed acceleration) carries on in the trapezoidal rule; the impulse is booked apart.
+    Index jumped = 0;
+    Real largest_jump = 0.0;
+    if (jump_test)
+      for (const PrescribedDof& d : body.prescribed) {
+        const int k = d.component;
+        const Real old = k < 3 ? v_old[k] : w_old[k - 3];
+        if (v_target[k] != old && jump_test(d, old, v_target[k])) {
+          ++jumped;
+          largest_jump = std::max(largest_jump, std::abs(v_target[k] - old));
+        }
+      }
+    const Vector6 reaction_kept =
+        jumped > 0 ? Vector6(mass_matrix * solve(Vector6::Zero()) - rhs) : reaction;
 
     Eigen::Vector3d v_new, w_new_half;
     for (int k = 0; k < 3; ++k) {
@@ -222,8 +244,8 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
     for (const PrescribedDof& d : body.prescribed) {
       const int k = d.component;
       const Real old = k < 3 ? v_old[k] : w_old[k - 3];
-      work += 0.5 * (body.previous_reaction[k] + reaction[k]) * dt_prev * old;
-      body.previous_reaction[k] = reaction[k];
+      work += 0.5 * (body.previous_reaction[k] + reaction_kept[k]) * dt_prev * old;
+      body.previous_reaction[k] = reaction_kept[k];
       if (k < 3)
         state.reaction(r, k) = reaction[k];
       else if (state.reaction_moment.rows() > 0)
@@ -237,7 +259,23 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
     Vector6 v_after, v_before;
     v_after << v_new, w_new_half;
     v_before << v_old + w_before * (v_new - v_old), w_old + w_before * (w_new_half - w_old);
-    ke_correction += 0.5 * v_before.dot(mass_matrix * v_after) - counted;
+    if (jumped > 0) {
+      // ALLKE pairs the state before the jump with the one after it (at t = 0 the state
+      // before it alone), as for a free DOF; the impulse's work is split there.
+      Vector6 v_a;
+      v_a << v_old, w_old;
+      const Real before = 0.5 * v_a.dot(mass_matrix * v_a);
+      const Real after = 0.5 * v_after.dot(mass_matrix * v_after);
+      const Real kinetic = dt_prev > 0.0 ? 0.5 * v_a.dot(mass_matrix * v_after) : before;
+      work += kinetic - before;
+      jumps.pending += after - kinetic;
+      jumps.energy += after - before;
+      jumps.dofs += jumped;
+      jumps.largest = std::max(jumps.largest, largest_jump);
+      ke_correction += kinetic - counted;
+    } else {
+      ke_correction += 0.5 * v_before.dot(mass_matrix * v_after) - counted;
+    }
     for (int k = 0; k < 3; ++k) {
       state.velocity_half(r, k) = v_new[k];
       state.velocity(r, k) = v_whole[k];

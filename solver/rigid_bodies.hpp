@@ -24,6 +24,7 @@
 /// are not coupled yet and keep their own dynamics (said in the .msg file).
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -34,6 +35,19 @@
 #include "solver/state.hpp"
 
 namespace xpl {
+
+/// Whether the velocity v_old → v_new (m/s or rad/s) of a prescribed DOF at this update is a
+/// jump of its boundary condition (CentralDifference::is_jump); empty where no jump can occur
+/// (any update but the first of a step).
+using JumpTest = std::function<bool(const PrescribedDof& dof, Real v_old, Real v_new)>;
+
+/// The jumps of prescribed motion the bodies met at one update.
+struct RigidJumps {
+  Index dofs = 0;      ///< prescribed DOFs whose velocity jumped
+  Real energy = 0.0;   ///< ½ V_bᵀ M V_b − ½ V_aᵀ M V_a of the bodies that jumped, J
+  Real largest = 0.0;  ///< largest |v_b − v_a| of a jumping DOF, m/s or rad/s
+  Real pending = 0.0;  ///< the part of `energy` that falls in the next increment, J
+};
 
 /// All rigid bodies of a model.
 class RigidBodies {
@@ -67,11 +81,15 @@ class RigidBodies {
   /// the times at which the BCs are evaluated. Writes velocities (half and whole step),
   /// accelerations, reactions and the reference node rotation into `state`; returns the
   /// kinetic-energy correction (body energy minus what the free update counted for its nodes) and
-  /// adds the reactions' work.
+  /// adds the reactions' work. A body whose prescribed velocity jumps (`jump_test`) takes the
+  /// jump as an impulse, as a free DOF does (CentralDifference::count_jump_work): its work
+  /// ½ V_bᵀ M V_b − ½ V_aᵀ M V_a is split at the kinetic energy ½ V_aᵀ M V_b at t_n (at t = 0
+  /// the state before the jump, ½ V_aᵀ M V_a), the part of the next increment in
+  /// `jumps.pending`; the reactions keep their smooth part for the trapezoidal rule.
   Real update(const Model& model, const BoundaryState& boundary, State& state,
               const NodalVectors& force_internal, const NodalVectors* force_external, Real dt_prev,
               Real dt_next, Real w_new, Real w_before, const std::array<Real, 4>& times,
-              Real& work);
+              const JumpTest& jump_test, Real& work, RigidJumps& jumps);
 
  private:
   struct Body {
