@@ -39,6 +39,7 @@ CentralDifference::CentralDifference(const Model& model, PhaseTimers& timers, bo
   const Index n = model.node_count();
   if (shells) m_rotations = NodeRotations(n);
   m_chunk_sums.assign(static_cast<std::size_t>((n + NODE_CHUNK - 1) / NODE_CHUNK) * 2, {});
+  m_chunk_speed.assign(static_cast<std::size_t>((n + NODE_CHUNK - 1) / NODE_CHUNK), 0.0);
 }
 
 void CentralDifference::import_rotation(const NodalVectors& rotation, State& state) {
@@ -178,20 +179,26 @@ void CentralDifference::sync_rotation(State& state) {
 
 namespace {
 
+/// What update_range sums over its nodes.
+struct RangeSums {
+  KineticSums kinetic;  ///< of v_before and v_{n+1/2} (kinetic_sums.hpp)
+  Real speed = 0.0;     ///< largest |v_{n+1/2}| of the range (NaN shows in `kinetic` instead)
+};
+
 /// The free central-difference update of nodes [first, last) of one field component block;
-/// returns the kinetic sums of v_before and v_{n+1/2} (kinetic_sums.hpp). Accelerations are
-/// stored only where the field keeps them.
+/// returns its kinetic sums and largest speed. Accelerations are stored only where the field
+/// keeps them.
 template <bool STORE_ACCELERATION, class Field>
-KineticSums update_range(const Field& d, Index off, Index first, Index last, Real dt_avg,
-                         Real w_new, Real w_before) {
+RangeSums update_range(const Field& d, Index off, Index first, Index last, Real dt_avg, Real w_new,
+                       Real w_before) {
   Real* v = d.velocity_half + off;
   Real* vw = d.velocity + off;
   Real* a = STORE_ACCELERATION ? d.acceleration + off : nullptr;
   const Real* fi = d.force_internal + off;
   const Real* fe = d.force_external + off;
   const Real scale = d.external_scale;
-  Real centred = 0.0, spread = 0.0;
-#pragma omp simd reduction(+ : centred, spread)
+  Real centred = 0.0, spread = 0.0, speed = 0.0;
+#pragma omp simd reduction(+ : centred, spread) reduction(max : speed)
   for (Index i = first; i < last; ++i) {
     const Real acc = (scale * fe[i] - fi[i]) * d.inverse_mass[i];
     const Real v_new = v[i] + dt_avg * acc;
@@ -200,11 +207,12 @@ KineticSums update_range(const Field& d, Index off, Index first, Index last, Rea
     const Real sum = v_before + v_new, difference = v_new - v_before;
     centred += d.mass[i] * sum * sum;
     spread += d.mass[i] * difference * difference;
+    speed = std::max(speed, std::abs(v_new));
     if constexpr (STORE_ACCELERATION) a[i] = acc;
     v[i] = v_new;
     vw[i] = v_whole;
   }
-  return {centred, spread};
+  return {{centred, spread}, speed};
 }
 
 }  // namespace
@@ -243,16 +251,23 @@ void CentralDifference::update_chunk(State& state, const Field& translation, con
   const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
   if (m_loads_due && !m_loads_evaluated) load_chunk(state, translation, inc, chunk);
   KineticSums ke;
-  for (int c = 0; c < 3; ++c)
-    ke += translation.acceleration ? update_range<true>(translation, c * n, first, last, inc.dt_avg,
-                                                        inc.w_new, inc.w_before)
-                                   : update_range<false>(translation, c * n, first, last,
-                                                         inc.dt_avg, inc.w_new, inc.w_before);
+  Real speed = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const RangeSums sums = translation.acceleration
+                               ? update_range<true>(translation, c * n, first, last, inc.dt_avg,
+                                                    inc.w_new, inc.w_before)
+                               : update_range<false>(translation, c * n, first, last, inc.dt_avg,
+                                                     inc.w_new, inc.w_before);
+    ke += sums.kinetic;
+    speed = std::max(speed, sums.speed);
+  }
   m_chunk_sums[chunk] = ke;
+  m_chunk_speed[chunk] = speed;
   if (!m_shells) return;
   ke = KineticSums{};
   for (int c = 0; c < 3; ++c)
-    ke += update_range<false>(rotation, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before);
+    ke += update_range<false>(rotation, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before)
+              .kinetic;
   m_chunk_sums[(n + NODE_CHUNK - 1) / NODE_CHUNK + chunk] = ke;
 }
 
@@ -319,7 +334,11 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
     update_chunk(state, translation, rotation, inc, chunk);
   m_loads_evaluated = false;
   KineticSums ke;
-  for (Index chunk = 0; chunk < n_chunks; ++chunk) ke += m_chunk_sums[chunk];
+  m_largest_speed = 0.0;
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) {
+    ke += m_chunk_sums[chunk];
+    m_largest_speed = std::max(m_largest_speed, m_chunk_speed[chunk]);
+  }
   if (m_shells) {
     KineticSums ke_rotation;
     for (Index chunk = 0; chunk < n_chunks; ++chunk) ke_rotation += m_chunk_sums[n_chunks + chunk];

@@ -64,6 +64,9 @@ class CentralDifference {
   void set_ties(const Ties* ties) { m_ties = ties; }
   /// Brings state.rotation up to date with the tracked rotations (before output).
   void sync_rotation(State& state);
+  /// The largest |v(n+½)| component of the free translational DOFs at the last
+  /// update_nodes(), m/s (for the health check; NaN shows in ALLKE instead).
+  Real largest_speed() const { return m_largest_speed; }
 
  private:
   /// Pointers to one kind of nodal DOF (translations or rotations), defined in the .cpp.
@@ -129,6 +132,8 @@ class CentralDifference {
   /// (n_nodes × 3), non-zero only on loaded DOFs; allocated only when a step has loads (P2).
   NodalVectors m_force_external;
   std::vector<KineticSums> m_chunk_sums;
+  std::vector<Real> m_chunk_speed;  ///< largest |v(n+½)| of each chunk's translations
+  Real m_largest_speed = 0.0;       ///< largest_speed()
   /// Σ over the updates of ⅛(Δt(n−½)²/Δt(n+½)² − 1) × the spread: the energy the changes of
   /// the increment moved into ½ v⁻·M·v⁺, taken out of ALLKD (J).
   Real m_increment_shift = 0.0;
