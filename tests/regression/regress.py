@@ -57,7 +57,7 @@ FIELDS = ("U", "S")   # of the last frame
 # Decks that start from another deck's result: (deck, the deck whose .h5 it imports).
 IMPORTS = {"import_target": "import_source"}
 # Options a deck is run with (none needs any: blocks_deep, 30 % overlap pushed apart by the
-# plain penalty, needed --energy-limit 30 while its drift showed as +27 %; it is 3.3 %).
+# plain penalty, needed --energy-limit 30 while its drift showed as +27 %; it is 4.4 %).
 EXTRA_ARGS = {}
 ENERGY_LIMIT = 0.10  # xpl's default --energy-limit, as a fraction (no deck runs with another)
 
