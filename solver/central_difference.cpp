@@ -38,7 +38,8 @@ CentralDifference::CentralDifference(const Model& model, PhaseTimers& timers, bo
     : m_model(model), m_timers(timers), m_shells(shells) {
   const Index n = model.node_count();
   if (shells) m_rotations = NodeRotations(n);
-  m_chunk_sums.assign(static_cast<std::size_t>((n + NODE_CHUNK - 1) / NODE_CHUNK) * 2, 0.0);
+  m_chunk_sums.assign(static_cast<std::size_t>((n + NODE_CHUNK - 1) / NODE_CHUNK) * 2, {});
+  m_chunk_speed.assign(static_cast<std::size_t>((n + NODE_CHUNK - 1) / NODE_CHUNK), 0.0);
 }
 
 void CentralDifference::import_rotation(const NodalVectors& rotation, State& state) {
@@ -178,31 +179,40 @@ void CentralDifference::sync_rotation(State& state) {
 
 namespace {
 
+/// What update_range sums over its nodes.
+struct RangeSums {
+  KineticSums kinetic;  ///< of v_before and v_{n+1/2} (kinetic_sums.hpp)
+  Real speed = 0.0;     ///< largest |v_{n+1/2}| of the range (NaN shows in `kinetic` instead)
+};
+
 /// The free central-difference update of nodes [first, last) of one field component block;
-/// returns Σ m v_before v_{n+1/2} (ALLKE, see kinetic_before). Accelerations are stored only
-/// where the field keeps them.
+/// returns its kinetic sums and largest speed. Accelerations are stored only where the field
+/// keeps them.
 template <bool STORE_ACCELERATION, class Field>
-Real update_range(const Field& d, Index off, Index first, Index last, Real dt_avg, Real w_new,
-                  Real w_before) {
+RangeSums update_range(const Field& d, Index off, Index first, Index last, Real dt_avg, Real w_new,
+                       Real w_before) {
   Real* v = d.velocity_half + off;
   Real* vw = d.velocity + off;
   Real* a = STORE_ACCELERATION ? d.acceleration + off : nullptr;
   const Real* fi = d.force_internal + off;
   const Real* fe = d.force_external + off;
   const Real scale = d.external_scale;
-  Real ke = 0.0;
-#pragma omp simd reduction(+ : ke)
+  Real centred = 0.0, spread = 0.0, speed = 0.0;
+#pragma omp simd reduction(+ : centred, spread) reduction(max : speed)
   for (Index i = first; i < last; ++i) {
     const Real acc = (scale * fe[i] - fi[i]) * d.inverse_mass[i];
     const Real v_new = v[i] + dt_avg * acc;
     const Real v_whole = v[i] + w_new * (v_new - v[i]);
     const Real v_before = v[i] + w_before * (v_new - v[i]);
-    ke += d.mass[i] * v_before * v_new;
+    const Real sum = v_before + v_new, difference = v_new - v_before;
+    centred += d.mass[i] * sum * sum;
+    spread += d.mass[i] * difference * difference;
+    speed = std::max(speed, std::abs(v_new));
     if constexpr (STORE_ACCELERATION) a[i] = acc;
     v[i] = v_new;
     vw[i] = v_whole;
   }
-  return ke;
+  return {{centred, spread}, speed};
 }
 
 }  // namespace
@@ -240,18 +250,25 @@ void CentralDifference::update_chunk(State& state, const Field& translation, con
   const Index n = m_model.node_count();
   const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
   if (m_loads_due && !m_loads_evaluated) load_chunk(state, translation, inc, chunk);
-  Real ke = 0.0;
-  for (int c = 0; c < 3; ++c)
-    ke += translation.acceleration ? update_range<true>(translation, c * n, first, last, inc.dt_avg,
-                                                        inc.w_new, inc.w_before)
-                                   : update_range<false>(translation, c * n, first, last,
-                                                         inc.dt_avg, inc.w_new, inc.w_before);
-  m_chunk_sums[chunk] = 0.5 * ke;
+  KineticSums ke;
+  Real speed = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const RangeSums sums = translation.acceleration
+                               ? update_range<true>(translation, c * n, first, last, inc.dt_avg,
+                                                    inc.w_new, inc.w_before)
+                               : update_range<false>(translation, c * n, first, last, inc.dt_avg,
+                                                     inc.w_new, inc.w_before);
+    ke += sums.kinetic;
+    speed = std::max(speed, sums.speed);
+  }
+  m_chunk_sums[chunk] = ke;
+  m_chunk_speed[chunk] = speed;
   if (!m_shells) return;
-  ke = 0.0;
+  ke = KineticSums{};
   for (int c = 0; c < 3; ++c)
-    ke += update_range<false>(rotation, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before);
-  m_chunk_sums[(n + NODE_CHUNK - 1) / NODE_CHUNK + chunk] = 0.5 * ke;
+    ke += update_range<false>(rotation, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before)
+              .kinetic;
+  m_chunk_sums[(n + NODE_CHUNK - 1) / NODE_CHUNK + chunk] = ke;
 }
 
 void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBodies& rigid,
@@ -316,45 +333,77 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   for (Index chunk = 0; chunk < n_chunks; ++chunk)
     update_chunk(state, translation, rotation, inc, chunk);
   m_loads_evaluated = false;
-  Real ke = 0.0;
-  for (Index chunk = 0; chunk < n_chunks; ++chunk) ke += m_chunk_sums[chunk];
+  KineticSums ke;
+  m_largest_speed = 0.0;
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) {
+    ke += m_chunk_sums[chunk];
+    m_largest_speed = std::max(m_largest_speed, m_chunk_speed[chunk]);
+  }
   if (m_shells) {
-    Real ke_rotation = 0.0;
+    KineticSums ke_rotation;
     for (Index chunk = 0; chunk < n_chunks; ++chunk) ke_rotation += m_chunk_sums[n_chunks + chunk];
     ke += ke_rotation;
   }
   Real work = 0.0;
-  if (!rigid.empty())
+  RigidJumps jumps;
+  if (!rigid.empty()) {
+    JumpTest jump_test;
+    if (m_first_update)
+      jump_test = [&](const PrescribedDof& d, Real v_old, Real v_new) {
+        return is_jump(d, state, inc, v_old, v_new);
+      };
     ke += rigid.update(
         m_model, m_boundary, state, elements.force_internal(), loaded ? &m_force_external : nullptr,
         dt_prev, dt_next, inc.w_new, inc.w_before,
         {state.step_time + 0.5 * dt_next, t_next_half, state.step_time + dt_next, t_next_end},
-        work);
+        jump_test, work, jumps);
+  }
   // Jumps of the prescribed motion: found before the update, their work corrected after it
   // (the update itself stays as it is for every other DOF).
   if (m_jump_work_pending != 0.0) {
     work += m_jump_work_pending;  // the second half of the impulses one update ago
     m_jump_work_pending = 0.0;
   }
+  if (jumps.dofs > 0) {  // rigid bodies' jumps: booked like those of free DOFs
+    m_jump_work_pending += jumps.pending;
+    m_jump.dofs += jumps.dofs;
+    m_jump.energy += jumps.energy;
+    m_jump.largest = std::max(m_jump.largest, jumps.largest);
+  }
   if (m_first_update) find_jumps(state, inc);
-  Real ke_fix = update_prescribed(state, translation, rotation, inc, work);
-  if (!m_jumps.empty()) ke_fix += count_jump_work(translation, rotation, inc, work);
+  ke += update_prescribed(state, translation, rotation, inc, work);
+  // The DOFs that jumped pair the states before and after the jump, not the mirror-time
+  // velocity: their spread is no Δt(n+½)² a² and takes no part in the shift below.
+  Real jump_spread = jumps.spread;
+  if (!m_jumps.empty()) ke += count_jump_work(translation, rotation, inc, work, jump_spread);
   if (tied) m_ties->follow(state);  // slaves after their masters (prescribed and rigid too)
   if (m_loads_due)
     for (Index at : m_free_load_dofs)
       work = multiply_add(m_load_work_force.data()[at], m_load_work_velocity.data()[at], work);
   m_loads_due = false;
-  state.energies.kinetic = ke + ke_fix;
+  // ALLKE ≥ 0 (R5): the sums are of squares; the corrections for prescribed DOFs and rigid
+  // bodies take back what the free update counted, which round-off may leave a hair below 0.
+  state.energies.kinetic = std::max(0.0, 0.125 * ke.centred);
+  // A change of the increment changes the energy central differences conserve: for DOFs with
+  // v⁺ − v⁻ = Δt(n+½) a(n) the next increment finds ½ v⁻·M·v⁺ off by
+  // ⅛(Δt(n−½)² − Δt(n+½)²) a·M·a (README). ALLKD books that shift, so that the step's short
+  // last increment, or a new step's first one, does not show as a drift of ETOTAL.
+  if (dt_prev > 0.0 && dt_next > 0.0) {
+    const Real ratio = dt_prev / dt_next;
+    m_increment_shift += 0.125 * (ratio * ratio - 1.0) * (ke.spread - jump_spread);
+  }
+  state.energies.kinetic_defect = -0.125 * ke.spread - m_increment_shift;
   state.energies.external_work += work;
   m_first_update = false;
 }
 
-Real CentralDifference::update_prescribed(State& state, const Field& translation,
-                                          const Field& rotation, const Increment& inc, Real& work) {
+KineticSums CentralDifference::update_prescribed(State& state, const Field& translation,
+                                                 const Field& rotation, const Increment& inc,
+                                                 Real& work) {
   // Prescribed DOFs: velocity from the BC, reaction = m a - (f_ext - f_int).
   // External work by the trapezoidal rule over [t_{n-1}, t_n]: exact for constant forces.
   const Index n = m_model.node_count();
-  Real ke_fix = 0.0;
+  KineticSums counted, kinetic;
   const Real step_next_half = state.step_time + 0.5 * inc.dt_next;
   const Real step_next_end = state.step_time + inc.dt_next;
   for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
@@ -379,9 +428,8 @@ Real CentralDifference::update_prescribed(State& state, const Field& translation
     const Real m = field.mass[i];
     // ALLKE: what the free update counted for the DOF, replaced by the prescribed motion's.
     const Real v_free = field.velocity_half[at];
-    const Real counted = 0.5 * m * (v_old + inc.w_before * (v_free - v_old)) * v_free;
-    const Real kinetic = 0.5 * m * (v_old + inc.w_before * (v_new - v_old)) * v_new;
-    ke_fix += kinetic - counted;
+    counted.add(m, v_old + inc.w_before * (v_free - v_old), v_free);
+    kinetic.add(m, v_old + inc.w_before * (v_new - v_old), v_new);
     const Real v_whole = v_old + inc.w_new * (v_new - v_old);
     const Real acc = inc.dt_avg > 0.0 ? (v_new - v_old) / inc.dt_avg : 0.0;
     const Real f_ext = field.external_scale * field.force_external[at];
@@ -395,7 +443,8 @@ Real CentralDifference::update_prescribed(State& state, const Field& translation
     work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
     f_before = f_now;
   }
-  return ke_fix;
+  kinetic -= counted;
+  return kinetic;
 }
 
 bool CentralDifference::is_jump(const PrescribedDof& d, const State& state, const Increment& inc,
@@ -448,8 +497,9 @@ void CentralDifference::find_jumps(const State& state, const Increment& inc) {
   }
 }
 
-Real CentralDifference::count_jump_work(const Field& translation, const Field& rotation,
-                                        const Increment& inc, Real& work) {
+KineticSums CentralDifference::count_jump_work(const Field& translation, const Field& rotation,
+                                               const Increment& inc, Real& work,
+                                               Real& jump_spread) {
   // The BC's force at a jump is the impulse J = m (v_new - v_old) plus the internal force the
   // node passes on to the elements. The impulse does J (v_old + v_new) / 2 = ½m(v_new² -
   // v_old²), counted exactly and split at the DOF's kinetic energy at t_n, so that ETOTAL
@@ -462,7 +512,7 @@ Real CentralDifference::count_jump_work(const Field& translation, const Field& r
   // keeps the trapezoidal rule, the impulse leaves f_before. Returns the kinetic-energy
   // correction at t = 0.
   const Index n = m_model.node_count();
-  Real ke_fix = 0.0;
+  KineticSums counted, paired;
   for (const PendingJump& j : m_jumps) {
     const PrescribedDof& d = m_prescribed[j.dof];
     const bool turn = d.component >= 3;
@@ -472,9 +522,11 @@ Real CentralDifference::count_jump_work(const Field& translation, const Field& r
     const Real m = field.mass[d.node];
     const Real v_old = m_v_old_prescribed[j.dof];
     const Real v_new = field.velocity_half[at];
-    const Real counted = 0.5 * m * (v_old + inc.w_before * (v_new - v_old)) * v_new;
-    const Real kinetic = 0.5 * m * v_old * (inc.dt_prev > 0.0 ? v_new : v_old);
-    ke_fix += kinetic - counted;
+    counted.add(m, v_old + inc.w_before * (v_new - v_old), v_new);
+    const Real after = inc.dt_prev > 0.0 ? v_new : v_old;
+    paired.add(m, v_old, after);
+    jump_spread += m * (after - v_old) * (after - v_old);
+    const Real kinetic = 0.5 * m * v_old * after;
     Real& f_before = (turn ? m_previous_moment : m_previous_force)(d.node, c);
     const Real f_now = f_before;  // what update_prescribed stored: f_ext + reaction
     const Real f_smooth = field.force_internal[at];
@@ -490,7 +542,8 @@ Real CentralDifference::count_jump_work(const Field& translation, const Field& r
     m_jump.largest = std::max(m_jump.largest, std::abs(v_new - v_old));
   }
   m_jumps.clear();
-  return ke_fix;
+  paired -= counted;
+  return paired;
 }
 
 void CentralDifference::report_jump(int step, OutputSink& sink) {

@@ -10,6 +10,7 @@
 #include "solver/boundary_state.hpp"
 #include "solver/element_set.hpp"
 #include "solver/gravity_loads.hpp"
+#include "solver/kinetic_sums.hpp"
 #include "solver/model.hpp"
 #include "solver/nodal_loads.hpp"
 #include "solver/node_rotations.hpp"
@@ -54,7 +55,8 @@ class CentralDifference {
   /// One velocity update with the forces of `elements` and the loads:
   /// dt_prev = Δt_{n-1/2} (0 at t = 0), dt_next = Δt_{n+1/2}; t_next_half and t_next_end are
   /// the total times at which velocity and displacement BCs are evaluated. Writes the
-  /// velocities, accelerations, reactions, kinetic energy and external work into `state`.
+  /// velocities, accelerations, reactions, kinetic energies (ALLKE, ALLKD) and external work
+  /// into `state`.
   void update_nodes(State& state, ElementSet& elements, RigidBodies& rigid, Real dt_prev,
                     Real dt_next, Real t_next_half, Real t_next_end);
   /// The model's ties (must outlive the update); null or inactive: none, and the nodal update
@@ -62,6 +64,9 @@ class CentralDifference {
   void set_ties(const Ties* ties) { m_ties = ties; }
   /// Brings state.rotation up to date with the tracked rotations (before output).
   void sync_rotation(State& state);
+  /// The largest |v(n+½)| component of the free translational DOFs at the last
+  /// update_nodes(), m/s (for the health check; NaN shows in ALLKE instead).
+  Real largest_speed() const { return m_largest_speed; }
 
  private:
   /// Pointers to one kind of nodal DOF (translations or rotations), defined in the .cpp.
@@ -85,7 +90,7 @@ class CentralDifference {
   void collect_loads();
   /// The fused nodal pass on the nodes of one chunk: their loads (when apply_loads() set them
   /// due) and the load work on free DOFs, then the central-difference update of the free
-  /// translations and rotations; the chunk's kinetic energy ½ Σ m v_before v_{n+1/2} goes to
+  /// translations and rotations; the chunk's kinetic sums of v_before and v_{n+1/2} go to
   /// m_chunk_sums (translations at `chunk`, rotations after the translations' chunks).
   void update_chunk(State& state, const Field& translation, const Field& rotation,
                     const Increment& inc, Index chunk);
@@ -93,9 +98,9 @@ class CentralDifference {
   /// pass of its own before the ties gather the slave forces).
   void load_chunk(const State& state, const Field& translation, const Increment& inc, Index chunk);
   /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
-  /// `work`); returns the kinetic-energy correction to what the free update counted.
-  Real update_prescribed(State& state, const Field& translation, const Field& rotation,
-                         const Increment& inc, Real& work);
+  /// `work`); returns the correction of the kinetic sums to what the free update counted.
+  KineticSums update_prescribed(State& state, const Field& translation, const Field& rotation,
+                                const Increment& inc, Real& work);
   /// Whether the velocity v_old → v_new of prescribed DOF `d` at the first update of a step
   /// is a jump of the BC (its velocity at t_n itself is already the new one) rather than the
   /// central-difference sampling of a smooth motion (its velocity at t_n lies half-way).
@@ -106,10 +111,11 @@ class CentralDifference {
   void find_jumps(const State& state, const Increment& inc);
   /// After update_prescribed: the work of the jumps in m_jumps counted as impulses (their
   /// trapezoidal term replaced), into `work` and the pending work of the next increment;
-  /// returns the kinetic-energy correction (at t = 0 a DOF that jumps counts its state
-  /// before the jump).
-  Real count_jump_work(const Field& translation, const Field& rotation, const Increment& inc,
-                       Real& work);
+  /// returns the correction of the kinetic sums (a DOF that jumps pairs its states before
+  /// and after the jump; at t = 0 it counts its state before the jump) and adds the jumping
+  /// DOFs' spread to `jump_spread`.
+  KineticSums count_jump_work(const Field& translation, const Field& rotation, const Increment& inc,
+                              Real& work, Real& jump_spread);
 
   const Model& m_model;
   PhaseTimers& m_timers;
@@ -125,7 +131,12 @@ class CentralDifference {
   bool m_rotation_synced = true;  ///< state.rotation matches m_rotations
   /// (n_nodes × 3), non-zero only on loaded DOFs; allocated only when a step has loads (P2).
   NodalVectors m_force_external;
-  std::vector<Real> m_chunk_sums;
+  std::vector<KineticSums> m_chunk_sums;
+  std::vector<Real> m_chunk_speed;  ///< largest |v(n+½)| of each chunk's translations
+  Real m_largest_speed = 0.0;       ///< largest_speed()
+  /// Σ over the updates of ⅛(Δt(n−½)²/Δt(n+½)² − 1) × the spread: the energy the changes of
+  /// the increment moved into ½ v⁻·M·v⁺, taken out of ALLKD (J).
+  Real m_increment_shift = 0.0;
   NodalVectors m_previous_force;   ///< f_ext + reaction at the previous increment
   NodalVectors m_previous_moment;  ///< moment at prescribed rotations, previous inc.
   /// Loaded DOFs that are not prescribed, as c · n_nodes + node, in the order their work is

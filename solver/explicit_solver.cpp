@@ -270,7 +270,6 @@ void ExplicitSolver::Impl::note_critical(const ElementTotals& totals) {
 
 void ExplicitSolver::Impl::run_step(int step) {
   begin_step(step);
-  m_energy.begin_step(m_state.increment);
   m_contact_energy.begin_step(m_state.increment);
   const Real period = m_model.steps[step].time_period;
   const Real step_start = m_state.time;
@@ -312,7 +311,7 @@ void ExplicitSolver::Impl::run_step(int step) {
           m_contact_energy.check(m_state, m_contact.stored_energy(), m_critical_id);
       if (!warning.empty()) m_sink.message(Severity::Warning, warning);
     }
-    m_energy.check(m_state, totals, m_dt_half, m_critical_id, m_sink);
+    m_energy.check(m_state, totals, m_dt_half, m_nodes.largest_speed(), m_critical_id, m_sink);
 
     // Output as it falls due; a status line every 1 % of the step.
     const FrameRequest frame = m_output.field_due(m_state.step_time, last);
@@ -353,6 +352,8 @@ void ExplicitSolver::Impl::report_drift() {
                                             : "largest energy balance drift: none";
   m_sink.message(Severity::Info, text);
   m_sink.status_note(text);
+  m_sink.energy_drift(
+      {d.fraction, d.drift, d.fraction > 0.0 ? d.largest : m_energy.scale(), d.time});
 }
 
 void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {

@@ -82,6 +82,16 @@ struct ResultTable {
   std::vector<std::pair<std::string, std::string>> attributes;  ///< more string attributes
 };
 
+/// The largest energy-balance drift of a run as the solver's check measured it (every
+/// increment from the first one): what the run summary reports, so that it says what the
+/// terminal, .msg and .sta say.
+struct BalanceDrift {
+  Real fraction = 0.0;  ///< |ETOTAL − ETOTAL₀| / energy scale at the time of the drift
+  Real drift = 0.0;     ///< ETOTAL − ETOTAL₀, J
+  Real scale = 0.0;     ///< the energy scale then (largest energy of the run so far), J
+  Real time = 0.0;      ///< total time, s
+};
+
 /// Severity of a .msg entry.
 enum class Severity { Info, Note, Warning, Error };
 
@@ -112,6 +122,9 @@ class OutputSink {
   virtual void message(Severity severity, const std::string& text) = 0;
   /// A summary line in the .sta file between status lines (initial overclosures).
   virtual void status_note(const std::string& text) { (void)text; }
+  /// The largest energy-balance drift of the run (called before end_run, also after an
+  /// error; sinks that keep no summary ignore it).
+  virtual void energy_drift(const BalanceDrift& drift) { (void)drift; }
   /// A table of setup results (written once; sinks that keep no files ignore it).
   virtual void write_table(const ResultTable& table) { (void)table; }
   /// Called when the run ends, also after an error (`error` then says what happened),

@@ -258,9 +258,11 @@ struct EnergyVariable {
 
 /// The whole-model energies (*ENERGY OUTPUT): the terms of the balance, then the balance.
 /// The history lists them in energy_history_order().
-inline constexpr std::array<EnergyVariable, 10> ENERGIES = {{
+inline constexpr std::array<EnergyVariable, 11> ENERGIES = {{
     {"ALLKE", "J", OutputModels::All, [](const Energies& e) { return e.kinetic; },
      "kinetic energy"},
+    {"ALLKD", "J", OutputModels::All, [](const Energies& e) { return e.kinetic_defect; },
+     "kinetic energy of central differences beyond ALLKE"},
     {"ALLSE", "J", OutputModels::All, [](const Energies& e) { return e.strain; },
      "recoverable strain energy"},
     {"ALLPD", "J", OutputModels::Plastic, [](const Energies& e) { return e.plastic; },
@@ -278,7 +280,7 @@ inline constexpr std::array<EnergyVariable, 10> ENERGIES = {{
     {"ALLPW", "J", OutputModels::Contact, [](const Energies& e) { return e.contact; },
      "energy of the contact penalties"},
     {"ETOTAL", "J", OutputModels::All, [](const Energies& e) { return e.total(); },
-     "energy balance ALLKE + ALLIE + ALLVD + ALLFD + ALLPW - ALLWK"},
+     "energy balance ALLKE + ALLKD + ALLIE + ALLVD + ALLFD + ALLPW - ALLWK"},
 }};
 
 /// Indices into ENERGIES in history order: the energies of every model, then the contact

@@ -155,26 +155,27 @@ Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed) {
   return dropped;
 }
 
-Real RigidBodies::update(const Model& model, const BoundaryState& boundary, State& state,
-                         const NodalVectors& force_internal, const NodalVectors* force_external,
-                         Real dt_prev, Real dt_next, Real w_new, Real w_before,
-                         const std::array<Real, 4>& times, Real& work) {
+KineticSums RigidBodies::update(const Model& model, const BoundaryState& boundary, State& state,
+                                const NodalVectors& force_internal,
+                                const NodalVectors* force_external, Real dt_prev, Real dt_next,
+                                Real w_new, Real w_before, const std::array<Real, 4>& times,
+                                const JumpTest& jump_test, Real& work, RigidJumps& jumps) {
   const Real dt_avg = 0.5 * (dt_prev + dt_next);
   const bool rotations = state.angular_velocity_half.rows() > 0;
-  Real ke_correction = 0.0;
+  KineticSums ke_correction;
   for (Body& body : m_bodies) {
     const Index r = body.reference;
     const Eigen::Vector3d x_r = row(state.position, r);
-    // Forces on the body and their moment about the reference node; the kinetic energy the
-    // free update counted for these nodes (½ m v_{n-1/2}², their inverse mass being 0).
+    // Forces on the body and their moment about the reference node; the kinetic sums the free
+    // update counted for these nodes (v⁻ = v⁺ = v_{n-1/2}, their inverse mass being 0).
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
-    Real counted = 0.0;
+    Real counted = 0.0;  // Σ m v², a quarter of their centred sum
     auto gather = [&](Index i) {
       Eigen::Vector3d f = -row(force_internal, i);
       if (force_external != nullptr) f += row(*force_external, i);
       force += f;
       moment += (row(state.position, i) - x_r).cross(f);
-      counted += 0.5 * state.mass[i] * row(state.velocity, i).squaredNorm();
+      counted += state.mass[i] * row(state.velocity, i).squaredNorm();
     };
     gather(r);
     for (Index i : body.members) gather(i);
@@ -210,20 +211,41 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
       v_target[k] = v_new;
       acc[k] = dt_avg > 0.0 ? (v_new - old) / dt_avg : 0.0;
     }
-    // Free rows: M_FF a_F = b_F − M_FP a_P, solved with the prescribed rows made trivial.
-    Matrix6 system = mass_matrix;
-    Vector6 b = rhs - mass_matrix * acc;
-    for (int k = 0; k < 6; ++k)
-      if (fixed[k]) {
-        system.row(k).setZero();
-        system.col(k).setZero();
-        system(k, k) = 1.0;
-        b[k] = 0.0;
-      }
-    const Vector6 free_acc = system.ldlt().solve(b);
-    for (int k = 0; k < 6; ++k)
-      if (!fixed[k]) acc[k] = free_acc[k];
+    // Free rows: M_FF a_F = b_F − M_FP a_P, solved with the prescribed rows made trivial;
+    // returns every row's acceleration for the prescribed ones `acc_p`.
+    auto solve = [&](const Vector6& acc_p) {
+      Matrix6 system = mass_matrix;
+      Vector6 b = rhs - mass_matrix * acc_p;
+      for (int k = 0; k < 6; ++k)
+        if (fixed[k]) {
+          system.row(k).setZero();
+          system.col(k).setZero();
+          system(k, k) = 1.0;
+          b[k] = 0.0;
+        }
+      const Vector6 free_acc = system.ldlt().solve(b);
+      Vector6 all = acc_p;
+      for (int k = 0; k < 6; ++k)
+        if (!fixed[k]) all[k] = free_acc[k];
+      return all;
+    };
+    acc = solve(acc);
     const Vector6 reaction = mass_matrix * acc - rhs;
+    // A jump of the prescribed motion: the reactions' smooth part (the body held at zero
+    // prescribed acceleration) carries on in the trapezoidal rule; the impulse is booked apart.
+    Index jumped = 0;
+    Real largest_jump = 0.0;
+    if (jump_test)
+      for (const PrescribedDof& d : body.prescribed) {
+        const int k = d.component;
+        const Real old = k < 3 ? v_old[k] : w_old[k - 3];
+        if (v_target[k] != old && jump_test(d, old, v_target[k])) {
+          ++jumped;
+          largest_jump = std::max(largest_jump, std::abs(v_target[k] - old));
+        }
+      }
+    const Vector6 reaction_kept =
+        jumped > 0 ? Vector6(mass_matrix * solve(Vector6::Zero()) - rhs) : reaction;
 
     Eigen::Vector3d v_new, w_new_half;
     for (int k = 0; k < 3; ++k) {
@@ -233,8 +255,8 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
     for (const PrescribedDof& d : body.prescribed) {
       const int k = d.component;
       const Real old = k < 3 ? v_old[k] : w_old[k - 3];
-      work += 0.5 * (body.previous_reaction[k] + reaction[k]) * dt_prev * old;
-      body.previous_reaction[k] = reaction[k];
+      work += 0.5 * (body.previous_reaction[k] + reaction_kept[k]) * dt_prev * old;
+      body.previous_reaction[k] = reaction_kept[k];
       if (k < 3)
         state.reaction(r, k) = reaction[k];
       else if (state.reaction_moment.rows() > 0)
@@ -248,7 +270,26 @@ Real RigidBodies::update(const Model& model, const BoundaryState& boundary, Stat
     Vector6 v_after, v_before;
     v_after << v_new, w_new_half;
     v_before << v_old + w_before * (v_new - v_old), w_old + w_before * (w_new_half - w_old);
-    ke_correction += 0.5 * v_before.dot(mass_matrix * v_after) - counted;
+    Vector6 v_pair = v_after;  // what ALLKE pairs with v_before
+    if (jumped > 0) {
+      // The state before the jump paired with the one after it (at t = 0 the state before it
+      // alone), as for a free DOF; the impulse's work is split at that energy.
+      v_before << v_old, w_old;
+      if (!(dt_prev > 0.0)) v_pair = v_before;
+      const Real before = 0.5 * v_before.dot(mass_matrix * v_before);
+      const Real after = 0.5 * v_after.dot(mass_matrix * v_after);
+      const Real kinetic = 0.5 * v_before.dot(mass_matrix * v_pair);
+      work += kinetic - before;
+      jumps.pending += after - kinetic;
+      jumps.energy += after - before;
+      jumps.dofs += jumped;
+      jumps.largest = std::max(jumps.largest, largest_jump);
+    }
+    const Vector6 sum = v_before + v_pair, difference = v_pair - v_before;
+    const Real spread = difference.dot(mass_matrix * difference);
+    ke_correction.centred += sum.dot(mass_matrix * sum) - 4.0 * counted;
+    ke_correction.spread += spread;
+    if (jumped > 0) jumps.spread += spread;
     for (int k = 0; k < 3; ++k) {
       state.velocity_half(r, k) = v_new[k];
       state.velocity(r, k) = v_whole[k];

@@ -17,23 +17,40 @@
 /// integrated by central differences like every other DOF; the orientation is a quaternion
 /// advanced by the exact rotation of ω_{n+1/2} Δt, and every member node is placed exactly at
 /// x_ref + R (X − X_ref) by giving it the half-step velocity that lands it there, so the
-/// body never deforms. The members' inverse mass is 0 in the nodal update; the kinetic energy
-/// of a body is ½ v_{n-1/2}ᵀ M v_{n+1/2} with the 6×6 matrix above (ALLKE, README).
+/// body never deforms. The members' inverse mass is 0 in the nodal update; the kinetic sums of
+/// a body (kinetic_sums.hpp) are those of v⁻ and v_{n+1/2} with the 6×6 matrix above (ALLKE,
+/// ALLKD, README).
 ///
 /// PIN and TIE nodes join the body with their translations; a TIE node's rotations (shells)
 /// are not coupled yet and keep their own dynamics (said in the .msg file).
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "common/types.hpp"
 #include "solver/boundary_state.hpp"
+#include "solver/kinetic_sums.hpp"
 #include "solver/model.hpp"
 #include "solver/state.hpp"
 
 namespace xpl {
+
+/// Whether the velocity v_old → v_new (m/s or rad/s) of a prescribed DOF at this update is a
+/// jump of its boundary condition (CentralDifference::is_jump); empty where no jump can occur
+/// (any update but the first of a step).
+using JumpTest = std::function<bool(const PrescribedDof& dof, Real v_old, Real v_new)>;
+
+/// The jumps of prescribed motion the bodies met at one update.
+struct RigidJumps {
+  Index dofs = 0;      ///< prescribed DOFs whose velocity jumped
+  Real energy = 0.0;   ///< ½ V_bᵀ M V_b − ½ V_aᵀ M V_a of the bodies that jumped, J
+  Real largest = 0.0;  ///< largest |v_b − v_a| of a jumping DOF, m/s or rad/s
+  Real pending = 0.0;  ///< the part of `energy` that falls in the next increment, J
+  Real spread = 0.0;   ///< the kinetic spread (kinetic_sums.hpp) of the bodies that jumped
+};
 
 /// All rigid bodies of a model.
 class RigidBodies {
@@ -71,12 +88,17 @@ class RigidBodies {
   /// velocity that the kinetic energy pairs with v_{n+1/2} (CentralDifference::Increment) and
   /// the times at which the BCs are evaluated. Writes velocities (half and whole step),
   /// accelerations, reactions and the reference node rotation into `state`; returns the
-  /// kinetic-energy correction (body energy minus what the free update counted for its nodes) and
-  /// adds the reactions' work.
-  Real update(const Model& model, const BoundaryState& boundary, State& state,
-              const NodalVectors& force_internal, const NodalVectors* force_external, Real dt_prev,
-              Real dt_next, Real w_new, Real w_before, const std::array<Real, 4>& times,
-              Real& work);
+  /// correction of the kinetic sums (the bodies' minus what the free update counted for their
+  /// nodes) and adds the reactions' work. A body whose prescribed velocity jumps (`jump_test`)
+  /// takes the jump as an impulse, as a free DOF does (CentralDifference::count_jump_work): its
+  /// work ½ V_bᵀ M V_b − ½ V_aᵀ M V_a is split at the kinetic energy ½ V_aᵀ M V_b at t_n (at t = 0
+  /// the state before the jump, ½ V_aᵀ M V_a), the part of the next increment in
+  /// `jumps.pending`; the reactions keep their smooth part for the trapezoidal rule.
+  KineticSums update(const Model& model, const BoundaryState& boundary, State& state,
+                     const NodalVectors& force_internal, const NodalVectors* force_external,
+                     Real dt_prev, Real dt_next, Real w_new, Real w_before,
+                     const std::array<Real, 4>& times, const JumpTest& jump_test, Real& work,
+                     RigidJumps& jumps);
 
  private:
   struct Body {

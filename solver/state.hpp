@@ -9,7 +9,11 @@ namespace xpl {
 
 /// Whole-model energy balance (Abaqus names in comments), J.
 struct Energies {
-  Real kinetic = 0.0;        ///< ALLKE
+  Real kinetic = 0.0;  ///< ALLKE, ½ v(t_n)·M·v(t_n) ≥ 0 (solver/kinetic_sums.hpp)
+  /// ALLKD, the rest of the kinetic energy central differences conserve: ½ v⁻·M·v(n+½) −
+  /// ALLKE = −⅛ Δt(n+½)² a·M·a, less what the changes of the increment have moved in and
+  /// out of that term (README, "What ALLKE measures"); O(Δt²), ≤ 0 at a constant increment.
+  Real kinetic_defect = 0.0;
   Real strain = 0.0;         ///< ALLSE, recoverable strain energy
   Real plastic = 0.0;        ///< ALLPD, plastic dissipation ∫σ_y dε̄ᵖ dV
   Real artificial = 0.0;     ///< ALLAE, hourglass energy
@@ -23,8 +27,11 @@ struct Energies {
   Real contact = 0.0;
   /// ALLIE = ALLSE + ALLPD + ALLAE.
   Real internal() const { return strain + plastic + artificial; }
-  /// ETOTAL = ALLKE + ALLIE + ALLVD + ALLFD + ALLPW − ALLWK; constant for a correct, stable run.
-  Real total() const { return kinetic + internal() + viscous + friction + contact - external_work; }
+  /// ETOTAL = ALLKE + ALLKD + ALLIE + ALLVD + ALLFD + ALLPW − ALLWK; constant for a correct,
+  /// stable run.
+  Real total() const {
+    return kinetic + kinetic_defect + internal() + viscous + friction + contact - external_work;
+  }
 };
 
 /// State of a run at the end of an increment (time t_n).

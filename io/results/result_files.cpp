@@ -271,6 +271,10 @@ void ResultFiles::message(Severity severity, const std::string& text) {
   m_impl->msg_file.message(severity, text);
 }
 
+void ResultFiles::energy_drift(const BalanceDrift& drift) {
+  m_impl->summary.set_drift(drift);
+}
+
 void ResultFiles::status_note(const std::string& text) {
   m_impl->sta_file.note(text);
 }

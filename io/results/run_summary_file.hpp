@@ -39,21 +39,27 @@ struct SummaryRecord {
   double element_cycles_per_second = 0.0;  ///< elements × increments / time-loop wall time
   bool has_energies = false;               ///< a status line was written
   Energies energies;                       ///< at the last status line, J
-  /// Largest |ETOTAL − ETOTAL₀| over the status lines (every 1 % of each step), J, with
+  /// The largest energy-balance drift of the run: the solver's (every increment, set by
+  /// set_drift) once the run has one; before that (a data check, a run that failed before
+  /// its first increment) the largest |ETOTAL − ETOTAL₀| over the status lines, J, with
   /// ETOTAL₀ that of the first status line, the total time where it occurred (s), and the
-  /// largest energy scale max(ALLKE, ALLIE, |ALLWK|) seen, J.
+  /// energy scale it is measured against, J.
   Real energy_error = 0.0;
   Real energy_error_time = 0.0;
   Real energy_scale = 0.0;
+  Real relative_error = 0.0;  ///< energy_error / energy_scale
 
   /// Takes in one .sta line: increments, time, energies, the balance error.
   void add_status(const StatusLine& line);
+  /// The solver's largest drift, which the summary then reports instead of its own.
+  void set_drift(const BalanceDrift& drift);
   /// The summary as a JSON tree (keys as in apps/summary.schema.json); adds the xpl version,
   /// build flags and the peak memory of this process.
   JsonValue json() const;
 
  private:
-  Real m_initial_total = 0.0;  ///< ETOTAL of the first status line, J
+  Real m_initial_total = 0.0;   ///< ETOTAL of the first status line, J
+  bool m_solver_drift = false;  ///< set_drift() was called
 };
 
 /// Peak resident memory of this process (getrusage), MB.

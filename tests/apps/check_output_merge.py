@@ -75,7 +75,8 @@ def main():
                     fail(f"frames with U: {len(with_u)} (expected 51), with S: {len(with_s)} "
                          "(expected 11)")
         msg = (results / "merged.msg").read_text()
-        for note in ("asks again for ALLKE, ALLSE, ALLAE, ALLIE, ALLVD, ALLWK, ETOTAL, FIXED/RF1",
+        for note in ("asks again for ALLKE, ALLKD, ALLSE, ALLAE, ALLIE, ALLVD, ALLWK, ETOTAL, "
+                     "FIXED/RF1",
                      "asks again for U (also requested at",
                      "written once, at the finer interval 2e-06 s"):
             if note not in msg:

@@ -60,9 +60,15 @@ TEST_CASE("stability: meshes with few neighbours (global estimate) are stable at
   SECTION("one element, fixed face") {
     // Pushed onto its fixed face, the element takes all the kinetic energy into its few modes
     // at ω·Δt near 2 within an increment or two. Measured at the whole steps their energy was
-    // off by tens of per cent (bound 0.3 here before); ALLKE = ½ v(n−½)·M·v(n+½) and the
-    // trapezoidal ALLVD leave 1.7 % at factor 1 (the increment follows the element's shape).
-    check_limit("1x1x1 fixed face", deficient_mesh(1, 1, 1, true), 0.05);
+    // off by tens of per cent (bound 0.3 here before); ALLKE + ALLKD = ½ v(n−½)·M·v(n+½) and
+    // the trapezoidal ALLVD left 1.7 % at factor 1, the shifts of that energy at every change
+    // of the increment (the increment follows the element's shape); booked in ALLKD, 3e-4.
+    // The first failure moved from 1.1-1.3 to 1.55: those "failures" were the same shifts
+    // (drifts above 50 % of ALLKE(0) at the step's short last increment, while the element
+    // stayed stable: its largest energy grows by 9 % from factor 1 to 1.5, no more). The fixed
+    // face lowers the element's highest frequency below that of the free element, which the
+    // global estimate bounds; the first failure of the free element stays at 1.1.
+    check_limit("1x1x1 fixed face", deficient_mesh(1, 1, 1, true), 0.002, 1.6);
   }
   SECTION("one element, free") {
     check_limit("1x1x1 free", deficient_mesh(1, 1, 1, false));

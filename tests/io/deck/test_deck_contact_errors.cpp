@@ -185,8 +185,8 @@ TEST_CASE("gravity and contact output errors", "[io][deck][contact][errors]") {
           "contact history output is not supported yet; expected *CONTACT OUTPUT under *OUTPUT, "
           "FIELD (contact energies: ALLFD, ALLPW in *ENERGY OUTPUT)",
       at(deck, "ALLCE", "*ENERGY OUTPUT") +
-          "unknown energy variable ALLCE; expected one of ALLKE, ALLSE, ALLPD, ALLAE, ALLIE, "
-          "ALLVD, ALLWK, ALLFD, ALLPW, ETOTAL",
+          "unknown energy variable ALLCE; expected one of ALLKE, ALLKD, ALLSE, ALLPD, ALLAE, "
+          "ALLIE, ALLVD, ALLWK, ALLFD, ALLPW, ETOTAL",
       dload("NOPE, GRAV") +
           "undefined element set NOPE; expected *ELSET, ELSET=NOPE, or the first field blank for "
           "the whole model",

@@ -59,14 +59,14 @@ TEST_CASE("output schedule: history asked twice is declared once, with a note",
     CHECK(std::count(declared.begin(), declared.end(), path) == 1);
   CHECK(std::count(declared.begin(), declared.end(), "energy/ALLKE") == 1);
   CHECK(std::count(declared.begin(), declared.end(), "node/FIXED/U2") == 1);
-  // The row holds every declared column once: 7 energies (no contact), RF1 and U2 of 4 nodes.
-  CHECK(declared.size() == 9);
+  // The row holds every declared column once: 8 energies (no contact), RF1 and U2 of 4 nodes.
+  CHECK(declared.size() == 10);
   State state;
   state.reference = state.position = NodalVectors::Zero(12, 3);
   state.reaction = NodalVectors::Zero(12, 3);
   std::vector<Real> row;
   schedule.history_row(state, row);
-  CHECK(row.size() == 7 + 2 * 4);
+  CHECK(row.size() == 8 + 2 * 4);
 
   const std::vector<std::string> notes = schedule.take_notes();
   REQUIRE(notes.size() == 1);  // one per pair of keywords, naming every repeated series

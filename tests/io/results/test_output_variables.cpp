@@ -45,8 +45,8 @@ TEST_CASE("output variables: the names each deck keyword accepts", "[results][va
   // As Abaqus/Explicit's PRESELECT (PEEQ is written on plastic models only).
   CHECK(strings(request_names<OutputKeyword::Element, true>()) == Names{"S", "PEEQ"});
   CHECK(strings(request_names<OutputKeyword::Contact>()) == Names{"CSTRESS", "CSTATUS", "CFORCE"});
-  CHECK(strings(energy_names()) == Names{"ALLKE", "ALLSE", "ALLPD", "ALLAE", "ALLIE", "ALLVD",
-                                         "ALLWK", "ALLFD", "ALLPW", "ETOTAL"});
+  CHECK(strings(energy_names()) == Names{"ALLKE", "ALLKD", "ALLSE", "ALLPD", "ALLAE", "ALLIE",
+                                         "ALLVD", "ALLWK", "ALLFD", "ALLPW", "ETOTAL"});
 }
 
 TEST_CASE("output variables: a frame writes its datasets in the order of the files",
@@ -83,8 +83,8 @@ TEST_CASE("output variables: energies in history order, contact ones last",
           "[results][variables]") {
   std::vector<std::string> names;
   for (const int i : energy_history_order()) names.emplace_back(ENERGIES[i].name);
-  CHECK(names == std::vector<std::string>{"ALLKE", "ALLSE", "ALLPD", "ALLAE", "ALLIE", "ALLVD",
-                                          "ALLWK", "ETOTAL", "ALLFD", "ALLPW"});
+  CHECK(names == std::vector<std::string>{"ALLKE", "ALLKD", "ALLSE", "ALLPD", "ALLAE", "ALLIE",
+                                          "ALLVD", "ALLWK", "ETOTAL", "ALLFD", "ALLPW"});
   Energies e;
   e.kinetic = 1.0;
   e.strain = 2.0;
@@ -94,11 +94,13 @@ TEST_CASE("output variables: energies in history order, contact ones last",
   e.friction = 32.0;
   e.contact = 64.0;
   e.plastic = 128.0;
+  e.kinetic_defect = -0.5;
   std::vector<Real> values;
   for (const EnergyVariable& energy : ENERGIES) values.push_back(energy.value(e));
   // ALLIE = ALLSE + ALLPD + ALLAE.
-  CHECK(values == std::vector<Real>{1.0, 2.0, 128.0, 4.0, 134.0, 8.0, 16.0, 32.0, 64.0, e.total()});
-  CHECK(e.total() == 1.0 + 134.0 + 8.0 + 32.0 + 64.0 - 16.0);
+  CHECK(values ==
+        std::vector<Real>{1.0, -0.5, 2.0, 128.0, 4.0, 134.0, 8.0, 16.0, 32.0, 64.0, e.total()});
+  CHECK(e.total() == 1.0 - 0.5 + 134.0 + 8.0 + 32.0 + 64.0 - 16.0);
 }
 
 TEST_CASE("output variables: history node requests", "[results][variables]") {
