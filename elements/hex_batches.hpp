@@ -24,8 +24,9 @@
 
 namespace xpl::elements {
 
-/// Hourglass control form of a hex element.
-enum class HourglassForm { Stiffness, Viscous };
+/// Hourglass control form of a C3D8R element: Flanagan–Belytschko's stiffness or viscous
+/// form, or the enhanced assumed-strain stabilisation (hex8r_enhanced.hpp).
+enum class HourglassForm { Stiffness, Viscous, Enhanced };
 
 /// Extra factor on the stable increment of nearly incompressible one-point hexes: L_e/c_d is
 /// not conservative there (measured limits on regular meshes, in units of L_e/c_d: 1.01 at

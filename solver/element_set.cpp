@@ -26,8 +26,9 @@ elements::HexMaterial hex_material(const Model& model, Index element, Real mass_
   if (m.plastic) h.plastic = &*m.plastic;
   if (section.controls != NO_INDEX) {
     const SectionControls& c = model.section_controls[section.controls];
-    h.hourglass = c.hourglass == HourglassType::Viscous ? elements::HourglassForm::Viscous
-                                                        : elements::HourglassForm::Stiffness;
+    h.hourglass = c.hourglass == HourglassType::Viscous    ? elements::HourglassForm::Viscous
+                  : c.hourglass == HourglassType::Enhanced ? elements::HourglassForm::Enhanced
+                                                           : elements::HourglassForm::Stiffness;
     h.hourglass_scale =
         h.hourglass == elements::HourglassForm::Viscous ? c.viscous_scale : c.stiffness_scale;
   }

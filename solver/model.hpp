@@ -78,11 +78,12 @@ struct Material {
 
 /// Hourglass control of reduced-integration elements (`*SECTION CONTROLS, HOURGLASS=`).
 enum class HourglassType {
-  Stiffness,       ///< Flanagan–Belytschko stiffness form (the xpl default)
+  Stiffness,       ///< Flanagan–Belytschko stiffness form (C3D8R: the xpl default)
   Viscous,         ///< Flanagan–Belytschko viscous form
   RelaxStiffness,  ///< Abaqus' integral-viscoelastic form; xpl runs it as Stiffness (noted in .msg)
-  /// S4R: the physical stabilisation of the bending and transverse-shear patterns (also the
-  /// S4R default when HOURGLASS= is not given); C3D8R run it as Stiffness (noted in .msg).
+  /// The physical stabilisations: S4R's of the bending and transverse-shear patterns (the S4R
+  /// default when HOURGLASS= is not given, shell4r_hourglass.hpp); C3D8R's enhanced
+  /// assumed-strain form (elements/hex8r_enhanced.hpp).
   Enhanced,
 };
 
