@@ -16,6 +16,9 @@ namespace xpl::elements {
 
 using simd::Vec;
 
+// Both families keep 12 values per element in m_hourglass and in HGSTATE rows.
+static_assert(ENHANCED_STATE == 12 && ENHANCED_STATE <= HOURGLASS_STATE_WIDTH);
+
 Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
                        const std::vector<HexMaterial>& materials, Index node_count)
     : m_batches(std::move(element_index), connectivity, materials, node_count, N_CONST) {
@@ -205,57 +208,64 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   const Vec dt_e =
       simd::load(cst + DT_FACTOR * W) * (length / wave) * (simd::sqrt(1.0 + xi * xi) - xi);
 
-  // Hourglass rates on x_{n+1}: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α), α = modes 4..7.
-  Vec Ln[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Ln[i][j] = simd::splat(0.0);
-  [[maybe_unused]] Vec gsum = simd::splat(0.0);
-  for (int k = 1; k < 7; ++k) {
-    const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
-    const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) Ln[i][j] += vi[i] * gj[j];
-    if constexpr (PATH != HourglassPath::Enhanced) gsum += dot(g[k], g[k]);
-  }
+  // Hourglass resultants Q_α (α = modes 4..7) applied on x_{n+1} and the state they leave.
   const Vec inv_vol = 1.0 / vol;
-  V3<Vec> old[4];
-  for (int m = 0; m < 4; ++m) {
-    const Real* qs = hgq + m * 3 * W;
-    old[m] = {simd::load(qs), simd::load(qs + W), simd::load(qs + 2 * W)};
-  }
-  HourglassStep hg;
+  V3<Vec> Q[4];
+  Vec hg_power;
+  [[maybe_unused]] Vec stored[12];
   if constexpr (PATH != HourglassPath::Enhanced) {
+    // Flanagan–Belytschko: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α) on x_{n+1}.
+    Vec Ln[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Ln[i][j] = simd::splat(0.0);
+    Vec gsum = simd::splat(0.0);
+    for (int k = 1; k < 7; ++k) {
+      const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
+      const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) Ln[i][j] += vi[i] * gj[j];
+      gsum += dot(g[k], g[k]);
+    }
+    V3<Vec> old[4];
+    for (int m = 0; m < 4; ++m) {
+      const Real* qs = hgq + m * 3 * W;
+      old[m] = {simd::load(qs), simd::load(qs + W), simd::load(qs + 2 * W)};
+    }
     const Vec k_hg =
         simd::load(cst + HG_STIFFNESS * W) * two_mu * (gsum * 0.125) * (0.125 * inv_vol);
     const Vec c_hg = simd::load(cst + HG_VISCOSITY * W) * density * wave * area * 0.125;
+    HourglassStep hg;
     flanagan_belytschko_step(ax, av, Ln, inv_vol, k_hg, c_hg, dt, old, hg);
+    for (int m = 0; m < 4; ++m) {
+      stored[3 * m] = hg.stored[m].x;
+      stored[3 * m + 1] = hg.stored[m].y;
+      stored[3 * m + 2] = hg.stored[m].z;
+      Q[m] = hg.force[m];
+    }
+    hg_power = hg.power;
   }
   if constexpr (PATH != HourglassPath::FlanaganBelytschko) {
+    // The enhanced form, its state in the element's frame (L: the mid velocity gradient).
     const Vec mu = simd::load(cst + HG_MU * W);
-    const Vec spin[3] = {w01, w02, w12};
-    HourglassStep he;
-    enhanced_step(ax, av, g, Ln, vol, inv_vol, mu, simd::load(cst + HG_LAMBDA * W), spin, dt,
-                  PLASTIC ? &relax : nullptr, PLASTIC ? &hg_limit : nullptr, old, he);
+    Vec old[ENHANCED_STATE], next[ENHANCED_STATE];
+    for (int k = 0; k < ENHANCED_STATE; ++k) old[k] = simd::load(hgq + k * W);
+    V3<Vec> force[4];
+    Vec power;
+    enhanced_step(ax, av, g[3], L, vol, inv_vol, mu, simd::load(cst + HG_LAMBDA * W), dt,
+                  PLASTIC ? &relax : nullptr, PLASTIC ? &hg_limit : nullptr, old, next, force,
+                  power);
     if constexpr (PATH == HourglassPath::Enhanced) {
-      hg = he;
+      for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = next[k];
+      for (int m = 0; m < 4; ++m) Q[m] = force[m];
+      hg_power = power;
     } else {
       const simd::Mask use = mu > 0.0;
-      for (int m = 0; m < 4; ++m) {
-        hg.stored[m] = select3(use, he.stored[m], hg.stored[m]);
-        hg.force[m] = select3(use, he.force[m], hg.force[m]);
-      }
-      hg.power = simd::select(use, he.power, hg.power);
+      for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = simd::select(use, next[k], stored[k]);
+      for (int m = 0; m < 4; ++m) Q[m] = select3(use, force[m], Q[m]);
+      hg_power = simd::select(use, power, hg_power);
     }
   }
-  V3<Vec> Q[4];
-  for (int m = 0; m < 4; ++m) {
-    Real* qs = hgq + m * 3 * W;
-    simd::store(qs, hg.stored[m].x);
-    simd::store(qs + W, hg.stored[m].y);
-    simd::store(qs + 2 * W, hg.stored[m].z);
-    Q[m] = hg.force[m];
-  }
-  const Vec hg_power = hg.power;
+  for (int k = 0; k < 12; ++k) simd::store(hgq + k * W, stored[k]);
 
   // Forces: f_I = P b_I + Σ_α Γ_αI Q_α with P = σ + s_v I − (8/V) Σ_α Q_α ⊗ a_α, and
   // b_I = ⅛ Σ_k Λ_kI g_k, so in mode space F_k = ⅛ P g_k (+ Q_α for k = 4..7).

@@ -31,7 +31,8 @@ inline constexpr Real HOURGLASS_STIFFNESS = 0.05;
 /// Viscous: Q_α = κ_v · ρ c_d A_max / 8 · q_α (≈ 14 % of critical damping on a cube).
 inline constexpr Real HOURGLASS_VISCOSITY = 0.1;
 /// Enhanced (hex8r_enhanced.hpp): the material's own moduli times the user's scale factor κ,
-/// no other coefficient; the resultants turn with the element's spin. In a plastic element
+/// no other coefficient; the hourglass stresses are kept in a frame that follows the element.
+/// In a plastic element
 /// the hourglass stresses are the linear variation of the stress over the element, which the
 /// material bounds as it bounds the stress itself (hex8r_hourglass.hpp):
 /// - in a lane that yields they are multiplied by the factor the radial return applied to
@@ -108,9 +109,11 @@ class Hex8rBlock {
   /// internal-force pass).
   void set_stress(std::span<const Real> stress);
 
-  /// Writes the accumulated hourglass resultants of the stiffness and enhanced forms (4 modes
-  /// × 3 global components, N; zero under the viscous form) of every block element at its model
-  /// index into model-sized rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp).
+  /// Writes the hourglass state of every block element at its model index into model-sized
+  /// rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp): the stiffness form's
+  /// accumulated resultants (4 modes × 3 global components, N; zero under the viscous form),
+  /// or the enhanced form's ENHANCED_STATE values (nine hourglass stresses in the element's
+  /// frame, Pa, and the ξηζ resultant there, N; hex8r_enhanced.hpp).
   void gather_hourglass_state(std::vector<Real>& rows) const;
   /// The inverse of gather_hourglass_state, for a run that starts from an imported state.
   void set_hourglass_state(std::span<const Real> rows);
@@ -177,7 +180,8 @@ class Hex8rBlock {
   HexBatches m_batches;  ///< layout, constants, increment limits and partition
   // State, batch b lane l:
   std::vector<Real> m_stress;  ///< [b][6][W]
-  /// [b][4 modes × 3][W] accumulated resultants Q_α (stiffness and enhanced forms), N
+  /// [b][12][W] hourglass state: stiffness form Q_α (4 modes × 3, N), enhanced form its
+  /// frame stresses and ξηζ resultant (hex8r_enhanced.hpp)
   std::vector<Real> m_hourglass;
   std::vector<HourglassPath> m_batch_path;  ///< [b]
   std::vector<Real> m_volume;               ///< [b][W]

@@ -34,85 +34,114 @@
 /// the bulk term (so that it does not lock):
 ///   W_7 = (V/9) Σ_i ½ μ (|b_i|² |q̂7|² + (q̂7·b_i)²).
 ///
-/// Forces: with t_j, t_k the other two gradients projected on the plane of φ and
-/// ε_t = sym(Pu ⊗ t_j + Pv ⊗ t_k) (u, v the two q̂ of G_φ), ∂W_φ/∂u = (V/3) Σ_φ t_j and
-/// ∂W_φ/∂v = (V/3) Σ_φ t_k with the plane stress Σ_φ = 2μ ε_t + λ̄ tr(ε_t) P.
+/// In the element's frame. Everything is evaluated in an orthonormal frame that follows the
+/// element (Gram–Schmidt on the centre tangents a1, a2: e1 ∥ a1, e2 in their plane), with the
+/// gradients taken as diagonal there, b_i ≈ c_i e_i (c1 = 1/|a1|, c2 = 1/|a2 − (a2·e1) e1|,
+/// c3 = b3·e3: exact on a rectangular element, the shear of a skewed one neglected, as in
+/// Belytschko–Bindeman's corotational form). Then each plane φ holds two normal strains and
+/// one shear, with local components u_i = e_i·q̂:
+///   ξ (plane 2-3): ε22 = c2 q̂4₂, ε33 = c3 q̂6₃, γ23 = c2 q̂4₃ + c3 q̂6₂
+///   η (plane 1-3): ε11 = c1 q̂4₁, ε33 = c3 q̂5₃, γ13 = c1 q̂4₃ + c3 q̂5₁
+///   ζ (plane 1-2): ε11 = c1 q̂6₁, ε22 = c2 q̂5₂, γ12 = c1 q̂6₂ + c2 q̂5₁
+/// and the element keeps the nine plane stresses S (Pa) in its frame, advanced in rate form
+/// with the plane-stress moduli (Σ_aa += (2μ + λ̄) ε_a + λ̄ ε_b, Σ_ab += μ γ_ab): objective
+/// without a spin term (the frame turns with the element) and invariant under stretch. The
+/// generalised forces are Q̂ = ∂W/∂q̂ = (V/3) c·S, e.g. Q̂4 = (V/3)(c1 S_η11, c2 S_ξ22,
+/// c2 S_ξ23 + c1 S_η13), and Q̂7 (local, N) advances by (V/9) μ (Σc² + c_i²) q̂7_i dt.
+/// The plastic bound and relaxation act on S (hex8r_hourglass.hpp).
 /// All functions are templates over the lane type (`Real` or `simd::Vec`).
+///
 
 #include "elements/hex8_geometry.hpp"
 
 namespace xpl::elements {
 
-/// Geometry of the enhanced stabilisation at one configuration.
+/// Values per element of the enhanced form's state: the nine plane stresses S (Pa: ξ 22, 33,
+/// 23; η 11, 33, 13; ζ 11, 22, 12) and the ξηζ resultant Q̂7 (N, 3 local components).
+inline constexpr int ENHANCED_STATE = 12;
+
+/// The element frame and its diagonal gradients at one configuration.
 template <class T>
-struct EnhancedGeometry {
-  V3<T> b[3];     ///< centre gradients ∇ξ, ∇η, ∇ζ (g_i / V), 1/m
-  V3<T> h[3];     ///< b_i / |b_i|² (the projection P_i x = x − (x·b_i) h_i), m
-  V3<T> t[3][2];  ///< for φ = ξ, η, ζ: the two other gradients projected on the plane ⊥ b_φ
-  T tt[3][3];     ///< for φ: t0·t0, t1·t1, t0·t1, 1/m²
-  T sum_bb;       ///< Σ_i |b_i|², 1/m²
+struct EnhancedFrame {
+  V3<T> e[3];  ///< orthonormal frame, e1 ∥ a1, e2 in the plane of a1 and a2
+  T c[3];      ///< |∇ξ_i| along e_i, 1/m
 };
 
-/// The two hourglass components (indices into q̂4..q̂7) and the two gradients (j, k) of G_φ,
-/// φ = ξ, η, ζ: G_φ = q̂[U] ⊗ b_j + q̂[V] ⊗ b_k.
-inline constexpr int ENHANCED_U[3] = {0, 0, 1};
-inline constexpr int ENHANCED_V[3] = {2, 1, 2};
-inline constexpr int ENHANCED_J[3] = {1, 0, 1};
-inline constexpr int ENHANCED_K[3] = {2, 2, 0};
-
-/// Geometry from the volume gradient g (hex8_geometry.hpp, g_1..g_3 used) and 1/V.
+/// Frame from the position modes `a` (a1, a2 used), `g3` = ∂V/∂a3 and 1/V.
 template <class T>
-inline EnhancedGeometry<T> enhanced_geometry(const V3<T> g[8], T inv_vol) {
-  EnhancedGeometry<T> e;
-  T bb[3];
-  for (int i = 0; i < 3; ++i) {
-    e.b[i] = inv_vol * g[1 + i];
-    bb[i] = dot(e.b[i], e.b[i]);
-  }
-  // One division for the three inverses.
-  const T inv_all = 1.0 / (bb[0] * bb[1] * bb[2]);
-  e.h[0] = (bb[1] * bb[2] * inv_all) * e.b[0];
-  e.h[1] = (bb[0] * bb[2] * inv_all) * e.b[1];
-  e.h[2] = (bb[0] * bb[1] * inv_all) * e.b[2];
-  for (int p = 0; p < 3; ++p) {
-    const V3<T>& bj = e.b[ENHANCED_J[p]];
-    const V3<T>& bk = e.b[ENHANCED_K[p]];
-    e.t[p][0] = bj - dot(bj, e.b[p]) * e.h[p];
-    e.t[p][1] = bk - dot(bk, e.b[p]) * e.h[p];
-    e.tt[p][0] = dot(e.t[p][0], e.t[p][0]);
-    e.tt[p][1] = dot(e.t[p][1], e.t[p][1]);
-    e.tt[p][2] = dot(e.t[p][0], e.t[p][1]);
-  }
-  e.sum_bb = bb[0] + bb[1] + bb[2];
-  return e;
+inline EnhancedFrame<T> enhanced_frame(const V3<T> a[8], const V3<T>& g3, T inv_vol) {
+  EnhancedFrame<T> f;
+  const T n1 = dot(a[1], a[1]);
+  // f2 = |a1|² (a2 − (a2·e1) e1) needs no division; f3 = a1 × f2 has |f3| = |a1| |f2|.
+  const V3<T> f2 = n1 * a[2] - dot(a[1], a[2]) * a[1];
+  const V3<T> f3 = cross(a[1], f2);
+  const T s1 = simd::sqrt(n1), s2 = simd::sqrt(dot(f2, f2));
+  const T inv = 1.0 / (s1 * s2);
+  const T r1 = s2 * inv, r2 = s1 * inv;
+  f.e[0] = r1 * a[1];
+  f.e[1] = r2 * f2;
+  f.e[2] = inv * f3;
+  f.c[0] = r1;
+  f.c[1] = n1 * r2;
+  f.c[2] = dot(g3, f.e[2]) * inv_vol;
+  return f;
 }
 
-/// Generalised forces conjugate to the hourglass velocities q̂ (q̂[0..3] = q̂4..q̂7): writes
-/// Q̂ = K q̂ with the stiffness of the energies above, where `mu` = (V/3)·μ·c, `lambda_bar` =
-/// (V/3)·λ̄·c and `mu7` = (V/9)·μ·c for a common factor c (a rate times dt gives the increment
-/// of the resultants; 1/8 converts to Flanagan–Belytschko's Q conjugate to q = 8 q̂).
+/// Local components (e_i·q) of the four hourglass velocities q̂4..q̂7.
 template <class T>
-inline void enhanced_forces(const EnhancedGeometry<T>& e, const V3<T> q[4], T mu, T lambda_bar,
-                            T mu7, V3<T> out[4]) {
-  for (int m = 0; m < 3; ++m) out[m] = {T{}, T{}, T{}};
+inline void to_frame(const EnhancedFrame<T>& f, const V3<T> q[4], V3<T> local[4]) {
+  for (int m = 0; m < 4; ++m) local[m] = {dot(f.e[0], q[m]), dot(f.e[1], q[m]), dot(f.e[2], q[m])};
+}
+
+/// Strain rates of the three planes from the local hourglass velocities `u` (ε22, ε33, γ23 of
+/// ξ; ε11, ε33, γ13 of η; ε11, ε22, γ12 of ζ), 1/s.
+template <class T>
+inline void enhanced_strains(const EnhancedFrame<T>& f, const V3<T> u[4], T eps[9]) {
+  const T c1 = f.c[0], c2 = f.c[1], c3 = f.c[2];
+  eps[0] = c2 * u[0].y;
+  eps[1] = c3 * u[2].z;
+  eps[2] = c2 * u[0].z + c3 * u[2].y;
+  eps[3] = c1 * u[0].x;
+  eps[4] = c3 * u[1].z;
+  eps[5] = c1 * u[0].z + c3 * u[1].x;
+  eps[6] = c1 * u[2].x;
+  eps[7] = c2 * u[1].y;
+  eps[8] = c1 * u[2].y + c2 * u[1].x;
+}
+
+/// Plane-stress increments of S for the strain increments `eps` (enhanced_strains() times dt):
+/// `normal` = 2μ + λ̄ and `lambda_bar` = λ̄ (times κ), `mu` = μ κ, Pa.
+template <class T>
+inline void enhanced_stress_increment(const T eps[9], T normal, T lambda_bar, T mu, T ds[9]) {
   for (int p = 0; p < 3; ++p) {
-    const V3<T>& u = q[ENHANCED_U[p]];
-    const V3<T>& v = q[ENHANCED_V[p]];
-    const V3<T>& tj = e.t[p][0];
-    const V3<T>& tk = e.t[p][1];
-    const T s_uj = dot(u, tj), s_vk = dot(v, tk), s_vj = dot(v, tj), s_uk = dot(u, tk);
-    const T lt = lambda_bar * (s_uj + s_vk);
-    // μ P (u tj·tj + v tj·tk) and μ P (u tj·tk + v tk·tk): the 2μ ε_t t terms along u and v.
-    V3<T> wu = e.tt[p][0] * u + e.tt[p][2] * v;
-    V3<T> wv = e.tt[p][2] * u + e.tt[p][1] * v;
-    wu = wu - dot(wu, e.b[p]) * e.h[p];
-    wv = wv - dot(wv, e.b[p]) * e.h[p];
-    out[ENHANCED_U[p]] = out[ENHANCED_U[p]] + mu * wu + (mu * s_uj + lt) * tj + (mu * s_vj) * tk;
-    out[ENHANCED_V[p]] = out[ENHANCED_V[p]] + mu * wv + (mu * s_uk) * tj + (mu * s_vk + lt) * tk;
+    const T a = eps[3 * p], b = eps[3 * p + 1];
+    ds[3 * p] = normal * a + lambda_bar * b;
+    ds[3 * p + 1] = normal * b + lambda_bar * a;
+    ds[3 * p + 2] = mu * eps[3 * p + 2];
   }
-  const V3<T>& r = q[3];
-  out[3] = mu7 * (e.sum_bb * r + dot(r, e.b[0]) * e.b[0] + dot(r, e.b[1]) * e.b[1] +
-                  dot(r, e.b[2]) * e.b[2]);
+}
+
+/// Local generalised forces Q̂4..Q̂6 (N) of the plane stresses S, `v3` = V/3.
+template <class T>
+inline void enhanced_forces(const EnhancedFrame<T>& f, const T S[9], T v3, V3<T> Q[3]) {
+  const T k1 = v3 * f.c[0], k2 = v3 * f.c[1], k3 = v3 * f.c[2];
+  Q[0] = {k1 * S[3], k2 * S[0], k2 * S[2] + k1 * S[5]};
+  Q[1] = {k3 * S[5] + k2 * S[8], k2 * S[7], k3 * S[4]};
+  Q[2] = {k1 * S[6], k3 * S[2] + k1 * S[8], k3 * S[1]};
+}
+
+/// Stiffness of the ξηζ mode per local component, (V/9) μ (Σc² + c_i²) (N/m per m/s·s).
+template <class T>
+inline V3<T> enhanced_mode7_stiffness(const EnhancedFrame<T>& f, T v9_mu) {
+  const T c1 = f.c[0] * f.c[0], c2 = f.c[1] * f.c[1], c3 = f.c[2] * f.c[2];
+  const T sum = c1 + c2 + c3;
+  return {v9_mu * (sum + c1), v9_mu * (sum + c2), v9_mu * (sum + c3)};
+}
+
+/// Global vector of local components `l` in frame f.
+template <class T>
+inline V3<T> from_frame(const EnhancedFrame<T>& f, const V3<T>& l) {
+  return l.x * f.e[0] + l.y * f.e[1] + l.z * f.e[2];
 }
 
 }  // namespace xpl::elements

@@ -1,10 +1,11 @@
 #pragma once
 /// \file The hourglass resultants of one C3D8R batch over one increment, in the two families
 /// the block runs (hex8r.cpp): Flanagan–Belytschko's stiffness and viscous forms, and the
-/// enhanced assumed-strain stabilisation (hex8r_enhanced.hpp). Both return the resultants Q_α
-/// (α = 4..7, conjugate to q_α = γ_α·v = 8 (av_α − L a_α)) that the force assembly applies,
-/// the stored resultants for the next increment, and the hourglass power Q·q (W) whose
-/// integral is the artificial energy ALLAE.
+/// enhanced assumed-strain stabilisation (hex8r_enhanced.hpp) with its plastic bound. Both
+/// return the resultants Q_α (α = 4..7, global, conjugate to q_α = γ_α·v = 8 (av_α − L a_α))
+/// that the force assembly applies, the state kept for the next increment (12 values per
+/// element: the stiffness form's resultants, or the enhanced form's frame stresses), and the
+/// hourglass power (W) whose integral is the artificial energy ALLAE.
 
 #include "elements/hex8r_enhanced.hpp"
 #include "elements/simd.hpp"
@@ -66,95 +67,84 @@ inline void flanagan_belytschko_step(const V3<simd::Vec> ax[8], const V3<simd::V
 /// σ_y t²/4 = (κ σ_y) t²/6 with κ = 3/2.
 inline constexpr Real HOURGLASS_PLASTIC_AMPLITUDE = 1.5;
 
-/// The plastic bound of the enhanced resultants Q (modes 4..6, Flanagan–Belytschko scaling,
-/// N): the plane hourglass stresses Σ_φ they carry, read in the element's axes n_i = b_i/|b_i|
-/// as on a rectangular element (Q̂_α = 8 Q_α = (V/3)(Σ_φ t_j + Σ_φ' t_k); the six normal
-/// components are one component of Q̂ each, the three in-plane shears solve a 3 × 3 system),
-/// are scaled where their von Mises value exceeds `limit` (Pa per lane; +inf: no bound), the
-/// change going back along the dual vectors |b_i| a_i. A lane within the bound is untouched.
-inline void bound_enhanced(const V3<simd::Vec> ax[8], const EnhancedGeometry<simd::Vec>& e,
-                           simd::Vec vol, simd::Vec limit, V3<simd::Vec> Q[3]) {
+/// The plastic bound of the enhanced state `S` (ENHANCED_STATE values per lane, see
+/// hex8r_enhanced.hpp): each plane's von Mises stress, √(S_a² + S_b² − S_a S_b + 3 S_ab²), is
+/// scaled down to `limit` (Pa per lane; +inf: no bound) where it exceeds it; the ξηζ
+/// resultant to the energy of a shear at the limit, Σ_i Q̂7_i²/(2 k7_i) ≤ (V/9) limit²/(6μ)
+/// with k7_i = (V/9) μ d_i (`d` = Σc² + c_i², 1/m²; `v9` = V/9, m³). A lane within the bound
+/// is untouched.
+inline void bound_enhanced(simd::Vec limit, const V3<simd::Vec>& d, simd::Vec v9,
+                           simd::Vec S[ENHANCED_STATE]) {
   using simd::Vec;
-  Vec c[3];
-  V3<Vec> n[3];
-  for (int i = 0; i < 3; ++i) {
-    c[i] = simd::sqrt(dot(e.b[i], e.b[i]));
-    n[i] = (1.0 / c[i]) * e.b[i];
-  }
-  const Vec s = 24.0 / vol;  // Σ = 3 Q̂ / (V |b|) with Q̂ = 8 Q
-  Vec C[3][3];               // C[α][i] = Q_α·n_i
-  for (int m = 0; m < 3; ++m)
-    for (int i = 0; i < 3; ++i) C[m][i] = dot(Q[m], n[i]);
-  // Normal stresses (mode ξη: x along η (φ = η), y along ξ; ηζ: z along η, y along ζ; ζξ: z
-  // along ξ, x along ζ) and the shear triple A = c2 X + c1 Y, B = c3 Y + c2 Z, C = c3 X + c1 Z.
-  const Vec eta_xx = s * C[0][0] / c[0], xi_yy = s * C[0][1] / c[1];
-  const Vec eta_zz = s * C[1][2] / c[2], zeta_yy = s * C[1][1] / c[1];
-  const Vec xi_zz = s * C[2][2] / c[2], zeta_xx = s * C[2][0] / c[0];
-  const Vec a = s * C[0][2], b = s * C[1][0], cc = s * C[2][1];
-  const Vec x = 0.5 * (c[2] * a - c[0] * b + c[1] * cc) / (c[1] * c[2]);  // Σξ_yz
-  const Vec y = 0.5 * (c[2] * a + c[0] * b - c[1] * cc) / (c[0] * c[2]);  // Ση_xz
-  const Vec z = 0.5 * (c[0] * b + c[1] * cc - c[2] * a) / (c[0] * c[1]);  // Σζ_xy
-  const auto mises2 = [](Vec p, Vec q, Vec t) { return p * p + q * q - p * q + 3.0 * t * t; };
-  const Vec m2[3] = {mises2(xi_yy, xi_zz, x), mises2(eta_xx, eta_zz, y),
-                     mises2(zeta_xx, zeta_yy, z)};
   const Vec limit2 = limit * limit;
-  const simd::Mask over[3] = {m2[0] > limit2, m2[1] > limit2, m2[2] > limit2};
-  const simd::Mask any = over[0] | over[1] | over[2];
-  if (!simd::any(any)) return;
-  Vec f[3];
-  for (int p = 0; p < 3; ++p)
-    f[p] = simd::select(over[p], limit / simd::sqrt(simd::max(m2[p], limit2)), simd::splat(1.0));
-  // New components along n_i (f = 1: unchanged), shears through the triple.
-  const Vec xs = f[0] * x, ys = f[1] * y, zs = f[2] * z;
-  const Vec inv_s = vol * (1.0 / 24.0);
-  const Vec D[3][3] = {
-      {(f[1] - 1.0) * C[0][0], (f[0] - 1.0) * C[0][1], inv_s * (c[1] * xs + c[0] * ys) - C[0][2]},
-      {inv_s * (c[2] * ys + c[1] * zs) - C[1][0], (f[2] - 1.0) * C[1][1], (f[1] - 1.0) * C[1][2]},
-      {(f[2] - 1.0) * C[2][0], inv_s * (c[2] * xs + c[0] * zs) - C[2][1], (f[0] - 1.0) * C[2][2]}};
-  const Vec zero = simd::splat(0.0);
-  for (int m = 0; m < 3; ++m)
-    for (int i = 0; i < 3; ++i) {
-      const Vec d = simd::select(any, D[m][i], zero);
-      Q[m] = Q[m] + (d * c[i]) * ax[1 + i];
-    }
+  for (int p = 0; p < 3; ++p) {
+    const Vec a = S[3 * p], b = S[3 * p + 1], t = S[3 * p + 2];
+    const Vec m2 = a * a + b * b - a * b + 3.0 * t * t;
+    const simd::Mask over = m2 > limit2;
+    if (!simd::any(over)) continue;
+    const Vec f = simd::select(over, limit / simd::sqrt(simd::max(m2, limit2)), simd::splat(1.0));
+    for (int k = 0; k < 3; ++k) S[3 * p + k] = f * S[3 * p + k];
+  }
+  const Vec q = S[9] * S[9] / d.x + S[10] * S[10] / d.y + S[11] * S[11] / d.z;
+  const Vec cap = v9 * v9 * limit2 * (1.0 / 3.0);
+  const simd::Mask over = q > cap;
+  if (!simd::any(over)) return;
+  const Vec f = simd::select(over, simd::sqrt(cap / simd::max(q, cap)), simd::splat(1.0));
+  for (int k = 9; k < 12; ++k) S[k] = f * S[k];
 }
 
-/// The enhanced stabilisation: the stored resultants are turned with the element's spin
-/// (`spin` = W01, W02, W12 of the mid-increment velocity gradient, 1/s), so that they follow
-/// a rigid rotation, then advanced by the rate dt·K q̂/8 of hex8r_enhanced.hpp on the current
-/// geometry (`g`, `vol`; `mu` = κμ and `lambda_bar` = κλ̄ per lane, Pa), and multiplied by
-/// `relax` (the batch's radial-return factor in plastic batches, see Hex8rBlock) and bounded
-/// by bound_enhanced() with `limit` (Pa per lane) unless these are null.
+/// The enhanced stabilisation over one increment (hex8r_enhanced.hpp). Hourglass velocities
+/// q̂_α = av_α − L a_α on the mid-increment geometry (`L` the mid velocity gradient, 1/s; the
+/// mid modes a − ½dt av), so that a linear field gives exactly zero; the frame on the end
+/// geometry (`ax`, `g3` = ∂V/∂a3 there, `vol`, `inv_vol`). The state `old` (ENHANCED_STATE
+/// rows) advances to `next` with the moduli `mu` = κμ, `lambda_bar` = κλ̄ (Pa per lane), then
+/// is multiplied by `relax` and bounded by `limit` (bound_enhanced) unless these are null.
+/// `force` receives the Flanagan–Belytschko resultants Q_α = R Q̂_α / 8 (N) the assembly
+/// applies, `power` the hourglass power with the mean stresses of the increment (W).
 inline void enhanced_step(const V3<simd::Vec> ax[8], const V3<simd::Vec> av[8],
-                          const V3<simd::Vec> g[8], const simd::Vec Ln[3][3], simd::Vec vol,
-                          simd::Vec inv_vol, simd::Vec mu, simd::Vec lambda_bar,
-                          const simd::Vec spin[3], Real dt, const simd::Vec* relax,
-                          const simd::Vec* limit, const V3<simd::Vec> old[4], HourglassStep& s) {
+                          const V3<simd::Vec>& g3, const simd::Vec L[3][3], simd::Vec vol,
+                          simd::Vec inv_vol, simd::Vec mu, simd::Vec lambda_bar, Real dt,
+                          const simd::Vec* relax, const simd::Vec* limit,
+                          const simd::Vec old[ENHANCED_STATE], simd::Vec next[ENHANCED_STATE],
+                          V3<simd::Vec> force[4], simd::Vec& power) {
   using simd::Vec;
+  const Real half_dt = 0.5 * dt;
   V3<Vec> q[4];
-  for (int m = 0; m < 4; ++m) q[m] = av[4 + m] - projected_mode(Ln, ax[4 + m], inv_vol);
-  const EnhancedGeometry<Vec> e = enhanced_geometry(g, inv_vol);
-  // (V/3)·c and (V/9)·c with c = dt/8 (increment, Flanagan–Belytschko scaling).
-  const Vec v3 = vol * (dt / 24.0), v9 = vol * (dt / 72.0);
-  V3<Vec> dq[4];
-  enhanced_forces(e, q, mu * v3, lambda_bar * v3, mu * v9, dq);
-  const Vec w01 = spin[0], w02 = spin[1], w12 = spin[2];
-  V3<Vec> turned[4], next[4];
   for (int m = 0; m < 4; ++m) {
-    const V3<Vec>& o = old[m];
-    // Q̇ = W Q for a vector that turns with the element.
-    turned[m] = {o.x + dt * (w01 * o.y + w02 * o.z), o.y + dt * (w12 * o.z - w01 * o.x),
-                 o.z - dt * (w02 * o.x + w12 * o.y)};
-    next[m] = turned[m] + dq[m];
-    if (relax != nullptr) next[m] = *relax * next[m];
+    const V3<Vec> a = ax[4 + m] - half_dt * av[4 + m];
+    q[m] = av[4 + m] - V3<Vec>{L[0][0] * a.x + L[0][1] * a.y + L[0][2] * a.z,
+                               L[1][0] * a.x + L[1][1] * a.y + L[1][2] * a.z,
+                               L[2][0] * a.x + L[2][1] * a.y + L[2][2] * a.z};
   }
-  if (limit != nullptr) bound_enhanced(ax, e, vol, *limit, next);
-  s.power = simd::splat(0.0);
-  for (int m = 0; m < 4; ++m) {
-    s.stored[m] = next[m];
-    s.force[m] = next[m];
-    s.power += 8.0 * dot(0.5 * (turned[m] + next[m]), q[m]);
+  const EnhancedFrame<Vec> f = enhanced_frame(ax, g3, inv_vol);
+  V3<Vec> u[4];
+  to_frame(f, q, u);
+  Vec eps[9], ds[9];
+  enhanced_strains(f, u, eps);
+  const Vec lb = lambda_bar * dt;
+  enhanced_stress_increment(eps, mu * (2.0 * dt) + lb, lb, mu * dt, ds);
+  for (int k = 0; k < 9; ++k) next[k] = old[k] + ds[k];
+  const Vec v9 = vol * (1.0 / 9.0);
+  const V3<Vec> k7 = enhanced_mode7_stiffness(f, v9 * mu);
+  next[9] = old[9] + dt * k7.x * u[3].x;
+  next[10] = old[10] + dt * k7.y * u[3].y;
+  next[11] = old[11] + dt * k7.z * u[3].z;
+  if (relax != nullptr)
+    for (int k = 0; k < ENHANCED_STATE; ++k) next[k] = *relax * next[k];
+  if (limit != nullptr) {
+    const Vec c1 = f.c[0] * f.c[0], c2 = f.c[1] * f.c[1], c3 = f.c[2] * f.c[2];
+    const Vec sum = c1 + c2 + c3;
+    bound_enhanced(*limit, V3<Vec>{sum + c1, sum + c2, sum + c3}, v9, next);
   }
+  const Vec v3 = vol * (1.0 / 3.0);
+  Vec work = simd::splat(0.0);
+  for (int k = 0; k < 9; ++k) work += (old[k] + next[k]) * eps[k];
+  power = 0.5 * (v3 * work + (old[9] + next[9]) * u[3].x + (old[10] + next[10]) * u[3].y +
+                 (old[11] + next[11]) * u[3].z);
+  V3<Vec> Q[3];
+  enhanced_forces(f, next, v3, Q);
+  for (int m = 0; m < 3; ++m) force[m] = from_frame(f, 0.125 * Q[m]);
+  force[3] = from_frame(f, 0.125 * V3<Vec>{next[9], next[10], next[11]});
 }
 
 }  // namespace xpl::elements

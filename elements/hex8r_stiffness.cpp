@@ -65,8 +65,7 @@ void Hex8rBlock::stiffness_batch(Index batch, const Real* px, const Real* py, co
   for (int i = 0; i < 3; ++i) P[i][i] += lt;
 
   // Stiffness hourglass forces Q_α = k_hg q_α, q_α = 8 (au_α − H a_α), or the enhanced
-  // form's K q̂/8 (hex8r_enhanced.hpp), with the projection term of the force (see
-  // compute_batch).
+  // form's, with the projection term of the force (see compute_batch).
   const Vec k_hg = simd::load(cst + HG_STIFFNESS * W) * two_mu * (gsum * 0.125) * (0.125 * inv_vol);
   V3<Vec> Q[4];
   if constexpr (PATH == HourglassPath::FlanaganBelytschko) {
@@ -82,20 +81,29 @@ void Hex8rBlock::stiffness_batch(Index batch, const Real* px, const Real* py, co
         for (int j = 0; j < 3; ++j) P[i][j] -= 8.0 * inv_vol * qi[i] * aj[j];
     }
   } else {
-    V3<Vec> q[4], qe[4];
+    V3<Vec> q[4], u[4];
     for (int m = 0; m < 4; ++m) {
       const V3<Vec>& a = ax[4 + m];
       q[m] = au[4 + m] - V3<Vec>{H[0][0] * a.x + H[0][1] * a.y + H[0][2] * a.z,
                                  H[1][0] * a.x + H[1][1] * a.y + H[1][2] * a.z,
                                  H[2][0] * a.x + H[2][1] * a.y + H[2][2] * a.z};
     }
+    // The enhanced form's K q̂ (hex8r_enhanced.hpp): plane stresses of the strains, their
+    // forces, the ξηζ mode's diagonal stiffness; back to global Flanagan–Belytschko scaling.
     const Vec mu = simd::load(cst + HG_MU * W);
-    const Vec v3 = vol * (1.0 / 24.0), v9 = vol * (1.0 / 72.0);
-    enhanced_forces(enhanced_geometry(g, inv_vol), q, mu * v3, simd::load(cst + HG_LAMBDA * W) * v3,
-                    mu * v9, qe);
+    const Vec lambda_bar = simd::load(cst + HG_LAMBDA * W);
+    const EnhancedFrame<Vec> f = enhanced_frame(ax, g[3], inv_vol);
+    to_frame(f, q, u);
+    Vec eps[9], S[9];
+    enhanced_strains(f, u, eps);
+    enhanced_stress_increment(eps, 2.0 * mu + lambda_bar, lambda_bar, mu, S);
+    V3<Vec> qe[4];
+    enhanced_forces(f, S, vol * (1.0 / 3.0), qe);
+    const V3<Vec> k7 = enhanced_mode7_stiffness(f, vol * (1.0 / 9.0) * mu);
+    qe[3] = {k7.x * u[3].x, k7.y * u[3].y, k7.z * u[3].z};
     const simd::Mask use = mu > 0.0;
     for (int m = 0; m < 4; ++m) {
-      Q[m] = select3(use, qe[m], (8.0 * k_hg) * q[m]);
+      Q[m] = select3(use, from_frame(f, 0.125 * qe[m]), (8.0 * k_hg) * q[m]);
       const Vec qi[3] = {Q[m].x, Q[m].y, Q[m].z};
       const Vec aj[3] = {ax[4 + m].x, ax[4 + m].y, ax[4 + m].z};
       for (int i = 0; i < 3; ++i)

@@ -98,8 +98,9 @@ TEST_CASE("enhanced: a linear field gives no hourglass force, a rotation turns s
       block.internal_forces(x, vel, 1e-6, 0.0, 0.0, f, t);
       hourglass += t.hourglass_energy_increment;
     }
-    // The forces turned with the body (the Euler step of Q̇ = WQ lengthens Q by
-    // (1 + (ω dt)²)^(n/2) − 1 = 3e-4 here), and no energy was made or lost.
+    // The forces turned with the body (the hourglass stresses are kept in the element's frame;
+    // the uniform stress of the distorted element follows its Jaumann rate, whose Euler step
+    // lengthens it by (1 + (ω dt)²)^(n/2) − 1 = 3e-4 here), and no energy was made or lost.
     const NodalVectors expect = f0 * R.transpose();
     CHECK((f - expect).norm() <= 2e-3 * f0.norm());
     CHECK(std::abs(hourglass) <= 1e-6 * stored);

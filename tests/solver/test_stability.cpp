@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "solver/explicit_solver.hpp"
 #include "solver_fixtures.hpp"
@@ -101,5 +102,48 @@ TEST_CASE("stability: first failing factor to 0.01 (diagnostic table, not run by
       if (!stable_at(c.spec, f, drift) || drift > 0.5) first = f;
     }
     std::printf("stability scan: %-18s first failing scale factor %.2f\n", c.name, first);
+  }
+}
+
+TEST_CASE("stability: the enhanced hourglass form keeps the increment stable",
+          "[solver][stability][enhanced]") {
+  // The enhanced form resists the hourglass modes with the material's own moduli (issue 32):
+  // their frequencies rise to those of the uniform modes (a cube's ξη mode at 1.15 c/h with
+  // E, the twist triple at 2.3 c_s/h, against the element estimate's 2 c_d/h). The same
+  // stress test as the stiffness form's: stable at 0.5, 0.9 and 1, the first failure in
+  // (1.05, 1.3] (the global estimate covers the meshes with few neighbours).
+  struct Case {
+    const char* name;
+    test::BoxSpec spec;
+  };
+  test::BoxSpec bar;  // the wave-test bar, ν = 0, 3500 increments
+  bar.period = 1.5e-3;
+  bar.history_dt = 1e-6;
+  test::BoxSpec block;  // 8³, ν = 0.45
+  block.nx = block.ny = block.nz = 8;
+  block.lx = block.ly = block.lz = 0.02;
+  block.poisson = 0.45;
+  block.fix_x0 = false;
+  block.velocity_x = 1.0;
+  block.period = 4e-4;
+  block.history_dt = 1e-6;
+  test::BoxSpec incompressible = test::deficient_mesh(6, 6, 6, false);
+  incompressible.poisson = 0.49;
+  const Case cases[] = {{"bar", bar},
+                        {"8x8x8 nu 0.45", block},
+                        {"6x6x6 nu 0.49", incompressible},
+                        {"1x1x1 fixed face", test::deficient_mesh(1, 1, 1, true)},
+                        {"1x1x1 free", test::deficient_mesh(1, 1, 1, false)},
+                        {"4x4x1 free", test::deficient_mesh(4, 4, 1, false)},
+                        {"20x1x1 fixed end", test::deficient_mesh(20, 1, 1, true)},
+                        {"6x6x6 free", test::deficient_mesh(6, 6, 6, false)}};
+  for (Case c : cases) {
+    c.spec.hourglass = HourglassType::Enhanced;
+    const std::string name = std::string("enhanced ") + c.name;
+    // The fixed single element trades energy between modes near ω·Δt = 2 (see above), and
+    // its increment comes from the global estimate of the free element (constraints only
+    // lower ω_max, so the estimate leaves it a margin: measured first failure 1.50).
+    const bool fixed_one = c.spec.nx == 1 && c.spec.fix_x0;
+    check_limit(name.c_str(), c.spec, fixed_one ? 0.05 : 0.01, fixed_one ? 1.6 : 1.3);
   }
 }
