@@ -16,9 +16,9 @@ bending velocity field and run 1 ms; the same deck is also run to 0.5 ms and con
   continued run holds the HGSTATE and STH of the first run's last frame, unchanged.
 - The continued run's final displacements are within 0.1 % of the uninterrupted run's largest
   displacement (not bitwise: the continued run restarts its central differences from the
-  frame velocity V(t) instead of V(t - dt/2), a difference of order dt; 0.0014 % measured).
+  frame velocity V(t) instead of V(t - dt/2), a difference of order dt; 0.0017 % measured).
 - The same import without HGSTATE (the dataset deleted from a copy of the file) misses by at
-  least 10 times as much (60 % measured: the hourglass resultants carry 65 % of ALLIE here),
+  least 10 times as much (60 % measured: the hourglass state carries 70 % of ALLIE here),
   so the test fails if the state is not restored.
 """
 
