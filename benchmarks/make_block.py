@@ -128,7 +128,7 @@ def parse_args(argv=None):
     parser.add_argument("--yield-stress", type=float, default=0.0,
                         help="add *PLASTIC with this initial yield stress, Pa, and a "
                              "hardening of 1 GPa (default: elastic)")
-    parser.add_argument("--hourglass", choices=["STIFFNESS", "VISCOUS"],
+    parser.add_argument("--hourglass", choices=["STIFFNESS", "VISCOUS", "ENHANCED"],
                         help="add *SECTION CONTROLS with this HOURGLASS= (default: none)")
     args = parser.parse_args(argv)
     if args.n < 1:

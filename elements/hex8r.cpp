@@ -2,16 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "elements/hex8_geometry.hpp"
 #include "elements/hex8r_gather.hpp"
+#include "elements/hex8r_hourglass.hpp"
 
 namespace xpl::elements {
 
 using simd::Vec;
+
+// Both families keep 12 values per element in m_hourglass and in HGSTATE rows.
+static_assert(ENHANCED_STATE == 12 && ENHANCED_STATE <= HOURGLASS_STATE_WIDTH);
 
 Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
                        const std::vector<HexMaterial>& materials, Index node_count)
@@ -22,14 +28,28 @@ Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index
   m_volume.assign(nb * W, 0.0);
   m_viscous_before.assign(nb * W, 0.0);
   m_batch_energy.assign(nb * 4, 0.0);
-  for (Index b = 0; b < m_batches.batch_count(); ++b)
+  m_batch_path.assign(nb, HourglassPath::FlanaganBelytschko);
+  for (Index b = 0; b < m_batches.batch_count(); ++b) {
+    int enhanced = 0;
     for (int l = 0; l < W; ++l) {
       const HexMaterial& m = materials[m_batches.lane_element(b, l)];
       Real* c = m_batches.constants(b) + l;
       const bool stiff = m.hourglass == HourglassForm::Stiffness;
+      const bool viscous = m.hourglass == HourglassForm::Viscous;
       c[HG_STIFFNESS * W] = stiff ? HOURGLASS_STIFFNESS * m.hourglass_scale : 0.0;
-      c[HG_VISCOSITY * W] = stiff ? 0.0 : HOURGLASS_VISCOSITY * m.hourglass_scale;
+      c[HG_VISCOSITY * W] = viscous ? HOURGLASS_VISCOSITY * m.hourglass_scale : 0.0;
+      // Plane-stress moduli of the enhanced form: μ and λ̄ = 2μλ/(λ + 2μ) = νE/(1 − ν²).
+      const Real mu = 0.5 * c[TWO_MU * W], lambda = c[LAMBDA * W];
+      const Real scale = m.hourglass == HourglassForm::Enhanced ? m.hourglass_scale : 0.0;
+      c[HG_MU * W] = scale * mu;
+      c[HG_LAMBDA * W] = scale * 2.0 * mu * lambda / (lambda + 2.0 * mu);
+      if (scale > 0.0) ++enhanced;
     }
+    if (enhanced == W)
+      m_batch_path[b] = HourglassPath::Enhanced;
+    else if (enhanced > 0)
+      m_batch_path[b] = HourglassPath::Mixed;
+  }
   setup_plasticity(materials);
 }
 
@@ -50,9 +70,23 @@ void Hex8rBlock::forces_of_part(int part, const NodalVectors& position,
   const Real* vx = velocity_half.data();
   Real* fx = force.data();
   m_batches.for_part_batches(part, m_batch_plastic, [&](Index b, auto plastic) {
-    compute_batch<decltype(plastic)::value>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
-                                            vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx,
-                                            fx + n_nodes, fx + 2 * n_nodes);
+    constexpr bool P = decltype(plastic)::value;
+    const auto run = [&](auto path) {
+      compute_batch<P, decltype(path)::value>(b, px, px + n_nodes, px + 2 * n_nodes, vx,
+                                              vx + n_nodes, vx + 2 * n_nodes, dt, bulk_linear,
+                                              bulk_quadratic, fx, fx + n_nodes, fx + 2 * n_nodes);
+    };
+    switch (m_batch_path[b]) {
+      case HourglassPath::FlanaganBelytschko:
+        run(std::integral_constant<HourglassPath, HourglassPath::FlanaganBelytschko>{});
+        break;
+      case HourglassPath::Enhanced:
+        run(std::integral_constant<HourglassPath, HourglassPath::Enhanced>{});
+        break;
+      case HourglassPath::Mixed:
+        run(std::integral_constant<HourglassPath, HourglassPath::Mixed>{});
+        break;
+    }
   });
 }
 
@@ -67,7 +101,7 @@ void Hex8rBlock::add_totals(HexStepTotals& totals) const {
   m_batches.merge_limits(totals);
 }
 
-template <bool PLASTIC>
+template <bool PLASTIC, Hex8rBlock::HourglassPath PATH>
 void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, const Real* pz,
                                const Real* vx, const Real* vy, const Real* vz, Real dt, Real b1,
                                Real b2, Real* fx, Real* fy, Real* fz) {
@@ -136,9 +170,27 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
   // The elastic update is the trial state of the J2 return (σ_y Δε̄ᵖ per lane, Pa).
   [[maybe_unused]] Vec dissipation = simd::splat(0.0);
+  // The enhanced resultants of a yielding lane relax with its stress, and stay within its
+  // flow stress (see hex8r.hpp).
+  [[maybe_unused]] Vec relax = simd::splat(1.0);
+  [[maybe_unused]] Vec hg_limit = simd::splat(std::numeric_limits<Real>::infinity());
   // No flow without an increment (dt = 0 at the start: an imported state stays as it is).
-  if constexpr (PLASTIC)
-    if (dt > 0.0) dissipation = plastic_return(batch, sn, dt);
+  if constexpr (PLASTIC) {
+    if (dt > 0.0) {
+      if constexpr (PATH == HourglassPath::FlanaganBelytschko) {
+        dissipation = plastic_return(batch, sn, dt);
+      } else {
+        const Vec trial = deviator_norm2(sn);
+        dissipation = plastic_return(batch, sn, dt);
+        const Vec returned = deviator_norm2(sn);
+        relax = return_factor(trial, returned);
+        // The flow stress: the static yield stress, or the (rate-raised) von Mises stress of
+        // a flowing lane.
+        const Vec yield = simd::load(m_points.yield_row(static_cast<std::size_t>(batch) * W));
+        hg_limit = HOURGLASS_PLASTIC_AMPLITUDE * simd::max(yield, simd::sqrt(1.5 * returned));
+      }
+    }
+  }
   for (int c = 0; c < 6; ++c) simd::store(sig + c * W, sn[c]);
   const Vec strain_power =
       0.5 * ((s[0] + sn[0]) * d00 + (s[1] + sn[1]) * d11 + (s[2] + sn[2]) * d22 +
@@ -156,38 +208,64 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   const Vec dt_e =
       simd::load(cst + DT_FACTOR * W) * (length / wave) * (simd::sqrt(1.0 + xi * xi) - xi);
 
-  // Hourglass rates on x_{n+1}: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α), α = modes 4..7.
-  Vec Ln[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Ln[i][j] = simd::splat(0.0);
-  Vec gsum = simd::splat(0.0);
-  for (int k = 1; k < 7; ++k) {
-    const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
-    const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) Ln[i][j] += vi[i] * gj[j];
-    gsum += dot(g[k], g[k]);
-  }
+  // Hourglass resultants Q_α (α = modes 4..7) applied on x_{n+1} and the state they leave.
   const Vec inv_vol = 1.0 / vol;
-  const Vec k_hg = simd::load(cst + HG_STIFFNESS * W) * two_mu * (gsum * 0.125) * (0.125 * inv_vol);
-  const Vec c_hg = simd::load(cst + HG_VISCOSITY * W) * density * wave * area * 0.125;
   V3<Vec> Q[4];
-  Vec hg_power = simd::splat(0.0);
-  for (int m = 0; m < 4; ++m) {
-    const V3<Vec>& a = ax[4 + m];
-    const V3<Vec> la = {(Ln[0][0] * a.x + Ln[0][1] * a.y + Ln[0][2] * a.z) * inv_vol,
-                        (Ln[1][0] * a.x + Ln[1][1] * a.y + Ln[1][2] * a.z) * inv_vol,
-                        (Ln[2][0] * a.x + Ln[2][1] * a.y + Ln[2][2] * a.z) * inv_vol};
-    const V3<Vec> q = 8.0 * (av[4 + m] - la);
-    Real* qs = hgq + m * 3 * W;
-    const V3<Vec> q_old = {simd::load(qs), simd::load(qs + W), simd::load(qs + 2 * W)};
-    const V3<Vec> q_new = q_old + (k_hg * dt) * q;
-    simd::store(qs, q_new.x);
-    simd::store(qs + W, q_new.y);
-    simd::store(qs + 2 * W, q_new.z);
-    Q[m] = q_new + c_hg * q;
-    hg_power += dot(0.5 * (q_old + q_new) + c_hg * q, q);
+  Vec hg_power;
+  [[maybe_unused]] Vec stored[12];
+  if constexpr (PATH != HourglassPath::Enhanced) {
+    // Flanagan–Belytschko: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α) on x_{n+1}.
+    Vec Ln[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Ln[i][j] = simd::splat(0.0);
+    Vec gsum = simd::splat(0.0);
+    for (int k = 1; k < 7; ++k) {
+      const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
+      const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) Ln[i][j] += vi[i] * gj[j];
+      gsum += dot(g[k], g[k]);
+    }
+    V3<Vec> old[4];
+    for (int m = 0; m < 4; ++m) {
+      const Real* qs = hgq + m * 3 * W;
+      old[m] = {simd::load(qs), simd::load(qs + W), simd::load(qs + 2 * W)};
+    }
+    const Vec k_hg =
+        simd::load(cst + HG_STIFFNESS * W) * two_mu * (gsum * 0.125) * (0.125 * inv_vol);
+    const Vec c_hg = simd::load(cst + HG_VISCOSITY * W) * density * wave * area * 0.125;
+    HourglassStep hg;
+    flanagan_belytschko_step(ax, av, Ln, inv_vol, k_hg, c_hg, dt, old, hg);
+    for (int m = 0; m < 4; ++m) {
+      stored[3 * m] = hg.stored[m].x;
+      stored[3 * m + 1] = hg.stored[m].y;
+      stored[3 * m + 2] = hg.stored[m].z;
+      Q[m] = hg.force[m];
+    }
+    hg_power = hg.power;
   }
+  if constexpr (PATH != HourglassPath::FlanaganBelytschko) {
+    // The enhanced form, its state in the element's frame (L: the mid velocity gradient).
+    const Vec mu = simd::load(cst + HG_MU * W);
+    Vec old[ENHANCED_STATE], next[ENHANCED_STATE];
+    for (int k = 0; k < ENHANCED_STATE; ++k) old[k] = simd::load(hgq + k * W);
+    V3<Vec> force[4];
+    Vec power;
+    enhanced_step(ax, av, g[3], L, vol, inv_vol, mu, simd::load(cst + HG_LAMBDA * W), dt,
+                  PLASTIC ? &relax : nullptr, PLASTIC ? &hg_limit : nullptr, old, next, force,
+                  power);
+    if constexpr (PATH == HourglassPath::Enhanced) {
+      for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = next[k];
+      for (int m = 0; m < 4; ++m) Q[m] = force[m];
+      hg_power = power;
+    } else {
+      const simd::Mask use = mu > 0.0;
+      for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = simd::select(use, next[k], stored[k]);
+      for (int m = 0; m < 4; ++m) Q[m] = select3(use, force[m], Q[m]);
+      hg_power = simd::select(use, power, hg_power);
+    }
+  }
+  for (int k = 0; k < 12; ++k) simd::store(hgq + k * W, stored[k]);
 
   // Forces: f_I = P b_I + Σ_α Γ_αI Q_α with P = σ + s_v I − (8/V) Σ_α Q_α ⊗ a_α, and
   // b_I = ⅛ Σ_k Λ_kI g_k, so in mode space F_k = ⅛ P g_k (+ Q_α for k = 4..7).

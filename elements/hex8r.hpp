@@ -1,6 +1,8 @@
 #pragma once
-/// \file C3D8R: 8-node hexahedron, one-point (uniform-gradient) integration with
-/// Flanagan–Belytschko hourglass control, Jaumann-rate linear elasticity, bulk viscosity.
+/// \file C3D8R: 8-node hexahedron, one-point (uniform-gradient) integration with hourglass
+/// control (the enhanced assumed-strain stabilisation of hex8r_enhanced.hpp, or
+/// Flanagan–Belytschko's stiffness or viscous form), Jaumann-rate linear elasticity, bulk
+/// viscosity.
 ///
 /// Elements are coloured (no two elements of a colour share a node) and packed into
 /// batches of simd::W elements of one colour; a batch is computed as one SIMD value per
@@ -28,7 +30,22 @@ namespace xpl::elements {
 inline constexpr Real HOURGLASS_STIFFNESS = 0.05;
 /// Viscous: Q_α = κ_v · ρ c_d A_max / 8 · q_α (≈ 14 % of critical damping on a cube).
 inline constexpr Real HOURGLASS_VISCOSITY = 0.1;
-
+/// Enhanced (hex8r_enhanced.hpp): the material's own moduli times the user's scale factor κ,
+/// no other coefficient; the hourglass stresses are kept in a frame that follows the element.
+/// In a plastic element
+/// the hourglass stresses are the linear variation of the stress over the element, which the
+/// material bounds as it bounds the stress itself (hex8r_hourglass.hpp):
+/// - in a lane that yields they are multiplied by the factor the radial return applied to
+///   its deviatoric stress, |dev σ| / |dev σ_trial|: returning the stress of each fibre,
+///   σ + Σ, with the centre's flow scales Σ alike to first order. An hourglass mode keeps its
+///   elastic stiffness against a sudden motion (no zero-energy mode opens in a flowing
+///   element) while a sustained one relaxes as the material flows;
+/// - the von Mises value of each plane hourglass stress stays below 3/2 of the flow stress
+///   (HOURGLASS_PLASTIC_AMPLITUDE): the linear stress of that amplitude carries the fully
+///   plastic moment σ_y t²/4 of a section, so a hinge one element thick bends at M_p, and with
+///   n elements through the thickness the section's fully plastic moment is M_p for any n.
+/// What either removes is dissipated in ALLAE: the work of the resultants, stored or not, is
+/// all artificial energy, and a hinge's bending work carried by the stabilisation is in ALLAE.
 /// A set of C3D8R elements and their state (stress, hourglass forces).
 class Hex8rBlock {
  public:
@@ -92,9 +109,11 @@ class Hex8rBlock {
   /// internal-force pass).
   void set_stress(std::span<const Real> stress);
 
-  /// Writes the accumulated stiffness-form hourglass forces (4 modes × 3 global components,
-  /// N; zero under the viscous form) of every block element at its model index into
-  /// model-sized rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp).
+  /// Writes the hourglass state of every block element at its model index into model-sized
+  /// rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp): the stiffness form's
+  /// accumulated resultants (4 modes × 3 global components, N; zero under the viscous form),
+  /// or the enhanced form's ENHANCED_STATE values (nine hourglass stresses in the element's
+  /// frame, Pa, and the ξηζ resultant there, N; hex8r_enhanced.hpp).
   void gather_hourglass_state(std::vector<Real>& rows) const;
   /// The inverse of gather_hourglass_state, for a run that starts from an imported state.
   void set_hourglass_state(std::span<const Real> rows);
@@ -116,11 +135,11 @@ class Hex8rBlock {
   Real plastic_strain_rate(Index i) const;
 
   /// Linear stiffness product y += K u of the block at `position` (n_nodes × 3, m), for the
-  /// model's highest frequency: the uniform-gradient part (λ, 2μ) and the stiffness
-  /// hourglass term as internal_forces() applies them, from a stress-free state (no geometric
-  /// stiffness; the viscous hourglass form and bulk viscosity are damping, not stiffness).
-  /// `u` (m) and `y` (N) are n_nodes × 3; no element state changes. K u is the derivative of
-  /// the internal force along u. Race-free and independent of the thread count.
+  /// model's highest frequency: the uniform-gradient part (λ, 2μ) and the stiffness or
+  /// enhanced hourglass term as internal_forces() applies them, from a stress-free state (no
+  /// geometric stiffness; the viscous hourglass form and bulk viscosity are damping, not
+  /// stiffness). `u` (m) and `y` (N) are n_nodes × 3; no element state changes. K u is the
+  /// derivative of the internal force along u. Race-free and independent of the thread count.
   void add_stiffness_product(const NodalVectors& position, const NodalVectors& u,
                              NodalVectors& y) const;
 
@@ -135,10 +154,14 @@ class Hex8rBlock {
     DT_FACTOR = HexBatches::DT_FACTOR,
     HG_STIFFNESS = HexBatches::N_SHARED,
     HG_VISCOSITY,
+    HG_MU,      ///< κμ of the enhanced form (0 in lanes of the other forms), Pa
+    HG_LAMBDA,  ///< κλ̄ = κ 2μλ/(λ + 2μ) of the enhanced form, Pa
     N_CONST
   };
+  /// Which hourglass families the lanes of a batch use (one code path per batch).
+  enum class HourglassPath : unsigned char { FlanaganBelytschko, Enhanced, Mixed };
 
-  template <bool PLASTIC>
+  template <bool PLASTIC, HourglassPath PATH>
   void compute_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* vx,
                      const Real* vy, const Real* vz, Real dt, Real b1, Real b2, Real* fx, Real* fy,
                      Real* fz);
@@ -150,15 +173,19 @@ class Hex8rBlock {
   simd::Vec plastic_return(Index batch, simd::Vec sn[6], Real dt);
   /// Copies the plastic laws and the plastic state arrays (constructor).
   void setup_plasticity(const std::vector<HexMaterial>& materials);
+  template <HourglassPath PATH>
   void stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* ux,
                        const Real* uy, const Real* uz, Real* yx, Real* yy, Real* yz) const;
 
   HexBatches m_batches;  ///< layout, constants, increment limits and partition
   // State, batch b lane l:
-  std::vector<Real> m_stress;          ///< [b][6][W]
-  std::vector<Real> m_hourglass;       ///< [b][4 modes × 3][W] accumulated stiffness forces
-  std::vector<Real> m_volume;          ///< [b][W]
-  std::vector<Real> m_viscous_before;  ///< [b][W] bulk-viscosity pressure of the last call
+  std::vector<Real> m_stress;  ///< [b][6][W]
+  /// [b][12][W] hourglass state: stiffness form Q_α (4 modes × 3, N), enhanced form its
+  /// frame stresses and ξηζ resultant (hex8r_enhanced.hpp)
+  std::vector<Real> m_hourglass;
+  std::vector<HourglassPath> m_batch_path;  ///< [b]
+  std::vector<Real> m_volume;               ///< [b][W]
+  std::vector<Real> m_viscous_before;       ///< [b][W] bulk-viscosity pressure of the last call
   // Plasticity (all empty when no element is plastic):
   std::vector<Plasticity> m_laws;              ///< the distinct laws of the block's materials
   std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, or -1 (elastic lane)

@@ -24,8 +24,9 @@
 
 namespace xpl::elements {
 
-/// Hourglass control form of a hex element.
-enum class HourglassForm { Stiffness, Viscous };
+/// Hourglass control form of a C3D8R element: Flanagan–Belytschko's stiffness or viscous
+/// form, or the enhanced assumed-strain stabilisation (hex8r_enhanced.hpp).
+enum class HourglassForm { Stiffness, Viscous, Enhanced };
 
 /// Extra factor on the stable increment of nearly incompressible one-point hexes: L_e/c_d is
 /// not conservative there (measured limits on regular meshes, in units of L_e/c_d: 1.01 at
@@ -37,11 +38,11 @@ constexpr Real poisson_dt_factor(Real poisson) {
 
 /// Material and control constants of one hex element.
 struct HexMaterial {
-  Real density = 0.0;  ///< kg/m^3
-  Real young = 0.0;    ///< Pa
-  Real poisson = 0.0;  ///< -
-  HourglassForm hourglass = HourglassForm::Stiffness;
-  Real hourglass_scale = 1.0;  ///< scales the coefficient of the chosen form
+  Real density = 0.0;                                 ///< kg/m^3
+  Real young = 0.0;                                   ///< Pa
+  Real poisson = 0.0;                                 ///< -
+  HourglassForm hourglass = HourglassForm::Enhanced;  ///< C3D8R only
+  Real hourglass_scale = 1.0;                         ///< scales the coefficient of the chosen form
   /// J2 plasticity of the material, or nullptr for an elastic one. Not owned: read (and
   /// copied, once per distinct law) by the block's constructor only.
   const Plasticity* plastic = nullptr;

@@ -41,6 +41,9 @@ class RadialReturnLanes {
                        simd::Vec sn[6], simd::Vec two_mu, Real dt, Real* rate);
 
   Real peeq(std::size_t slot) const { return m_peeq[slot]; }
+  /// The static yield stress σ_y(ε̄ᵖ, 0) of the W lanes of row `row` (Pa; +inf in elastic
+  /// lanes): the bound of the C3D8R enhanced hourglass stresses (hex8r_hourglass.hpp).
+  const Real* yield_row(std::size_t row) const { return &m_yield[row]; }
 
  private:
   std::vector<Real> m_peeq;   ///< ε̄ᵖ, -

@@ -24,10 +24,15 @@ elements::HexMaterial hex_material(const Model& model, Index element, Real mass_
   h.young = m.young;
   h.poisson = m.poisson;
   if (m.plastic) h.plastic = &*m.plastic;
+  // The enhanced form unless HOURGLASS= asks for STIFFNESS, RELAX STIFFNESS (run as
+  // STIFFNESS) or VISCOUS (R5: the default stabilisation is physical).
+  h.hourglass = elements::HourglassForm::Enhanced;
   if (section.controls != NO_INDEX) {
     const SectionControls& c = model.section_controls[section.controls];
-    h.hourglass = c.hourglass == HourglassType::Viscous ? elements::HourglassForm::Viscous
-                                                        : elements::HourglassForm::Stiffness;
+    if (c.hourglass_given && c.hourglass == HourglassType::Viscous)
+      h.hourglass = elements::HourglassForm::Viscous;
+    else if (c.hourglass_given && c.hourglass != HourglassType::Enhanced)
+      h.hourglass = elements::HourglassForm::Stiffness;
     h.hourglass_scale =
         h.hourglass == elements::HourglassForm::Viscous ? c.viscous_scale : c.stiffness_scale;
   }

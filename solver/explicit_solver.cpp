@@ -196,10 +196,6 @@ void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_me
       m_sink.message(Severity::Note, "section controls " + c.name +
                                          ": HOURGLASS=RELAX STIFFNESS is run as STIFFNESS "
                                          "(Flanagan-Belytschko stiffness form)");
-    else if (c.hourglass == HourglassType::Enhanced)
-      m_sink.message(Severity::Note, "section controls " + c.name +
-                                         ": HOURGLASS=ENHANCED is the S4R physical "
-                                         "stabilisation; C3D8R elements run it as STIFFNESS");
   for (const std::string& m : rigid_messages) m_sink.message(Severity::Info, m);
   for (const std::string& m : m_ties.messages()) m_sink.message(Severity::Info, m);
   for (const std::string& m : m_ties.warnings()) m_sink.message(Severity::Warning, m);

@@ -78,20 +78,21 @@ struct Material {
 
 /// Hourglass control of reduced-integration elements (`*SECTION CONTROLS, HOURGLASS=`).
 enum class HourglassType {
-  Stiffness,       ///< Flanagan–Belytschko stiffness form (the xpl default)
+  Stiffness,       ///< Flanagan–Belytschko stiffness form
   Viscous,         ///< Flanagan–Belytschko viscous form
   RelaxStiffness,  ///< Abaqus' integral-viscoelastic form; xpl runs it as Stiffness (noted in .msg)
-  /// S4R: the physical stabilisation of the bending and transverse-shear patterns (also the
-  /// S4R default when HOURGLASS= is not given); C3D8R run it as Stiffness (noted in .msg).
+  /// The physical stabilisations, the default of both elements when HOURGLASS= is not given:
+  /// S4R's of the bending and transverse-shear patterns (shell4r_hourglass.hpp), C3D8R's
+  /// enhanced assumed-strain form (elements/hex8r_enhanced.hpp).
   Enhanced,
 };
 
 /// `*SECTION CONTROLS, NAME=...`.
 struct SectionControls {
   std::string name;
-  HourglassType hourglass = HourglassType::Stiffness;
-  /// Whether HOURGLASS= was given: S4R use the physical form unless STIFFNESS, VISCOUS or
-  /// RELAX STIFFNESS asks for the older stiffness form.
+  HourglassType hourglass = HourglassType::Enhanced;
+  /// Whether HOURGLASS= was given: C3D8R and S4R use their physical forms unless STIFFNESS,
+  /// VISCOUS or RELAX STIFFNESS asks for an older one.
   bool hourglass_given = false;
   Real stiffness_scale = 1.0;  ///< multiplies the default hourglass stiffness coefficient
   Real viscous_scale = 1.0;    ///< multiplies the default hourglass viscosity coefficient

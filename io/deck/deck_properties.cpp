@@ -113,13 +113,16 @@ void read_section_controls(DeckState& deck, const DeckBlock& block) {
   const std::optional<std::string> name = required_name(deck, keyword, "NAME");
   SectionControls controls;
   const std::string hourglass = optional_name(keyword, "HOURGLASS");
-  if (hourglass == "VISCOUS") {
+  // Without HOURGLASS= the controls keep the physical default (HourglassType::Enhanced).
+  if (hourglass == "STIFFNESS") {
+    controls.hourglass = HourglassType::Stiffness;
+  } else if (hourglass == "VISCOUS") {
     controls.hourglass = HourglassType::Viscous;
   } else if (hourglass == "RELAX STIFFNESS") {
     controls.hourglass = HourglassType::RelaxStiffness;
   } else if (hourglass == "ENHANCED") {
     controls.hourglass = HourglassType::Enhanced;
-  } else if (!hourglass.empty() && hourglass != "STIFFNESS") {
+  } else if (!hourglass.empty()) {
     error(deck, keyword.where, keyword, "hourglass control " + hourglass + " is not supported",
           "expected HOURGLASS=ENHANCED, STIFFNESS, VISCOUS or RELAX STIFFNESS");
     return;

@@ -39,10 +39,10 @@ def main():
         pathlib.Path(sys.argv[4])
     job = deep.stem
 
-    # 1. --energy-limit 1.5: warned at 1 %, failed above 1.5 %, the cause in every file.
-    r = run(xpl, deep, out / "limit2", "--energy-limit", "1.5")
+    # 1. --energy-limit 1.15: warned at 1 %, failed above 1.15 %, the cause in every file.
+    r = run(xpl, deep, out / "limit2", "--energy-limit", "1.15")
     if r.returncode != 3:
-        fail(f"--energy-limit 1.5: exit {r.returncode}, expected 3\n{r.stderr}")
+        fail(f"--energy-limit 1.15: exit {r.returncode}, expected 3\n{r.stderr}")
     msg = (out / "limit2" / f"{job}.msg").read_text()
     sta = (out / "limit2" / f"{job}.sta").read_text()
     warnings = re.findall(r"energy balance: ETOTAL drift \S+ J, ([0-9.]+) % of the largest energy "
@@ -50,20 +50,20 @@ def main():
     if len(warnings) != 1:
         fail(f"expected one 1 % warning in the .msg, found {len(warnings)}")
     percent, time, increment, mover = warnings[0]
-    if not 1.0 < float(percent) < 1.5:
+    if not 1.0 < float(percent) < 1.15:
         fail(f"the warning came at {percent} %, not just past 1 %")
     if "WARNING: energy balance: ETOTAL drift" not in sta:
         fail(".sta lacks the warning")
     with h5py.File(out / "limit2" / f"{job}.h5", "r") as f:
         status, error = f.attrs["status"], f.attrs["error"]
-    if status != "failed" or "energy balance lost" not in error or "the limit is 1.5 %" not in error:
+    if status != "failed" or "energy balance lost" not in error or "the limit is 1.15 %" not in error:
         fail(f"status {status!r}, error {error!r}")
     stop = int(re.search(r"increment (\d+)", error).group(1))
     if stop <= int(increment):
         fail(f"failed at increment {stop}, not after the warning at {increment}")
     drift = float(re.search(r"ETOTAL drift \S+ J, ([0-9.]+) %", error).group(1))
-    if not 1.5 <= drift < 1.9:
-        fail(f"failed at {drift} %, not just past the 1.5 % limit")
+    if not 1.15 <= drift < 1.3:
+        fail(f"failed at {drift} %, not just past the 1.15 % limit")
     for name, text in ((".msg", msg), (".sta", sta), ("stderr", r.stderr)):
         if error not in text:
             fail(f"{name} lacks the cause {error!r}")
@@ -80,8 +80,8 @@ def main():
         fail("default limit: expected exactly one warning")
     summary = re.search(r"largest energy balance drift: ([0-9.]+) % of the largest energy",
                         r.stdout)
-    if summary is None or not 1.5 < float(summary.group(1)) < 10.0:
-        fail(f"default limit: summary lacks the largest drift (1.5-10 %):\n{r.stdout}")
+    if summary is None or not 1.15 < float(summary.group(1)) < 10.0:
+        fail(f"default limit: summary lacks the largest drift (1.15-10 %):\n{r.stdout}")
 
     # 3. A balanced run: no warning, completed; a limit below its drift fails it.
     r = run(xpl, bar, out / "bar")

@@ -4,10 +4,11 @@
 
 Usage: check_hourglass_import.py XPL OUT_DIR
 
-The deck (written here) holds three coarse, elastic, vibrating bodies whose hourglass
-resultants carry a large part of their stiffness: a C3D8R cantilever one element thick
-(stiffness-form hourglass control, 8 x 1 x 1), and two clamped S4R plates (4 x 4), one with
-the physical hourglass form (the default) and one with HOURGLASS=STIFFNESS. They start from a
+The deck (written here) holds four coarse, elastic, vibrating bodies whose hourglass state
+carries a large part of their stiffness: two C3D8R cantilevers one element thick (8 x 1 x 1),
+one with the enhanced form (the default since issue 32: its frame stresses) and one with
+HOURGLASS=STIFFNESS (its resultants), and two clamped S4R plates (4 x 4), one with the
+physical hourglass form (the default) and one with HOURGLASS=STIFFNESS. They start from a
 bending velocity field and run 1 ms; the same deck is also run to 0.5 ms and continued for
 0.5 ms with --import.
 
@@ -15,9 +16,9 @@ bending velocity field and run 1 ms; the same deck is also run to 0.5 ms and con
   continued run holds the HGSTATE and STH of the first run's last frame, unchanged.
 - The continued run's final displacements are within 0.1 % of the uninterrupted run's largest
   displacement (not bitwise: the continued run restarts its central differences from the
-  frame velocity V(t) instead of V(t - dt/2), a difference of order dt; 0.0014 % measured).
+  frame velocity V(t) instead of V(t - dt/2), a difference of order dt; 0.0017 % measured).
 - The same import without HGSTATE (the dataset deleted from a copy of the file) misses by at
-  least 10 times as much (60 % measured: the hourglass resultants carry 65 % of ALLIE here),
+  least 10 times as much (60 % measured: the hourglass state carries 70 % of ALLIE here),
   so the test fails if the state is not restored.
 """
 
@@ -47,25 +48,31 @@ def run(xpl, deck, out, *extra):
 
 
 def deck_text(period):
-    lines = ["*HEADING", "Hourglass state across --import: C3D8R beam and two S4R plates",
+    lines = ["*HEADING", "Hourglass state across --import: two C3D8R beams and two S4R plates",
              "*NODE"]
-    # C3D8R cantilever 0.1 x 0.01 x 0.01 m, 8 x 1 x 1: node 1 + i + 9 (j + 2 k).
-    beam = lambda i, j, k: 1 + i + 9 * (j + 2 * k)  # noqa: E731
-    for k in range(2):
-        for j in range(2):
-            for i in range(9):
-                lines.append(f"{beam(i, j, k)}, {0.0125 * i:.6g}, {0.01 * j:.6g}, {0.01 * k:.6g}")
+    # C3D8R cantilevers 0.1 x 0.01 x 0.01 m, 8 x 1 x 1: node 1 + i + 9 (j + 2 k) (+ 100 for the
+    # second, 0.05 m aside).
+    beams = (0, 100)
+    beam = lambda i, j, k, b=0: 1 + b + i + 9 * (j + 2 * k)  # noqa: E731
+    for b in beams:
+        for k in range(2):
+            for j in range(2):
+                for i in range(9):
+                    lines.append(f"{beam(i, j, k, b)}, {0.0125 * i:.6g}, "
+                                 f"{0.01 * j + 0.0005 * b:.6g}, {0.01 * k:.6g}")
     # Two S4R plates 0.1 x 0.1 m, 4 x 4, at z = 0.05 and z = 0.1: node base + i + 5 j.
     plate = lambda base, i, j: base + i + 5 * j  # noqa: E731
     for base, z in ((1000, 0.05), (2000, 0.1)):
         for j in range(5):
             for i in range(5):
                 lines.append(f"{plate(base, i, j)}, {0.025 * i:.6g}, {0.025 * j:.6g}, {z:g}")
-    lines.append("*ELEMENT, TYPE=C3D8R, ELSET=BEAM")
-    for i in range(8):
-        lines.append(f"{i + 1}, {beam(i, 0, 0)}, {beam(i + 1, 0, 0)}, {beam(i + 1, 1, 0)}, "
-                     f"{beam(i, 1, 0)}, {beam(i, 0, 1)}, {beam(i + 1, 0, 1)}, "
-                     f"{beam(i + 1, 1, 1)}, {beam(i, 1, 1)}")
+    for b, name in zip(beams, ("BEAM", "BEAM_STIFF")):
+        lines.append(f"*ELEMENT, TYPE=C3D8R, ELSET={name}")
+        for i in range(8):
+            lines.append(f"{i + 1 + (8 if b else 0)}, {beam(i, 0, 0, b)}, "
+                         f"{beam(i + 1, 0, 0, b)}, {beam(i + 1, 1, 0, b)}, {beam(i, 1, 0, b)}, "
+                         f"{beam(i, 0, 1, b)}, {beam(i + 1, 0, 1, b)}, {beam(i + 1, 1, 1, b)}, "
+                         f"{beam(i, 1, 1, b)}")
     for base, name in ((1000, "PHYSICAL"), (2000, "STIFF")):
         lines.append(f"*ELEMENT, TYPE=S4R, ELSET={name}")
         for j in range(4):
@@ -73,19 +80,21 @@ def deck_text(period):
                 lines.append(f"{base + i + 4 * j}, {plate(base, i, j)}, {plate(base, i + 1, j)}, "
                              f"{plate(base, i + 1, j + 1)}, {plate(base, i, j + 1)}")
     lines.append("*NSET, NSET=ROOT")
-    lines += [str(beam(0, j, k)) for k in range(2) for j in range(2)]
+    lines += [str(beam(0, j, k, b)) for b in beams for k in range(2) for j in range(2)]
     lines += [str(plate(base, 0, j)) for base in (1000, 2000) for j in range(5)]
     lines += ["*MATERIAL, NAME=STEEL", "*DENSITY", "7850", "*ELASTIC", "2.1e11, 0.3",
               "*SOLID SECTION, ELSET=BEAM, MATERIAL=STEEL",
               "*SHELL SECTION, ELSET=PHYSICAL, MATERIAL=STEEL", "0.002, 5",
               "*SECTION CONTROLS, NAME=OLD, HOURGLASS=STIFFNESS",
+              "*SOLID SECTION, ELSET=BEAM_STIFF, MATERIAL=STEEL, CONTROLS=OLD",
               "*SHELL SECTION, ELSET=STIFF, MATERIAL=STEEL, CONTROLS=OLD", "0.002, 5",
               "*INITIAL CONDITIONS, TYPE=VELOCITY"]
-    for k in range(2):
-        for j in range(2):
-            for i in range(1, 9):
-                x = 0.0125 * i
-                lines.append(f"{beam(i, j, k)}, 3, {5.0 * (x / 0.1) ** 2:.9g}")
+    for b in beams:
+        for k in range(2):
+            for j in range(2):
+                for i in range(1, 9):
+                    x = 0.0125 * i
+                    lines.append(f"{beam(i, j, k, b)}, 3, {5.0 * (x / 0.1) ** 2:.9g}")
     for base in (1000, 2000):
         for j in range(5):
             for i in range(1, 5):
@@ -121,7 +130,8 @@ def main():
     first_h5 = run(xpl, first, out / "first")
     end_first = last_frame(first_h5)
     check("HGSTATE" in end_first, "the last frame has no HGSTATE")
-    check(end_first["HGSTATE"].shape == (8 + 32, 12), f"HGSTATE shape {end_first['HGSTATE'].shape}")
+    check(end_first["HGSTATE"].shape == (16 + 32, 12),
+          f"HGSTATE shape {end_first['HGSTATE'].shape}")
     with h5py.File(first_h5, "r") as f:
         history = f["history/step_1/energy"]
         allae, allie = history["ALLAE"][-1], history["ALLIE"][-1]

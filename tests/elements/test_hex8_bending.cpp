@@ -9,107 +9,19 @@
 #include <cstdio>
 #include <vector>
 
+#include "cantilever_fixture.hpp"
 #include "elements/hex8.hpp"
 #include "elements/hex8r.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;
+using xpl::test::Beam;
+using xpl::test::rows_of;
 
 namespace {
 
 constexpr Real E = 200e9, NU = 0.0, RHO = 7850.0;
 constexpr Real LENGTH = 0.1, DEPTH = 0.01, WIDTH = 0.01, LOAD = 1000.0;  // m, N
-
-struct Beam {
-  NodalVectors x;
-  std::vector<Index> connectivity;
-  std::vector<bool> fixed;  // per node: the clamped end x = 0
-  std::vector<Index> tip;   // nodes of x = L
-};
-
-Beam make_beam(int nx, int nz) {
-  Beam b;
-  const int px = nx + 1, pz = nz + 1;
-  auto node = [&](int i, int j, int k) { return static_cast<Index>(i + px * (j + 2 * k)); };
-  b.x.resize(px * 2 * pz, 3);
-  b.fixed.assign(static_cast<std::size_t>(px * 2 * pz), false);
-  for (int k = 0; k < pz; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < px; ++i) {
-        const Index n = node(i, j, k);
-        b.x(n, 0) = LENGTH * i / nx;
-        b.x(n, 1) = WIDTH * j;
-        b.x(n, 2) = DEPTH * k / nz;
-        b.fixed[n] = i == 0;
-        if (i == nx) b.tip.push_back(n);
-      }
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const Index c[8] = {node(i, 0, k),         node(i + 1, 0, k), node(i + 1, 1, k),
-                          node(i, 1, k),         node(i, 0, k + 1), node(i + 1, 0, k + 1),
-                          node(i + 1, 1, k + 1), node(i, 1, k + 1)};
-      b.connectivity.insert(b.connectivity.end(), c, c + 8);
-    }
-  return b;
-}
-
-/// Mean z displacement of the tip nodes under LOAD shared by them, by conjugate gradients on
-/// the free DOFs (Jacobi-preconditioned if `jacobi`) to a relative residual of 1e-10.
-template <class Block>
-Real tip_deflection(const Block& block, const Beam& b, bool jacobi = true) {
-  const Index n = b.x.rows();
-  NodalVectors f = NodalVectors::Zero(n, 3), u = NodalVectors::Zero(n, 3);
-  for (Index t : b.tip) f(t, 2) = LOAD / static_cast<Real>(b.tip.size());
-  const auto apply = [&](const NodalVectors& v) {
-    NodalVectors y = NodalVectors::Zero(n, 3);
-    block.add_stiffness_product(b.x, v, y);
-    for (Index i = 0; i < n; ++i)
-      if (b.fixed[i]) y.row(i).setZero();
-    return y;
-  };
-  NodalVectors diag = NodalVectors::Zero(n, 3);
-  for (Index i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) {
-      if (b.fixed[i]) continue;
-      if (!jacobi) {
-        diag(i, c) = 1.0;
-        continue;
-      }
-      NodalVectors e = NodalVectors::Zero(n, 3);
-      e(i, c) = 1.0;
-      diag(i, c) = apply(e)(i, c);
-    }
-  const auto precondition = [&](const NodalVectors& r) {
-    NodalVectors z = NodalVectors::Zero(n, 3);
-    for (Index i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c)
-        if (diag(i, c) > 0.0) z(i, c) = r(i, c) / diag(i, c);
-    return z;
-  };
-  NodalVectors r = f, z = precondition(r), p = z;
-  Real rz = (r.array() * z.array()).sum();
-  const Real f_norm = f.norm();
-  for (int it = 0; it < 50000 && r.norm() > 1e-10 * f_norm; ++it) {
-    const NodalVectors q = apply(p);
-    const Real alpha = rz / (p.array() * q.array()).sum();
-    u += alpha * p;
-    r -= alpha * q;
-    z = precondition(r);
-    const Real rz_new = (r.array() * z.array()).sum();
-    p = z + (rz_new / rz) * p;
-    rz = rz_new;
-  }
-  REQUIRE(r.norm() <= 1e-10 * f_norm);
-  Real sum = 0.0;
-  for (Index t : b.tip) sum += u(t, 2);
-  return sum / static_cast<Real>(b.tip.size());
-}
-
-std::vector<Index> rows_of(const Beam& b) {
-  std::vector<Index> rows(b.connectivity.size() / 8);
-  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<Index>(i);
-  return rows;
-}
 
 }  // namespace
 
@@ -126,13 +38,13 @@ TEST_CASE("c3d8: cantilever bending against beam theory, beside C3D8R",
   Real c3d8_coarse = 0.0, c3d8_fine = 0.0, c3d8r_fine = 0.0;
   for (auto [nx, nz] :
        {std::pair{10, 1}, std::pair{20, 1}, std::pair{40, 1}, std::pair{10, 4}, std::pair{40, 4}}) {
-    const Beam b = make_beam(nx, nz);
+    const Beam b = test::make_beam(nx, nz, LENGTH, WIDTH, DEPTH);
     const std::vector<Index> rows = rows_of(b);
     const std::vector<HexMaterial> materials(rows.size(), material);
     const Hex8Block full(rows, b.connectivity, materials, b.x.rows());
     const Hex8rBlock reduced(rows, b.connectivity, materials, b.x.rows());
-    const Real ratio_full = tip_deflection(full, b) / beam;
-    const Real ratio_reduced = tip_deflection(reduced, b) / beam;
+    const Real ratio_full = test::tip_deflection(full, b, LOAD) / beam;
+    const Real ratio_reduced = test::tip_deflection(reduced, b, LOAD) / beam;
     std::printf("| %d x %d | %.3f | %.3f |\n", nx, nz, ratio_full, ratio_reduced);
     if (nx == 10 && nz == 1) c3d8_coarse = ratio_full;
     if (nx == 40 && nz == 4) {
@@ -191,9 +103,10 @@ TEST_CASE("c3d8: nearly incompressible block under a punch: no volumetric lockin
   for (int v = 0; v < 2; ++v) {
     const std::vector<HexMaterial> materials(
         rows.size(), HexMaterial{RHO, E, nus[v], HourglassForm::Stiffness, 1.0});
-    result[v][0] = tip_deflection(Hex8Block(rows, b.connectivity, materials, b.x.rows()), b, false);
-    result[v][1] =
-        tip_deflection(Hex8rBlock(rows, b.connectivity, materials, b.x.rows()), b, false);
+    result[v][0] = test::tip_deflection(Hex8Block(rows, b.connectivity, materials, b.x.rows()), b,
+                                        LOAD, false);
+    result[v][1] = test::tip_deflection(Hex8rBlock(rows, b.connectivity, materials, b.x.rows()), b,
+                                        LOAD, false);
     std::printf("punch, nu = %.3f: C3D8 %.6g m, C3D8R %.6g m, ratio %.4f\n", nus[v], result[v][0],
                 result[v][1], result[v][0] / result[v][1]);
   }

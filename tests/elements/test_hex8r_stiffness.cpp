@@ -57,8 +57,9 @@ TEST_CASE("hex8r: the stiffness product is the derivative of the internal force"
   const test::HexBlockMesh mesh = test::make_block(3, H, 0.15);
   const Index n = static_cast<Index>(mesh.coordinates.rows());
   const NodalVectors u = random_field(n, 11, 1.0);
-  for (HourglassForm form : {HourglassForm::Stiffness, HourglassForm::Viscous}) {
-    INFO("hourglass form " << (form == HourglassForm::Stiffness ? "stiffness" : "viscous"));
+  for (HourglassForm form :
+       {HourglassForm::Stiffness, HourglassForm::Viscous, HourglassForm::Enhanced}) {
+    INFO("hourglass form " << static_cast<int>(form));
     const Hex8rBlock block = make_block(mesh, form);
     NodalVectors ku = NodalVectors::Zero(n, 3);
     block.add_stiffness_product(mesh.coordinates, u, ku);
@@ -74,7 +75,9 @@ TEST_CASE("hex8r: the stiffness product is symmetric and positive semi-definite"
           "[elements][hex8r]") {
   const test::HexBlockMesh mesh = test::make_block(2, H, 0.2);
   const Index n = static_cast<Index>(mesh.coordinates.rows());
-  const Hex8rBlock block = make_block(mesh, HourglassForm::Stiffness);
+  const HourglassForm form = GENERATE(HourglassForm::Stiffness, HourglassForm::Enhanced);
+  INFO("hourglass form " << static_cast<int>(form));
+  const Hex8rBlock block = make_block(mesh, form);
   const NodalVectors u = random_field(n, 3, 1e-6), v = random_field(n, 5, 1e-6);
   NodalVectors ku = NodalVectors::Zero(n, 3), kv = NodalVectors::Zero(n, 3);
   block.add_stiffness_product(mesh.coordinates, u, ku);

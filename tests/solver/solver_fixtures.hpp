@@ -3,6 +3,7 @@
 // everything in memory, for solver tests.
 
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -69,6 +70,8 @@ struct BoxSpec {
   Real scale_factor = 1.0;
   bool fix_x0 = true;
   ElementType type = ElementType::C3D8R;  ///< C3D8R or C3D8
+  /// `*SECTION CONTROLS, HOURGLASS=` of the box, or none (the default form).
+  std::optional<HourglassType> hourglass;
 };
 
 inline Model make_box(const BoxSpec& spec) {
@@ -122,6 +125,14 @@ inline Model make_box(const BoxSpec& spec) {
   for (Index e = 0; e < m.element_count(); ++e) all.members.push_back(e);
   m.element_sets.push_back(all);
   m.solid_sections.push_back({0, 0, NO_INDEX, {}});
+  if (spec.hourglass) {
+    SectionControls controls;
+    controls.name = "BOX";
+    controls.hourglass = *spec.hourglass;
+    controls.hourglass_given = true;
+    m.section_controls.push_back(controls);
+    m.solid_sections[0].controls = 0;
+  }
   m.node_sets = {fixed, free_end};
 
   m.initial_velocity = NodalVectors::Zero(m.node_count(), 3);
