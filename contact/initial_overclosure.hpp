@@ -135,7 +135,7 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
                                                const OverclosureSettings& settings);
 
 /// Facet size around each slave slot of `engine` on `position`: the mean square root of the
-/// areas of the faces around the node, m.
+/// areas of the faces around the node, m; 0 for a point node (ContactDomain::slave_point).
 std::vector<Real> slave_facet_sizes(const ContactEngine& engine, const NodalVectors& position);
 
 /// Carries offsets from the engine of an earlier step to a rebuilt one (a contact domain
