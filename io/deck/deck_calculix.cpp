@@ -90,6 +90,8 @@ void resolve_pair_clearances(DeckState& deck) {
                       "one gap (on shells xpl's clearance sign means a side of the shell)");
       continue;
     }
+    // A deck without a step has been refused already (nothing to carry the assignment).
+    if (deck.model.steps.empty()) continue;
     ContactClearance clearance;
     clearance.name = "*CLEARANCE " + pending.slave + "/" + pending.master;
     clearance.adjust = false;
