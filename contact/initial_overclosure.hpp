@@ -47,7 +47,9 @@
 /// footprint meet its side faces there (on the rim with matching meshes, within ~1 % of the
 /// facet otherwise); an edge through a face's interior, or through an edge between two faces
 /// that continue the surface, is still reported. A dedicated broad phase with the longest
-/// slave edge as margin finds every face an edge can meet; its cost is timed.
+/// slave edge as margin finds every face an edge can meet; its cost is timed. Point nodes
+/// (node-based surfaces, SPEC C13) have no facet edges and are not tested; for them the facet
+/// size of steps 1–2 (tolerance, 15 % limit) is that of the master face they touch.
 
 #include <cstdint>
 #include <span>
