@@ -128,6 +128,8 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
   for (Index s = 0; s < n_slave; ++s)
     if (m_slaves.point(s)) {
       m_slave_shell[s] = 0;
+      if (!spec.rigid_node.empty() && spec.rigid_node[m_slaves.nodes()[s]] != 0)
+        m_slave_rigid[s] = 1;
       ++m_point_count;
     }
 

@@ -62,6 +62,9 @@ struct DomainSpec {
   Index default_interaction = NO_INDEX;
   /// Rigid body of each element (n_elements), NO_INDEX for deformable ones; empty: none.
   std::vector<Index> element_body;
+  /// Whether each node belongs to a rigid body (n_nodes); empty: none. Read for point nodes
+  /// only (a face node is rigid when one of its faces is).
+  std::vector<char> rigid_node;
 };
 
 /// The faces, slave nodes and pairing rule of one step.

@@ -40,6 +40,14 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
 
   contact::DomainSpec spec = domain_spec(has_general ? general : nullptr, pairs);
   spec.element_body = rigid.element_body();
+  // Rigid nodes of node-based surfaces (point nodes) touch deformable faces only.
+  const bool node_based =
+      std::any_of(spec.surfaces.begin(), spec.surfaces.end(),
+                  [](const contact::DomainSurface& d) { return !d.nodes.empty(); });
+  if (node_based && !spec.element_body.empty()) {
+    spec.rigid_node.assign(static_cast<std::size_t>(m_model.node_count()), 0);
+    for (Index i = 0; i < m_model.node_count(); ++i) spec.rigid_node[i] = rigid.is_rigid_node(i);
+  }
   std::vector<contact::InteractionLaw> laws;
   for (const SurfaceInteraction& i : m_model.surface_interactions)
     laws.push_back({i.friction, i.linear ? i.linear_slope : 0.0});

@@ -86,6 +86,17 @@ TEST_CASE("point nodes are slave nodes with their own area and no normal", "[con
   CHECK(domain.weight(s, 0, pair) == 1.0);
   CHECK(pair == 0);
 
+  // A rigid point node on a rigid body's face: two rigid bodies never touch.
+  DomainSpec rigid = point_spec(mesh, 1, {point}, {});
+  rigid.element_body.assign(mesh.kinds.size(), 0);
+  const ContactDomain deformable_point(rigid, mesh.topology(), mesh.coordinates);
+  CHECK(deformable_point.weight(deformable_point.slaves().slot(point), 0, pair) == 1.0);
+  rigid.rigid_node.assign(static_cast<std::size_t>(mesh.node_count()), 0);
+  rigid.rigid_node[point] = 1;
+  const ContactDomain rigid_point(rigid, mesh.topology(), mesh.coordinates);
+  CHECK(rigid_point.slave_rigid(rigid_point.slaves().slot(point)));
+  CHECK(rigid_point.weight(rigid_point.slaves().slot(point), 0, pair) == 0.0);
+
   const ContactDomain with_area(point_spec(mesh, 1, {point}, {2.5}), mesh.topology(),
                                 mesh.coordinates);
   CHECK(with_area.slaves().areas()[with_area.slaves().slot(point)] == 2.5);
