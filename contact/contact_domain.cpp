@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 #include "contact/contact_options.hpp"
 
@@ -53,13 +54,33 @@ bool in(std::uint64_t mask, Index surface) {
   return (mask >> surface) & 1u;
 }
 
+/// The nodes of the node-based surfaces, with their areas (POINT_NODE_DEFAULT_AREA where none
+/// is given): SlaveNodes keeps those on no face as point nodes.
+std::pair<std::vector<Index>, std::vector<Real>> point_nodes(const DomainSpec& spec) {
+  std::pair<std::vector<Index>, std::vector<Real>> out;
+  for (const DomainSurface& surface : spec.surfaces)
+    for (std::size_t k = 0; k < surface.nodes.size(); ++k) {
+      const Real area = k < surface.node_areas.size() ? surface.node_areas[k] : 0.0;
+      out.first.push_back(surface.nodes[k]);
+      out.second.push_back(area > 0.0 ? area : POINT_NODE_DEFAULT_AREA);
+    }
+  return out;
+}
+
+/// SlaveNodes of the faces and of the point nodes of `spec`.
+SlaveNodes make_slaves(const DomainSpec& spec, const std::vector<ContactFace>& faces,
+                       Index node_count) {
+  const auto [nodes, areas] = point_nodes(spec);
+  return SlaveNodes(faces, node_count, nodes, areas);
+}
+
 }  // namespace
 
 ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topology,
                              const NodalVectors& position)
     : m_face_mask(),
       m_faces(collect_faces(spec, topology, m_face_mask)),
-      m_slaves(m_faces, static_cast<Index>(position.rows())),
+      m_slaves(make_slaves(spec, m_faces, static_cast<Index>(position.rows()))),
       m_inclusions(spec.inclusions),
       m_exclusions(spec.exclusions),
       m_interactions(spec.interactions),
@@ -100,6 +121,16 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
       m_slave_mask[s] |= m_face_mask[f];
       if (m_face_rigid[f]) m_slave_rigid[s] = 1;
       if (!m_faces[f].shell) m_slave_shell[s] = 0;
+    }
+  // Nodes of node-based surfaces: the surface's bit; a point node is not double sided.
+  for (std::size_t k = 0; k < spec.surfaces.size(); ++k)
+    for (Index n : spec.surfaces[k].nodes) m_slave_mask[m_slaves.slot(n)] |= std::uint64_t{1} << k;
+  for (Index s = 0; s < n_slave; ++s)
+    if (m_slaves.point(s)) {
+      m_slave_shell[s] = 0;
+      if (!spec.rigid_node.empty() && spec.rigid_node[m_slaves.nodes()[s]] != 0)
+        m_slave_rigid[s] = 1;
+      ++m_point_count;
     }
 
   // Free shell edges: edges of exactly one shell element (each element counted once, through

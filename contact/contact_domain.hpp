@@ -7,8 +7,8 @@
 /// faces, or the faces of a `*SURFACE`), included pairs (balanced, or one-sided slave →
 /// master), excluded pairs and interaction assignments. Here that becomes one list of faces,
 /// each tagged with the set of contact surfaces it belongs to (a bit mask), the slave nodes
-/// (every node of a face) tagged the same way, and a rule that answers, for a slave node and
-/// a face, "may they touch, and with which weight".
+/// (every node of a face, and the nodes of node-based surfaces) tagged the same way, and a rule
+/// that answers, for a slave node and a face, "may they touch, and with which weight".
 ///
 /// Weights: in a balanced pair both surfaces act as slave against the other, so every touch
 /// is seen twice (node of A on a face of B and node of B on a face of A) and each view
@@ -36,6 +36,11 @@ struct DomainSurface {
   std::string name;            ///< for messages and history names
   bool all_exterior = false;   ///< every exterior solid face and both sides of every shell
   std::vector<FaceRef> faces;  ///< the faces of an element-based `*SURFACE`
+  /// The nodes of a node-based `*SURFACE, TYPE=NODE` (SPEC C13): slave nodes only, no faces.
+  /// A pair naming it must be one-sided with it first (the caller sees to that).
+  std::vector<Index> nodes{};
+  /// Contact area of each of `nodes` (parallel, m²); NaN or empty: POINT_NODE_DEFAULT_AREA.
+  std::vector<Real> node_areas{};
 };
 
 /// A pair of surfaces (indices into DomainSpec::surfaces).
@@ -57,6 +62,9 @@ struct DomainSpec {
   Index default_interaction = NO_INDEX;
   /// Rigid body of each element (n_elements), NO_INDEX for deformable ones; empty: none.
   std::vector<Index> element_body;
+  /// Whether each node belongs to a rigid body (n_nodes); empty: none. Read for point nodes
+  /// only (a face node is rigid when one of its faces is).
+  std::vector<char> rigid_node;
 };
 
 /// The faces, slave nodes and pairing rule of one step.
@@ -73,8 +81,15 @@ class ContactDomain {
   SlaveNodes& slaves() { return m_slaves; }
   /// Whether slave slot s belongs to a rigid body (it touches deformable faces only).
   bool slave_rigid(Index s) const { return m_slave_rigid[s] != 0; }
-  /// Whether every face around slave slot s is a shell side (a double-sided node).
+  /// Whether every face around slave slot s is a shell side (a double-sided node); false for
+  /// a point node.
   bool slave_double_sided(Index s) const { return m_slave_shell[s] != 0; }
+  /// Whether slave slot s is a point node: a node of a node-based surface on no face of the
+  /// domain. It has no normal of its own, so it may touch a face of either orientation (as a
+  /// free shell edge may), and it has no facet edges (no crossed-surface check, SPEC C5).
+  bool slave_point(Index s) const { return m_slaves.point(s); }
+  /// Number of point nodes (slave_point).
+  Index point_count() const { return m_point_count; }
   /// Whether slave slot s lies on a free edge of a shell (an edge of one shell element only):
   /// such a node can touch a face edge-on (a tube end on a plate).
   bool slave_on_free_edge(Index s) const { return m_slave_free_edge[s] != 0; }
@@ -124,6 +139,7 @@ class ContactDomain {
   std::vector<std::pair<DomainPair, Index>> m_interactions;
   Index m_default_interaction = NO_INDEX;
   bool m_everything = false;  ///< one balanced ALL EXTERIOR self pair, nothing excluded
+  Index m_point_count = 0;
 };
 
 }  // namespace xpl::contact

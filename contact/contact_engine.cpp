@@ -114,6 +114,7 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   v.normal = m_domain.slaves().normal(s);
   v.double_sided = m_domain.slave_double_sided(s);
   v.free_edge = m_domain.slave_on_free_edge(s);
+  v.point_node = m_domain.slave_point(s);
   v.half_t = v.double_sided ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
   if (v.double_sided) {
     // The nodes of its own elements, once per node rather than once per candidate face.
@@ -176,9 +177,10 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   const Real n_len = std::sqrt(n_f.dot(n_f));
   if (!(n_len > 0.0)) return false;
   // A shell node is double sided (either orientation), and one on a free edge may touch a
-  // face edge-on (a tube end on a plate).
+  // face edge-on (a tube end on a plate). A point node has no orientation: any face.
   const Real cosine = v.normal.dot(n_f) / n_len;
-  if (double_sided ? !v.free_edge && std::abs(cosine) < OPPOSING_COSINE : cosine > -OPPOSING_COSINE)
+  if (!v.point_node && (double_sided ? !v.free_edge && std::abs(cosine) < OPPOSING_COSINE
+                                     : cosine > -OPPOSING_COSINE))
     return false;
   const ClosestPoint cp = closest_point_on_quad(corner, v.point);
   const Real half_t = v.half_t;

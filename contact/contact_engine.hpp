@@ -197,6 +197,7 @@ class ContactEngine {
     Vec3 normal = Vec3::Zero();
     bool double_sided = false;
     bool free_edge = false;
+    bool point_node = false;  ///< a point node (ContactDomain::slave_point): any face orientation
     Real half_t = 0.0;
     /// A positive permanent offset (a clearance) lets the node that much deeper.
     Real allowance = 0.0;

@@ -141,15 +141,34 @@ Real quad_area(const Vec3 corner[4]) {
   return 0.5 * length(cross_diagonals(corner));
 }
 
-SlaveNodes::SlaveNodes(std::span<const ContactFace> faces, Index node_count)
+SlaveNodes::SlaveNodes(std::span<const ContactFace> faces, Index node_count,
+                       std::span<const Index> point_nodes, std::span<const Real> point_areas)
     : m_slot(static_cast<std::size_t>(node_count), NO_INDEX) {
+  if (point_areas.size() != point_nodes.size())
+    throw std::invalid_argument("SlaveNodes: one area per point node expected");
   for (const ContactFace& f : faces)
     for (Index n : f.nodes) m_slot[n] = 0;
+  // Point nodes (on no face) are marked 1 with their area kept per node until the slots exist.
+  std::vector<Real> area_of;
+  if (!point_nodes.empty()) area_of.assign(static_cast<std::size_t>(node_count), 0.0);
+  for (std::size_t k = 0; k < point_nodes.size(); ++k) {
+    const Index n = point_nodes[k];
+    if (n < 0 || n >= node_count)
+      throw std::invalid_argument("SlaveNodes: point node out of range");
+    if (m_slot[n] == 0) continue;  // on a face: a slave node with its faces' area
+    m_slot[n] = 1;
+    area_of[n] = point_areas[k];
+  }
   for (Index n = 0; n < node_count; ++n)
-    if (m_slot[n] == 0) {
+    if (m_slot[n] == 0 || m_slot[n] == 1) {
+      if (m_slot[n] == 1) {
+        m_point_area.resize(m_nodes.size(), 0.0);
+        m_point_area.push_back(area_of[n]);
+      }
       m_slot[n] = static_cast<Index>(m_nodes.size());
       m_nodes.push_back(n);
     }
+  if (!m_point_area.empty()) m_point_area.resize(m_nodes.size(), 0.0);
   // Node -> faces, in face order; a shell's second side is skipped when its first side is
   // already listed for this node (one area per shell element). A collapsed face listing a
   // node twice also counts once per corner, which keeps the sum of areas exact.
@@ -174,6 +193,8 @@ SlaveNodes::SlaveNodes(std::span<const ContactFace> faces, Index node_count)
   m_face_area.assign(faces.size(), 0.0);
   m_face_normal.assign(3 * faces.size(), 0.0);
   m_areas.assign(m_nodes.size(), 0.0);
+  for (std::size_t s = 0; s < m_point_area.size(); ++s)
+    if (m_point_area[s] > 0.0) m_areas[s] = m_point_area[s];
   m_normals.assign(3 * m_nodes.size(), 0.0);
 }
 
@@ -209,7 +230,7 @@ void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVec
       a += m_face_area[f];
       n += Vec3(m_face_normal[3 * f], m_face_normal[3 * f + 1], m_face_normal[3 * f + 2]);
     }
-    m_areas[s] = 0.25 * a;
+    m_areas[s] = m_point_area.empty() || m_point_area[s] == 0.0 ? 0.25 * a : m_point_area[s];
     const Real n_len = length(n);
     if (n_len > 0.0) n /= n_len;
     for (int d = 0; d < 3; ++d) m_normals[3 * s + d] = n[d];

@@ -117,8 +117,12 @@ Real quad_area(const Vec3 corner[4]);
 /// node through a node → face list (no races, no allocation after construction).
 class SlaveNodes {
  public:
-  /// Collects the nodes of `faces` (ascending node index) and the node → face lists.
-  SlaveNodes(std::span<const ContactFace> faces, Index node_count);
+  /// Collects the nodes of `faces` and the `point_nodes` (nodes of node-based surfaces, SPEC
+  /// C13) that lie on no face, ascending node index, and the node → face lists. A point node
+  /// has no face: its area is fixed, `point_areas` (parallel to `point_nodes`, m², > 0), and
+  /// its normal is zero. A node listed twice keeps its last area.
+  SlaveNodes(std::span<const ContactFace> faces, Index node_count,
+             std::span<const Index> point_nodes = {}, std::span<const Real> point_areas = {});
 
   /// Tributary areas and node normals on the configuration `position` (n_nodes × 3, m) of
   /// the mid-surface.
@@ -133,7 +137,10 @@ class SlaveNodes {
 
   /// Slave node indices, ascending (n_slave).
   const std::vector<Index>& nodes() const { return m_nodes; }
-  /// Tributary area of each slave node (n_slave), m²; zero until update_areas.
+  /// Whether slave slot s is a point node (of a node-based surface only: no face around it).
+  bool point(Index s) const { return m_face_offsets[s] == m_face_offsets[s + 1]; }
+  /// Tributary area of each slave node (n_slave), m²; zero until update_areas (a point node:
+  /// its fixed area from construction on).
   const std::vector<Real>& areas() const { return m_areas; }
   /// Unit normal of slave slot s: the area-weighted mean of the normals of the faces around
   /// it (outward for solids; for a shell, the normal of one side); zero until update_areas.
@@ -158,6 +165,8 @@ class SlaveNodes {
   std::vector<Real> m_face_normal;    // (n_faces × 3) scratch: area vectors
   std::vector<Real> m_areas;
   std::vector<Real> m_normals;  // (n_slave × 3)
+  /// Fixed areas of the point nodes (n_slave, m², 0 for face nodes); empty when none.
+  std::vector<Real> m_point_area;
 };
 
 }  // namespace xpl::contact

@@ -71,6 +71,12 @@ inline constexpr Real FALLBACK_MARGIN = 1e-3;
 /// face tilted by a fold of a few tens of degrees still is.
 inline constexpr Real OPPOSING_COSINE = 0.2;
 
+/// Contact area (m², model units) of a node of a node-based surface (SPEC C13) whose `*SURFACE,
+/// TYPE=NODE` data line gives none: 1, the unit area Abaqus takes for a blank area field. It
+/// enters only what needs an area (a LINEAR pressure–overclosure slope, the CPRESS output);
+/// the default penalty is set by masses (penalty.hpp) and does not see it.
+inline constexpr Real POINT_NODE_DEFAULT_AREA = 1.0;
+
 /// Deepest admissible penetration behind a solid face as a fraction of the depth of the
 /// element behind it (the distance between the face centre and the opposite face centre), and
 /// behind a shell face as a fraction of its mean thickness: ½, so a node on the outer skin of

@@ -53,17 +53,27 @@ struct Overclosure {
   std::vector<OffsetReason> reason =
       std::vector<OffsetReason>(static_cast<std::size_t>(n_slave), OffsetReason::Conflict);
 
-  /// Penetration (m) under which slave slot s counts as on the surface.
-  Real tolerance(Index s) const { return OVERCLOSURE_TOLERANCE * size[s]; }
+  /// Facet size (m) next to slave slot s when it touches face f: the mean size of the faces
+  /// around it, or for a point node (no face of its own, SPEC C13) the size of f on the
+  /// current geometry.
+  Real facet(Index s, Index f) const {
+    if (!slaves.point(s)) return size[s];
+    Vec3 corner[4];
+    face_corners(faces[f], position, {}, corner);
+    return std::sqrt(quad_area(corner));
+  }
+  /// Penetration (m) under which slave slot s touching face f counts as on the surface.
+  Real tolerance(Index s, Index f) const { return OVERCLOSURE_TOLERANCE * facet(s, f); }
   /// Deepest penetration of slot s below face f that is adjusted, m.
   Real limit(Index s, Index f) const {
-    return faces[f].shell ? std::numeric_limits<Real>::max() : settings.depth_fraction * size[s];
+    return faces[f].shell ? std::numeric_limits<Real>::max()
+                          : settings.depth_fraction * facet(s, f);
   }
   /// Whether slot s (not excluded) penetrates its nearest face of the last search.
   bool penetrates(Index s) const {
     if (!settings.exclude.empty() && settings.exclude[s] != 0) return false;
     const SlaveTouch& t = engine.touch(s);
-    return t.face != NO_INDEX && t.gap < -tolerance(s);
+    return t.face != NO_INDEX && t.gap < -tolerance(s, t.face);
   }
 
   void classify(OverclosureReport& report);
@@ -92,7 +102,7 @@ void Overclosure::classify(OverclosureReport& report) {
       continue;
     }
     const std::vector<SlaveTouch> all =
-        engine.penetrated_faces(s, position, node_thickness, tolerance(s));
+        engine.penetrated_faces(s, position, node_thickness, tolerance(s, t.face));
     bool pinched = false;
     for (std::size_t i = 0; i < all.size() && !pinched; ++i)
       for (std::size_t j = i + 1; j < all.size() && !pinched; ++j)

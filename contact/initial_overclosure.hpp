@@ -47,7 +47,9 @@
 /// footprint meet its side faces there (on the rim with matching meshes, within ~1 % of the
 /// facet otherwise); an edge through a face's interior, or through an edge between two faces
 /// that continue the surface, is still reported. A dedicated broad phase with the longest
-/// slave edge as margin finds every face an edge can meet; its cost is timed.
+/// slave edge as margin finds every face an edge can meet; its cost is timed. Point nodes
+/// (node-based surfaces, SPEC C13) have no facet edges and are not tested; for them the facet
+/// size of steps 1–2 (tolerance, 15 % limit) is that of the master face they touch.
 
 #include <cstdint>
 #include <span>
@@ -135,7 +137,7 @@ OverclosureReport resolve_initial_overclosures(ContactEngine& engine,
                                                const OverclosureSettings& settings);
 
 /// Facet size around each slave slot of `engine` on `position`: the mean square root of the
-/// areas of the faces around the node, m.
+/// areas of the faces around the node, m; 0 for a point node (ContactDomain::slave_point).
 std::vector<Real> slave_facet_sizes(const ContactEngine& engine, const NodalVectors& position);
 
 /// Carries offsets from the engine of an earlier step to a rebuilt one (a contact domain

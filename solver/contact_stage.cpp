@@ -43,6 +43,14 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
 
   contact::DomainSpec spec = domain_spec(has_general ? general : nullptr, pairs);
   spec.element_body = rigid.element_body();
+  // Rigid nodes of node-based surfaces (point nodes) touch deformable faces only.
+  const bool node_based =
+      std::any_of(spec.surfaces.begin(), spec.surfaces.end(),
+                  [](const contact::DomainSurface& d) { return !d.nodes.empty(); });
+  if (node_based && !spec.element_body.empty()) {
+    spec.rigid_node.assign(static_cast<std::size_t>(m_model.node_count()), 0);
+    for (Index i = 0; i < m_model.node_count(); ++i) spec.rigid_node[i] = rigid.is_rigid_node(i);
+  }
   std::vector<contact::InteractionLaw> laws;
   for (const SurfaceInteraction& i : m_model.surface_interactions)
     laws.push_back({i.friction, i.linear ? i.linear_slope : 0.0});
@@ -79,13 +87,20 @@ contact::DomainSpec ContactStage::domain_spec(const GeneralContact* general,
     Index& k = domain_surface[model_surface];
     if (k == NO_INDEX) {
       k = static_cast<Index>(spec.surfaces.size());
+      const Surface& from = m_model.surfaces[model_surface];
       contact::DomainSurface d;
-      d.name = m_model.surfaces[model_surface].name;
-      for (const ElementFace& f : m_model.surfaces[model_surface].faces)
-        d.faces.push_back({f.element, f.face});
+      d.name = from.name;
+      for (const ElementFace& f : from.faces) d.faces.push_back({f.element, f.face});
+      d.nodes = from.nodes;
+      d.node_areas = from.node_areas;
       spec.surfaces.push_back(std::move(d));
     }
     return k;
+  };
+  // A node-based surface is slave only (SPEC C13; the deck reader refuses it as a master): a
+  // pair with one is one-sided, the node-based surface first, whatever the deck's order.
+  auto node_based = [&](Index model_surface) {
+    return model_surface != NO_INDEX && m_model.surfaces[model_surface].type == Surface::Type::Node;
   };
   auto name_of = [&](Index a, Index b) {
     return spec.surfaces[a].name + (a == b ? "" : "-" + spec.surfaces[b].name);
@@ -98,7 +113,12 @@ contact::DomainSpec ContactStage::domain_spec(const GeneralContact* general,
     }
     for (const SurfacePair& p : general->inclusions) {
       const Index a = surface(p.first), b = surface(p.second);
-      spec.inclusions.push_back({a, b, false});
+      if (node_based(p.first))
+        spec.inclusions.push_back({a, b, true});
+      else if (node_based(p.second))
+        spec.inclusions.push_back({b, a, true});
+      else
+        spec.inclusions.push_back({a, b, false});
       m_pair_names.push_back(name_of(a, b));
     }
     for (const SurfacePair& p : general->exclusions)
@@ -323,11 +343,14 @@ void ContactStage::fill_output(State& state) const {
     const contact::Vec3 f = m_engine->nodal_force(s);
     if (f.dot(f) == 0.0) continue;
     const Index i = slaves.nodes()[s];
-    const contact::Vec3 normal = slaves.normal(s);
+    // A point node (node-based surface) has no normal of its own: the contact normal of its
+    // touch, which points out of the master face (read as for a double-sided node).
+    const bool point = m_engine->domain().slave_point(s);
+    const contact::Vec3 normal = point ? m_engine->constraints()[s].normal : slaves.normal(s);
     const Real along = f.dot(normal);
     const contact::Vec3 fn = along * normal, ft = f - fn;
     const Real area = slaves.areas()[s];
-    const bool shell_node = m_engine->domain().slave_double_sided(s);
+    const bool shell_node = point || m_engine->domain().slave_double_sided(s);
     const Real pressure = shell_node ? std::abs(along) : -along;
     if (area > 0.0) state.contact_pressure[i] = pressure / area;
     const auto own = m_engine->output_status(s);

@@ -156,7 +156,10 @@ struct Surface {
   std::string name;  ///< upper-case name
   Type type = Type::Element;
   std::vector<ElementFace> faces;  ///< TYPE=ELEMENT
-  std::vector<Index> nodes;        ///< TYPE=NODE
+  std::vector<Index> nodes;        ///< TYPE=NODE, ascending, each once
+  /// TYPE=NODE: the area (or weight) the data line gives each node (parallel to `nodes`), m²;
+  /// NaN where the line gives none (the contact domain then takes its default, SPEC C13).
+  std::vector<Real> node_areas;
   SourceLocation where;
 };
 

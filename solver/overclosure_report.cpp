@@ -148,6 +148,12 @@ void report_overclosures(const contact::OverclosureReport& report,
     sink.message(Severity::Warning, std::to_string(report.crossed.size()) +
                                         " facet edges cross a master surface; the first " +
                                         std::to_string(MAX_CROSSED_LISTED) + " are listed above");
+  // Node-based surfaces have no facet edges, so nothing tells which side they came from (C5).
+  if (diagnostics.detect_crossed_surfaces && domain.point_count() > 0)
+    sink.message(Severity::Info,
+                 "crossed surfaces: " + std::to_string(domain.point_count()) +
+                     " slave node(s) of node-based surfaces are not checked (a node-based surface "
+                     "has no facet edges to tell which side of a master surface it came from)");
   for (Index e : report.refused_elements)
     sink.message(Severity::Warning,
                  "initial overclosure: moving the nodes of element " +

@@ -21,6 +21,12 @@
   import_source    a block moving into another without contact (the penetrating last frame
                    is imported by import_target)
   import_target    the same mesh with general contact, run with --import import_source.h5
+  node_block_elem  a C3D8R cube 2 % into a fixed base and moving down at 1 m/s, its bottom
+                   face the slave of a *CONTACT PAIR (element-based reference, SPEC C13)
+  node_block_nodes the same with the cube's four bottom nodes as a node-based slave surface
+  node_block_general  the same node-based surface in general contact (*CONTACT INCLUSIONS)
+  node_masses      MASS-element nodes (a node-based surface) dropped on an S4R plate, one of
+                   them starting inside the plate's thickness: adjusted onto its face
 
 Units m, kg, s, N, Pa; element size 1 mm. Ids per body in ranges of 100000.
 Standard library only:  python3 examples/overclosure/make_overclosure_decks.py [OUT_DIR] [--only NAME]
@@ -290,6 +296,89 @@ def import_target():
     return d
 
 
+NODE_BLOCK_SPEED = 1.0  # m/s
+NODE_BLOCK_OVERLAP = 0.02  # of H: within the automatic limit (15 %)
+
+
+def node_block(kind):
+    """A 1 mm C3D8R cube over the middle of a fixed 4 x 4 x 1 base, its bottom 2 % of H inside the
+    base's top and moving down; the cube's bottom as the slave: `elem` its face S1 in a *CONTACT
+    PAIR, `nodes` its four bottom nodes as a node-based surface in a *CONTACT PAIR, `general`
+    that node-based surface in *CONTACT INCLUSIONS. The slave nodes are the same four in all
+    three and the base is the only master: the contact force histories agree to round-off."""
+    slave = {"elem": "element-based face S1", "nodes": "node-based surface of its four bottom nodes",
+             "general": "node-based surface of its four bottom nodes (general contact)"}[kind]
+    notes = [f"A 1 mm C3D8R cube over a fixed 4 x 4 x 1 mm base, its bottom {NODE_BLOCK_OVERLAP * 100:g} % of the",
+             f"element size inside the base's top, moving down at {NODE_BLOCK_SPEED} m/s; slave: the cube's {slave}.",
+             "The four slave nodes are adjusted onto the base (C2), then the cube hits and bounces; the",
+             "node_block_* decks give the same contact force history (SPEC C13)."]
+    d = Deck(f"Node-based slave surface: cube on a base ({kind})", notes)
+    hex_block(d, 1, "BASE", (0.0, 0.0, 0.0), (4, 4, 1), sets=("z0",))
+    hex_block(d, 2, "CUBE", (1.5 * H, 1.5 * H, H - NODE_BLOCK_OVERLAP * H), (1, 1, 1), sets=("z0", "all"))
+    material(d, solids=("BASE", "CUBE"))
+    d.add("*SURFACE, NAME=BASE_TOP", "BASE, S2")
+    if kind == "elem":
+        d.add("*SURFACE, NAME=CUBE_BOTTOM", "CUBE, S1")
+    else:
+        d.add("*SURFACE, NAME=CUBE_BOTTOM, TYPE=NODE", "CUBE_Z0")
+    d.add("*SURFACE INTERACTION, NAME=SMOOTH")
+    if kind != "general":
+        d.add("*CONTACT PAIR, INTERACTION=SMOOTH", "CUBE_BOTTOM, BASE_TOP")
+    d.add("*INITIAL CONDITIONS, TYPE=VELOCITY", f"CUBE_ALL, 3, {-NODE_BLOCK_SPEED}")
+    d.add("*BOUNDARY", "BASE_Z0, 1, 3")
+    d.add("*STEP, NAME=HIT", "*DYNAMIC, EXPLICIT", f", {fmt(STEP_1000 / 3)}")
+    if kind == "general":
+        d.add("*CONTACT", "*CONTACT INCLUSIONS", "CUBE_BOTTOM, BASE_TOP",
+              "*CONTACT PROPERTY ASSIGNMENT", ", , SMOOTH")
+    d.add("*OUTPUT, FIELD, NUMBER INTERVAL=4", "*NODE OUTPUT", "U, V",
+          "*CONTACT OUTPUT", "CSTRESS, CSTATUS, CFORCE")
+    d.add(f"*OUTPUT, HISTORY, TIME INTERVAL={fmt(STEP_1000 / 300)}",
+          "*ENERGY OUTPUT")
+    d.add("*END STEP")
+    return d
+
+
+MASS_DROP = 0.02  # kg per point mass
+PLATE_T = 1.0e-3  # m
+
+
+def node_masses():
+    notes = ["Four MASS elements (0.02 kg each) over a 4 x 4 mm S4R plate (t = 1 mm, edges fixed), their nodes a",
+             "node-based surface DROPS in general contact with all exterior faces (inclusion ', DROPS'). Three",
+             "start 0.02 mm above the plate's upper face (z = 0.52 mm) and DIPPED starts 0.05 mm inside it",
+             "(z = 0.45 mm): DIPPED is adjusted onto the face (C2, listed in the .msg and /overclosure), then",
+             "all four fall at 1 m/s onto the plate and bounce back. A node-based surface has no facet edges: one .msg line",
+             "says they are not checked for crossed surfaces (C5)."]
+    d = Deck("Node-based surface: point masses dropped on a shell plate", notes)
+    plate = shell_plate(d, 1, "PLATE", (0.0, 0.0, 0.0), (4, 4))
+    edge = [n for n in plate if (n - BODY - 1) % 100 in (0, 4) or (n - BODY - 1) // 100 in (0, 4)]
+    nset(d, "PLATE_EDGE", edge)
+    ids = [2 * BODY + k for k in (1, 2, 3, 4)]
+    xy = [(1.2, 1.3), (2.7, 1.1), (1.1, 2.6), (2.9, 2.8)]
+    d.add("*NODE")
+    for k, (n, (x, y)) in enumerate(zip(ids, xy)):
+        z = 0.5 * PLATE_T - 0.05e-3 if k == 0 else 0.5 * PLATE_T + 0.02e-3
+        d.add(f"{n}, {fmt(x * H)}, {fmt(y * H)}, {fmt(z)}")
+    d.add("*ELEMENT, TYPE=MASS, ELSET=DROPS")
+    for k, n in enumerate(ids):
+        d.add(f"{2 * BODY + 10 + k}, {n}")
+    d.add("*MASS, ELSET=DROPS", fmt(MASS_DROP))
+    nset(d, "DROP_NODES", ids)
+    nset(d, "DIPPED", ids[:1])
+    material(d, shells=("PLATE",), thickness=PLATE_T)
+    d.add("*SURFACE, NAME=DROPS, TYPE=NODE", "DROP_NODES")
+    d.add("*INITIAL CONDITIONS, TYPE=VELOCITY", "DROP_NODES, 3, -1.")
+    d.add("*BOUNDARY", "PLATE_EDGE, 1, 6")
+    d.add("*STEP, NAME=DROP", "*DYNAMIC, EXPLICIT", f", {fmt(STEP_1000 / 3)}")
+    d.add("*CONTACT", "*CONTACT INCLUSIONS", ", DROPS")
+    d.add("*OUTPUT, FIELD, NUMBER INTERVAL=4", "*NODE OUTPUT", "U, V",
+          "*CONTACT OUTPUT", "CSTRESS, CSTATUS, CFORCE")
+    d.add(f"*OUTPUT, HISTORY, TIME INTERVAL={fmt(STEP_1000 / 300)}",
+          "*ENERGY OUTPUT")
+    d.add("*END STEP")
+    return d
+
+
 DECKS = {
     "blocks_adjust": blocks_adjust,
     "blocks_summary": lambda: blocks_adjust(summary=True),
@@ -302,6 +391,10 @@ DECKS = {
     "later_step": later_step,
     "import_source": import_source,
     "import_target": import_target,
+    "node_block_elem": lambda: node_block("elem"),
+    "node_block_nodes": lambda: node_block("nodes"),
+    "node_block_general": lambda: node_block("general"),
+    "node_masses": node_masses,
 }
 
 

@@ -43,6 +43,16 @@ Index surface_interaction(DeckState& deck, const std::string& name, const Source
   return NO_INDEX;
 }
 
+namespace {
+
+/// Whether surface k (NO_INDEX: all exterior faces) is a `*SURFACE, TYPE=NODE`.
+bool node_based(const DeckState& deck, Index k) {
+  return k != NO_INDEX &&
+         deck.model.surfaces[static_cast<std::size_t>(k)].type == Surface::Type::Node;
+}
+
+}  // namespace
+
 std::optional<SurfacePair> surface_pair(DeckState& deck, const DeckDataLine& line,
                                         const DeckKeyword& keyword) {
   const std::string first = line.fields.empty() ? "" : normalize_name(line.fields[0]);
@@ -191,6 +201,18 @@ void read_contact_inclusions(DeckState& deck, const DeckBlock& block, bool inclu
     check_field_count(deck, line, keyword, 2, PAIR_LINE);
     const std::optional<SurfacePair> pair = surface_pair(deck, line, keyword);
     if (!pair) continue;
+    if (inclusions && node_based(deck, pair->first) && node_based(deck, pair->second)) {
+      // A node-based surface has nodes only: it is the slave of its pair (SPEC C13), so its
+      // partner must bring faces.
+      error(
+          deck, line.where(), keyword,
+          "node-based surface " + deck.model.surfaces[static_cast<std::size_t>(pair->second)].name +
+              " would act as a master" +
+              (pair->first == pair->second ? " (self contact)" : " (both surfaces are node-based)"),
+          "expected an element-based surface (*SURFACE, TYPE=ELEMENT) or a blank first field "
+          "(all exterior faces) opposite a node-based surface, which is slave only");
+      continue;
+    }
     const auto same = std::find_if(pairs.begin(), pairs.end(), [&](const SurfacePair& p) {
       return (p.first == pair->first && p.second == pair->second) ||
              (p.first == pair->second && p.second == pair->first);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <optional>
 #include <string>
 
 #include "common/error.hpp"
@@ -382,14 +384,21 @@ void read_surface(DeckState& deck, const DeckBlock& block) {
   for (const DeckDataLine& line : block.data) {
     check_field_count(deck, line, keyword, 2,
                       surface.type == Surface::Type::Node
-                          ? "node or node set[, factor]"
+                          ? "node or node set[, area]"
                           : "element or element set, face S1..S6 (solids) or SPOS, SNEG (shells)");
     PendingSurfaceItem item;
     item.target = reference(deck, line, keyword, 0);
     if (surface.type == Surface::Type::Node) {
-      // The optional weight factor is checked but not kept: Surface has no field for it and
-      // node surfaces are only used as contact node lists.
-      if (line.fields.size() > 1) real_field(deck, line, keyword, 1, "factor", 1.0);
+      // The optional area (Abaqus: area or weight of each node) is the node's contact area.
+      if (line.fields.size() > 1 && !line.fields[1].empty()) {
+        const std::optional<Real> area = real_field(deck, line, keyword, 1, "area", std::nullopt);
+        if (area && (!(*area > 0.0) || !std::isfinite(*area)))
+          error(deck, line.where(), keyword,
+                "node area " + std::string(line.fields[1]) + " is not positive",
+                "expected a positive area (m²) per node, or none");
+        else if (area)
+          item.node_area = *area;
+      }
     } else {
       // Whether the face fits the element type is checked once the elements are known.
       const std::string face = line.fields.size() > 1 ? normalize_name(line.fields[1]) : "";

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -81,6 +82,8 @@ struct PendingSurfaceItem {
   /// No face label: both sides of shells, the exposed faces of solids (as Abaqus).
   bool all_faces = false;
   std::string label;  ///< the face word, upper case, for messages
+  /// Node surface: the area (weight) of the data line's nodes, m²; NaN when not given.
+  Real node_area = std::numeric_limits<Real>::quiet_NaN();
 };
 struct PendingBoundary {
   Index step = NO_INDEX;  ///< NO_INDEX: model level, goes to the first step

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <utility>
 
 #include "io/deck/deck_handlers.hpp"
 
@@ -32,6 +33,7 @@ void resolve_surfaces(DeckState& deck) {
       if (surface.type == Surface::Type::Node) {
         const std::vector<Index> nodes = resolve_nodes(deck, item.target);
         surface.nodes.insert(surface.nodes.end(), nodes.begin(), nodes.end());
+        surface.node_areas.insert(surface.node_areas.end(), nodes.size(), item.node_area);
         continue;
       }
       // Faces of section-less CPS4/CPS3 (mesh exports): matched to the faces they lie on.
@@ -76,9 +78,19 @@ void resolve_surfaces(DeckState& deck) {
       const std::vector<ElementFace> exposed = exposed_hex_faces(deck, solids);
       surface.faces.insert(surface.faces.end(), exposed.begin(), exposed.end());
     }
-    std::sort(surface.nodes.begin(), surface.nodes.end());
-    surface.nodes.erase(std::unique(surface.nodes.begin(), surface.nodes.end()),
-                        surface.nodes.end());
+    // Ascending, each node once; a node listed twice keeps the area of its last line.
+    std::vector<std::pair<Index, Real>> listed;
+    for (std::size_t k = 0; k < surface.nodes.size(); ++k)
+      listed.emplace_back(surface.nodes[k], surface.node_areas[k]);
+    std::stable_sort(listed.begin(), listed.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    surface.nodes.clear();
+    surface.node_areas.clear();
+    for (std::size_t k = 0; k < listed.size(); ++k) {
+      if (k + 1 < listed.size() && listed[k + 1].first == listed[k].first) continue;
+      surface.nodes.push_back(listed[k].first);
+      surface.node_areas.push_back(listed[k].second);
+    }
   }
 }
 

@@ -19,14 +19,6 @@ std::vector<std::string> unsupported_features(const Model& model) {
     out.push_back(where.file + ":" + std::to_string(where.line) + ": " + keyword + ": " + what +
                   " is read but not run by this version of xpl yet; expected a model without it");
   };
-  // Node-based surfaces carry no faces or areas; the engine takes element-based ones.
-  auto node_surface = [&](Index k) {
-    return k != NO_INDEX && model.surfaces[k].type == Surface::Type::Node;
-  };
-  auto check_pair = [&](Index a, Index b, const SourceLocation& where, const std::string& kw) {
-    if (node_surface(a) || node_surface(b))
-      refuse(where, kw, "contact with a node-based surface (TYPE=NODE)");
-  };
   std::vector<bool> is_reference(static_cast<std::size_t>(model.node_count()), false);
   for (const RigidBody& r : model.rigid_bodies)
     if (r.reference_node != NO_INDEX) is_reference[r.reference_node] = true;
@@ -53,16 +45,6 @@ std::vector<std::string> unsupported_features(const Model& model) {
                         p.inertia[3] != 0.0 || p.inertia[4] != 0.0 || p.inertia[5] != 0.0;
     if (rotary && !is_reference[p.node])
       refuse(p.where, "*ROTARY INERTIA", "rotary inertia on a node that is no rigid body REF NODE");
-  }
-  for (const ContactPair& c : model.contact_pairs)
-    check_pair(c.slave, c.master, c.where, "*CONTACT PAIR");
-  for (const Step& s : model.steps) {
-    if (s.contact) {
-      for (const SurfacePair& p : s.contact->inclusions)
-        check_pair(p.first, p.second, p.where, "*CONTACT INCLUSIONS");
-    }
-    for (const ContactPair& c : s.contact_pairs)
-      check_pair(c.slave, c.master, c.where, "*CONTACT PAIR");
   }
   return out;
 }

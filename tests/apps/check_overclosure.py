@@ -261,8 +261,80 @@ def import_target(d):
     check(cfn[1:].max() > 0.0, "the force grows from zero as B keeps moving into A")
 
 
+def adjusted_surfaces(f):
+    """Slave surface names of the rows of /overclosure/step_1/adjusted."""
+    t = f["overclosure/step_1/adjusted"]
+    names = str(t.attrs["surface_names"]).split(",")
+    return [names[int(k)] for k in t["slave_surface"][:]]
+
+
+NOT_CHECKED = re.compile(r"crossed surfaces: (\d+) slave node\(s\) of node-based surfaces are not checked")
+
+
+def node_block(out):
+    """SPEC C13: the node_block_* decks (element-based face, node-based surface in a *CONTACT
+    PAIR and in general contact) hold the same four slave nodes against the same master: the
+    same adjustment and the same contact force history. OUT holds overclosure_node_block_*/."""
+    cfn = {}
+    for kind in ("elem", "nodes", "general"):
+        name = f"node_block_{kind}"
+        d = out / f"overclosure_{name}"
+        f = h5py.File(d / f"{name}.h5", "r")
+        msg = (d / f"{name}.msg").read_text()
+        check(rows(f, 1, "adjusted") == 4 and rows(f, 1, "offsets") == 0 and rows(f, 1, "ignored") == 0,
+              f"{kind}: the cube's four bottom nodes adjusted (C2), no offsets, nothing ignored")
+        t = f["overclosure/step_1/adjusted"]
+        check(np.abs(t["distance"][:] - 0.02e-3).max() < 1e-9 * H
+              and np.abs(t["direction"][:] - [0.0, 0.0, 1.0]).max() < 1e-12,
+              f"{kind}: each moved 0.02 mm up onto the base (the whole overlap: a one-sided view)")
+        check(set(adjusted_surfaces(f)) == {"CUBE_BOTTOM"}, f"{kind}: listed with slave surface CUBE_BOTTOM")
+        adjusted_matches_u(f, frames(f)[0])
+        found = NOT_CHECKED.findall(msg)
+        if kind == "elem":
+            check(not found, "elem: no node-based note in the .msg")
+        else:
+            check(found == ["4"], f"{kind}: one .msg line says the 4 node-based slave nodes are not "
+                                  "checked for crossed surfaces (C5)")
+        h = f["history/step_1/contact"]
+        cfn[kind] = h[list(h.keys())[0]]["CFN"][:]
+    peak = np.abs(cfn["elem"]).max()
+    check(peak > 1.0, f"the cube hits the base (peak CFN {peak:.3f} N)")
+    for kind in ("nodes", "general"):
+        diff = np.abs(cfn[kind] - cfn["elem"]).max()
+        check(cfn[kind].shape == cfn["elem"].shape and diff <= 1e-12 * peak,
+              f"{kind}: CFN history equals the element-based one (max difference {diff:.1e} N "
+              f"<= 1e-12 of the peak)")
+
+
+def node_masses(d):
+    """Point masses (a node-based surface) dropped on an S4R plate (SPEC C13, C2, C4, C5)."""
+    f = h5py.File(d / "node_masses.h5", "r")
+    msg = (d / "node_masses.msg").read_text()
+    dipped = 2 * BODY + 1
+    t = f["overclosure/step_1/adjusted"]
+    check(rows(f, 1, "adjusted") == 1 and int(t["node"][0]) == dipped and adjusted_surfaces(f) == ["DROPS"],
+          "DIPPED (inside the plate's thickness) is the one adjusted node, of slave surface DROPS")
+    check(abs(t["distance"][0] - 0.05e-3) < 1e-9 * H and abs(t["direction"][0][2] - 1.0) < 1e-12,
+          "it moved 0.05 mm up, onto the plate's upper face (the nearer one, C4)")
+    check(rows(f, 1, "offsets") == 0 and rows(f, 1, "ignored") == 0, "no offsets, nothing ignored")
+    fr = frames(f)
+    adjusted_matches_u(f, fr[0])
+    check(re.search(rf"initial overclosure: node {dipped} \(slave surface DROPS\) adjusted", msg) is not None,
+          "the .msg lists the adjustment with the node-based surface's name")
+    check(NOT_CHECKED.findall(msg) == ["4"], "one .msg line: 4 node-based slave nodes not checked for crossed surfaces")
+    ids, row = node_rows(f)
+    drops = [row[2 * BODY + k] for k in (1, 2, 3, 4)]
+    vz = fr[-1]["V"][:][drops, 2]
+    check((vz > 0.0).all(), f"all four masses bounce off the plate (final v_z {np.round(vz, 3).tolist()} m/s)")
+    z = f["mesh/coordinates"][:][drops, 2] + fr[-1]["U"][:][drops, 2]
+    check((z > 0.0).all(), "none passed the plate's mid-surface")
+    check(f.attrs["status"] == "completed", "the run completed (energy balanced)")
+
+
 CASES = {
     "blocks_adjust": blocks_adjust,
+    "node_block": node_block,
+    "node_masses": node_masses,
     "blocks_summary": lambda d: blocks_adjust(d, "blocks_summary", detail=False),
     "blocks_deep": blocks_deep,
     "blocks_bc": blocks_bc,

@@ -242,6 +242,12 @@ TEST_CASE("CalculiX's *CLEARANCE of a contact pair", "[io][deck][contact][calcul
                                    "model data or the first step; expected *CLEARANCE for a "
                                    "contact pair in effect from the start"});
   }
+  SECTION("a deck without a step: its errors, not a crash (a fuzz finding)") {
+    const std::vector<std::string> errors = deck_errors(deck.substr(0, deck.find("*STEP")));
+    CHECK(std::any_of(errors.begin(), errors.end(), [](const std::string& e) {
+      return e.find("the deck has no step") != std::string::npos;
+    }));
+  }
 }
 
 TEST_CASE("CalculiX's *STATIC, *EQUATION and C3D20: one error each",
