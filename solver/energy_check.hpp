@@ -83,14 +83,16 @@ class EnergyCheck {
   const Model& m_model;
   Real m_dt_floor_ratio;
   Real m_energy_limit;
-  Real m_transit_time = 0.0;    ///< s
-  Real m_extent = 0.0;          ///< diagonal of the model's bounding box at t = 0, m
-  Real m_wave_speed = 0.0;      ///< fastest dilatational wave speed, m/s
-  Real m_dt_first = 0.0;        ///< first stable increment, s
-  Real m_max_energy = 0.0;      ///< the energy scale (scale()), J
-  Real m_initial_total = 0.0;   ///< ETOTAL after the first update, J
-  std::vector<Real> m_initial;  ///< each term of the balance then (ENERGIES order), J
-  bool m_warned = false;        ///< the 1 % warning has been given
+  Real m_transit_time = 0.0;     ///< s
+  Real m_extent = 0.0;           ///< diagonal of the model's bounding box at t = 0, m
+  Real m_wave_speed = 0.0;       ///< fastest dilatational wave speed, m/s
+  Real m_dt_first = 0.0;         ///< first stable increment, s
+  Real m_max_energy = 0.0;       ///< the energy scale (scale()), J
+  bool m_defect_beyond = false;  ///< |ALLKD| was beyond the scale at the last check
+  Real m_last_defect = 0.0;      ///< |ALLKD| at the last check, J
+  Real m_initial_total = 0.0;    ///< ETOTAL after the first update, J
+  std::vector<Real> m_initial;   ///< each term of the balance then (ENERGIES order), J
+  bool m_warned = false;         ///< the 1 % warning has been given
   EnergyDrift m_largest;
 };
 
