@@ -223,7 +223,9 @@ TEST_CASE("circular sets and bad set entries", "[io][deck][errors]") {
 
 TEST_CASE("a bad density is reported once, without follow-up errors", "[io][deck][errors]") {
   std::string deck = two_brick_model() + simple_step();
-  deck.replace(deck.find("7800."), 5, "-1");
+  const std::size_t density = deck.find("7800.");
+  REQUIRE(density != std::string::npos);
+  deck = deck.substr(0, density) + "-1" + deck.substr(density + 5);
   const auto errors = deck_errors(deck);
   REQUIRE(errors.size() == 1);
   CHECK(
