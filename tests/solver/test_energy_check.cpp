@@ -109,7 +109,9 @@ TEST_CASE("a linear instability that keeps ETOTAL balanced fails the run", "[sol
   }
   INFO(what);
   CHECK(sink.run_status == RunStatus::Failed);
-  CHECK(what.find("the half-step velocities hold more energy than the model, and more each increment") != std::string::npos);
+  CHECK(what.find(
+            "the half-step velocities hold more energy than the model, and more each increment") !=
+        std::string::npos);
   // It starts below the round-off floor of the scale (1e-12 m/s against 1e-10 of the wave
   // speed) and passes it after 5 increments.
   CHECK(increment <= 6);
