@@ -99,6 +99,8 @@ class CentralDifference {
   void load_chunk(const State& state, const Field& translation, const Increment& inc, Index chunk);
   /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
   /// `work`); returns the correction of the kinetic sums to what the free update counted.
+  /// The velocity at t_n (state.velocity, output V) of a DOF with a prescribed velocity is
+  /// the BC's own value at t_n (after t = 0), not the mean of the half-step velocities.
   KineticSums update_prescribed(State& state, const Field& translation, const Field& rotation,
                                 const Increment& inc, Real& work);
   /// Whether the velocity v_old → v_new of prescribed DOF `d` at the first update of a step
