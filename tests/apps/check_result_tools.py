@@ -179,7 +179,7 @@ def case_exitcodes(xpl, repo, out):
         "history": (used_codes(apps / "history.cpp") | internal,
                     {int(c) for c in re.findall(
                         r"(\d)(?:,| or| on| when)",
-                        re.search(r"## History as CSV\n\n.*?\n\n", readme, re.S).group(0)
+                        re.search(r"## History as CSV\n\n.*?(?:\n\n|\Z)", readme, re.S).group(0)
                         .split("Exit ", 1)[1])}),
     }
     for command, (used, listed) in commands.items():

@@ -2,6 +2,7 @@
 """Checks of the documentation (issue 36 item 5).
 
 Usage: check_docs.py links|spec REPO
+       check_docs.py deck REPO XPL OUT_DIR
 
   links  every relative link and image in README.md, docs/ and the other Markdown files of the
          repository points at a file or folder that exists, and a link with `#anchor` into a
@@ -9,12 +10,17 @@ Usage: check_docs.py links|spec REPO
   spec   every requirement id the source, tests, scripts and docs cite (`SPEC C7`, `SPEC
          C7–C10`, or a parenthesised list of ids such as `(C2)`, `(S7, C6)`, `(R5: ...)`) is
          defined in docs/spec.md (a line `- **C7** ...`)
+  deck   the deck of README.md's "A first deck" runs as the README says (beside the gmsh mesh
+         it includes): exit 0, status completed, the warning about default output, and the
+         frames and energies of the defaults in JOB.h5
 
 Prints what it checked; exits 1 with one line per problem (file:line: what), 0 when clean.
 """
 
+import json
 import pathlib
 import re
+import shutil
 import subprocess
 import sys
 
@@ -170,12 +176,51 @@ def check_spec(repo):
     return problems
 
 
+def check_deck(repo, xpl, out):
+    readme = (repo / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## A first deck", 1)[1].split("\n## ", 1)[0]
+    deck = re.search(r"```inp\n(.*?)```", section, re.S).group(1)
+    shutil.rmtree(out, ignore_errors=True)
+    out.mkdir(parents=True)
+    (out / "block.inp").write_text(deck)
+    shutil.copy(repo / "tests/data/decks/gmsh_block/block_mesh.inp", out / "block_mesh.inp")
+    run = subprocess.run([str(xpl), "run", "block.inp", "-o", "out", "--quiet"], cwd=out,
+                         capture_output=True, text=True, timeout=300)
+    problems = []
+    if run.returncode != 0:
+        return [f"xpl run of README's deck: exit {run.returncode}\n{run.stdout}{run.stderr}"]
+    summary = json.loads((out / "out" / "block.summary.json").read_text())
+    if summary["status"] != "completed":
+        problems.append(f"README's deck: status {summary['status']}, expected completed")
+    if "no output request" not in (out / "out" / "block.msg").read_text().lower():
+        problems.append("README's deck: block.msg does not warn that the deck has no output "
+                        "request, as the README says")
+    import h5py  # /usr/bin/python3 has it
+    with h5py.File(out / "out" / "block.h5", "r") as f:
+        frames = sorted(f["frames"])
+        last = f["frames"][frames[-1]]
+        for name in ("U", "V", "S"):
+            if name not in last:
+                problems.append(f"README's deck: the last frame has no {name}")
+        if len(frames) != 2:
+            problems.append(f"README's deck: {len(frames)} frames, the README says 2 (0 and last)")
+        if "ALLKE" not in f["history/step_1/energy"]:
+            problems.append("README's deck: no ALLKE history")
+    print(f"README's deck ran: {summary['increments']} increments, frames {frames}, "
+          f"ALLKE at the end {summary['energies']['ALLKE']:.4g}")
+    return problems
+
+
 def main(argv):
-    if len(argv) != 3 or argv[1] not in ("links", "spec"):
+    if not (len(argv) == 3 and argv[1] in ("links", "spec") or len(argv) == 5
+            and argv[1] == "deck"):
         print(__doc__, file=sys.stderr)
         return 2
     repo = pathlib.Path(argv[2]).resolve()
-    problems = check_links(repo) if argv[1] == "links" else check_spec(repo)
+    if argv[1] == "deck":
+        problems = check_deck(repo, pathlib.Path(argv[3]).resolve(), pathlib.Path(argv[4]))
+    else:
+        problems = check_links(repo) if argv[1] == "links" else check_spec(repo)
     for p in problems:
         print(p)
     return 1 if problems else 0
