@@ -2,85 +2,8 @@
 /// \file General contact, one increment at a time: search (broad phase when due, closest
 /// face of every slave node), penalty and friction forces, assembly onto the nodes, energy.
 ///
-/// Each slave node keeps one constraint (ContactConstraint): the face it touches now, its
-/// offset d0 and its friction force. The face is the nearest admissible one among the broad
-/// phase candidates, where admissible means
-/// - the domain's rule allows the pair (inclusions, exclusions, rigid bodies: ContactDomain);
-/// - the face looks at the node: the slave node's normal and the face normal point against
-///   each other (cosine below −OPPOSING_COSINE; for a double-sided shell node either way, and
-///   a node on a free shell edge, such as a tube end, may touch a face edge-on).
-///   This keeps a node on the top of a block from "touching" the side face next to it at a
-///   convex corner, and a node at the edge of a bar end from being pushed sideways by the
-///   other bar's side faces (their normals are at 90°);
-/// - the node is not deeper behind the face than half the element behind it (half the
-///   thickness of a shell), so a node on the outer skin of a thin wall never touches the inner
-///   skin of that wall;
-/// - a node behind the face's plane whose closest point is on an edge or corner is offset
-///   sideways from the face by less than its penetration. Otherwise it lies beside the face,
-///   not in it: at a fold of a shell wall a node would touch the face of the element next
-///   to its own along the normal of that face, a shell thickness deep the moment the fold turns
-///   it admissible, and the force would turn with the face — both put energy into the model;
-/// - for a shell node, the face is not a shell face next to its own elements (sharing a node
-///   with one of them): that face continues the node's own shell. Where an element is
-///   narrower than the thickness, the node lies within t of it, beside its edge by less than
-///   its penetration, and would touch it a thickness deep.
-/// - the face is not a face of a hex the node belongs to (ContactFace::behind): the node lies
-///   on that element's boundary, and when the element is squashed (the first layer of a Taylor
-///   bar flattening on a plate) its far nodes come within the depth limit of the face and, as
-///   the rim folds, their normals turn against it: a spring a whole element deep, from nowhere.
-/// A node pressed onto one side of a shell stays with that side: the other side of the same
-/// element is not admissible while the constraint is closed, so a deep penetration is pushed
-/// back rather than through.
-/// Shell sides are at ±t/2 of the mid-surface (ContactFace), and a shell slave node carries
-/// half its own thickness: its gap is the distance to the face's contact surface minus t/2.
-///
-/// Onset of a touch: every rule above turns a face admissible for a node at some instant, and
-/// a node can be inside the face's slab at that instant (a folding wall turning a face towards
-/// a node beside its edge, the lateral rule admitting a node beside an edge a shell thickness
-/// behind the face's plane, a node past a shell's mid-surface seeing the other side, a shell
-/// node coming round the edge of a solid's face at speed). From the second update of the step on, a
-/// touch on another face than last increment's is only as deep as the relative approach of the
-/// increment made it (plus the penetration carried from a face on the same side); the rest becomes
-/// the node's offset (onset_offset, penalty.hpp), which shrinks as the node comes out (SPEC C3). So
-/// no spring starts with energy the motion did not put in, and a node that has crossed a wall is
-/// not pushed on through it by the other side (what a user of double-sided shell contact
-/// expects: a node found deep in a wall is not shot out of it). The first update of an
-/// engine takes its touches as they are: the deep ones the overclosure pass left to the
-/// penalty ("ignored", C4) are pushed out as before.
-///
-/// Contact at speed: a node may cross a face's plane deeper in one increment than a slow
-/// approach ever takes it (v·Δt of a fast impact approaches the element size). The broad
-/// phase boxes hold the slab behind each solid face down to the depth limit, so such a node is
-/// a candidate however small the margin, and the face a node was pressed on last increment
-/// stays admissible down to the whole element behind it (twice the limit of a new touch): the
-/// spring keeps pushing while the node is still being stopped. A node that goes deeper than
-/// that is released inside the other body (ContactTotals::lost counts it, and the solver
-/// reports it): nothing stops the bodies passing through each other from there.
-///
-/// A node pinched between two faces (a sheet between two dies, folded layers of a crushed
-/// tube) touches both: besides its nearest admissible face, the nearest penetrated admissible
-/// face on its other side (normals more than 120° apart, PINCH_COSINE) gets a second
-/// constraint with its own offset and memory. With one constraint the nearest face flips
-/// between the sides from one increment to the next and the node is pushed one way, then
-/// the other (energy from nowhere, or a deep onset taken as offset: the dies pass through).
-/// Each side keeps its memory while the touches change order: the touch that looks the way
-/// last increment's second touch looked continues it. A node held with an offset at the
-/// start holds its other side with its own depth there (C3, C6); a side no face penetrates
-/// any more has spent its offset.
-///
-/// Several springs on one node: the default penalty is sized so that one spring on a node
-/// stays within the central-difference limit with the elements; a node under several
-/// (pinched, folded layers, pressed corners, both views of a balanced pair) sees their sum.
-/// Every increment the row sums of the springs' stiffness matrices bound ω²Δt² per node
-/// (penalty_increment.hpp); where they exceed DEFAULT_PENALTY_NODE_BUDGET the springs on the
-/// node are scaled down to it. A rigid body is one node with the body's mass: its rows (per
-/// free translation, Σ k·|n_d|·Σ_j|n_j| over the springs that push it) bound ω²Δt² with the
-/// body's mass, not a member node's (a light free rigid part hit by many nodes); its rotation
-/// is not bounded yet. A default spring whose stiffness changes while loaded (its
-/// share of the budget, the increment it is tied to shrinking as the elements are squashed in
-/// a fast impact, the master mass at a sliding point) moves its offset so that it holds the
-/// same energy (cap_default_springs): a spring that stiffened under load would give back more
-/// than the motion put in as it opens (blocks meeting at 1000 m/s gained 9 % of their energy).
+/// The rules of the search (which faces a node may touch), the onset of a touch, contact at
+/// speed, pinched nodes and several springs on one node: docs/theory/contact.md.
 ///
 /// Force: f = w·k·max(0, d − d0) along the contact normal with w the view weight (½ for each
 /// view of a balanced pair) and k the penalty stiffness: k = slope·A (tributary area A) for a

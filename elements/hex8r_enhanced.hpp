@@ -4,35 +4,11 @@
 /// material's own elastic stiffness, in the energy the trilinear element would store if it
 /// were enriched with Wilson's incompatible modes, so that it bends like a beam with one
 /// element through the thickness. In the spirit of Belytschko–Bindeman (1993) and Puso
-/// (2000); derived here as follows.
+/// (2000).
 ///
-/// Hourglass velocity. With the modes a_k of hex8_geometry.hpp and the uniform gradient
-/// L = (1/V) Σ_k av_k ⊗ g_k, the hourglass parts of the velocity are
-///   q̂_α = av_α − L a_α,   α = 4 (ξη), 5 (ηζ), 6 (ζξ), 7 (ξηζ),
-/// zero for every linear field (rigid motions included): the patch test holds on any hex.
-/// (Flanagan–Belytschko's q_α = γ_α·v is 8 q̂_α; the resultants Q_α stored and applied are
-/// conjugate to q_α, as for their stiffness form.)
-///
-/// Strain of the hourglass field. Take the centre gradients b_i = ∇ξ_i = g_i / V (exact on a
-/// parallelepiped). The gradient of Σ_α q̂_α h_α(ξ) is linear in each natural coordinate φ:
-///   G_ξ = q̂4 ⊗ b2 + q̂6 ⊗ b3,  G_η = q̂4 ⊗ b1 + q̂5 ⊗ b3,  G_ζ = q̂5 ⊗ b2 + q̂6 ⊗ b1,
-/// plus the bilinear terms of ξηζ. On a parallelepiped ∫φ² dV = V/3, ∫(ηζ)² dV = V/9 and
-/// every cross term integrates to zero, so the fully integrated energy is a sum over φ.
-///
-/// Enhanced strain. Wilson's modes u += Σ_i w_i (1 − ξ_i²) add −2ξ_i w_i ⊗ b_i: a free vector
-/// in the column of G_φ along its own b_φ. Condensing it out (minimum energy over w) frees the
-/// normal and shear strains on the plane ⊥ b_φ, and what remains is the plane-stress energy
-/// of the strain projected on that plane (P = I − n nᵀ, n = b_φ/|b_φ|):
-///   W_φ = (V/3) [ μ |ε_t|² + ½ λ̄ (tr ε_t)² ],  ε_t = P sym(G_φ) P,  λ̄ = 2μλ/(λ + 2μ).
-/// This removes both the parasitic shear of a bending mode (shear locking: the shear ⊗ b_φ
-/// is condensed) and the Poisson over-stiffness (λ̄ ≤ 2μ stays bounded as ν → ½). On a
-/// rectangular cantilever one element through the thickness stores exactly E I κ² / 2 per
-/// length in pure bending. The energy is positive definite on the nine linear hourglass
-/// components (the twist triple q̂4·e3, q̂5·e1, q̂6·e2 is held by the three in-plane shears,
-/// whose 3 × 3 system has determinant 2/(a1 a2 a3)).
-/// The ξηζ mode (no bending content) keeps the full integral of its strain energy without
-/// the bulk term (so that it does not lock):
-///   W_7 = (V/9) Σ_i ½ μ (|b_i|² |q̂7|² + (q̂7·b_i)²).
+/// The derivation (hourglass velocities q̂_α = av_α − L a_α, the strain of the hourglass
+/// field, Wilson's modes condensed to the plane-stress energy W_φ = (V/3)[μ|ε_t|² + ½λ̄(tr ε_t)²]
+/// of the strain on the plane ⊥ b_φ, and the ξηζ energy W_7): docs/theory/elements.md.
 ///
 /// In the element's frame. Everything is evaluated in an orthonormal frame that follows the
 /// element (Gram–Schmidt on the centre tangents a1, a2: e1 ∥ a1, e2 in their plane), with the

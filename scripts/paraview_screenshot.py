@@ -1,4 +1,4 @@
-"""Off-screen ParaView picture of an xpl result, made the way README.md tells a user to look.
+"""Off-screen ParaView picture of an xpl result, made the way docs/user/reading-results.md tells a user to look.
 
 Run with ParaView's Python (5.11), under a virtual X server when there is no display:
 

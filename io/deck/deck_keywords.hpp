@@ -1,7 +1,7 @@
 #pragma once
 /// \file The keyword table of the deck reader: every keyword it knows, where in a deck it may
 /// appear and the handler that reads it. The dispatcher (read_block), the "unknown keyword"
-/// message and the README check (tests/io/deck/test_deck_keywords.cpp) all read this one table.
+/// message and the docs check (tests/io/deck/test_deck_keywords.cpp) all read this one table.
 
 #include <span>
 #include <string>

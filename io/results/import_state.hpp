@@ -1,7 +1,7 @@
 #pragma once
 /// \file `xpl run DECK --import prev.h5`: the state of the last frame of an earlier xpl result
-/// file (layout in README.md), checked against the model's mesh and mapped onto its internal
-/// indices, so that a run can start where the earlier one stopped.
+/// file (layout in docs/user/results.md), checked against the model's mesh and mapped onto its
+/// internal indices, so that a run can start where the earlier one stopped.
 
 #include <filesystem>
 #include <string>

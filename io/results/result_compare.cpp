@@ -14,7 +14,7 @@ namespace xpl::io {
 
 namespace {
 
-/// Fields written per node (README, HDF5 layout); every other field is per element.
+/// Fields written per node (docs/user/results.md); every other field is per element.
 bool is_nodal_field(const std::string& name) {
   static const char* const NODAL[] = {"U",  "V",      "A",       "RF",     "UR",     "VR",
                                       "RM", "CPRESS", "CSTATUS", "CSHEAR", "CNORMF", "CSHEARF"};

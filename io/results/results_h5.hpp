@@ -1,5 +1,5 @@
 #pragma once
-/// \file JOB.h5: mesh, field frames, history and the run status (layout in README.md).
+/// \file JOB.h5: mesh, field frames, history and the run status (layout in docs/user/results.md).
 
 #include <filesystem>
 #include <functional>

@@ -126,7 +126,7 @@ def check_h5(path):
         # Lumped mass: the wall nodes (half of the first of 40 element layers, 1/80 of the
         # mass) start at rest, every other node at SPEED.
         expected_ke = 0.5 * DENSITY * LENGTH * AREA * SPEED**2 * (1.0 - 1.0 / 80.0)
-        # ALLKE(0) = ½ m v(0)² − ⅛ Δt² Σ f(0)²/m (README, "What ALLKE measures"): the bulk
+        # ALLKE(0) = ½ m v(0)² − ⅛ Δt² Σ f(0)²/m (docs/theory/energy.md, "What ALLKE measures"): the bulk
         # viscosity of the first layer, squeezed against the wall from t = 0, acts already
         # (−2.7e-5 of the energy here; ALLKE(0) from the whole-step velocity matched to 1e-6).
         check(math.isclose(kinetic_0, expected_ke, rel_tol=1e-4),

@@ -32,7 +32,7 @@ DRIFT_LIMIT = 0.005  # of ALLKE(0): issue 20's acceptance
 # % of the largest energy. Measured 0.052 % (direction 1) and 0.0036 % (2 and 3); 0.8 % and
 # 4.4 % before ALLKD booked the shift at the step's shortened last increment (a change of the
 # increment changes the energy central differences conserve for a mode at ω by (ωΔt/2)² of
-# its energy, README, and this element's energy sits in modes near ωΔt = 2). What is left is
+# its energy, docs/theory/energy.md, and this element's energy sits in modes near ωΔt = 2). What is left is
 # the element's geometric nonlinearity at 10 m/s; 0.5 % leaves it a factor 10.
 ONE_ELEMENT_DRIFT = 0.5
 FACTORS = (1.05, 1.1, 1.15, 1.2, 1.3, 1.4, 1.5, 1.75, 2.0)  # scanned for the first failure

@@ -237,7 +237,7 @@ def import_target(d):
           "imported penetrations: 18 offsets with reason 'import', no node moves")
     check(np.allclose(t["offset"][:], 0.05e-3, rtol=1e-6), "d0 = the 0.05 mm penetration of the last frame")
     # The force a plain penalty would give at t = 0: sum over both views of w k d0 with the
-    # default stiffness k = 0.5 m_eff / dt^2 (README, C1), m_eff of the slave node and the
+    # default stiffness k = 0.5 m_eff / dt^2 (docs/theory/contact.md, C1), m_eff of the slave node and the
     # coincident node of the other block.
     sta = (d / "import_target.sta").read_text()
     dt = float(next(line.split()[4] for line in sta.splitlines()

@@ -20,7 +20,7 @@ well into the plastic range (PEEQ ~ 1 %) within 3 ms. Checks:
    uninterrupted 3-point run's (measured 0.35 %: the hourglass resultants restart at zero).
    With 5 points the points at zeta = +-1/2 get interpolated stresses and PEEQ, which in a
    partly plastic section lie well inside the true ones: the same continuation ends 8 % deeper
-   (README, --import); that approximation is documented, not tested here.
+   (docs/user/cli.md, Import); that approximation is documented, not tested here.
 """
 
 import pathlib

@@ -12,8 +12,8 @@ Usage: check_result_tools.py CASE XPL REPO OUT_DIR, CASE one of
   limits     --energy-limit takes any finite number > 0 (1e7 runs), 0 and inf are usage
              errors; --threads above 1024 is a usage error (exit 2) that writes nothing: no
              JOB.h5, no lock
-  exitcodes  every exit code each command uses (apps/*.cpp, *.hpp) is in README.md: run and
-             check in the exit-code table, compare in its table, history in its paragraph
+  exitcodes  every exit code each command uses (apps/*.cpp, *.hpp) is in docs/user/cli.md: run
+             and check in the exit-code table, compare in its table, history in its section
   meshfull   the disk fills while the mesh is written (a 256 kB tmpfs, a 30^3 block): exit
              4, JOB.h5 removed and the message says so, a summary with status failed;
              skipped (exit 77) where mounting fails
@@ -147,7 +147,8 @@ def case_limits(xpl, repo, out):
 
 
 def table_codes(readme, header):
-    """The exit codes of the README table that starts with `header` ("| 130 / 143 |" too)."""
+    """The exit codes of the table of docs/user/cli.md that starts with `header` ("| 130 / 143 |"
+    too)."""
     block = readme[readme.index(header):].split("\n\n")[0]
     codes = set()
     for cell in re.findall(r"^\| ([\d /]+) \|", block, re.M):
@@ -167,7 +168,7 @@ def used_codes(*sources):
 
 def case_exitcodes(xpl, repo, out):
     apps = repo / "apps"
-    readme = (repo / "README.md").read_text()
+    readme = (repo / "docs" / "user" / "cli.md").read_text()
     # main() ends compare and history with EXIT_INTERNAL (4) on an exception that escapes them.
     internal = {4}
     commands = {
@@ -178,15 +179,15 @@ def case_exitcodes(xpl, repo, out):
         "history": (used_codes(apps / "history.cpp") | internal,
                     {int(c) for c in re.findall(
                         r"(\d)(?:,| or| on| when)",
-                        re.search(r"\*\*History as CSV\*\*.*?\n\n", readme, re.S).group(0)
+                        re.search(r"## History as CSV\n\n.*?(?:\n\n|\Z)", readme, re.S).group(0)
                         .split("Exit ", 1)[1])}),
     }
     for command, (used, listed) in commands.items():
         missing = sorted(used - listed)
         if missing:
-            fail(f"xpl {command} uses exit codes {missing} that README.md does not list "
+            fail(f"xpl {command} uses exit codes {missing} that docs/user/cli.md does not list "
                  f"(used {sorted(used)}, listed {sorted(listed)})")
-        print(f"xpl {command}: exit codes {sorted(used)} all in README.md")
+        print(f"xpl {command}: exit codes {sorted(used)} all in docs/user/cli.md")
 
 
 def mount_tmpfs(mount, size):

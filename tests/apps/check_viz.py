@@ -248,7 +248,7 @@ def case_plate(xpl, repo, out):
 
 def open_when_free(h5_path, counts, deadline):
     """h5py.File(h5_path) with HDF5's default locking, retried while the writer holds the file
-    (README "Reading results": an open fails while xpl writes; retry), until time.monotonic()
+    (docs/user/reading-results.md: an open fails while xpl writes; retry), until time.monotonic()
     passes `deadline`. counts["busy"] counts the refused opens."""
     while True:
         try:
@@ -360,7 +360,7 @@ PV_SCRIPT = """
 import sys
 from paraview.simple import *
 from paraview import servermanager
-# The reader README.md names: ParaView's legacy "XDMF Reader" (XDMF 2) reads a Tensor6 as
+# The reader docs/user/reading-results.md names: ParaView's legacy "XDMF Reader" (XDMF 2) reads a Tensor6 as
 # xx xy xz yy yz zz and expands it to 9 components, which puts S13 under ZZ.
 reader = Xdmf3ReaderS(FileName=sys.argv[1])
 reader.UpdatePipeline(reader.TimestepValues[-1])
@@ -429,7 +429,7 @@ def pvpython_picture(command):
 
 
 def case_screenshot(xpl, repo, out):
-    """ParaView as README.md says to open a result (issue 34): Open, Apply, Last Frame, Warp By
+    """ParaView as docs/user/reading-results.md says to open a result (issue 34): Open, Apply, Last Frame, Warp By
     Vector, Apply, with nothing else chosen, shows the deformed model in colour: the default
     colouring is MISES_MAX (not node_id, not grey set blocks), the picture is mostly coloured,
     and the model is drawn deformed."""

@@ -196,7 +196,7 @@ def check(xpl, work, names):
         new = run(xpl, name, work)
         ref = REFERENCES / f"{name}.h5"
         if not ref.exists():
-            print(f"regress.py: {name}: no reference {ref}; bless it (README, developer section)")
+            print(f"regress.py: {name}: no reference {ref}; bless it (docs/dev/testing.md)")
             failed.append(name)
             continue
         fields = reference_fields(ref)

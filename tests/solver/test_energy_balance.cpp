@@ -1,8 +1,8 @@
-// ALLKE + ALLKD is the kinetic energy central differences conserve, ½ v(n−½)·M·v(n+½) (README,
-// "What ALLKE measures"): with every work term booked by the trapezoidal rule, ETOTAL of a
-// linear undamped system stays constant, however close its modes sit to the stability limit.
-// Measured with the whole-step velocity alone (ALLKE without ALLKD) it would swing by
-// ⅛Δt²Σf²/m, tens of per cent of the energy here. What is left is the elements' geometric
+// ALLKE + ALLKD is the kinetic energy central differences conserve, ½ v(n−½)·M·v(n+½)
+// (docs/theory/energy.md, "What ALLKE measures"): with every work term booked by the trapezoidal
+// rule, ETOTAL of a linear undamped system stays constant, however close its modes sit to the
+// stability limit. Measured with the whole-step velocity alone (ALLKE without ALLKD) it would swing
+// by ⅛Δt²Σf²/m, tens of per cent of the energy here. What is left is the elements' geometric
 // nonlinearity (their strain energy on the mid-increment geometry): ~1e-9 of the energy at the 10
 // µm/s used here, growing with the amplitude (6e-8 at 1 mm/s); the bound is 1e-8.
 #include <catch2/catch.hpp>

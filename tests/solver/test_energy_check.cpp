@@ -74,7 +74,7 @@ TEST_CASE("the same S4R at the stable increment completes", "[solver][energy]") 
 TEST_CASE("a linear instability that keeps ETOTAL balanced fails the run", "[solver][energy]") {
   // An undamped hex box at a fixed increment 3 times the stable one, with velocities of
   // 1e-12 m/s: its highest modes grow by ~30 per increment while ETOTAL of central
-  // differences stays balanced as long as the motion is linear (README, "What ALLKE
+  // differences stays balanced as long as the motion is linear (docs/theory/energy.md, "What ALLKE
   // measures"); ALLKD takes the growth and passes every energy of the model at once.
   test::BoxSpec spec;
   spec.nx = 2;

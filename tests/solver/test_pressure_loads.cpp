@@ -141,8 +141,8 @@ TEST_CASE("gravity accelerates a free block at g and its work is kinetic energy"
     CHECK(p[0] / mass == Approx(9.81 * 0.6 * s.time).epsilon(1e-9));
     CHECK(p[2] / mass == Approx(-9.81 * 0.8 * s.time).epsilon(1e-9));
     // ½ v⁻·M·v(n+½) = ALLKE + ALLKD is ½ m v(n)² − ⅛ m Δt² g² under a constant load
-    // (README, "What ALLKE measures"): ALLKE(0) = 0 for the block at rest, ALLKD(0) =
-    // −⅛ m Δt² g², and ETOTAL keeps that value, the step's shortened last increment included
+    // (docs/theory/energy.md, "What ALLKE measures"): ALLKE(0) = 0 for the block at rest, ALLKD(0)
+    // = −⅛ m Δt² g², and ETOTAL keeps that value, the step's shortened last increment included
     // (ALLKD books the shift ⅛ m g² (Δt² − Δt'²)). The kinetic energy is the work of gravity
     // to ALLKD (7e-5 here).
     const Index ke = sink.column("energy/ALLKE"), kd = sink.column("energy/ALLKD"),

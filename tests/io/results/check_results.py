@@ -217,7 +217,7 @@ def check_fields(point_data, cell_data, cells, frame, what):
     check(set(point_data) == node_fields, f"{what}: point data {sorted(point_data)}")
     for field in node_fields:
         check(np.array_equal(point_data[field], frame[field]), f"{what}: {field}")
-    # HGSTATE is internal state for --import (README), deliberately not in the XDMF (nor in
+    # HGSTATE is internal state for --import (docs/user/cli.md), deliberately not in the XDMF (nor in
     # `frame`, the XDMF's fields).
     check(not set(cell_data) & INTERNAL_FIELDS, f"{what}: internal fields in the XDMF")
     check(set(cell_data) == set(frame) - node_fields,
