@@ -344,8 +344,8 @@ void report_clearances(const contact::ClearanceReport& report,
         "): " + std::to_string(interference) + " overclosure(s) of slave nodes (largest " +
         real_text(largest_interference) + " m) are resolved by the penalty as their offsets ramp " +
         "to zero over the step fraction (" + names +
-        "); these nodes are not adjusted strain free, and the ramp's energy is booked in ALLWK "
-        "and ALLPW (SPEC C15)";
+        "); the automatic strain-free pass leaves them alone, and the ramp's energy is booked "
+        "in ALLWK and ALLPW (SPEC C15)";
     sink.status_note(fits);
     sink.message(Severity::Info, fits);
   }
