@@ -68,8 +68,8 @@ bool read_import(const JobArguments& args, Model& model, InitialState& initial) 
     for (const ClearanceAssignment& a : first->clearances) {
       const ContactClearance& c = model.contact_clearances[a.clearance];
       if (c.adjust)
-        refusals.push_back(a.where.file + ":" + std::to_string(a.where.line) +
-                           ": *CONTACT CLEARANCE ASSIGNMENT: clearance " + c.name +
+        refusals.push_back(a.where.file + ":" + std::to_string(a.where.line) + ": " +
+                           assignment_keyword(c.initialization) + ": clearance " + c.name +
                            " has ADJUST=YES, but the run starts from --import " +
                            args.import.string() +
                            " (no node may move in an imported state); expected ADJUST=NO "

@@ -33,8 +33,12 @@ struct Record {
   Real slave_half = 0.0;  ///< half thickness of a shell slave node, m
   Real tolerance = 0.0;   ///< m
   Real gap_before = 0.0;  ///< g as read
-  bool adjust = true;     ///< the node is meant to move
-  bool held = false;      ///< it cannot move
+  /// The gap wanted above the contact surface on the node's side, m: |c| for a clearance,
+  /// −h for an interference distance h.
+  Real target_gap = 0.0;
+  bool interference = false;  ///< an interference fit (file comment)
+  bool adjust = true;         ///< the node is meant to move
+  bool held = false;          ///< it cannot move
   OffsetReason reason = OffsetReason::Conflict;
 };
 
@@ -91,11 +95,11 @@ class Clearance {
     const Height hf =
         height_above(faces[r.face], position, node_thickness, node_point(position, r.node));
     normal = hf.normal;
-    const Real target = r.sigma * (std::abs(r.clearance) + hf.master_half + r.slave_half);
+    const Real target = r.sigma * (r.target_gap + hf.master_half + r.slave_half);
     return target - hf.h;
   }
   void adjust(const ElementTopology& topology, ClearanceReport& report);
-  void store_offsets(ClearanceReport& report);
+  void store_offsets(ClearanceReport& report, std::span<const ClearanceView> views);
 
   ContactEngine& engine;
   const ContactDomain& domain = engine.domain();
@@ -179,6 +183,10 @@ void Clearance::collect_view(const ClearanceView& view, Index v, ClearanceReport
       ++edge_count[edge_key(faces[f].nodes[a], faces[f].nodes[(a + 1) % 4])];
   const std::vector<Index> nodes = slave_nodes(view);
   if (master.empty() || nodes.empty()) return;
+  // An interference pair is not adjusted by the automatic pass (file comment): none of its
+  // slave nodes, recorded or not.
+  if (view.interference)
+    for (Index node : nodes) report.handled[slaves.slot(node)] = 1;
 
   // Candidates from a broad phase over the master faces whose margin covers the widest zone
   // plus the shell half thicknesses (a face whose mid-surface is farther away cannot put the
@@ -273,9 +281,31 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
   auto skip = [&](ClearanceSkip why) { report.skipped.push_back({node, v, why}); };
   const ClosestPoint& cp = best_height.cp;
   const ContactFace& bf = faces[best];
-  if (on_perimeter(s, p, bf, cp, edge_count)) return skip(ClearanceSkip::PerimeterEdge);
+  // An overclosed node of an interference fit is resolved wherever it projects: on the rim of
+  // a slice (nodes of two matching meshes at the free faces) it is as overclosed as inside.
+  if (!view.interference && on_perimeter(s, p, bf, cp, edge_count))
+    return skip(ClearanceSkip::PerimeterEdge);
   Index pair = NO_INDEX;
   if (domain.weight(s, best, pair) == 0.0) return skip(ClearanceSkip::NotInDomain);
+  if (view.interference) {
+    const bool distance = !std::isnan(view.interference_distance);
+    if (!distance && !(gap < 0.0)) return;  // not overclosed: nothing to resolve
+    if (record_of[s] != NO_INDEX) return skip(ClearanceSkip::Repeated);
+    const Real side = bf.shell && best_height.h < 0.0 ? -1.0 : 1.0;
+    Record r{s, node, v, best, 0.0, side, slave_half, OVERCLOSURE_TOLERANCE * size[s], gap};
+    r.target_gap = distance ? -view.interference_distance : -gap;
+    r.interference = true;
+    r.adjust = distance && view.adjust && adjust_allowed;
+    const std::uint8_t lock = node_lock.empty() ? 0 : node_lock[node];
+    if (const std::optional<OffsetReason> locked = lock_reason(lock, best_height.normal)) {
+      r.held = true;
+      r.reason = *locked;
+    }
+    record_of[s] = static_cast<Index>(records.size());
+    records.push_back(r);
+    report.handled[s] = 1;
+    return;
+  }
   Real c = view.value;
   if (!view.nodal_values.empty()) {
     c = view.nodal_values[node];
@@ -289,7 +319,8 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
   const bool adjust = view.adjust && adjust_allowed;
   if (!adjust && bf.shell && sigma * best_height.h < 0.0) return skip(ClearanceSkip::WrongSide);
   if (record_of[s] != NO_INDEX) return skip(ClearanceSkip::Repeated);
-  Record r{s, node, v, best, c, sigma, slave_half, OVERCLOSURE_TOLERANCE * size[s], gap, adjust};
+  Record r{s,   node,        v,     best,  c, sigma, slave_half, OVERCLOSURE_TOLERANCE * size[s],
+           gap, std::abs(c), false, adjust};
   const std::uint8_t lock = node_lock.empty() ? 0 : node_lock[node];
   if (const std::optional<OffsetReason> locked = lock_reason(lock, best_height.normal)) {
     r.held = true;
@@ -394,13 +425,28 @@ void Clearance::adjust(const ElementTopology& topology, ClearanceReport& report)
 
 /// 3. Permanent offsets: the violation that remains, along the node's side; the search is
 /// widened for offsets that move a contact surface out.
-void Clearance::store_offsets(ClearanceReport& report) {
+void Clearance::store_offsets(ClearanceReport& report, std::span<const ClearanceView> views) {
   Real widest = 0.0;
   for (Index k = 0; k < static_cast<Index>(records.size()); ++k) {
     const Record& r = records[k];
     Vec3 normal;
     const Real delta = residual(r, normal);
     ContactConstraint& constraint = engine.constraints()[r.slot];
+    if (r.interference) {
+      // The overclosure reached, d = σ·δ − target gap (δ = h* − h); what the ramp removes and
+      // what stays (file comment).
+      const Real reached = r.sigma * delta - r.target_gap;
+      const bool at_target = std::abs(delta) <= r.tolerance;
+      const Real amount =
+          at_target || std::isnan(views[r.view].interference_distance) ? reached : -r.target_gap;
+      const Real base = reached - amount;
+      engine.set_interference(r.slot, std::max(amount, 0.0), base, views[r.view].ramp_time);
+      report.nodes[k].interference = std::max(amount, 0.0);
+      report.nodes[k].offset = base;
+      if (base != 0.0 && r.adjust && !r.held) report.nodes[k].reason = OffsetReason::Conflict;
+      widest = std::max(widest, -base);
+      continue;
+    }
     if (std::abs(delta) <= r.tolerance) {
       constraint.offset = 0.0;
       constraint.offset_permanent = false;
@@ -448,7 +494,7 @@ ClearanceReport apply_clearances(ContactEngine& engine, const ElementTopology& t
   for (Index v = 0; v < static_cast<Index>(views.size()); ++v)
     pass.collect_view(views[v], v, report);
   pass.adjust(topology, report);
-  pass.store_offsets(report);
+  pass.store_offsets(report, views);
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;
 }

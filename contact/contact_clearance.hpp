@@ -46,6 +46,17 @@
 /// The offset belongs to the slave node (as every offset in xpl): it applies against any face
 /// the node touches during the analysis, which is the master surface of its clearance unless
 /// the node slides off it.
+///
+/// Interference fits (`*CONTACT INITIALIZATION DATA, INTERFERENCE FIT`, SPEC C15) use the same
+/// records, nearest faces, zones and passes. Without a distance, the nodes of the zone that
+/// overclose their nearest face (gap g < 0; nodes with a gap are left alone) do not move:
+/// their overclosure d = −g becomes an offset that ContactEngine::set_interference ramps to
+/// zero over the view's ramp time, so the penalty pushes the surfaces apart with a force that
+/// grows from zero and the parts end stressed. With a distance h, the target gap is −h (h* =
+/// σ(T − h), σ the side of the node, +1 on solids): ADJUST=YES moves the nodes there first
+/// (strain free), then the overclosure reached is ramped away; where a node could not reach
+/// it (held, or ADJUST=NO), h is ramped and the rest, d − h, stays a permanent offset. The
+/// automatic pass leaves every recorded node alone: an interference fit is not adjusted away.
 
 #include <cstdint>
 #include <limits>
@@ -69,6 +80,12 @@ struct ClearanceView {
   /// Search zone, m; NaN: the default (see the file comment).
   Real search_above = std::numeric_limits<Real>::quiet_NaN();
   Real search_below = std::numeric_limits<Real>::quiet_NaN();
+  /// Interference fit (SPEC C15, file comment): `value` and `nodal_values` are unused.
+  bool interference = false;
+  /// The interference distance h, m; NaN: the overclosures as read.
+  Real interference_distance = std::numeric_limits<Real>::quiet_NaN();
+  /// Step time over which the interference offsets ramp to zero, s (> 0).
+  Real ramp_time = 0.0;
 };
 
 /// Why a node of a slave surface got no clearance.
@@ -96,6 +113,8 @@ struct ClearedNode {
   /// Why a node meant to move keeps an offset (Boundary, Rigid, Distortion, Conflict);
   /// meaningless when `offset` is 0 or the view has ADJUST=NO.
   OffsetReason reason = OffsetReason::Conflict;
+  /// Interference fits: the overclosure ramped away over the view's ramp time, m (0: none).
+  Real interference = 0.0;
 };
 
 /// A slave node of a view without a clearance.

@@ -383,6 +383,13 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
         };
         if (alike(t, c2) + alike(t2, c) > alike(t, c) + alike(t2, c2)) std::swap(c, c2);
       }
+      // Interference ramp (set_interference): the offset of this update's step time.
+      if (!m_interference.empty() && m_interference[s].amount > 0.0) {
+        const Interference& ramp = m_interference[s];
+        const Real r = ramp.duration > 0.0 ? std::max(0.0, 1.0 - m_step_time / ramp.duration) : 0.0;
+        m_ramp_before[s] = c.offset;
+        c.offset = ramp.base + ramp.amount * r;
+      }
       prepare_spring(s, c, t, m_spring[2 * s], position, velocity_half, dt, dt_penalty, mass,
                      inverse_mass);
       if (t2.face == NO_INDEX) {
@@ -413,7 +420,15 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       m_stored[s] = 0.0;
       OutputStatus status = OutputStatus::Open;
       if (m_user_stiffness) m_user_k[2 * s] = m_user_k[2 * s + 1] = 0.0;
+      const Real fn_before = m_normal_force[s];
       const Vec3 f = spring_force(s, 0, m_constraints[s], m_touch[s], dt, dt_penalty, status);
+      if (!m_interference.empty() && m_interference[s].amount > 0.0) {
+        // The work of the ramp step on the spring, in the trapezoidal measure of the work the
+        // contact forces do on the nodes (ForceAssembly): with F = k (d − d0), ½ k e² grows
+        // by ½ (F_n + F_{n+1}) (Δd − Δd0), the nodes' part of which ALLPW books.
+        m_ramp_work[s] =
+            0.5 * (fn_before + m_spring[2 * s].fn) * (m_ramp_before[s] - m_constraints[s].offset);
+      }
       for (int d = 0; d < 3; ++d) m_slave_force[3 * s + d] = f[d];
       m_normal_force[s] = m_spring[2 * s].fn;
       const Vec3 f2 =
@@ -432,6 +447,21 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       {m_second_touch, m_second_force, m_second_normal_force, m_second, m_second_dissipation},
       velocity_half, dt, force_internal, totals);
   for (Index s = 0; s < n_slave; ++s) totals.stored_energy += m_stored[s];
+  if (m_ramping > 0) {
+    // In slot order; a ramp that has reached zero ends (its offset stays permanent only
+    // where a base is left).
+    for (Index s = 0; s < n_slave; ++s) {
+      Interference& ramp = m_interference[s];
+      if (!(ramp.amount > 0.0)) continue;
+      totals.interference_work += m_ramp_work[s];
+      m_ramp_work[s] = 0.0;
+      if (m_step_time < ramp.duration) continue;
+      ramp.amount = 0.0;
+      m_constraints[s].offset = ramp.base;
+      m_constraints[s].offset_permanent = ramp.base != 0.0;
+      --m_ramping;
+    }
+  }
   // A face corner without candidates of its own that carries force: its area and normal
   // (read by the contact output) as the full pass would have made them.
   if (!m_user_stiffness) {
@@ -503,6 +533,21 @@ void ContactEngine::prepare_spring(Index s, ContactConstraint& c, const SlaveTou
   k *= t.weight;
   spring.k = k;
   spring.acts = -t.gap - c.offset > 0.0;
+}
+
+void ContactEngine::set_interference(Index s, Real amount, Real base, Real duration) {
+  const auto n = static_cast<std::size_t>(m_domain.slaves().size());
+  if (m_interference.empty()) {
+    m_interference.assign(n, Interference{});
+    m_ramp_before.assign(n, 0.0);
+    m_ramp_work.assign(n, 0.0);
+  }
+  Interference& ramp = m_interference[s];
+  if (!(ramp.amount > 0.0) && amount > 0.0) ++m_ramping;
+  if (ramp.amount > 0.0 && !(amount > 0.0)) --m_ramping;
+  ramp = {amount, base, duration};
+  m_constraints[s].offset = base + amount;
+  m_constraints[s].offset_permanent = amount > 0.0 || base != 0.0;
 }
 
 void ContactEngine::set_rigid_bodies(std::vector<Index> node_body,

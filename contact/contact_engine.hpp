@@ -102,6 +102,17 @@ class ContactEngine {
   /// Widens the search margin by `extra` (m, > 0) for contact surfaces moved out towards the
   /// slave nodes by negative permanent offsets (clearances); the next search rebuilds the lists.
   void widen_search(Real extra);
+  /// Interference fit of slave slot s (SPEC C15): its offset is `base` + `amount`·r(t), r
+  /// ramping linearly from 1 at step time 0 to 0 at step time `duration` (s, > 0), so the
+  /// penalty pushes the surfaces apart with a force that grows from zero. The offset is
+  /// permanent while it ramps (the C3 rule does not shrink it) and afterwards when `base` ≠ 0
+  /// (what an interference distance left of a clearance violation); an offset of zero after the
+  /// ramp leaves the plain penalty. Sets the offset for step time 0.
+  void set_interference(Index s, Real amount, Real base, Real duration);
+  /// The step time (s) of the next update(), for the interference ramp.
+  void set_step_time(Real step_time) { m_step_time = step_time; }
+  /// Whether some slave slot's interference is still ramping.
+  bool interference_ramping() const { return m_ramping > 0; }
 
  private:
   /// Closest admissible face of every slave node (parallel over slots); a slot without
@@ -203,6 +214,16 @@ class ContactEngine {
   std::vector<Real> m_user_k;     // (2 n_slave) user-stiffness springs counted this update, N/m
   std::vector<Index> m_user_law;  // (2 n_slave) their interaction
   bool m_updated = false;         // an update() has run: constraints hold last increment's touches
+  // Interference fits (set_interference): per slave slot (empty when none) the ramp, and the
+  // offset before this update's ramp step with the energy that step put in (J).
+  struct Interference {
+    Real amount = 0.0, base = 0.0, duration = 0.0;
+  };
+  std::vector<Interference> m_interference;
+  std::vector<Real> m_ramp_before;
+  std::vector<Real> m_ramp_work;
+  Index m_ramping = 0;  // slots still ramping
+  Real m_step_time = 0.0;
   // Slots with candidate faces at the last broad-phase build (n_slave) and the faces around
   // them (n_faces): update() refreshes the areas and normals of these slots only, the only
   // ones its search reads; probe() refreshes all. Scratch masks for the force-carrying corners

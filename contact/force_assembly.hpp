@@ -26,6 +26,10 @@ struct ContactTotals {
   /// ALLPW should equal it (issue 20, item 4); what the springs hold beyond ALLPW was created
   /// by contact (ContactEnergyCheck).
   Real stored_energy = 0.0;
+  /// Energy the interference ramp put into the springs this increment (SPEC C15), J: ½ (F_n +
+  /// F_{n+1}) times the shrinking of the offsets d0, in the trapezoidal measure of `work`.
+  /// An energy input, as the work of a load (the solver books it in ALLWK and ALLPW).
+  Real interference_work = 0.0;
   Index closed = 0;  ///< slave nodes with a normal force
   /// Slave nodes released deeper than the element behind the solid face they were pressed on
   /// (ContactEngine, contact at speed), and the deepest of them: its node index, depth (m),

@@ -234,6 +234,10 @@ std::vector<contact::ClearanceView> ContactStage::clearance_views(
       view.nodal_values = m_model.distributions[definition.distribution].values;
     if (definition.search_above) view.search_above = *definition.search_above;
     if (definition.search_below) view.search_below = *definition.search_below;
+    view.interference = definition.interference;
+    if (definition.interference_distance)
+      view.interference_distance = *definition.interference_distance;
+    view.ramp_time = definition.step_fraction * s.time_period;
     auto add = [&](Index slave, Index master) {
       contact::ClearanceView v = view;
       v.slave_surface = slave;
@@ -241,8 +245,9 @@ std::vector<contact::ClearanceView> ContactStage::clearance_views(
       v.slave_faces = faces_of(slave);
       v.master_faces = faces_of(master);
       views.push_back(std::move(v));
-      names.push_back(
-          {definition.name, m_model.surfaces[slave].name, m_model.surfaces[master].name});
+      names.push_back({definition.name, m_model.surfaces[slave].name, m_model.surfaces[master].name,
+                       definition.initialization, definition.interference,
+                       definition.step_fraction});
     };
     // MASTER: surf1 is the master (only surf2's nodes move); SLAVE: surf1 is the slave.
     if (assignment.view != ClearanceAssignment::View::Master)
@@ -261,11 +266,15 @@ void ContactStage::set_rigid_bodies(const RigidBodies& rigid) {
 void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty) {
   m_stored_energy = 0.0;
   if (!m_engine) return;
+  if (m_engine->interference_ramping()) m_engine->set_step_time(state.step_time);
   const contact::ContactTotals t = m_engine->update(
       state.position, state.velocity_half, dt_taken, dt_penalty, elements.node_thickness(),
       state.mass, elements.inverse_mass(), elements.force_internal(), m_timers);
   state.energies.friction += t.friction_dissipation;
-  state.energies.contact += -t.work - t.friction_dissipation;
+  // The interference ramp's energy is an input, as the work of a load: in ALLWK, and in
+  // ALLPW, which then holds what the springs hold (ContactEnergyCheck).
+  state.energies.contact += -t.work - t.friction_dissipation + t.interference_work;
+  state.energies.external_work += t.interference_work;
   m_stored_energy = t.stored_energy;
   if (t.lost == 0) return;
   if (m_lost == 0)

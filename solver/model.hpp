@@ -248,9 +248,21 @@ struct NodalDistribution {
   SourceLocation where;
 };
 
-/// `*CONTACT CLEARANCE, NAME=, ADJUST=, CLEARANCE=, SEARCH ABOVE=, SEARCH BELOW=` (SPEC C7–C9).
+/// `*CONTACT CLEARANCE, NAME=, ADJUST=, CLEARANCE=, SEARCH ABOVE=, SEARCH BELOW=` (SPEC C7–C9),
+/// or the same written `*CONTACT INITIALIZATION DATA, NAME=, INITIAL CLEARANCE=, ADJUST=, SEARCH
+/// ABOVE=, SEARCH BELOW=` (SPEC C14), which may instead ask for an interference fit (C15).
 struct ContactClearance {
   std::string name;  ///< upper-case name
+  /// Spelled `*CONTACT INITIALIZATION DATA` (its names are apart from `*CONTACT CLEARANCE`'s).
+  bool initialization = false;
+  /// `INTERFERENCE FIT` (C15): the overclosures of the slave nodes in the search zone become
+  /// offsets ramped to zero over `step_fraction` of the first step (the penalty pushes the
+  /// surfaces apart); `value` and `distribution` are then unused.
+  bool interference = false;
+  /// `INTERFERENCE FIT=h`: nodes are first moved (strain free, ADJUST=YES) to an overclosure h,
+  /// m; empty: the overclosure as read is the interference.
+  std::optional<Real> interference_distance;
+  Real step_fraction = 1.0;  ///< `STEP FRACTION=`, in (0, 1]
   /// ADJUST=YES (default): nodes move, strain free, in the first step only; ADJUST=NO:
   /// permanent contact offsets, never ramped away.
   bool adjust = true;
@@ -262,7 +274,17 @@ struct ContactClearance {
   SourceLocation where;
 };
 
-/// A `*CONTACT CLEARANCE ASSIGNMENT` data line: `surf1, surf2, name[, MASTER|SLAVE]`.
+/// The keyword that defined `c`, for messages.
+inline const char* clearance_keyword(const ContactClearance& c) {
+  return c.initialization ? "*CONTACT INITIALIZATION DATA" : "*CONTACT CLEARANCE";
+}
+/// The assignment keyword of the spelling (`initialization`: the SPEC C14 one), for messages.
+inline const char* assignment_keyword(bool initialization) {
+  return initialization ? "*CONTACT INITIALIZATION ASSIGNMENT" : "*CONTACT CLEARANCE ASSIGNMENT";
+}
+
+/// A `*CONTACT CLEARANCE ASSIGNMENT` data line: `surf1, surf2, name[, MASTER|SLAVE]`, or a
+/// `*CONTACT INITIALIZATION ASSIGNMENT` line with the same fields (SPEC C14).
 struct ClearanceAssignment {
   /// Both: the nodes of each surface against the faces of the other (balanced, default);
   /// Master: surf1 is the master, only the nodes of surf2 move; Slave: surf1 is the slave.

@@ -31,6 +31,9 @@ void report_overclosures(const contact::OverclosureReport& report,
 /// surfaces.
 struct ClearanceViewNames {
   std::string clearance, slave, master;
+  bool initialization = false;  ///< `*CONTACT INITIALIZATION DATA` (SPEC C14)
+  bool interference = false;    ///< an interference fit (C15)
+  Real step_fraction = 1.0;     ///< its STEP FRACTION
 };
 
 /// Writes the reports of the clearance pass of step `step` (SPEC C7–C11): with DETAIL one .msg

@@ -12,8 +12,10 @@ namespace xpl::io {
 
 namespace {
 
-constexpr const char* ASSIGNMENT_LINE = "surface 1, surface 2, clearance name[, MASTER|SLAVE]";
-constexpr const char* ASSIGNMENT_KEYWORD = "*CONTACT CLEARANCE ASSIGNMENT";
+constexpr const char* CLEARANCE_LINE = "surface 1, surface 2, clearance name[, MASTER|SLAVE]";
+constexpr const char* INITIALIZATION_LINE =
+    "surface 1, surface 2, initialization name[, MASTER|SLAVE|FIRST SURFACE SFC|SECOND SURFACE "
+    "SFC]";
 
 /// Whether every field of a data line is `NAME=value`: the manual's first *CONTACT CLEARANCE
 /// example writes `SEARCH ABOVE=0.0` on the line after a keyword line without a trailing
@@ -28,29 +30,28 @@ bool is_parameter_line(const DeckDataLine& line) {
   return any;
 }
 
-}  // namespace
+/// A parameter with the line that gave it.
+using Located = std::pair<DeckParameter, SourceLocation>;
 
-void read_contact_clearance(DeckState& deck, const DeckBlock& block) {
+/// The parameters of the keyword line, then those of its parameter data lines (each checked
+/// against `more_accepted`), each with its line; other data lines are reported.
+std::vector<Located> gather_parameters(DeckState& deck, const DeckBlock& block,
+                                       std::initializer_list<ParameterSpec> more_accepted,
+                                       const std::string& hint) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(deck, keyword,
-                   {{"NAME"}, {"ADJUST"}, {"CLEARANCE"}, {"SEARCH ABOVE"}, {"SEARCH BELOW"}});
-  const std::optional<std::string> name = required_name(deck, keyword, "NAME");
-  // Parameters of the keyword line, then those of parameter data lines, each with its line.
-  std::vector<std::pair<DeckParameter, SourceLocation>> parameters;
+  std::vector<Located> parameters;
   for (const DeckParameter& p : keyword.parameters) parameters.emplace_back(p, keyword.where);
   for (const DeckDataLine& line : block.data) {
     if (!is_parameter_line(line)) {
       error(deck, line.where(), keyword, "unexpected data line",
-            "expected no data lines, or a line of more parameters such as SEARCH ABOVE=0.0 "
-            "(ADJUST=, CLEARANCE=, SEARCH ABOVE=, SEARCH BELOW=)");
+            "expected no data lines, or a line of more parameters such as SEARCH ABOVE=0.0 (" +
+                hint + ")");
       continue;
     }
     DeckKeyword more{keyword.name, {}, line.where()};
     for (std::string_view field : line.fields)
       if (!field.empty()) more.parameters.push_back(parse_parameter(field));
-    if (!check_parameters(deck, more,
-                          {{"ADJUST"}, {"CLEARANCE"}, {"SEARCH ABOVE"}, {"SEARCH BELOW"}}))
-      continue;
+    if (!check_parameters(deck, more, more_accepted)) continue;
     for (const DeckParameter& p : more.parameters) {
       const bool repeated = std::any_of(parameters.begin(), parameters.end(),
                                         [&](const auto& q) { return q.first.name == p.name; });
@@ -61,20 +62,30 @@ void read_contact_clearance(DeckState& deck, const DeckBlock& block) {
         parameters.emplace_back(p, line.where());
     }
   }
-  // A parameter with the line that gave it; nothing if it is absent or has no value (then
-  // check_parameters reported it).
-  const auto value_of =
-      [&](std::string_view name) -> const std::pair<DeckParameter, SourceLocation>* {
-    for (const auto& entry : parameters)
-      if (entry.first.name == name && entry.first.has_value && !entry.first.value.empty())
-        return &entry;
-    return nullptr;
-  };
+  return parameters;
+}
 
-  ContactClearance clearance;
-  clearance.where = keyword.where;
-  std::string distribution;
-  if (const auto* adjust = value_of("ADJUST")) {
+/// The parameter `name` (with or without a value), or nothing.
+const Located* find_located(const std::vector<Located>& parameters, std::string_view name) {
+  for (const Located& entry : parameters)
+    if (entry.first.name == name) return &entry;
+  return nullptr;
+}
+
+/// The parameter `name` with a value; nothing if it is absent or has no value (then
+/// check_parameters reported it).
+const Located* value_of(const std::vector<Located>& parameters, std::string_view name) {
+  const Located* entry = find_located(parameters, name);
+  return entry != nullptr && entry->first.has_value && !entry->first.value.empty() ? entry
+                                                                                   : nullptr;
+}
+
+/// ADJUST=, the clearance value or distribution of parameter `value_name`, SEARCH ABOVE= and
+/// SEARCH BELOW=: what both spellings share, read into `clearance` and `distribution`.
+void read_shared(DeckState& deck, const DeckKeyword& keyword,
+                 const std::vector<Located>& parameters, const std::string& value_name,
+                 ContactClearance& clearance, std::string& distribution) {
+  if (const Located* adjust = value_of(parameters, "ADJUST")) {
     const std::string word = normalize_name(adjust->first.value);
     if (word == "YES" || word == "NO")
       clearance.adjust = word == "YES";
@@ -83,12 +94,12 @@ void read_contact_clearance(DeckState& deck, const DeckBlock& block) {
             "expected ADJUST=YES (move the slave nodes, strain free, in the first step; the "
             "default) or ADJUST=NO (permanent contact offsets)");
   }
-  if (const auto* value = value_of("CLEARANCE")) {
+  if (const Located* value = value_of(parameters, value_name)) {
     const std::string& text = value->first.value;
     if (const std::optional<Real> number = parse_real(text))
       clearance.value = *number;
     else if (looks_numeric(text))
-      error(deck, value->second, keyword, "bad number '" + text + "' for CLEARANCE",
+      error(deck, value->second, keyword, "bad number '" + text + "' for " + value_name,
             "expected a real number such as 0.5 or 1e-3, or the name of a *DISTRIBUTION");
     else
       distribution = normalize_name(text);
@@ -96,7 +107,7 @@ void read_contact_clearance(DeckState& deck, const DeckBlock& block) {
   const std::pair<std::string, std::optional<Real>*> zones[] = {
       {"SEARCH ABOVE", &clearance.search_above}, {"SEARCH BELOW", &clearance.search_below}};
   for (const auto& [parameter, zone] : zones) {
-    const auto* search = value_of(parameter);
+    const Located* search = value_of(parameters, parameter);
     if (search == nullptr) continue;
     const std::optional<Real> number = parse_real(search->first.value);
     if (!number)
@@ -109,64 +120,85 @@ void read_contact_clearance(DeckState& deck, const DeckBlock& block) {
     else
       *zone = *number;
   }
-  if (!name) return;
+}
+
+/// Adds the definition `clearance` named `name` (reported if the name is taken in its
+/// spelling).
+void add_definition(DeckState& deck, const DeckKeyword& keyword, const std::string& name,
+                    ContactClearance clearance, const std::string& distribution) {
   for (const ContactClearance& other : deck.model.contact_clearances) {
-    if (other.name == *name) {
-      error(deck, keyword.where, keyword,
-            "contact clearance " + *name + " is defined twice at " + location_text(other.where),
-            "expected each contact clearance name once");
+    if (other.name == name && other.initialization == clearance.initialization) {
+      error(
+          deck, keyword.where, keyword,
+          std::string(clearance.initialization ? "contact initialization " : "contact clearance ") +
+              name + " is defined twice at " + location_text(other.where),
+          std::string("expected each ") +
+              (clearance.initialization ? "contact initialization" : "contact clearance") +
+              " name once");
       return;
     }
   }
-  clearance.name = *name;
-  deck.model.contact_clearances.push_back(clearance);
+  clearance.name = name;
+  clearance.where = keyword.where;
+  deck.model.contact_clearances.push_back(std::move(clearance));
   deck.clearance_distributions.push_back(distribution);
 }
 
-void read_clearance_assignment(DeckState& deck, const DeckBlock& block) {
+/// The data lines of an assignment in either spelling (SPEC C10, C14).
+void read_assignment(DeckState& deck, const DeckBlock& block, bool initialization) {
   const DeckKeyword& keyword = block.keyword;
+  const char* line_text = initialization ? INITIALIZATION_LINE : CLEARANCE_LINE;
+  const std::string what = initialization ? "initialization name" : "clearance name";
   check_parameters(deck, keyword, {});
   GeneralContact* contact = open_contact(deck, keyword);
   if (contact == nullptr) return;
   if (block.data.empty()) {
     error(deck, keyword.where, keyword, "no assignments",
-          std::string("expected data lines: ") + ASSIGNMENT_LINE);
+          std::string("expected data lines: ") + line_text);
     return;
   }
   const auto field = [](const DeckDataLine& line, std::size_t i) {
     return i < line.fields.size() ? normalize_name(line.fields[i]) : std::string();
   };
   for (const DeckDataLine& line : block.data) {
-    check_field_count(deck, line, keyword, 4, ASSIGNMENT_LINE);
+    check_field_count(deck, line, keyword, 4, line_text);
     const std::string first = field(line, 0), second = field(line, 1), name = field(line, 2),
                       view = field(line, 3);
     PendingClearanceAssignment pending;
     pending.step = static_cast<Index>(deck.model.steps.size() - 1);
     pending.clearance = name;
+    pending.initialization = initialization;
     ClearanceAssignment& assignment = pending.assignment;
     assignment.where = line.where();
     bool ok = true;
-    const auto missing = [&](const std::string& what) {
-      error(deck, line.where(), keyword, "missing " + what,
-            std::string("expected ") + ASSIGNMENT_LINE);
+    const auto missing = [&](const std::string& field_name) {
+      error(deck, line.where(), keyword, "missing " + field_name,
+            std::string("expected ") + line_text);
       ok = false;
     };
     if (first.empty()) missing("surface 1");
     if (second.empty()) missing("surface 2");
-    if (name.empty()) missing("clearance name");
-    if (view == "MASTER") {
+    if (name.empty()) missing(what);
+    // FIRST SURFACE SFC: the first surface behaves as the secondary (slave) surface of a pure
+    // main-secondary interaction, as SLAVE; SECOND SURFACE SFC: the second one, as MASTER.
+    if (view == "MASTER" || (initialization && view == "SECOND SURFACE SFC")) {
       assignment.view = ClearanceAssignment::View::Master;
-    } else if (view == "SLAVE") {
+    } else if (view == "SLAVE" || (initialization && view == "FIRST SURFACE SFC")) {
       assignment.view = ClearanceAssignment::View::Slave;
     } else if (!view.empty()) {
       error(deck, line.where(), keyword, "bad view '" + view + "'",
-            "expected MASTER (surface 1 is the master: only the nodes of surface 2 move), SLAVE "
-            "(surface 1 is the slave) or nothing (both views)");
+            std::string("expected MASTER (surface 1 is the master: only the nodes of surface 2 "
+                        "move), SLAVE (surface 1 is the slave)") +
+                (initialization ? ", SECOND SURFACE SFC (as MASTER), FIRST SURFACE SFC (as SLAVE)"
+                                : "") +
+                " or nothing (both views)");
       ok = false;
     }
     if (!first.empty() && first == second) {
       error(deck, line.where(), keyword, "self contact of surface " + first,
-            "expected two different surfaces (clearances do not apply to self contact)");
+            std::string("expected two different surfaces (") +
+                (initialization ? "contact initializations" : "clearances") +
+                " do not apply to self contact)");
       continue;
     }
     for (const auto& [surface_name, index] :
@@ -177,14 +209,131 @@ void read_clearance_assignment(DeckState& deck, const DeckBlock& block) {
         ok = false;
       } else if (deck.model.surfaces[static_cast<std::size_t>(*index)].type ==
                  Surface::Type::Node) {
-        error(deck, line.where(), keyword, "surface " + surface_name + " is node-based",
-              "expected element-based surfaces (*SURFACE, TYPE=ELEMENT): clearances are "
-              "assigned to node-to-face interactions");
+        const bool master =
+            assignment.view == ClearanceAssignment::View::Both ||
+            (assignment.view == ClearanceAssignment::View::Master) == (index == &assignment.first);
+        error(deck, line.where(), keyword,
+              "surface " + surface_name + " is node-based" +
+                  (master ? " and would act as a master" : ""),
+              "expected element-based surfaces (*SURFACE, TYPE=ELEMENT): a node-based surface "
+              "has no faces to be a master, and xpl assigns clearances between element-based "
+              "surfaces only");
         ok = false;
       }
     }
     if (ok) deck.clearance_assignments.push_back(std::move(pending));
   }
+}
+
+}  // namespace
+
+void read_contact_clearance(DeckState& deck, const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(deck, keyword,
+                   {{"NAME"}, {"ADJUST"}, {"CLEARANCE"}, {"SEARCH ABOVE"}, {"SEARCH BELOW"}});
+  const std::optional<std::string> name = required_name(deck, keyword, "NAME");
+  const std::vector<Located> parameters = gather_parameters(
+      deck, block, {{"ADJUST"}, {"CLEARANCE"}, {"SEARCH ABOVE"}, {"SEARCH BELOW"}},
+      "ADJUST=, CLEARANCE=, SEARCH ABOVE=, SEARCH BELOW=");
+  ContactClearance clearance;
+  std::string distribution;
+  read_shared(deck, keyword, parameters, "CLEARANCE", clearance, distribution);
+  if (name) add_definition(deck, keyword, *name, clearance, distribution);
+}
+
+void read_contact_initialization(DeckState& deck, const DeckBlock& block) {
+  const DeckKeyword& keyword = block.keyword;
+  check_parameters(deck, keyword,
+                   {{"NAME"},
+                    {"INITIAL CLEARANCE"},
+                    {"INTERFERENCE FIT", true, true},
+                    {"ADJUST"},
+                    {"SEARCH ABOVE"},
+                    {"SEARCH BELOW"},
+                    {"MINIMUM DISTANCE"},
+                    {"STEP FRACTION"}});
+  const std::optional<std::string> name = required_name(deck, keyword, "NAME");
+  const std::vector<Located> parameters = gather_parameters(
+      deck, block,
+      {{"INITIAL CLEARANCE"},
+       {"INTERFERENCE FIT"},
+       {"ADJUST"},
+       {"SEARCH ABOVE"},
+       {"SEARCH BELOW"},
+       {"MINIMUM DISTANCE"},
+       {"STEP FRACTION"}},
+      "INITIAL CLEARANCE=, INTERFERENCE FIT=, ADJUST=, SEARCH ABOVE=, SEARCH BELOW=, MINIMUM "
+      "DISTANCE=, STEP FRACTION=");
+  ContactClearance clearance;
+  clearance.initialization = true;
+  std::string distribution;
+  read_shared(deck, keyword, parameters, "INITIAL CLEARANCE", clearance, distribution);
+
+  const Located* interference = find_located(parameters, "INTERFERENCE FIT");
+  const Located* initial = find_located(parameters, "INITIAL CLEARANCE");
+  if (interference != nullptr && initial != nullptr)
+    error(deck, interference->second, keyword,
+          "INITIAL CLEARANCE and INTERFERENCE FIT are both given",
+          "expected one of them (they are mutually exclusive): INITIAL CLEARANCE=c for a gap, "
+          "INTERFERENCE FIT[=h] to resolve overclosures over the first step");
+  if (interference != nullptr) {
+    clearance.interference = true;
+    // Without a distance nothing is moved: the overclosures as read are the interference.
+    clearance.adjust = false;
+    if (interference->first.has_value) {
+      const std::string& text = interference->first.value;
+      const std::optional<Real> h = parse_real(text);
+      if (!h)
+        error(deck, interference->second, keyword, "bad number '" + text + "' for INTERFERENCE FIT",
+              "expected INTERFERENCE FIT alone (the overclosures as read) or INTERFERENCE FIT=h "
+              "with an interference distance h > 0");
+      else if (!(*h > 0.0))
+        error(deck, interference->second, keyword,
+              "INTERFERENCE FIT=" + text + (*h < 0.0 ? " is negative" : " is zero"),
+              "expected an interference distance h > 0 (an overclosure), or INTERFERENCE FIT "
+              "alone to take the overclosures as read");
+      else
+        clearance.interference_distance = *h;
+      // With a distance the nodes are moved to it unless ADJUST=NO.
+      const Located* adjust = value_of(parameters, "ADJUST");
+      clearance.adjust = adjust == nullptr || normalize_name(adjust->first.value) == "YES";
+    }
+  }
+  if (const Located* fraction = find_located(parameters, "STEP FRACTION")) {
+    const std::optional<Real> f =
+        fraction->first.has_value ? parse_real(fraction->first.value) : std::nullopt;
+    if (interference == nullptr)
+      error(deck, fraction->second, keyword, "STEP FRACTION without INTERFERENCE FIT",
+            "expected STEP FRACTION only with INTERFERENCE FIT (the fraction of the first step "
+            "over which the interference is resolved)");
+    else if (!f || !(*f > 0.0 && *f <= 1.0))
+      error(deck, fraction->second, keyword,
+            "STEP FRACTION=" + fraction->first.value + " is outside (0, 1]",
+            "expected a fraction of the step time 0 < f <= 1 (default 1: the whole first step)");
+    else
+      clearance.step_fraction = *f;
+  }
+  if (const Located* minimum = find_located(parameters, "MINIMUM DISTANCE")) {
+    const std::string word = normalize_name(minimum->first.value);
+    if (word == "YES" || word == "NO")
+      note(deck, minimum->second, keyword,
+           "MINIMUM DISTANCE=" + word +
+               " accepted without effect: it switches the localized contact damping of "
+               "Abaqus/Standard where surfaces touch at a single point, which xpl (explicit, "
+               "penalty contact) does not have");
+    else
+      error(deck, minimum->second, keyword, "bad MINIMUM DISTANCE=" + minimum->first.value,
+            "expected MINIMUM DISTANCE=YES or NO");
+  }
+  if (name) add_definition(deck, keyword, *name, clearance, distribution);
+}
+
+void read_clearance_assignment(DeckState& deck, const DeckBlock& block) {
+  read_assignment(deck, block, false);
+}
+
+void read_initialization_assignment(DeckState& deck, const DeckBlock& block) {
+  read_assignment(deck, block, true);
 }
 
 void resolve_clearances(DeckState& deck) {
@@ -195,27 +344,50 @@ void resolve_clearances(DeckState& deck) {
     for (std::size_t d = 0; d < deck.model.distributions.size(); ++d)
       if (deck.model.distributions[d].name == name) clearance.distribution = static_cast<Index>(d);
     if (clearance.distribution == NO_INDEX)
-      deck.errors.add(clearance.where, "*CONTACT CLEARANCE", "undefined distribution " + name,
+      deck.errors.add(clearance.where, clearance_keyword(clearance),
+                      "undefined distribution " + name,
                       "expected *DISTRIBUTION, NAME=" + name + ", LOCATION=NODE, or a number");
   }
   deck.clearance_surface_state.assign(deck.model.surfaces.size(), 0);
   for (PendingClearanceAssignment& pending : deck.clearance_assignments) {
     ClearanceAssignment& assignment = pending.assignment;
+    const char* keyword = assignment_keyword(pending.initialization);
     for (std::size_t c = 0; c < deck.model.contact_clearances.size(); ++c)
-      if (deck.model.contact_clearances[c].name == pending.clearance)
+      if (deck.model.contact_clearances[c].name == pending.clearance &&
+          deck.model.contact_clearances[c].initialization == pending.initialization)
         assignment.clearance = static_cast<Index>(c);
     if (assignment.clearance == NO_INDEX) {
-      deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD,
-                      "undefined contact clearance " + pending.clearance,
-                      "expected *CONTACT CLEARANCE, NAME=" + pending.clearance);
+      if (pending.initialization)
+        deck.errors.add(assignment.where, keyword,
+                        "undefined contact initialization " + pending.clearance,
+                        "expected *CONTACT INITIALIZATION DATA, NAME=" + pending.clearance);
+      else
+        deck.errors.add(assignment.where, keyword,
+                        "undefined contact clearance " + pending.clearance,
+                        "expected *CONTACT CLEARANCE, NAME=" + pending.clearance);
       continue;
     }
+    const ContactClearance& definition =
+        deck.model.contact_clearances[static_cast<std::size_t>(assignment.clearance)];
+    // An interference fit acts on both views: the view word only directs nodal adjustments
+    // of a clearance (the manual's optional item, for INITIAL CLEARANCE with ADJUST=YES).
+    const bool view_fit =
+        !definition.interference || assignment.view == ClearanceAssignment::View::Both;
+    if (!view_fit)
+      deck.errors.add(assignment.where, keyword,
+                      "a view (MASTER, SLAVE, FIRST or SECOND SURFACE SFC) with interference fit " +
+                          definition.name,
+                      "expected no fourth field: an interference fit acts on both master-slave "
+                      "views of the pair (the view directs the adjustments of INITIAL CLEARANCE "
+                      "with ADJUST=YES only)");
     // Each check reports its own problem: all of them are run.
-    const bool first_fit = check_clearance_surface(deck, assignment.first, assignment.where);
-    const bool second_fit = check_clearance_surface(deck, assignment.second, assignment.where);
+    const bool first_fit =
+        check_clearance_surface(deck, assignment.first, assignment.where, keyword);
+    const bool second_fit =
+        check_clearance_surface(deck, assignment.second, assignment.where, keyword);
     const bool step_fit = check_clearance_step(deck, pending);
     const bool slaves_fit = check_clearance_slaves(deck, pending);
-    if (!first_fit || !second_fit || !step_fit || !slaves_fit ||
+    if (!view_fit || !first_fit || !second_fit || !step_fit || !slaves_fit ||
         !check_clearance_sign(deck, pending))
       continue;
     deck.model.steps[static_cast<std::size_t>(pending.step)].contact->clearances.push_back(
@@ -225,15 +397,26 @@ void resolve_clearances(DeckState& deck) {
 
 bool check_clearance_step(DeckState& deck, const PendingClearanceAssignment& pending) {
   const ClearanceAssignment& assignment = pending.assignment;
+  const char* keyword = assignment_keyword(pending.initialization);
   const auto step = static_cast<std::size_t>(pending.step);
   const Step& here = deck.model.steps[step];
   const auto has_general = [](const std::optional<GeneralContact>& contact) {
     return contact && (contact->all_exterior || !contact->inclusions.empty());
   };
   if (!has_general(here.contact)) {
-    deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD,
+    deck.errors.add(assignment.where, keyword,
                     "step " + here.name + " has no general contact domain to assign clearances to",
                     "expected *CONTACT INCLUSIONS in the step of the *CONTACT (or an earlier one)");
+    return false;
+  }
+  const ContactClearance& clearance =
+      deck.model.contact_clearances[static_cast<std::size_t>(assignment.clearance)];
+  if (step > 0 && clearance.interference) {
+    deck.errors.add(assignment.where, keyword,
+                    "interference fit " + clearance.name + " is assigned in step " + here.name +
+                        ", which is not the first",
+                    "expected an interference fit in the first step of the analysis (it is "
+                    "resolved over a fraction of that step, SPEC C15)");
     return false;
   }
   // A step builds its contact domain new when no contact was in effect in the step before (the
@@ -251,7 +434,7 @@ bool check_clearance_step(DeckState& deck, const PendingClearanceAssignment& pen
   }
   if (earlier_contact) {
     deck.errors.add(
-        assignment.where, ASSIGNMENT_KEYWORD,
+        assignment.where, keyword,
         "clearances apply only when a step's contact domain is built new; the contact in "
         "effect in step " +
             deck.model.steps[step - 1].name + " carries over into step " + here.name,
@@ -259,16 +442,15 @@ bool check_clearance_step(DeckState& deck, const PendingClearanceAssignment& pen
         "without contact (then with ADJUST=NO)");
     return false;
   }
-  const ContactClearance& clearance =
-      deck.model.contact_clearances[static_cast<std::size_t>(assignment.clearance)];
   if (step > 0 && clearance.adjust) {
-    deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD,
+    deck.errors.add(assignment.where, keyword,
                     "clearance " + clearance.name +
                         " moves nodes (ADJUST=YES, also the default), which only the first step "
                         "can do, and step " +
                         here.name + " is not the first",
-                    "expected ADJUST=NO (contact offsets) on *CONTACT CLEARANCE, NAME=" +
-                        clearance.name + " for a step after the first");
+                    "expected ADJUST=NO (contact offsets) on " +
+                        std::string(clearance_keyword(clearance)) + ", NAME=" + clearance.name +
+                        " for a step after the first");
     return false;
   }
   return true;

@@ -12,8 +12,6 @@ namespace xpl::io {
 
 namespace {
 
-constexpr const char* ASSIGNMENT_KEYWORD = "*CONTACT CLEARANCE ASSIGNMENT";
-
 /// The (slave, master) surface pairs of an assignment's view.
 std::vector<std::pair<Index, Index>> views_of(const ClearanceAssignment& assignment) {
   switch (assignment.view) {
@@ -37,7 +35,8 @@ struct FaceEdge {
 
 }  // namespace
 
-bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocation& where) {
+bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocation& where,
+                             const char* keyword) {
   std::uint8_t& state = deck.clearance_surface_state[static_cast<std::size_t>(surface)];
   if (state != 0) return state == 1;
   state = 2;
@@ -57,7 +56,7 @@ bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocatio
   };
   for (std::size_t i = 1; i < faces.size(); ++i) {
     if (faces[i].element == faces[i - 1].element && is_shell_face(faces[i])) {
-      deck.errors.add(where, ASSIGNMENT_KEYWORD,
+      deck.errors.add(where, keyword,
                       "surface " + s.name +
                           " is not single sided: it holds both SPOS and SNEG of " + "S4R element " +
                           std::to_string(deck.model.element_ids[faces[i].element]),
@@ -99,14 +98,14 @@ bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocatio
     while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
     if (j - i > 2 && !crowded) {
       crowded = true;
-      deck.errors.add(where, ASSIGNMENT_KEYWORD,
+      deck.errors.add(where, keyword,
                       "surface " + s.name + " has " + edge_text(edges[i]) + " on " +
                           std::to_string(j - i) + " of its faces",
                       "expected each edge on at most two faces of a surface with a clearance");
     } else if (j - i == 2 && edges[i].ascending == edges[i + 1].ascending && !flipped) {
       flipped = true;
       deck.errors.add(
-          where, ASSIGNMENT_KEYWORD,
+          where, keyword,
           "surface " + s.name + " has discontinuous normals: elements " +
               std::to_string(deck.model.element_ids[edges[i].element]) + " and " +
               std::to_string(deck.model.element_ids[edges[i + 1].element]) + " run through " +
@@ -123,6 +122,7 @@ bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocatio
 
 bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pending) {
   const ClearanceAssignment& assignment = pending.assignment;
+  const char* keyword = assignment_keyword(pending.initialization);
   const ContactClearance& clearance =
       deck.model.contact_clearances[static_cast<std::size_t>(assignment.clearance)];
   const auto surface = [&](Index s) -> const Surface& {
@@ -148,7 +148,7 @@ bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pen
                                 surface(solid(slave) ? slave : master).name +
                                 " is on C3D8R solid elements";
     if (distribution == nullptr) {
-      deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD,
+      deck.errors.add(assignment.where, keyword,
                       "clearance " + clearance.name + " is negative (" +
                           number_text(clearance.value) + ") " + between,
                       expected);
@@ -178,7 +178,7 @@ bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pen
     const auto negative =
         std::find_if(nodes.begin(), nodes.end(), [&](Index n) { return values[n] < 0.0; });
     if (negative == nodes.end()) continue;
-    deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD,
+    deck.errors.add(assignment.where, keyword,
                     "clearance " + clearance.name + " is negative (" +
                         number_text(values[*negative]) + " at node " +
                         std::to_string(deck.model.node_ids[*negative]) + " in distribution " +
@@ -191,6 +191,7 @@ bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pen
 
 bool check_clearance_slaves(DeckState& deck, const PendingClearanceAssignment& pending) {
   const ClearanceAssignment& assignment = pending.assignment;
+  const char* keyword = assignment_keyword(pending.initialization);
   std::vector<char> rigid(static_cast<std::size_t>(deck.model.element_count()), 0);
   for (const RigidBody& body : deck.model.rigid_bodies)
     if (body.element_set != NO_INDEX)
@@ -212,7 +213,7 @@ bool check_clearance_slaves(DeckState& deck, const PendingClearanceAssignment& p
                               "slave nodes"
                         : "surfaces " + names[0] + " and " + names[1] +
                               " lie wholly on rigid bodies: the assignment has no slave nodes";
-  deck.errors.add(assignment.where, ASSIGNMENT_KEYWORD, problem,
+  deck.errors.add(assignment.where, keyword, problem,
                   "expected a deformable slave surface (elements outside *RIGID BODY, ELSET=): "
                   "MASTER makes surface 2 the slave, SLAVE surface 1");
   return false;

@@ -248,6 +248,10 @@ void resolve_contact_pairs(DeckState& deck);
 void read_contact_clearance(DeckState& deck, const DeckBlock& block);
 /// `*CONTACT CLEARANCE ASSIGNMENT`.
 void read_clearance_assignment(DeckState& deck, const DeckBlock& block);
+/// `*CONTACT INITIALIZATION DATA` (SPEC C14, C15): the same definition as `*CONTACT CLEARANCE`.
+void read_contact_initialization(DeckState& deck, const DeckBlock& block);
+/// `*CONTACT INITIALIZATION ASSIGNMENT`: the same lines as `*CONTACT CLEARANCE ASSIGNMENT`.
+void read_initialization_assignment(DeckState& deck, const DeckBlock& block);
 /// `*DISTRIBUTION`.
 void read_distribution(DeckState& deck, const DeckBlock& block);
 /// `*DISTRIBUTION TABLE`.
@@ -266,7 +270,9 @@ bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pen
 bool check_clearance_slaves(DeckState& deck, const PendingClearanceAssignment& pending);
 /// Whether surface `surface` suits a clearance (SPEC C10): element based, single sided, each
 /// edge on at most two faces, consistent normals. Reported (once per surface) if not.
-bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocation& where);
+/// `keyword`: the assignment keyword, for the message.
+bool check_clearance_surface(DeckState& deck, Index surface, const SourceLocation& where,
+                             const char* keyword);
 
 // --- Rigid bodies and point masses (deck_rigid.cpp, deck_point_mass.cpp)
 

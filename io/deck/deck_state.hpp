@@ -160,7 +160,8 @@ struct DistributionTable {
 /// (which may be defined later) and the checks that need the whole deck in finish().
 struct PendingClearanceAssignment {
   Index step = NO_INDEX;
-  std::string clearance;  ///< upper case
+  std::string clearance;        ///< upper case
+  bool initialization = false;  ///< `*CONTACT INITIALIZATION ASSIGNMENT` (SPEC C14)
   ClearanceAssignment assignment;
 };
 /// CalculiX's `*CLEARANCE, MASTER=, SLAVE=, VALUE=` (names upper case).

@@ -4,6 +4,8 @@
 #include <limits>
 #include <vector>
 
+#include "common/timer.hpp"
+
 #include "contact/contact_clearance.hpp"
 #include "contact/contact_domain.hpp"
 #include "contact/contact_engine.hpp"
@@ -241,5 +243,113 @@ TEST_CASE("a held node keeps its clearance violation as a permanent offset",
   for (const auto& c : report.nodes) {
     CHECK(c.reason == contact::OffsetReason::Boundary);
     CHECK(c.offset == Approx(0.3).margin(1e-12));
+  }
+}
+
+TEST_CASE("interference fit: overclosures become offsets that ramp to zero, none adjusted",
+          "[contact][clearance][interference]") {
+  // B's bottom 0.02 inside A's top (2 % of the facet, which the automatic pass would adjust).
+  test::ContactMesh mesh = two_blocks(0.98);
+  NodalVectors x = mesh.coordinates;
+  const NodalVectors as_read = x;
+  ContactEngine engine = engine_for(mesh, x);
+  std::vector<ClearanceView> views = balanced(true, 0.0, 0.0, 0.1);
+  for (ClearanceView& v : views) {
+    v.interference = true;
+    v.ramp_time = 1.0;
+  }
+  const ClearanceReport report =
+      contact::apply_clearances(engine, mesh.topology(), x, {}, {}, views, true);
+  CHECK(report.nodes.size() == 18);                   // 9 on each side, both views
+  CHECK((x - as_read).cwiseAbs().maxCoeff() == 0.0);  // nothing moves
+  const auto& slaves = engine.domain().slaves();
+  for (const contact::ClearedNode& c : report.nodes) {
+    CHECK(c.interference == Approx(0.02).margin(1e-12));
+    CHECK(c.offset == 0.0);  // no permanent base
+    CHECK(c.distance == 0.0);
+    const contact::ContactConstraint& k = engine.constraints()[slaves.slot(c.node)];
+    CHECK(k.offset == Approx(0.02).margin(1e-12));
+    CHECK(k.offset_permanent);
+    CHECK(report.handled[slaves.slot(c.node)] == 1);  // the automatic pass leaves it alone
+  }
+  CHECK(engine.interference_ramping());
+
+  // The ramp: d0 = 0.02 (1 − t / 1) at step time t; no force at t = 0, half the full depth's
+  // force in the middle, the plain penalty (offset 0, not permanent) at the end.
+  const Index n = static_cast<Index>(x.rows());
+  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  const NodalVectors velocity = NodalVectors::Zero(n, 3);
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  PhaseTimers timers;
+  const Real dt = 0.1;
+  const Index probe = slaves.slot(report.nodes.front().node);
+  engine.set_step_time(0.0);
+  contact::ContactTotals t0 =
+      engine.update(x, velocity, 0.0, dt, {}, mass, inverse_mass, force, timers);
+  CHECK(t0.closed == 0);
+  CHECK(t0.interference_work == 0.0);
+  engine.set_step_time(0.5);
+  force.setZero();
+  const contact::ContactTotals half =
+      engine.update(x, velocity, dt, dt, {}, mass, inverse_mass, force, timers);
+  CHECK(engine.constraints()[probe].offset == Approx(0.01).margin(1e-12));
+  CHECK(engine.normal_force(probe) > 0.0);
+  // The ramp step from d0 = 0.02 to 0.01 with F_n = 0: ½ F_{n+1} Δd0 per spring.
+  CHECK(half.interference_work > 0.0);
+  CHECK(half.interference_work == Approx(0.5 * 0.01 * [&] {
+          Real sum = 0.0;
+          for (Index s = 0; s < slaves.size(); ++s) sum += engine.normal_force(s);
+          return sum;
+        }()));
+  const Real f_half = engine.normal_force(probe);
+  engine.set_step_time(1.0);
+  force.setZero();
+  engine.update(x, velocity, dt, dt, {}, mass, inverse_mass, force, timers);
+  CHECK(engine.constraints()[probe].offset == 0.0);
+  CHECK_FALSE(engine.constraints()[probe].offset_permanent);
+  CHECK_FALSE(engine.interference_ramping());
+  CHECK(engine.normal_force(probe) == Approx(2.0 * f_half));
+}
+
+TEST_CASE(
+    "interference fit with a distance: nodes moved to it first, or a held node keeps "
+    "the rest as a permanent offset",
+    "[contact][clearance][interference]") {
+  test::ContactMesh mesh = two_blocks(0.98);
+  NodalVectors x = mesh.coordinates;
+  std::vector<ClearanceView> views = balanced(true, 0.0, 0.0, 0.1);
+  for (ClearanceView& v : views) {
+    v.interference = true;
+    v.interference_distance = 0.05;
+    v.ramp_time = 1.0;
+  }
+  SECTION("free: both sides move half of 0.03, the overclosure reached is ramped") {
+    ContactEngine engine = engine_for(mesh, x);
+    const ClearanceReport report =
+        contact::apply_clearances(engine, mesh.topology(), x, {}, {}, views, true);
+    REQUIRE(report.nodes.size() == 18);
+    for (const contact::ClearedNode& c : report.nodes) {
+      CHECK(c.distance == Approx(0.015).margin(1e-3 * 0.05));
+      CHECK(c.interference == Approx(0.05).margin(1e-3));
+      CHECK(c.offset == 0.0);
+    }
+    // B's bottom (nodes 18..35, lowest z) now 0.05 inside A's top (nodes 0..17, highest z).
+    const Real top_a = x.col(2).head(18).maxCoeff(), bottom_b = x.col(2).tail(18).minCoeff();
+    CHECK(top_a - bottom_b == Approx(0.05).margin(1e-3));
+  }
+  SECTION("ADJUST=NO: h ramped, the rest of the overclosure (0.02 − 0.05) stays permanent") {
+    for (ClearanceView& v : views) v.adjust = false;
+    ContactEngine engine = engine_for(mesh, x);
+    const NodalVectors before = x;
+    const ClearanceReport report =
+        contact::apply_clearances(engine, mesh.topology(), x, {}, {}, views, true);
+    CHECK((x - before).cwiseAbs().maxCoeff() == 0.0);
+    const auto& slaves = engine.domain().slaves();
+    for (const contact::ClearedNode& c : report.nodes) {
+      CHECK(c.interference == Approx(0.05));
+      CHECK(c.offset == Approx(-0.03).margin(1e-12));
+      const contact::ContactConstraint& k = engine.constraints()[slaves.slot(c.node)];
+      CHECK(k.offset == Approx(0.02).margin(1e-12));  // no force at t = 0
+    }
   }
 }

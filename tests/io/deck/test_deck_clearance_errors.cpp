@@ -164,8 +164,9 @@ TEST_CASE("clearance assignment errors: names, surfaces, signs, rigid slaves",
       assignment("TYPE=X") + "unknown parameter TYPE; accepted parameters: none",
       assignment("BODY, GHOST") + "undefined surface GHOST; expected *SURFACE, NAME=GHOST",
       assignment("BODY, PTS") +
-          "surface PTS is node-based; expected element-based surfaces (*SURFACE, TYPE=ELEMENT): "
-          "clearances are assigned to node-to-face interactions",
+          "surface PTS is node-based and would act as a master; expected element-based surfaces "
+          "(*SURFACE, TYPE=ELEMENT): a node-based surface has no faces to be a master, and xpl "
+          "assigns clearances between element-based surfaces only",
       assignment("TOPS, tops") +
           "self contact of surface TOPS; expected two different surfaces (clearances do not "
           "apply to self contact)",
