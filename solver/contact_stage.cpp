@@ -312,14 +312,15 @@ void ContactStage::check_penalty(Real raw_dt, Real dt_elements, int step,
   if (!m_engine) return;
   const contact::PenaltyLimit limit = m_engine->estimate_penalty_limit(inverse_mass);
   const Step& s = m_model.steps[step];
-  if (s.fixed_increment || !(limit.omega_sq > 0.0)) return;
-  const Real dt = PenaltyIncrementLimit::combined_increment(raw_dt, dt_elements,
-                                                            s.time_scale_factor, limit.omega_sq);
+  if (s.increment.fixed || !(limit.omega_sq > 0.0)) return;
+  const Real dt = PenaltyIncrementLimit::combined_increment(
+      raw_dt, dt_elements, s.increment.scale_factor, limit.omega_sq);
   if (!(dt < dt_elements)) return;
   const SurfaceInteraction& i = m_model.surface_interactions[limit.interaction];
   // ω_c² grows with the slope; the springs stop governing at ω_c²Δt_e² = B·s².
-  const Real threshold = i.linear_slope * contact::PENALTY_INCREMENT_BUDGET * s.time_scale_factor *
-                         s.time_scale_factor / (limit.omega_sq * dt_elements * dt_elements);
+  const Real threshold = i.linear_slope * contact::PENALTY_INCREMENT_BUDGET *
+                         s.increment.scale_factor * s.increment.scale_factor /
+                         (limit.omega_sq * dt_elements * dt_elements);
   m_sink.message(Severity::Warning,
                  "step " + s.name + ": the penalty of interaction " + i.name +
                      " (PRESSURE-OVERCLOSURE=LINEAR, slope " + format_real(i.linear_slope) +

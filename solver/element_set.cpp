@@ -348,7 +348,7 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
     totals.add(t);
   }
   // Shell-only models pass their own stress test; the global estimate covers the hexes.
-  if ((m_hex || m_hex8) && !s.fixed_increment) {
+  if ((m_hex || m_hex8) && !s.increment.fixed) {
     const auto product = [this, &state](const NodalVectors& u, NodalVectors& y) {
       if (m_hex) m_hex->add_stiffness_product(state.position, u, y);
       if (m_hex8) m_hex8->add_stiffness_product(state.position, u, y);
@@ -381,9 +381,9 @@ Real ElementSet::stable_increment(const State& state, int step) {
 
 Real ElementSet::stable_step(const ElementTotals& totals, int step) const {
   const Step& s = m_model.steps[step];
-  if (s.fixed_increment) return *s.fixed_increment;
-  const Real dt = totals.stable_dt * s.time_scale_factor * m_dt_safety;
-  return s.max_increment ? std::min(dt, *s.max_increment) : dt;
+  if (s.increment.fixed) return *s.increment.fixed;
+  const Real dt = totals.stable_dt * s.increment.scale_factor * m_dt_safety;
+  return s.increment.max ? std::min(dt, *s.increment.max) : dt;
 }
 
 Real ElementSet::next_increment(const ElementTotals& totals, Real remaining, int step,

@@ -199,7 +199,7 @@ void EnergyCheck::check(const State& state, const ElementTotals& totals, Real dt
                        now.mover + " moved most");
     }
   }
-  if (m_model.steps[state.step].fixed_increment) return;
+  if (m_model.steps[state.step].increment.fixed) return;
   const Real floor = std::max(m_dt_floor_ratio * m_dt_first, DT_TRANSIT_FLOOR * m_transit_time);
   if (dt_next < floor || !(dt_next > 0.0)) {
     throw SolverError(

@@ -37,8 +37,8 @@ Real PenaltyIncrementLimit::apply(const contact::PenaltyLimit& limit, Real raw_d
   contact::PenaltyLimit use = limit;
   if (m_hold > 0 && m_held.omega_sq > use.omega_sq) use = m_held;
   Real dt = std::numeric_limits<Real>::infinity();
-  if (!s.fixed_increment && std::isfinite(dt_elements))
-    dt = combined_increment(raw_dt, dt_elements, s.time_scale_factor, use.omega_sq);
+  if (!s.increment.fixed && std::isfinite(dt_elements))
+    dt = combined_increment(raw_dt, dt_elements, s.increment.scale_factor, use.omega_sq);
   const bool governs = dt < dt_elements;
   if (!governs) {
     if (m_governing) end_span();

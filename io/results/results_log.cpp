@@ -203,8 +203,8 @@ void MsgFile::begin_step(const Model& model, int step) {
     const Step& s = model.steps[index];
     m_out << "  " << escape_control(s.name) << "\n"
           << format("   time period %12.4E s\n", s.time_period);
-    if (s.fixed_increment) m_out << format("   fixed increment %12.4E s\n", *s.fixed_increment);
-    m_out << format("   time scale factor %g, bulk viscosity %g %g\n", s.time_scale_factor,
+    if (s.increment.fixed) m_out << format("   fixed increment %12.4E s\n", *s.increment.fixed);
+    m_out << format("   time scale factor %g, bulk viscosity %g %g\n", s.increment.scale_factor,
                     s.bulk_linear, s.bulk_quadratic);
   } else {
     m_out << "\n";

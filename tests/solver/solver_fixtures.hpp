@@ -142,7 +142,7 @@ inline Model make_box(const BoxSpec& spec) {
   Step step;
   step.name = "IMPACT";
   step.time_period = spec.period;
-  step.time_scale_factor = spec.scale_factor;
+  step.increment.scale_factor = spec.scale_factor;
   if (spec.fix_x0)
     for (Index n : fixed.members)
       step.boundaries.push_back({n, 1, 3, 0.0, BoundaryType::Displacement, NO_INDEX, {}});

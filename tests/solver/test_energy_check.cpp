@@ -95,7 +95,7 @@ TEST_CASE("a linear instability that keeps ETOTAL balanced fails the run", "[sol
   for (Step& s : model.steps) {
     s.bulk_linear = 0.0;
     s.bulk_quadratic = 0.0;
-    s.fixed_increment = 0.5e-6;  // 1 mm / 5900 m/s = 0.17 µs
+    s.increment.fixed = 0.5e-6;  // 1 mm / 5900 m/s = 0.17 µs
   }
   test::CaptureSink sink;
   ExplicitSolver solver(model, sink);
