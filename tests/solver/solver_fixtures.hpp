@@ -20,6 +20,7 @@ class CaptureSink : public OutputSink {
   std::vector<Real> times;
   std::vector<std::vector<Real>> rows;
   std::vector<std::string> messages;
+  std::vector<StatusLine> statuses;
   std::vector<Real> frame_times;
   RunStatus run_status = RunStatus::Completed;
   std::string error;
@@ -34,7 +35,7 @@ class CaptureSink : public OutputSink {
     times.push_back(time);
     rows.emplace_back(values.begin(), values.end());
   }
-  void status(const StatusLine&) override {}
+  void status(const StatusLine& line) override { statuses.push_back(line); }
   void message(Severity, const std::string& text) override { messages.push_back(text); }
   void end_run(RunStatus s, const std::string& e, const PhaseTimers&, double) override {
     run_status = s;
