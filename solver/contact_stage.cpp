@@ -11,12 +11,13 @@
 namespace xpl {
 
 ContactStage::ContactStage(const Model& model, OutputSink& sink, PhaseTimers& timers,
-                           bool imported_start)
+                           const IncrementControl& control, bool imported_start)
     : m_model(model),
       m_sink(sink),
       m_timers(timers),
+      m_control(control),
       m_imported_start(imported_start),
-      m_penalty(model, sink) {}
+      m_penalty(model, sink, control) {}
 
 void ContactStage::begin_step(int step, State& state, ElementSet& elements,
                               const RigidBodies& rigid,
@@ -194,9 +195,9 @@ void ContactStage::resolve_overclosures(int step, const contact::ContactEngine* 
                   [](const contact::ClearedNode& c) { return c.distance > 0.0; });
   AdjustmentEffect effect;
   if (!report.adjusted.empty() || clearance_moved) {
-    effect.dt_after = elements.stable_increment(state, step);
+    effect.dt_after = m_control.elements(step, elements.increment_estimate(state)).dt;
     state.position.swap(as_read);
-    effect.dt_before = elements.stable_increment(state, step);
+    effect.dt_before = m_control.elements(step, elements.increment_estimate(state)).dt;
     state.position.swap(as_read);
   }
   if (!settings.adjust)
@@ -310,25 +311,28 @@ void ContactStage::end_step() {
   m_lost_increments = 0;
 }
 
-Real ContactStage::penalty_increment(Real raw_dt, Real dt_elements, int step, const State& state) {
+ContactIncrement ContactStage::penalty_increment(const ElementIncrement& elements, int step,
+                                                 const State& state) {
   const contact::PenaltyLimit none;
-  return m_penalty.apply(m_engine ? m_engine->penalty_limit() : none, raw_dt, dt_elements, step,
-                         state.time, state.increment);
+  return m_penalty.apply(m_engine ? m_engine->penalty_limit() : none, elements, step, state.time,
+                         state.increment);
 }
 
-void ContactStage::check_penalty(Real raw_dt, Real dt_elements, int step,
+void ContactStage::check_penalty(const ElementIncrement& elements, int step,
                                  const std::vector<Real>& inverse_mass) const {
   if (!m_engine) return;
   const contact::PenaltyLimit limit = m_engine->estimate_penalty_limit(inverse_mass);
   const Step& s = m_model.steps[step];
-  if (s.fixed_increment || !(limit.omega_sq > 0.0)) return;
-  const Real dt = PenaltyIncrementLimit::combined_increment(raw_dt, dt_elements,
-                                                            s.time_scale_factor, limit.omega_sq);
+  if (s.increment.fixed || !(limit.omega_sq > 0.0)) return;
+  const Real dt_elements = elements.dt;
+  const Real dt =
+      contact_increment(elements.raw_dt, dt_elements, s.increment.scale_factor, limit.omega_sq);
   if (!(dt < dt_elements)) return;
   const SurfaceInteraction& i = m_model.surface_interactions[limit.interaction];
   // ω_c² grows with the slope; the springs stop governing at ω_c²Δt_e² = B·s².
-  const Real threshold = i.linear_slope * contact::PENALTY_INCREMENT_BUDGET * s.time_scale_factor *
-                         s.time_scale_factor / (limit.omega_sq * dt_elements * dt_elements);
+  const Real threshold = i.linear_slope * contact::PENALTY_INCREMENT_BUDGET *
+                         s.increment.scale_factor * s.increment.scale_factor /
+                         (limit.omega_sq * dt_elements * dt_elements);
   m_sink.message(Severity::Warning,
                  "step " + s.name + ": the penalty of interaction " + i.name +
                      " (PRESSURE-OVERCLOSURE=LINEAR, slope " + format_real(i.linear_slope) +

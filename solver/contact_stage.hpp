@@ -24,9 +24,11 @@ namespace xpl {
 /// General contact and contact pairs of the current step; nothing to do when it has none (P2).
 class ContactStage {
  public:
-  /// `model`, `sink` and `timers` must outlive the stage; `imported_start`: the run starts
-  /// from an imported state (penetrations of step 1 then become offsets, C6).
-  ContactStage(const Model& model, OutputSink& sink, PhaseTimers& timers, bool imported_start);
+  /// `model`, `sink`, `timers` and `control` (the run's increment control) must outlive the
+  /// stage; `imported_start`: the run starts from an imported state (penetrations of step 1
+  /// then become offsets, C6).
+  ContactStage(const Model& model, OutputSink& sink, PhaseTimers& timers,
+               const IncrementControl& control, bool imported_start);
 
   /// Builds the engine of `step` when the step changes the contact definition (the latest
   /// `*CONTACT` up to it and every `*CONTACT PAIR`), else keeps the engine in force. A new
@@ -50,10 +52,11 @@ class ContactStage {
   Real stored_energy() const { return m_stored_energy; }
 
   /// The increment a deck's own penalty stiffness allows after the last apply() (+inf when it
-  /// does not govern: no contact, default penalty, or springs no stiffer than the default),
-  /// for the element estimate `raw_dt` and the element increment `dt_elements` (s) of `step`;
-  /// reports the spans where it governs (PenaltyIncrementLimit).
-  Real penalty_increment(Real raw_dt, Real dt_elements, int step, const State& state);
+  /// does not govern: no contact, default penalty, or springs no stiffer than the default)
+  /// against the elements' increment `elements` of `step`; reports the spans where it governs
+  /// (PenaltyIncrementLimit).
+  ContactIncrement penalty_increment(const ElementIncrement& elements, int step,
+                                     const State& state);
   /// Deck id of the contact node that governs the last penalty_increment(), 0 when none.
   ExternalId critical_contact_node() const { return m_penalty.critical_node(); }
   /// Ends the step: the summary of a span in which contact governed the increment.
@@ -62,9 +65,8 @@ class ContactStage {
   void end_step();
   /// `xpl check`: a warning when a LINEAR penalty will govern the increment once in contact,
   /// estimated on the slave nodes' tributary areas (ContactEngine::estimate_penalty_limit)
-  /// with `inverse_mass` (n_nodes, 1/kg), the element estimate `raw_dt` and increment
-  /// `dt_elements` (s) of `step`.
-  void check_penalty(Real raw_dt, Real dt_elements, int step,
+  /// with `inverse_mass` (n_nodes, 1/kg) against the elements' increment `elements` of `step`.
+  void check_penalty(const ElementIncrement& elements, int step,
                      const std::vector<Real>& inverse_mass) const;
 
   /// Per-node contact pressure, status and forces into `state` (zero without contact).
@@ -96,6 +98,7 @@ class ContactStage {
   const Model& m_model;
   OutputSink& m_sink;
   PhaseTimers& m_timers;
+  const IncrementControl& m_control;
   bool m_imported_start;
   std::unique_ptr<contact::ContactEngine> m_engine;  ///< null when the step has no contact
   std::vector<std::string> m_pair_names;  ///< in the engine's pair order (history output)

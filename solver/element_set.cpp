@@ -68,8 +68,8 @@ bool deformable(const RigidBodies& rigid, Index e) {
 }  // namespace
 
 ElementSet::ElementSet(const Model& model, const RigidBodies& rigid, State& state,
-                       PhaseTimers& timers, Real dt_safety)
-    : m_model(model), m_timers(timers), m_dt_safety(dt_safety) {
+                       PhaseTimers& timers)
+    : m_model(model), m_timers(timers) {
   m_force_internal = NodalVectors::Zero(model.node_count(), 3);
   m_mass_scaling = fixed_mass_scaling(model, rigid, state.reference);
   build_hex_block(rigid, state);
@@ -347,14 +347,31 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
     m_shell->add_totals(t);
     totals.add(t);
   }
+}
+
+ElementEstimate ElementSet::increment_estimate(const State& state, const ElementTotals& totals) {
+  ElementEstimate e;
+  e.stable_dt = totals.stable_dt;
+  e.critical_element = totals.critical_element;
+  const Step& s = m_model.steps[state.step];
   // Shell-only models pass their own stress test; the global estimate covers the hexes.
-  if ((m_hex || m_hex8) && !s.fixed_increment) {
+  if ((m_hex || m_hex8) && !s.increment.fixed) {
+    ScopedTimer timer(m_timers, Phase::InternalForce);
     const auto product = [this, &state](const NodalVectors& u, NodalVectors& y) {
       if (m_hex) m_hex->add_stiffness_product(state.position, u, y);
       if (m_hex8) m_hex8->add_stiffness_product(state.position, u, y);
     };
-    m_global.apply(product, state.position.rows(), m_inverse_mass, s.bulk_linear, totals);
+    e.global_ratio =
+        m_global.apply(product, state.position.rows(), m_inverse_mass, s.bulk_linear, totals);
   }
+  return e;
+}
+
+ElementEstimate ElementSet::increment_estimate(const State& state) {
+  ElementTotals totals;
+  compute_forces(state, 0.0, totals);
+  clear_forces();
+  return increment_estimate(state, totals);
 }
 
 void ElementSet::report_increment_limit(OutputSink& sink) {
@@ -370,29 +387,6 @@ void ElementSet::report_increment_limit(OutputSink& sink) {
                                 : std::string("the element estimate governs")) +
                    " (" + std::to_string(e.products) + " Lanczos iterations, " +
                    format_real(e.seconds) + " s)");
-}
-
-Real ElementSet::stable_increment(const State& state, int step) {
-  ElementTotals totals;
-  compute_forces(state, 0.0, totals);
-  clear_forces();
-  return stable_step(totals, step);
-}
-
-Real ElementSet::stable_step(const ElementTotals& totals, int step) const {
-  const Step& s = m_model.steps[step];
-  if (s.fixed_increment) return *s.fixed_increment;
-  const Real dt = totals.stable_dt * s.time_scale_factor * m_dt_safety;
-  return s.max_increment ? std::min(dt, *s.max_increment) : dt;
-}
-
-Real ElementSet::next_increment(const ElementTotals& totals, Real remaining, int step,
-                                Real limit) const {
-  Real dt = std::min(stable_step(totals, step), limit);
-  if (!std::isfinite(dt)) dt = remaining;  // no elements: one increment to the end
-  // Land exactly on the end of the step; avoid a sliver increment just before it.
-  if (dt >= remaining || remaining - dt < 1e-3 * dt) dt = remaining;
-  return dt;
 }
 
 void ElementSet::gather_output(State& state, const FrameRequest& what) const {

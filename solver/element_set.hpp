@@ -15,6 +15,7 @@
 #include "elements/increment_limit.hpp"
 #include "elements/shell4r.hpp"
 #include "solver/global_increment.hpp"
+#include "solver/increment_control.hpp"
 #include "solver/mass_scaling.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
@@ -53,9 +54,8 @@ class ElementSet {
   /// n_nodes): state.mass gets the element masses, the rigid elements' masses and the `*MASS`
   /// point masses; on shell models the rotational fields of `state` (n_nodes × 3) are
   /// allocated at zero and state.rotary_inertia is filled. `model` and `timers` must outlive
-  /// the set; `dt_safety` is SolverOptions::dt_safety.
-  ElementSet(const Model& model, const RigidBodies& rigid, State& state, PhaseTimers& timers,
-             Real dt_safety);
+  /// the set.
+  ElementSet(const Model& model, const RigidBodies& rigid, State& state, PhaseTimers& timers);
 
   /// Whether the model has S4R elements (and so nodes with rotational DOFs).
   bool has_shells() const { return m_shell != nullptr; }
@@ -92,25 +92,17 @@ class ElementSet {
   void begin_step() { m_global.begin_step(); }
   /// The global estimate made since the last call, as a note in `sink` (nothing otherwise).
   void report_increment_limit(OutputSink& sink);
-  /// The last global estimate (omega_max 0 before the first, or without C3D8R elements).
-  const FrequencyEstimate& increment_estimate() const { return m_global.last(); }
 
   /// Internal forces of every block at the state's positions and half-step velocities over
   /// the increment `dt` (s; 0: no rate terms), added to force_internal() and
-  /// moment_internal(); energies and the increment limit go into `totals`. The increment
-  /// limit is the element estimate bounded by the global one (GlobalIncrementLimit).
+  /// moment_internal(); energies and the element-by-element estimate go into `totals`.
   void compute_forces(const State& state, Real dt, ElementTotals& totals);
-  /// Stable increment of the elements at the state's positions (no lasting change), s.
-  Real stable_increment(const State& state, int step);
-  /// The increment the elements allow in `step` (deck scale factor and safety applied, or the
-  /// fixed increment), before it is shortened to land on the end of the step; +inf without
-  /// elements.
-  Real stable_step(const ElementTotals& totals, int step) const;
-  /// The next increment: stable_step() or `limit` (s; a contact penalty's, +inf for none),
-  /// whichever is shorter, or what `remaining` (s) of the step is left when it lies closer
-  /// than a sliver.
-  Real next_increment(const ElementTotals& totals, Real remaining, int step,
-                      Real limit = std::numeric_limits<Real>::infinity()) const;
+  /// The elements' part of the increment after the force pass that made `totals` at the
+  /// state's positions: the element estimate and its critical element, and the factor the
+  /// global estimate (GlobalIncrementLimit, made anew when due) puts on it in the state's step.
+  ElementEstimate increment_estimate(const State& state, const ElementTotals& totals);
+  /// increment_estimate() of a force pass at the state's positions that leaves no forces.
+  ElementEstimate increment_estimate(const State& state);
 
   /// Element output requested by `what` (stress, section stresses, volume, thickness, PEEQ) into
   /// `state`; the arrays are allocated on first use (n_elements rows).
@@ -153,7 +145,6 @@ class ElementSet {
 
   const Model& m_model;
   PhaseTimers& m_timers;
-  Real m_dt_safety;
   std::unique_ptr<elements::Hex8rBlock> m_hex;
   std::unique_ptr<elements::Hex8Block> m_hex8;  ///< the C3D8 elements
   std::unique_ptr<elements::Shell4rBlock> m_shell;

@@ -56,17 +56,15 @@ std::string describe(const EnergyDrift& d) {
          (d.mover_change >= 0.0 ? "+" : "") + format_real(d.mover_change) + " J)";
 }
 
-EnergyCheck::EnergyCheck(const Model& model, Real dt_floor_ratio, Real energy_limit)
+EnergyCheck::EnergyCheck(const Model& model, Real energy_limit)
     : m_model(model),
-      m_dt_floor_ratio(dt_floor_ratio),
       m_energy_limit(energy_limit),
       m_extent(model_extent(model)),
       m_wave_speed(fastest_wave_speed(model)) {
   m_transit_time = m_wave_speed > 0.0 ? m_extent / m_wave_speed : 0.0;
 }
 
-void EnergyCheck::start(const State& state, Real dt_first) {
-  m_dt_first = dt_first;
+void EnergyCheck::start(const State& state) {
   m_initial_total = state.energies.total();
   m_initial.resize(ENERGIES.size());
   for (std::size_t i = 0; i < ENERGIES.size(); ++i)
@@ -198,20 +196,6 @@ void EnergyCheck::check(const State& state, const ElementTotals& totals, Real dt
                        " of the largest energy at t = " + format_real(now.time) + " s; " +
                        now.mover + " moved most");
     }
-  }
-  if (m_model.steps[state.step].fixed_increment) return;
-  const Real floor = std::max(m_dt_floor_ratio * m_dt_first, DT_TRANSIT_FLOOR * m_transit_time);
-  if (dt_next < floor || !(dt_next > 0.0)) {
-    throw SolverError(
-        "NaN/instability at increment " + std::to_string(state.increment) + ", element " +
-            std::to_string(critical_id) + ": stable increment collapsed to " +
-            format_real(dt_next) + " s (the floor is " + format_real(floor) +
-            " s: " + format_real(m_dt_floor_ratio) + " x the first increment " +
-            format_real(m_dt_first) + " s, at least " + format_real(DT_TRANSIT_FLOOR) +
-            " x the wave transit time " + format_real(m_transit_time) +
-            " s of the model); an extreme initial velocity or load, or an "
-            "element crushed to nothing",
-        critical_id, state.increment, state.time);
   }
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 /// \file The health check of the time loop, from the first increment of every step on:
 /// collapsed elements, non-finite energies, a node moving farther than the whole model in one
-/// increment, a drifting energy balance and a collapsing stable increment. A drift of ETOTAL
+/// increment and a drifting energy balance (a collapsing stable increment is the increment
+/// control's floor, increment_control.hpp). A drift of ETOTAL
 /// above 1 % of the energy scale is warned of once; above the run's limit
 /// (SolverOptions::energy_limit, `xpl run --energy-limit`) and on every other failure the run
 /// stops with a SolverError. "Completed" therefore means: a finite state, the balance checked
@@ -19,9 +20,6 @@ namespace xpl {
 
 /// ETOTAL drift (as a fraction of the largest energy) above which .msg and .sta warn, once.
 inline constexpr Real ENERGY_WARNING_FRACTION = 0.01;
-/// Increments below this fraction of the model's wave transit time stop the run, whatever
-/// the first increment was (an initial velocity of 1e12 m/s makes even that one zero).
-inline constexpr Real DT_TRANSIT_FLOOR = 1e-9;
 /// The smallest energy scale of the balance is that of the whole model moving at this
 /// fraction of its fastest wave speed, ½ M (ROUND_OFF_MOTION c_d)²: a model at rest, or moved
 /// by round-off alone (energies of 1e-44 J at the start of a step in examples/overclosure's
@@ -39,22 +37,20 @@ struct EnergyDrift {
   Real mover_change = 0.0;  ///< its change since the reference, J
 };
 
-/// Watches the energy balance ETOTAL and the stable increment of a run.
+/// Watches the energy balance ETOTAL of a run.
 class EnergyCheck {
  public:
-  /// `model` must outlive the check; a stable increment below `dt_floor_ratio` times the
-  /// first one (SolverOptions::dt_floor_ratio) or below DT_TRANSIT_FLOOR times the wave
-  /// transit time stops the run; so does an ETOTAL drift above `energy_limit` (a fraction
-  /// of the energy scale; SolverOptions::energy_limit).
-  EnergyCheck(const Model& model, Real dt_floor_ratio, Real energy_limit);
+  /// `model` must outlive the check; an ETOTAL drift above `energy_limit` (a fraction of the
+  /// energy scale; SolverOptions::energy_limit) stops the run.
+  EnergyCheck(const Model& model, Real energy_limit);
 
-  /// The reference of the balance: ETOTAL of the state after the first update (J), its
-  /// energies as the first energy scale, and the first increment (s).
-  void start(const State& state, Real dt_first);
+  /// The reference of the balance: ETOTAL of the state after the first update (J) and its
+  /// energies as the first energy scale.
+  void start(const State& state);
   /// Throws SolverError if the increment just taken went wrong: an element failed in
   /// `totals`, an energy is not finite, a free node moved at `largest_speed` (m/s, the
   /// largest |v(n+½)| component) farther than the model's extent in the increment `dt_next`
-  /// (s) about to be taken, ETOTAL drifted beyond the limit, or `dt_next` collapsed. Warns
+  /// (s) about to be taken, or ETOTAL drifted beyond the limit. Warns
   /// `sink` (.msg and .sta) once when the drift first passes ENERGY_WARNING_FRACTION.
   /// `critical_id` is the deck id of the element that limits the increment (for the
   /// message).
@@ -81,12 +77,10 @@ class EnergyCheck {
   void check_speed(const State& state, Real dt, Real largest_speed, ExternalId critical_id) const;
 
   const Model& m_model;
-  Real m_dt_floor_ratio;
   Real m_energy_limit;
   Real m_transit_time = 0.0;     ///< s
   Real m_extent = 0.0;           ///< diagonal of the model's bounding box at t = 0, m
   Real m_wave_speed = 0.0;       ///< fastest dilatational wave speed, m/s
-  Real m_dt_first = 0.0;         ///< first stable increment, s
   Real m_max_energy = 0.0;       ///< the energy scale (scale()), J
   bool m_defect_beyond = false;  ///< |ALLKD| was beyond the scale at the last check
   Real m_last_defect = 0.0;      ///< |ALLKD| at the last check, J

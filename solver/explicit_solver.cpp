@@ -14,6 +14,7 @@
 #include "solver/contact_stage.hpp"
 #include "solver/element_set.hpp"
 #include "solver/energy_check.hpp"
+#include "solver/increment_control.hpp"
 #include "solver/message_text.hpp"
 #include "solver/output_driver.hpp"
 #include "solver/rigid_bodies.hpp"
@@ -53,8 +54,15 @@ struct ExplicitSolver::Impl {
   void start_run(int step, Real period);
   /// Advances the clock by the increment `dt` just taken; returns whether it ends the step.
   bool advance_clock(Real dt, Real step_start, Real period);
-  /// Element forces over the increment `dt` just taken; their energies into the state.
-  void element_forces(Real dt, ElementTotals& totals);
+  /// The force evaluations of the run: at t = 0, after each increment, in the data check.
+  enum class Pass { Start, Increment, Check };
+  /// Forces at the state's positions after the increment `dt_taken` (0 at t = 0): elements
+  /// (their energies into the state, the rest of `totals` to the caller), loads and contact;
+  /// returns the increment the increment control chooses for `remaining` (s) of the step.
+  /// Pass::Check books no energies, applies no loads or contact and leaves no forces; it
+  /// warns of a LINEAR penalty that will govern once in contact.
+  IncrementDecision evaluate_forces(Pass pass, Real dt_taken, Real remaining,
+                                    ElementTotals& totals);
   /// Keeps the element that limits the increment of `totals`, when there is one.
   void note_critical(const ElementTotals& totals);
   /// The time loop of one step: increments until the step time reaches its period, or until
@@ -87,11 +95,12 @@ struct ExplicitSolver::Impl {
   Ties m_ties;  ///< before m_elements: ADJUST moves slave nodes before the masses are lumped
   ElementSet m_elements;
   CentralDifference m_nodes;
-  ContactStage m_contact;
   EnergyCheck m_energy;
+  IncrementControl m_increment;  ///< the one owner of the stable increment
+  ContactStage m_contact;
   ContactEnergyCheck m_contact_energy;  ///< energy created by the contact springs
   OutputDriver m_output;
-  Real m_dt_half = 0.0;          ///< dt_{n+1/2}: the increment about to be taken, s
+  IncrementDecision m_next;      ///< dt_{n+1/2}: the increment about to be taken, and why
   ExternalId m_critical_id = 0;  ///< deck id of the element that limits it
   double m_loop_seconds = 0.0;   ///< wall time of the time loops
   bool m_started = false;        ///< t = 0 has been taken
@@ -105,10 +114,11 @@ ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions o
       m_state(initial_state(model)),
       m_rigid(model),
       m_ties(model, m_state),
-      m_elements(model, m_rigid, m_state, m_timers, options.dt_safety),
+      m_elements(model, m_rigid, m_state, m_timers),
       m_nodes(model, m_timers, m_elements.has_shells()),
-      m_contact(model, sink, m_timers, options.initial_state != nullptr),
-      m_energy(model, options.dt_floor_ratio, options.energy_limit),
+      m_energy(model, options.energy_limit),
+      m_increment(model, sink, options.dt_safety, options.dt_floor_ratio, m_energy.transit_time()),
+      m_contact(model, sink, m_timers, m_increment, options.initial_state != nullptr),
       m_output(model, sink, m_timers) {
   if (m_ties.active()) {
     // Slave masses to their master corners before the rigid bodies sum theirs.
@@ -217,24 +227,12 @@ void ExplicitSolver::Impl::begin_step(int step) {
 
 void ExplicitSolver::Impl::start_run(int step, Real period) {
   ElementTotals totals;
-  m_elements.compute_forces(m_state, 0.0, totals);
-  m_elements.report_increment_limit(m_sink);
-  m_state.energies.strain += totals.strain_energy_increment;
-  m_nodes.apply_loads(m_state, 0.0, 0.0);
-  // The penalty is tied to the increment the elements allow, not to one shortened to land
-  // on the end of a step: a short last increment must not stiffen the springs.
-  const Real dt_stable = m_elements.stable_step(totals, step);
-  const Real dt_first = m_elements.next_increment(totals, period, step);
-  m_contact.apply(m_state, m_elements, 0.0, std::isfinite(dt_stable) ? dt_stable : dt_first);
-  // A deck's own penalty stiffness may shorten the increment (penalty_increment_limit.hpp).
-  m_dt_half = m_elements.next_increment(
-      totals, period, step,
-      m_contact.penalty_increment(totals.stable_dt, dt_stable, step, m_state));
-  m_critical_id =
-      totals.critical_element != NO_INDEX ? m_model.element_ids[totals.critical_element] : 0;
-  m_nodes.update_nodes(m_state, m_elements, m_rigid, 0.0, m_dt_half, 0.5 * m_dt_half, m_dt_half);
+  m_next = evaluate_forces(Pass::Start, 0.0, period, totals);
+  const Real dt = m_next.dt;
+  m_nodes.update_nodes(m_state, m_elements, m_rigid, 0.0, dt, 0.5 * dt, dt);
   m_nodes.report_jump(step, m_sink);
-  m_energy.start(m_state, m_dt_half);
+  m_energy.start(m_state);
+  m_increment.start(dt);
   m_started = true;
   if (m_output.has_field()) write_frame(m_output.field_all());
 }
@@ -249,14 +247,33 @@ bool ExplicitSolver::Impl::advance_clock(Real dt, Real step_start, Real period) 
   return last;
 }
 
-void ExplicitSolver::Impl::element_forces(Real dt, ElementTotals& totals) {
-  m_elements.compute_forces(m_state, dt, totals);
+IncrementDecision ExplicitSolver::Impl::evaluate_forces(Pass pass, Real dt_taken, Real remaining,
+                                                        ElementTotals& totals) {
+  const int step = m_state.step;
+  m_elements.compute_forces(m_state, dt_taken, totals);
+  const ElementEstimate estimate = m_elements.increment_estimate(m_state, totals);
   m_elements.report_increment_limit(m_sink);
-  m_state.energies.strain += totals.strain_energy_increment;
-  m_state.energies.artificial += totals.hourglass_energy_increment;
-  m_state.energies.viscous += totals.viscous_energy_increment;
-  m_state.energies.plastic += totals.plastic_energy_increment;
   note_critical(totals);
+  const ElementIncrement elements = m_increment.elements(step, estimate);
+  if (pass == Pass::Check) {
+    m_elements.clear_forces();
+    m_contact.check_penalty(elements, step, m_elements.inverse_mass());
+    return choose_increment(elements, {}, remaining);
+  }
+  m_state.energies.strain += totals.strain_energy_increment;
+  if (pass == Pass::Increment) {  // t = 0 books the strain energy of the initial state only
+    m_state.energies.artificial += totals.hourglass_energy_increment;
+    m_state.energies.viscous += totals.viscous_energy_increment;
+    m_state.energies.plastic += totals.plastic_energy_increment;
+  }
+  m_nodes.apply_loads(m_state, m_state.step_time, m_state.time);
+  // The penalty is tied to the increment the elements allow, not to one shortened to land
+  // on the end of a step: a short last increment must not stiffen the springs.
+  m_contact.apply(m_state, m_elements, dt_taken,
+                  elements.penalty_dt(pass == Pass::Start ? remaining : dt_taken));
+  // A deck's own penalty stiffness may shorten the increment (penalty_increment_limit.hpp).
+  const ContactIncrement springs = m_contact.penalty_increment(elements, step, m_state);
+  return choose_increment(elements, springs, remaining);
 }
 
 void ExplicitSolver::Impl::note_critical(const ElementTotals& totals) {
@@ -272,8 +289,9 @@ void ExplicitSolver::Impl::run_step(int step) {
   if (!m_started)
     start_run(step, period);
   else
-    m_dt_half = std::min(m_dt_half, period);
-  m_output.note_short_intervals(m_dt_half);
+    m_next = carry_increment(m_next, period);
+  m_increment.report_start(step, m_next);
+  m_output.note_short_intervals(m_next.dt);
   if (m_output.has_history()) write_history();
   write_status();
 
@@ -281,24 +299,23 @@ void ExplicitSolver::Impl::run_step(int step) {
   Real next_status = 0.01 * period;
   while (m_state.step_time < period) {
     // x_{n+1} = x_n + dt_{n+1/2} v_{n+1/2}; t_{n+1} = t_n + dt_{n+1/2}.
-    m_nodes.advance_positions(m_state, m_elements, m_dt_half);
-    const Real dt_prev = m_dt_half;
+    m_nodes.advance_positions(m_state, m_elements, m_next.dt);
+    const Real dt_prev = m_next.dt;
     const bool last = advance_clock(dt_prev, step_start, period);
+    m_increment.count(m_next);
 
-    // Forces at x_{n+1}: elements, loads, contact (its penalty tied to the stable increment).
+    // Forces at x_{n+1}: elements, loads, contact (its penalty tied to the stable increment),
+    // and the next increment.
     ElementTotals totals;
-    element_forces(dt_prev, totals);
-    m_nodes.apply_loads(m_state, m_state.step_time, m_state.time);
-    const Real dt_stable = m_elements.stable_step(totals, step);
-    m_contact.apply(m_state, m_elements, dt_prev, std::isfinite(dt_stable) ? dt_stable : dt_prev);
-    const Real dt_contact = m_contact.penalty_increment(totals.stable_dt, dt_stable, step, m_state);
+    const IncrementDecision next =
+        evaluate_forces(Pass::Increment, dt_prev, period - m_state.step_time, totals);
 
-    // v_{n+3/2} over the next increment, then the health of the run.
-    m_dt_half =
-        last ? dt_prev
-             : m_elements.next_increment(totals, period - m_state.step_time, step, dt_contact);
-    m_nodes.update_nodes(m_state, m_elements, m_rigid, dt_prev, m_dt_half,
-                         m_state.time + 0.5 * m_dt_half, m_state.time + m_dt_half);
+    // v_{n+3/2} over the next increment (the last one of a step keeps the increment taken),
+    // then the health of the run.
+    if (!last) m_next = next;
+    const Real dt_next = m_next.dt;
+    m_nodes.update_nodes(m_state, m_elements, m_rigid, dt_prev, dt_next,
+                         m_state.time + 0.5 * dt_next, m_state.time + dt_next);
     m_nodes.report_jump(step, m_sink);
     // The contact check first: when contact creates the energy, its own cause is the one to
     // report, not the balance it upset.
@@ -307,7 +324,8 @@ void ExplicitSolver::Impl::run_step(int step) {
           m_contact_energy.check(m_state, m_contact.stored_energy(), m_critical_id);
       if (!warning.empty()) m_sink.message(Severity::Warning, warning);
     }
-    m_energy.check(m_state, totals, m_dt_half, m_nodes.largest_speed(), m_critical_id, m_sink);
+    m_energy.check(m_state, totals, dt_next, m_nodes.largest_speed(), m_critical_id, m_sink);
+    m_increment.check_floor(m_state, dt_next, m_critical_id);
 
     // Output as it falls due; a status line every 1 % of the step.
     const FrameRequest frame = m_output.field_due(m_state.step_time, last);
@@ -328,6 +346,7 @@ void ExplicitSolver::Impl::run_step(int step) {
     }
   }
   m_contact.end_step();
+  m_increment.report_step(step);
   m_loop_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
 }
@@ -373,7 +392,8 @@ void ExplicitSolver::Impl::write_history() {
 }
 
 void ExplicitSolver::Impl::write_status() {
-  m_output.write_status(m_state, m_dt_half, m_critical_id, m_contact.critical_contact_node());
+  m_output.write_status(m_state, m_next.dt, cause_name(m_next.cause), m_critical_id,
+                        m_contact.critical_contact_node());
 }
 
 RunSummary ExplicitSolver::Impl::summary() const {
@@ -422,15 +442,10 @@ RunSummary ExplicitSolver::Impl::check() {
   if (!m_model.steps.empty()) {
     begin_step(0);
     ElementTotals totals;
-    m_elements.compute_forces(m_state, 0.0, totals);
-    m_elements.report_increment_limit(m_sink);
-    m_elements.clear_forces();
-    m_dt_half = m_elements.next_increment(totals, m_model.steps[0].time_period, 0);
-    m_contact.check_penalty(totals.stable_dt, m_elements.stable_step(totals, 0), 0,
-                            m_elements.inverse_mass());
-    note_critical(totals);
-    m_sink.message(Severity::Info, "initial stable increment " + format_real(m_dt_half) +
-                                       " s (element " + std::to_string(m_critical_id) + ")");
+    m_next = evaluate_forces(Pass::Check, 0.0, m_model.steps[0].time_period, totals);
+    m_sink.message(Severity::Info, "initial stable increment " + format_real(m_next.dt) +
+                                       " s (element " + std::to_string(m_critical_id) +
+                                       "), governed by " + cause_text(m_next.cause));
     Real kinetic = 0.0;
     for (Index i = 0; i < m_model.node_count(); ++i)
       for (int c = 0; c < 3; ++c)

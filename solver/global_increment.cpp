@@ -58,20 +58,21 @@ Real global_increment(Real omega, Real element_dt, Real b1) {
 
 }  // namespace
 
-void GlobalIncrementLimit::apply(const elements::Hex8rBlock& hex, const NodalVectors& position,
+Real GlobalIncrementLimit::apply(const elements::Hex8rBlock& hex, const NodalVectors& position,
                                  const std::vector<Real>& inverse_mass, Real bulk_linear,
-                                 elements::IncrementLimit& limit) {
+                                 const elements::IncrementLimit& limit) {
   const auto product = [&hex, &position](const NodalVectors& u, NodalVectors& y) {
     hex.add_stiffness_product(position, u, y);
   };
-  apply(product, position.rows(), inverse_mass, bulk_linear, limit);
+  return apply(product, position.rows(), inverse_mass, bulk_linear, limit);
 }
 
-void GlobalIncrementLimit::apply(const StiffnessProduct& product, Index n_nodes,
+Real GlobalIncrementLimit::apply(const StiffnessProduct& product, Index n_nodes,
                                  const std::vector<Real>& inverse_mass, Real bulk_linear,
-                                 elements::IncrementLimit& limit) {
+                                 const elements::IncrementLimit& limit) {
   const Real element_dt = limit.stable_dt;
-  if (!std::isfinite(element_dt) || !(element_dt > 0.0) || limit.failed_element != NO_INDEX) return;
+  if (!std::isfinite(element_dt) || !(element_dt > 0.0) || limit.failed_element != NO_INDEX)
+    return 1.0;
   ++m_since;
   const bool moved = m_last.element_dt > 0.0 && m_since >= MIN_INCREMENTS_BETWEEN &&
                      std::abs(element_dt / m_last.element_dt - 1.0) > RECALIBRATE_CHANGE;
@@ -89,8 +90,7 @@ void GlobalIncrementLimit::apply(const StiffnessProduct& product, Index n_nodes,
     m_reported = false;
     m_since = 0;
   }
-  // Where the element estimate is safe the ratio is exactly 1 and the increment keeps its bits.
-  if (m_last.ratio < 1.0) limit.stable_dt = element_dt * m_last.ratio;
+  return m_last.ratio;
 }
 
 bool GlobalIncrementLimit::take_new_estimate(FrequencyEstimate& out) {

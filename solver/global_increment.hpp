@@ -53,16 +53,17 @@ class GlobalIncrementLimit {
   /// y += K u of the elements at the current positions (u, y: n_nodes × 3; m, N).
   using StiffnessProduct = std::function<void(const NodalVectors& u, NodalVectors& y)>;
 
-  /// Applies the limit to `limit.stable_dt` (element estimate, s), estimating ω_max with
-  /// `hex` at `position` (n_nodes × 3) and `inverse_mass` (n_nodes, 1/kg) when due;
-  /// `bulk_linear` is the step's b1.
-  void apply(const elements::Hex8rBlock& hex, const NodalVectors& position,
+  /// The factor r ≤ 1 the limit puts on `limit.stable_dt` (element estimate, s; the increment
+  /// control applies it, increment_control.hpp), estimating ω_max with `hex` at `position`
+  /// (n_nodes × 3) and `inverse_mass` (n_nodes, 1/kg) when due; `bulk_linear` is the step's
+  /// b1. Exactly 1 where the element estimate is safe, or not finite, or an element failed.
+  Real apply(const elements::Hex8rBlock& hex, const NodalVectors& position,
              const std::vector<Real>& inverse_mass, Real bulk_linear,
-             elements::IncrementLimit& limit);
+             const elements::IncrementLimit& limit);
   /// The same with the stiffness product of any set of elements (C3D8R and C3D8 blocks) over
   /// `n_nodes` nodes.
-  void apply(const StiffnessProduct& product, Index n_nodes, const std::vector<Real>& inverse_mass,
-             Real bulk_linear, elements::IncrementLimit& limit);
+  Real apply(const StiffnessProduct& product, Index n_nodes, const std::vector<Real>& inverse_mass,
+             Real bulk_linear, const elements::IncrementLimit& limit);
 
   /// The estimate made since the last call, if any (for the .msg); false if none.
   bool take_new_estimate(FrequencyEstimate& out);

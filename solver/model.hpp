@@ -408,17 +408,23 @@ struct FixedMassScaling {
 };
 
 /// One `*STEP ... *END STEP` block with `*DYNAMIC, EXPLICIT`.
+/// How a step's increment follows the stable increment (`*DYNAMIC, EXPLICIT`); the increment
+/// itself is chosen by solver/increment_control.hpp.
+struct IncrementControls {
+  std::optional<Real> fixed;  ///< `*DYNAMIC, EXPLICIT, DIRECT USER CONTROL`: this increment, s
+  /// Fourth value of the `*DYNAMIC, EXPLICIT` data line: the increment never exceeds it, s.
+  std::optional<Real> max;
+  Real scale_factor = 1.0;  ///< multiplies the stable increment (S2)
+};
+
 struct Step {
   std::string name;
   SourceLocation where;
-  Real time_period = 0.0;               ///< s
-  std::optional<Real> fixed_increment;  ///< `*DYNAMIC, EXPLICIT, DIRECT USER CONTROL`
-  /// Fourth value of the `*DYNAMIC, EXPLICIT` data line: the increment never exceeds it, s.
-  std::optional<Real> max_increment;
-  Real time_scale_factor = 1.0;  ///< multiplies the stable increment (S2)
-  Real bulk_linear = 0.06;       ///< `*BULK VISCOSITY` b1 (Abaqus default)
-  Real bulk_quadratic = 1.2;     ///< `*BULK VISCOSITY` b2 (Abaqus default)
-  bool ramp_amplitude = false;   ///< `*STEP, AMPLITUDE=RAMP`; default STEP for explicit
+  Real time_period = 0.0;       ///< s
+  IncrementControls increment;  ///< scale factor, maximum or fixed increment
+  Real bulk_linear = 0.06;      ///< `*BULK VISCOSITY` b1 (Abaqus default)
+  Real bulk_quadratic = 1.2;    ///< `*BULK VISCOSITY` b2 (Abaqus default)
+  bool ramp_amplitude = false;  ///< `*STEP, AMPLITUDE=RAMP`; default STEP for explicit
   /// Boundary conditions given in this step. Those of earlier steps stay active unless this
   /// step has `*BOUNDARY, OP=NEW` (then `boundaries_reset`). Later entries for the same
   /// node and DOF replace earlier ones.

@@ -53,14 +53,15 @@ void OutputDriver::write_history(State& state, const ContactStage& contact,
   m_sink.append_history(state.time, m_history_row);
 }
 
-void OutputDriver::write_status(const State& state, Real dt_next, ExternalId critical_id,
-                                ExternalId contact_node) {
+void OutputDriver::write_status(const State& state, Real dt_next, const char* governing,
+                                ExternalId critical_id, ExternalId contact_node) {
   ScopedTimer timer(m_timers, Phase::Output);
   StatusLine line;
   line.increment = state.increment;
   line.step_time = state.step_time;
   line.total_time = state.time;
   line.dt = dt_next;
+  line.governing = governing;
   line.critical_element = critical_id;
   line.critical_contact_node = contact_node;
   line.energies = state.energies;

@@ -53,9 +53,11 @@ class OutputDriver {
                    const ContactStage& contact, CentralDifference& nodes);
   /// One history row (requests, then contact pair forces) at state.time.
   void write_history(State& state, const ContactStage& contact, CentralDifference& nodes);
-  /// One .sta line: the increment `dt_next` (s) about to be taken and the element
-  /// `critical_id` (deck id) that limits it.
-  void write_status(const State& state, Real dt_next, ExternalId critical_id,
+  /// One .sta line: the increment `dt_next` (s) about to be taken, what governs it
+  /// (`governing`, cause_name of increment_control.hpp), the element `critical_id` (deck id)
+  /// that limits the elements' increment and the contact node `contact_node` whose penalty
+  /// limits it instead (0: none).
+  void write_status(const State& state, Real dt_next, const char* governing, ExternalId critical_id,
                     ExternalId contact_node = 0);
 
   /// The run summary of `state`: `element_count` elements cycled over the increments in

@@ -56,6 +56,9 @@ struct StatusLine {
   Real step_time = 0.0;
   Real total_time = 0.0;
   Real dt = 0.0;
+  /// What governs the increment: "element", "global", "maximum", "fixed", "contact" or
+  /// "step-end" (solver/increment_control.hpp).
+  std::string governing;
   ExternalId critical_element = 0;  ///< deck id of the element that limits the increment
   /// Deck id of the contact node whose penalty limits the increment instead, 0 when none.
   ExternalId critical_contact_node = 0;

@@ -9,19 +9,6 @@
 
 namespace xpl {
 
-Real PenaltyIncrementLimit::combined_increment(Real raw_dt, Real dt_elements, Real scale,
-                                               Real omega_sq) {
-  if (!(omega_sq > 0.0) || !(raw_dt > 0.0) || !std::isfinite(raw_dt))
-    return std::numeric_limits<Real>::infinity();
-  // (ω_eΔt_e)² = (2 Δt_e/Δt_raw)² = (2sφ)²; the budget B is scaled with s like the elements'.
-  const Real share = 2.0 * dt_elements / raw_dt;
-  const Real omega_e = 2.0 / raw_dt;
-  const Real budget = share * share + contact::PENALTY_INCREMENT_BUDGET * scale * scale;
-  const Real combined = std::sqrt(budget / (omega_e * omega_e + omega_sq));
-  const Real alone = scale * std::sqrt(contact::PENALTY_ALONE_BUDGET / omega_sq);
-  return std::min(combined, alone);
-}
-
 std::string PenaltyIncrementLimit::interaction_text(Index interaction) const {
   if (interaction == NO_INDEX ||
       interaction >= static_cast<Index>(m_model.surface_interactions.size()))
@@ -31,18 +18,19 @@ std::string PenaltyIncrementLimit::interaction_text(Index interaction) const {
          format_real(i.linear_slope) + " Pa/m)";
 }
 
-Real PenaltyIncrementLimit::apply(const contact::PenaltyLimit& limit, Real raw_dt, Real dt_elements,
-                                  int step, Real time, long increment) {
+ContactIncrement PenaltyIncrementLimit::apply(const contact::PenaltyLimit& limit,
+                                              const ElementIncrement& elements, int step, Real time,
+                                              long increment) {
   const Step& s = m_model.steps[step];
   contact::PenaltyLimit use = limit;
   if (m_hold > 0 && m_held.omega_sq > use.omega_sq) use = m_held;
-  Real dt = std::numeric_limits<Real>::infinity();
-  if (!s.fixed_increment && std::isfinite(dt_elements))
-    dt = combined_increment(raw_dt, dt_elements, s.time_scale_factor, use.omega_sq);
+  const ContactIncrement springs = m_control.contact(step, elements, use.omega_sq, use.node);
+  const Real dt = springs.dt;
+  const Real dt_elements = elements.dt;
   const bool governs = dt < dt_elements;
   if (!governs) {
     if (m_governing) end_span();
-    return std::numeric_limits<Real>::infinity();
+    return {};
   }
   if (use.omega_sq == limit.omega_sq) {
     m_held = limit;  // springs act now: the hold starts again from here
@@ -77,7 +65,7 @@ Real PenaltyIncrementLimit::apply(const contact::PenaltyLimit& limit, Real raw_d
     m_smallest_node = node;
     m_smallest_interaction = use.interaction;
   }
-  return dt;
+  return springs;
 }
 
 void PenaltyIncrementLimit::end_span() {

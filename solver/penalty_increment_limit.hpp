@@ -22,34 +22,32 @@
 #include <string>
 
 #include "contact/penalty_increment.hpp"
+#include "solver/increment_control.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
 
 namespace xpl {
 
-/// Applies and reports the penalty limit of one run.
+/// Holds and reports the penalty limit of one run; the rule itself is the increment control's
+/// (contact_increment, increment_control.hpp).
 class PenaltyIncrementLimit {
  public:
   /// Increments a span's stiffest node keeps governing after its springs opened.
   static constexpr int HOLD_INCREMENTS = 50;
 
-  /// `model` and `sink` must outlive the limit.
-  PenaltyIncrementLimit(const Model& model, OutputSink& sink) : m_model(model), m_sink(sink) {}
+  /// `model`, `sink` and `control` must outlive the limit.
+  PenaltyIncrementLimit(const Model& model, OutputSink& sink, const IncrementControl& control)
+      : m_model(model), m_sink(sink), m_control(control) {}
 
-  /// The increment the user's springs allow with the element estimate `raw_dt` (s, before
-  /// scale factor and safety) and the element increment `dt_elements` (s, after them) in
-  /// `step`, for the stiffest node `limit`; +inf when they do not govern. `time` (s) and
-  /// `increment` say where, for the reports.
-  Real apply(const contact::PenaltyLimit& limit, Real raw_dt, Real dt_elements, int step, Real time,
-             long increment);
+  /// The increment the user's springs allow against the elements' increment `elements` in
+  /// `step`, for the stiffest node `limit` (or the one held); +inf when they do not govern.
+  /// `time` (s) and `increment` say where, for the reports.
+  ContactIncrement apply(const contact::PenaltyLimit& limit, const ElementIncrement& elements,
+                         int step, Real time, long increment);
   /// Deck id of the contact node that governs the increment last returned, 0 when none.
   ExternalId critical_node() const { return m_governing ? m_critical_node : 0; }
   /// Ends a span in which contact governs (end of a step or of the run): its .msg summary.
   void end_span();
-
-  /// Δt_c of the rule above (s) for raw_dt, dt_elements (s), scale factor `scale` and the
-  /// contact frequency bound `omega_sq` (1/s²); +inf when omega_sq ≤ 0.
-  static Real combined_increment(Real raw_dt, Real dt_elements, Real scale, Real omega_sq);
 
  private:
   /// The interaction's name and law for the messages.
@@ -57,6 +55,7 @@ class PenaltyIncrementLimit {
 
   const Model& m_model;
   OutputSink& m_sink;
+  const IncrementControl& m_control;
   bool m_governing = false;
   contact::PenaltyLimit m_held;  ///< the stiffest node since the span began
   int m_hold = 0;                ///< increments the held node still governs

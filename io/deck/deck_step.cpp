@@ -154,7 +154,7 @@ void read_dynamic(DeckState& deck, const DeckBlock& block) {
       error(deck, keyword.where, keyword, "bad SCALE FACTOR=" + factor->value,
             "expected a number > 0, e.g. SCALE FACTOR=0.9");
     else
-      step.time_scale_factor = *value;
+      step.increment.scale_factor = *value;
   }
   if (block.data.size() != 1) {
     error(deck, keyword.where, keyword,
@@ -182,7 +182,7 @@ void read_dynamic(DeckState& deck, const DeckBlock& block) {
     error(deck, line.where(), keyword, "DIRECT USER CONTROL without a time increment",
           "expected the fixed time increment as the first value");
   if (direct && increment) {
-    step.fixed_increment = *increment;
+    step.increment.fixed = *increment;
   } else if (increment) {
     note(deck, line.where(), keyword,
          "initial time increment " + number_text(*increment) +
@@ -207,7 +207,7 @@ void read_dynamic(DeckState& deck, const DeckBlock& block) {
            "maximum time increment " + number_text(*maximum) +
                " not used: DIRECT USER CONTROL fixes the increment");
     else
-      step.max_increment = *maximum;
+      step.increment.max = *maximum;
   }
   if (const std::optional<Real> cfd =
           optional_positive(deck, line, keyword, 4, "initial CFD time increment",

@@ -121,10 +121,10 @@ StaFile::StaFile(const std::filesystem::path& path, const std::string& job)
 
 void StaFile::begin_step(int step, const std::string& name) {
   m_out << "\n STEP " << step << "  " << escape_control(name) << "\n\n"
-        << "  STEP  INCREMENT   TOTAL TIME    STEP TIME       STABLE     CRITICAL      KINETIC"
-           "        TOTAL    WALL TIME\n"
-        << "                                              INCREMENT      ELEMENT       ENERGY"
-           "       ENERGY          (s)\n";
+        << "  STEP  INCREMENT   TOTAL TIME    STEP TIME       STABLE     CRITICAL     GOVERNED"
+           "      KINETIC        TOTAL    WALL TIME\n"
+        << "                                              INCREMENT      ELEMENT           BY"
+           "       ENERGY       ENERGY          (s)\n";
   m_out.flush();
 }
 
@@ -138,9 +138,10 @@ void StaFile::line(int step, const StatusLine& line, double wall) {
   const std::string critical = line.critical_contact_node != 0
                                    ? "node " + std::to_string(line.critical_contact_node)
                                    : std::to_string(static_cast<long long>(line.critical_element));
-  m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12s %12.4E %12.4E %12.2f\n", step,
+  // GOVERNED BY: what sets the increment (increment_control.hpp), one word.
+  m_out << format("%6d %10ld %12.4E %12.4E %12.4E %12s %12s %12.4E %12.4E %12.2f\n", step,
                   line.increment, line.total_time, line.step_time, line.dt, critical.c_str(),
-                  line.energies.kinetic, line.energies.total(), wall);
+                  line.governing.c_str(), line.energies.kinetic, line.energies.total(), wall);
   m_out.flush();
 }
 
@@ -203,8 +204,8 @@ void MsgFile::begin_step(const Model& model, int step) {
     const Step& s = model.steps[index];
     m_out << "  " << escape_control(s.name) << "\n"
           << format("   time period %12.4E s\n", s.time_period);
-    if (s.fixed_increment) m_out << format("   fixed increment %12.4E s\n", *s.fixed_increment);
-    m_out << format("   time scale factor %g, bulk viscosity %g %g\n", s.time_scale_factor,
+    if (s.increment.fixed) m_out << format("   fixed increment %12.4E s\n", *s.increment.fixed);
+    m_out << format("   time scale factor %g, bulk viscosity %g %g\n", s.increment.scale_factor,
                     s.bulk_linear, s.bulk_quadratic);
   } else {
     m_out << "\n";

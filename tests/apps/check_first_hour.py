@@ -175,7 +175,7 @@ def case_progress(xpl, repo, out):
     check("WALL TIME" in sta, "JOB.sta has no WALL TIME column")
     rows = [line.split() for line in sta.splitlines()
             if re.match(r"^\s+\d+\s+\d+\s+[-\d.E+]+\s", line)]
-    check(len(rows) >= 100 and all(len(r) == 9 for r in rows),
+    check(len(rows) >= 100 and all(len(r) == 10 for r in rows),
           f"{len(rows)} status lines, widths {sorted({len(r) for r in rows})}")
     # The columns that other tests read keep their places (check_penalty_increment.py).
     parsed = [re.match(r"^\s+\d+\s+(\d+)\s+([-\d.E+]+)\s+[-\d.E+]+\s+([-\d.E+]+)\s+(node \d+|\d+)\s",

@@ -82,7 +82,7 @@ inline Model make_plate(const PlateSpec& spec) {
   Step step;
   step.name = "LOAD";
   step.time_period = spec.period;
-  step.time_scale_factor = spec.scale_factor;
+  step.increment.scale_factor = spec.scale_factor;
   OutputRequest history;
   history.kind = OutputRequest::Kind::History;
   history.time_interval = spec.history_dt;

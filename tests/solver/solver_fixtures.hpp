@@ -20,6 +20,7 @@ class CaptureSink : public OutputSink {
   std::vector<Real> times;
   std::vector<std::vector<Real>> rows;
   std::vector<std::string> messages;
+  std::vector<StatusLine> statuses;
   std::vector<Real> frame_times;
   RunStatus run_status = RunStatus::Completed;
   std::string error;
@@ -34,7 +35,7 @@ class CaptureSink : public OutputSink {
     times.push_back(time);
     rows.emplace_back(values.begin(), values.end());
   }
-  void status(const StatusLine&) override {}
+  void status(const StatusLine& line) override { statuses.push_back(line); }
   void message(Severity, const std::string& text) override { messages.push_back(text); }
   void end_run(RunStatus s, const std::string& e, const PhaseTimers&, double) override {
     run_status = s;
@@ -142,7 +143,7 @@ inline Model make_box(const BoxSpec& spec) {
   Step step;
   step.name = "IMPACT";
   step.time_period = spec.period;
-  step.time_scale_factor = spec.scale_factor;
+  step.increment.scale_factor = spec.scale_factor;
   if (spec.fix_x0)
     for (Index n : fixed.members)
       step.boundaries.push_back({n, 1, 3, 0.0, BoundaryType::Displacement, NO_INDEX, {}});

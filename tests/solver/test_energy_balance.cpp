@@ -52,7 +52,7 @@ void undamped(Model& model, Real dt) {
   for (Step& s : model.steps) {
     s.bulk_linear = 0.0;
     s.bulk_quadratic = 0.0;
-    s.fixed_increment = dt;
+    s.increment.fixed = dt;
   }
 }
 

@@ -38,9 +38,9 @@ TEST_CASE("*DYNAMIC, EXPLICIT: CalculiX's initial, minimum, maximum and CFD incr
   REQUIRE(m.steps.size() == 1);
   const Step& s = m.steps[0];
   CHECK(s.time_period == 5e-6);
-  CHECK_FALSE(s.fixed_increment.has_value());
-  REQUIRE(s.max_increment.has_value());
-  CHECK(*s.max_increment == 2.5e-8);
+  CHECK_FALSE(s.increment.fixed.has_value());
+  REQUIRE(s.increment.max.has_value());
+  CHECK(*s.increment.max == 2.5e-8);
   const std::string where = at(deck, "1.E-8", "*DYNAMIC");
   CHECK(has_text(m,
                  where + "initial time increment 1e-08 ignored: without DIRECT USER CONTROL "
@@ -63,12 +63,12 @@ TEST_CASE("*DYNAMIC, EXPLICIT: Abaqus' maximum increment, ELEMENT BY ELEMENT, EX
       step_with("*DYNAMIC, EXPLICIT, DIRECT USER CONTROL\n1e-7, 1e-3, , 2e-6\n");
   const Model m = read(deck);
   REQUIRE(m.steps.size() == 3);
-  REQUIRE(m.steps[0].max_increment.has_value());
-  CHECK(*m.steps[0].max_increment == 2e-6);
-  CHECK_FALSE(m.steps[1].max_increment.has_value());
-  CHECK_FALSE(m.steps[1].fixed_increment.has_value());
-  CHECK(*m.steps[2].fixed_increment == 1e-7);
-  CHECK_FALSE(m.steps[2].max_increment.has_value());
+  REQUIRE(m.steps[0].increment.max.has_value());
+  CHECK(*m.steps[0].increment.max == 2e-6);
+  CHECK_FALSE(m.steps[1].increment.max.has_value());
+  CHECK_FALSE(m.steps[1].increment.fixed.has_value());
+  CHECK(*m.steps[2].increment.fixed == 1e-7);
+  CHECK_FALSE(m.steps[2].increment.max.has_value());
   CHECK(has_text(m,
                  at(deck, "*DYNAMIC, EXPLICIT, ELEMENT", "*DYNAMIC") +
                      "ELEMENT BY ELEMENT: the stable increment is xpl's element-by-element "

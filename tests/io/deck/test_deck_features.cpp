@@ -199,8 +199,8 @@ TEST_CASE("boundary conditions: symmetry words, ranges, velocity, amplitude, OP=
   CHECK(first.boundaries[7].amplitude == m.find_amplitude("UP"));
   const Step& second = m.steps[1];
   CHECK(second.name == "Step-2");
-  REQUIRE(second.fixed_increment.has_value());
-  CHECK(*second.fixed_increment == 1e-6);
+  REQUIRE(second.increment.fixed.has_value());
+  CHECK(*second.increment.fixed == 1e-6);
   CHECK(second.boundaries_reset);
   REQUIRE(second.boundaries.size() == 1);
   CHECK(second.boundaries[0].first_dof == 1);

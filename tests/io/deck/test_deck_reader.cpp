@@ -146,8 +146,8 @@ TEST_CASE("a complete small deck fills every Model field", "[io][deck]") {
   const Step& s = m.steps[0];
   CHECK(s.name == "Impact");
   CHECK(s.time_period == 1e-3);
-  CHECK_FALSE(s.fixed_increment.has_value());
-  CHECK(s.time_scale_factor == 0.8);
+  CHECK_FALSE(s.increment.fixed.has_value());
+  CHECK(s.increment.scale_factor == 0.8);
   CHECK(s.bulk_linear == 0.1);
   CHECK(s.bulk_quadratic == 1.5);
   CHECK_FALSE(s.ramp_amplitude);
