@@ -168,7 +168,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   sn[3] = s[3] + dt * (two_mu * d01 + r01 + r10);
   sn[4] = s[4] + dt * (two_mu * d02 + r02 + r20);
   sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
-  // The elastic update is the trial state of the J2 return (σ_y Δε̄ᵖ per lane, Pa).
+  // The elastic update is the trial state of the J2 return (its plastic work per lane, Pa).
   [[maybe_unused]] Vec dissipation = simd::splat(0.0);
   // The enhanced resultants of a yielding lane relax with its stress, and stay within its
   // flow stress (see hex8r.hpp).
@@ -178,10 +178,10 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   if constexpr (PLASTIC) {
     if (dt > 0.0) {
       if constexpr (PATH == HourglassPath::FlanaganBelytschko) {
-        dissipation = plastic_return(batch, sn, dt);
+        dissipation = plastic_return(batch, s, sn, dt);
       } else {
         const Vec trial = deviator_norm2(sn);
-        dissipation = plastic_return(batch, sn, dt);
+        dissipation = plastic_return(batch, s, sn, dt);
         const Vec returned = deviator_norm2(sn);
         relax = return_factor(trial, returned);
         // The flow stress: the static yield stress, or the (rate-raised) von Mises stress of
@@ -296,7 +296,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   from_modes(Fz, fnz);
 
   simd::store(&m_volume[static_cast<std::size_t>(batch) * W], vol);
-  // Stress work minus plastic dissipation: ALLSE is the recoverable part.
+  // Stress work minus plastic work: ALLSE is the elastic energy of the stress state.
   Vec strain_inc = dt * volm * strain_power;
   [[maybe_unused]] Vec plastic_inc = simd::splat(0.0);
   if constexpr (PLASTIC) {

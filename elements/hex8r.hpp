@@ -166,11 +166,12 @@ class Hex8rBlock {
                      const Real* vy, const Real* vz, Real dt, Real b1, Real b2, Real* fx, Real* fy,
                      Real* fz);
   /// J2 return of the trial stresses `sn` (6 × W) of a batch with plastic lanes over the
-  /// increment `dt`: scales the deviatoric part of yielding lanes onto the yield surface,
-  /// updates PEEQ, its rate and the yield stress, and returns σ_y Δε̄ᵖ per lane (Pa; 0 in
-  /// lanes that stay elastic). One SIMD yield test; the batch return within table segments,
-  /// the scalar return only where that does not apply.
-  simd::Vec plastic_return(Index batch, simd::Vec sn[6], Real dt);
+  /// increment `dt` from the stresses `start`: scales the deviatoric part of yielding lanes
+  /// onto the yield surface, updates PEEQ, its rate and the yield stress, and returns the
+  /// plastic work ½(σ_n + σ_{n+1}) : Δεᵖ per lane (Pa; 0 in lanes that stay elastic;
+  /// return_work()). One SIMD yield test; the batch return within table segments, the scalar
+  /// return only where that does not apply.
+  simd::Vec plastic_return(Index batch, const simd::Vec start[6], simd::Vec sn[6], Real dt);
   /// Copies the plastic laws and the plastic state arrays (constructor).
   void setup_plasticity(const std::vector<HexMaterial>& materials);
   template <HourglassPath PATH>

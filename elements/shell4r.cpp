@@ -358,8 +358,9 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     Vec syy_n = syy + q12 * exx + q11 * eyy;
     Vec sxy_n = sxy + g * exy;
     if constexpr (PLASTIC) {
-      plastic_work +=
-          tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, sxx_n, syy_n, sxy_n, thinning);
+      const Vec start[3] = {sxx, syy, sxy};
+      plastic_work += tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n,
+                                                  syy_n, sxy_n, thinning);
     }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);

@@ -99,8 +99,9 @@ Real shell_rotary_radius2(Real thickness, Real length, Real poisson, bool exact 
 struct ShellStepTotals : IncrementLimit {
   Real strain_energy_increment = 0.0;     ///< ΔALLSE, J
   Real hourglass_energy_increment = 0.0;  ///< ΔALLAE, J
-  /// ΔALLPD, J: Σ over section points of weight · σ_y Δε̄ᵖ · mid-increment volume. The
-  /// strain energy increment above is the recoverable part (total work minus this).
+  /// ΔALLPD, J: Σ over section points of weight · ½(σ_n + σ_{n+1}) : Δεᵖ · mid-increment
+  /// volume. The strain energy increment above is the recoverable part (total work minus
+  /// this), the elastic energy of the stress state.
   Real plastic_energy_increment = 0.0;
 };
 
