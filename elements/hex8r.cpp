@@ -111,8 +111,13 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   Real* hgq = &m_hourglass[static_cast<std::size_t>(batch) * 12 * W];
 
   // Gather and go to mode space (positions x_{n+1}, velocities v_{n+1/2}).
-  V3<Vec> ax[8], av[8];
-  gather_modes(conn, px, py, pz, vx, vy, vz, ax, av);
+  V3<Vec> ax[8], av[8], corners[8];
+  gather_modes(conn, px, py, pz, vx, vy, vz, ax, av, corners);
+  // One point sees the mean gradient only: a corner node pushed through the element leaves the
+  // volume positive (and the stress finite) while the element is turned inside out at that
+  // corner. A corner counts as turned over past HEX_FOLD_LIMIT (hex8r.hpp says why not at 0).
+  const Vec fold = simd::any_negative(corner_screen(ax)) ? corner_fold(corners, HEX_FOLD_LIMIT)
+                                                         : simd::splat(1.0);
 
   // Geometry at x_{n+1} (forces, hourglass) and at x_{n+1/2} (strain increment).
   V3<Vec> g[8], gm[8];
@@ -317,7 +322,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, e_plastic = 0.0;
   bool ok[W];
   for (int l = 0; l < W; ++l) {
-    ok[l] = vol[l] > 0.0 && volm[l] > 0.0;
+    ok[l] = vol[l] > 0.0 && volm[l] > 0.0 && !(fold[l] < 0.0);
     if (m_batches.lane_owner(batch, l) == NO_INDEX) continue;
     e_strain += strain_inc[l];
     e_hg += hg_inc[l];
