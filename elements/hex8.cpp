@@ -135,7 +135,7 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
     sn[4] = s[4] + dt * (two_mu * d02 + r02 + r20);
     sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
     if constexpr (PLASTIC)
-      if (dt > 0.0) dissipation += mid.det * plastic_return(batch, q, sn, dt);
+      if (dt > 0.0) dissipation += mid.det * plastic_return(batch, q, s, sn, dt);
     for (int c = 0; c < 6; ++c) simd::store(sq + c * W, sn[c]);
     strain_power += mid.det * 0.5 *
                     ((s[0] + sn[0]) * d00 + (s[1] + sn[1]) * d11 + (s[2] + sn[2]) * d22 +

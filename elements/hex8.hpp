@@ -121,9 +121,10 @@ class Hex8Block {
                      Real* fz);
   void stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* ux,
                        const Real* uy, const Real* uz, Real* yx, Real* yy, Real* yz) const;
-  /// J2 return of the trial stress `sn` (6 × W) of integration point q of a batch; returns
-  /// σ_y Δε̄ᵖ per lane (Pa; 0 where elastic).
-  simd::Vec plastic_return(Index batch, int q, simd::Vec sn[6], Real dt);
+  /// J2 return of the trial stress `sn` (6 × W) of integration point q of a batch, whose
+  /// increment started from `start`; returns the plastic work ½(σ_n + σ_{n+1}) : Δεᵖ per lane
+  /// (Pa; 0 where elastic; return_work()).
+  simd::Vec plastic_return(Index batch, int q, const simd::Vec start[6], simd::Vec sn[6], Real dt);
   void setup_plasticity(const std::vector<HexMaterial>& materials);
 
   HexBatches m_batches;  ///< layout, constants, increment limits and partition

@@ -140,6 +140,59 @@ inline T max_face_area_squared(const V3<T> a[8]) {
   return m;
 }
 
+/// A cheap proof that no corner Jacobian of the hex with modes `a` is negative: positive only
+/// if σ_min(A) > |Δ| for the centre Jacobian A = [a1, a2, a3] and the change Δ of J from the
+/// centre to any corner (its columns ±a4 ± a6 ± a7, ±a4 ± a5 ± a7, ±a5 ± a6 ± a7): then no
+/// J between them is singular. With σ_min ≥ 2 det A / |A|²_F and |Δ|²_F ≤ 9 H,
+/// H = |a4|² + |a5|² + |a6|² + |a7|², the value 4 det A |det A| − 9 H |A|⁴_F (m⁶) is positive
+/// for every element near a parallelepiped; corner_fold() decides the others.
+template <class T>
+inline T corner_screen(const V3<T> a[8]) {
+  const T det = dot(a[1], cross(a[2], a[3]));
+  const T size = dot(a[1], a[1]) + dot(a[2], a[2]) + dot(a[3], a[3]);
+  const T h = dot(a[4], a[4]) + dot(a[5], a[5]) + dot(a[6], a[6]) + dot(a[7], a[7]);
+  return 4.0 * det * simd::abs(det) - 9.0 * h * size * size;
+}
+
+/// Fold measure of the 8 corners of a hex with corners `x` (Abaqus order): the smallest over
+/// the corners of
+///   f = det E |det E| + τ² |e_ξ|² |e_η|² |e_ζ|²,   E = [e_ξ, e_η, e_ζ],
+/// e_ξ, e_η, e_ζ the corner's three edges, oriented along +ξ, +η, +ζ (twice the columns of the
+/// Jacobian there). f is negative exactly where the corner's scaled Jacobian
+/// det E / (|e_ξ| |e_η| |e_ζ|) is below −τ: 1 at a cube's corners, −sin θ where one edge has
+/// been pushed through the plane of the other two by θ. No root, no division (m⁶: the sign
+/// is what counts); the edge lengths only where a corner is negative at all. Not negative
+/// otherwise (the smallest det E then).
+template <class T>
+inline T corner_fold(const V3<T> x[8], Real tau) {
+  using simd::min;
+  // Edges by the signs of the other two coordinates, [first][second] with 0 = −1, 1 = +1.
+  const V3<T> ex[2][2] = {{x[1] - x[0], x[5] - x[4]}, {x[2] - x[3], x[6] - x[7]}};  // [η][ζ]
+  const V3<T> ey[2][2] = {{x[3] - x[0], x[7] - x[4]}, {x[2] - x[1], x[6] - x[5]}};  // [ξ][ζ]
+  const V3<T> ez[2][2] = {{x[4] - x[0], x[7] - x[3]}, {x[5] - x[1], x[6] - x[2]}};  // [ξ][η]
+  T det[8];
+  T smallest{};
+  for (int c = 0; c < 8; ++c) {
+    const int i = c & 1, j = (c >> 1) & 1, k = c >> 2;  // corner (ξ, η, ζ) sign bits
+    det[c] = dot(ex[j][k], cross(ey[i][k], ez[i][j]));
+    smallest = c == 0 ? det[c] : min(smallest, det[c]);
+  }
+  if (!simd::any_negative(smallest)) return smallest;
+  T lx[2][2], ly[2][2], lz[2][2];
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      lx[i][j] = (tau * tau) * dot(ex[i][j], ex[i][j]);
+      ly[i][j] = dot(ey[i][j], ey[i][j]);
+      lz[i][j] = dot(ez[i][j], ez[i][j]);
+    }
+  for (int c = 0; c < 8; ++c) {
+    const int i = c & 1, j = (c >> 1) & 1, k = c >> 2;
+    const T f = det[c] * simd::abs(det[c]) + lx[j][k] * ly[i][k] * lz[i][j];
+    smallest = c == 0 ? f : min(smallest, f);
+  }
+  return smallest;
+}
+
 /// Volume of one hex given its nodal coordinates (Abaqus order).
 inline Real hex8_volume(const Real x[8], const Real y[8], const Real z[8]) {
   V3<Real> a[8], g[8];

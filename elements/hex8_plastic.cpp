@@ -29,12 +29,12 @@ void Hex8Block::setup_plasticity(const std::vector<HexMaterial>& materials) {
   }
 }
 
-Vec Hex8Block::plastic_return(Index batch, int q, Vec sn[6], Real dt) {
+Vec Hex8Block::plastic_return(Index batch, int q, const Vec start[6], Vec sn[6], Real dt) {
   // The pressure (the element's, shared by all points) is left as it is by the return.
   const std::size_t base = (static_cast<std::size_t>(batch) * HEX8_POINTS + q) * W;
   const Vec two_mu = simd::load(m_batches.constants(batch) + TWO_MU * W);
-  return m_points.return_row(base, &m_lane_law[static_cast<std::size_t>(batch) * W], m_laws, sn,
-                             two_mu, dt, nullptr);
+  return m_points.return_row(base, &m_lane_law[static_cast<std::size_t>(batch) * W], m_laws, start,
+                             sn, two_mu, dt, nullptr);
 }
 
 void Hex8Block::gather_plastic_strain(std::vector<Real>& peeq) const {

@@ -111,8 +111,13 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   Real* hgq = &m_hourglass[static_cast<std::size_t>(batch) * 12 * W];
 
   // Gather and go to mode space (positions x_{n+1}, velocities v_{n+1/2}).
-  V3<Vec> ax[8], av[8];
-  gather_modes(conn, px, py, pz, vx, vy, vz, ax, av);
+  V3<Vec> ax[8], av[8], corners[8];
+  gather_modes(conn, px, py, pz, vx, vy, vz, ax, av, corners);
+  // One point sees the mean gradient only: a corner node pushed through the element leaves the
+  // volume positive (and the stress finite) while the element is turned inside out at that
+  // corner. A corner counts as turned over past HEX_FOLD_LIMIT (hex8r.hpp says why not at 0).
+  const Vec fold = simd::any_negative(corner_screen(ax)) ? corner_fold(corners, HEX_FOLD_LIMIT)
+                                                         : simd::splat(1.0);
 
   // Geometry at x_{n+1} (forces, hourglass) and at x_{n+1/2} (strain increment).
   V3<Vec> g[8], gm[8];
@@ -168,7 +173,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   sn[3] = s[3] + dt * (two_mu * d01 + r01 + r10);
   sn[4] = s[4] + dt * (two_mu * d02 + r02 + r20);
   sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
-  // The elastic update is the trial state of the J2 return (σ_y Δε̄ᵖ per lane, Pa).
+  // The elastic update is the trial state of the J2 return (its plastic work per lane, Pa).
   [[maybe_unused]] Vec dissipation = simd::splat(0.0);
   // The enhanced resultants of a yielding lane relax with its stress, and stay within its
   // flow stress (see hex8r.hpp).
@@ -178,10 +183,10 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   if constexpr (PLASTIC) {
     if (dt > 0.0) {
       if constexpr (PATH == HourglassPath::FlanaganBelytschko) {
-        dissipation = plastic_return(batch, sn, dt);
+        dissipation = plastic_return(batch, s, sn, dt);
       } else {
         const Vec trial = deviator_norm2(sn);
-        dissipation = plastic_return(batch, sn, dt);
+        dissipation = plastic_return(batch, s, sn, dt);
         const Vec returned = deviator_norm2(sn);
         relax = return_factor(trial, returned);
         // The flow stress: the static yield stress, or the (rate-raised) von Mises stress of
@@ -296,7 +301,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   from_modes(Fz, fnz);
 
   simd::store(&m_volume[static_cast<std::size_t>(batch) * W], vol);
-  // Stress work minus plastic dissipation: ALLSE is the recoverable part.
+  // Stress work minus plastic work: ALLSE is the elastic energy of the stress state.
   Vec strain_inc = dt * volm * strain_power;
   [[maybe_unused]] Vec plastic_inc = simd::splat(0.0);
   if constexpr (PLASTIC) {
@@ -317,7 +322,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, e_plastic = 0.0;
   bool ok[W];
   for (int l = 0; l < W; ++l) {
-    ok[l] = vol[l] > 0.0 && volm[l] > 0.0;
+    ok[l] = vol[l] > 0.0 && volm[l] > 0.0 && !(fold[l] < 0.0);
     if (m_batches.lane_owner(batch, l) == NO_INDEX) continue;
     e_strain += strain_inc[l];
     e_hg += hg_inc[l];

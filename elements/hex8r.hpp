@@ -46,6 +46,17 @@ inline constexpr Real HOURGLASS_VISCOSITY = 0.1;
 ///   n elements through the thickness the section's fully plastic moment is M_p for any n.
 /// What either removes is dissipated in ALLAE: the work of the resultants, stored or not, is
 /// all artificial energy, and a hinge's bending work carried by the stabilisation is in ALLAE.
+/// A corner of a C3D8R whose scaled Jacobian det J / (|J_ξ| |J_η| |J_ζ|) is below −HEX_FOLD_LIMIT
+/// (one edge pushed more than 30° through the plane of the other two: corner_fold()) turns the
+/// element inside out there, and the run fails naming it, as a C3D8 fails at a Gauss point's
+/// Jacobian; the one point alone sees only the mean gradient and would carry on. Not at 0: an
+/// element crushed to a pancake (plastic blocks meeting at 2000–3000 m/s, 2 mm cubes spread
+/// to 0.01 mm × 30 mm) has nearly coplanar edges at every corner, whose sign the least
+/// hourglass motion turns either way (scaled Jacobians down to −0.075 there, corner Jacobians
+/// down to −5.5 V/8), yet its one-point response stays sound; a corner node driven through
+/// the plane of its three neighbours reaches −0.5 a sixth of an edge past it.
+inline constexpr Real HEX_FOLD_LIMIT = 0.5;
+
 /// A set of C3D8R elements and their state (stress, hourglass forces).
 class Hex8rBlock {
  public:
@@ -166,11 +177,12 @@ class Hex8rBlock {
                      const Real* vy, const Real* vz, Real dt, Real b1, Real b2, Real* fx, Real* fy,
                      Real* fz);
   /// J2 return of the trial stresses `sn` (6 × W) of a batch with plastic lanes over the
-  /// increment `dt`: scales the deviatoric part of yielding lanes onto the yield surface,
-  /// updates PEEQ, its rate and the yield stress, and returns σ_y Δε̄ᵖ per lane (Pa; 0 in
-  /// lanes that stay elastic). One SIMD yield test; the batch return within table segments,
-  /// the scalar return only where that does not apply.
-  simd::Vec plastic_return(Index batch, simd::Vec sn[6], Real dt);
+  /// increment `dt` from the stresses `start`: scales the deviatoric part of yielding lanes
+  /// onto the yield surface, updates PEEQ, its rate and the yield stress, and returns the
+  /// plastic work ½(σ_n + σ_{n+1}) : Δεᵖ per lane (Pa; 0 in lanes that stay elastic;
+  /// return_work()). One SIMD yield test; the batch return within table segments, the scalar
+  /// return only where that does not apply.
+  simd::Vec plastic_return(Index batch, const simd::Vec start[6], simd::Vec sn[6], Real dt);
   /// Copies the plastic laws and the plastic state arrays (constructor).
   void setup_plasticity(const std::vector<HexMaterial>& materials);
   template <HourglassPath PATH>

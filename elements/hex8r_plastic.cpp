@@ -25,10 +25,11 @@ void Hex8rBlock::setup_plasticity(const std::vector<HexMaterial>& materials) {
     if (m_lane_law[k] >= 0) m_points.reset(k, m_laws[static_cast<std::size_t>(m_lane_law[k])], 0.0);
 }
 
-Vec Hex8rBlock::plastic_return(Index batch, Vec sn[6], Real dt) {
+Vec Hex8rBlock::plastic_return(Index batch, const Vec start[6], Vec sn[6], Real dt) {
   const std::size_t base = static_cast<std::size_t>(batch) * W;
   const Vec two_mu = simd::load(m_batches.constants(batch) + TWO_MU * W);
-  return m_points.return_row(base, &m_lane_law[base], m_laws, sn, two_mu, dt, &m_peeq_rate[base]);
+  return m_points.return_row(base, &m_lane_law[base], m_laws, start, sn, two_mu, dt,
+                             &m_peeq_rate[base]);
 }
 
 void Hex8rBlock::gather_plastic_strain(std::vector<Real>& peeq) const {

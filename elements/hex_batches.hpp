@@ -53,7 +53,7 @@ struct HexStepTotals : IncrementLimit {
   Real strain_energy_increment = 0.0;     ///< ΔALLSE, J
   Real hourglass_energy_increment = 0.0;  ///< ΔALLAE, J
   Real viscous_energy_increment = 0.0;    ///< ΔALLVD, J
-  Real plastic_energy_increment = 0.0;    ///< ΔALLPD, J (σ_y Δε̄ᵖ V at mid-increment)
+  Real plastic_energy_increment = 0.0;    ///< ΔALLPD, J (½(σ_n + σ_{n+1}):Δεᵖ V, mid V)
 };
 
 /// Layout, constants and force-pass partition of a set of 8-node hexes.

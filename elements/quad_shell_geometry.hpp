@@ -100,6 +100,35 @@ inline void local_combos(const QuadFrame<T>& f, const V3<T> u[4], QuadCombos<T>&
   z = {dot(f.e3, d02), dot(f.e3, d13), dot(f.e3, hg)};
 }
 
+/// Natural coordinates (ξ, η) of the corners, in node order.
+inline constexpr Real QUAD_CORNER_XI[4] = {-1.0, 1.0, 1.0, -1.0};
+inline constexpr Real QUAD_CORNER_ETA[4] = {-1.0, -1.0, 1.0, 1.0};
+
+/// Jacobian of the bilinear map of the projected quad at each corner: `det`[k] = det J and
+/// `columns`[k] = |J_ξ|² |J_η|² (m⁴ each), so that det / √columns is the corner's scaled
+/// Jacobian, the sine of its angle (negative: a reflex corner). With x = x0 + ξ a1 + η a2 +
+/// ξη h in the element plane, J_ξ = a1 + η h and J_η = a2 + ξ h at a corner, and det J =
+/// a1×a2 + ξ a1×h + η h×a2 with a1×a2 = A/4 > 0 in the frame of quad_frame(), whose normal
+/// follows the diagonals. A negative corner: that node has crossed the diagonal joining its
+/// neighbours, the quad is folded over there (concave, or crossed once its normal has turned
+/// over, and its area alone shows neither). From the frame's gradient operator, in the plane:
+/// d13 = 2A (−b2b, b1b), d24 = 2A (b2a, −b1a), a1 = ¼(d13 − d24), a2 = ¼(d13 + d24) and
+/// h = ¼ (hx, hy).
+template <class T>
+inline void quad_corner_jacobians(const QuadFrame<T>& f, T det[4], T columns[4]) {
+  const T half = 0.5 * f.area;
+  const T a1x = -half * (f.b2a + f.b2b), a1y = half * (f.b1a + f.b1b);
+  const T a2x = half * (f.b2a - f.b2b), a2y = half * (f.b1b - f.b1a);
+  const T hx = 0.25 * f.hx, hy = 0.25 * f.hy;
+  for (int k = 0; k < 4; ++k) {
+    const Real xi = QUAD_CORNER_XI[k], eta = QUAD_CORNER_ETA[k];
+    const T ux = a1x + eta * hx, uy = a1y + eta * hy;  // J_ξ
+    const T vx = a2x + xi * hx, vy = a2y + xi * hy;    // J_η
+    det[k] = ux * vy - uy * vx;
+    columns[k] = (ux * ux + uy * uy) * (vx * vx + vy * vy);
+  }
+}
+
 /// Angle in degrees between the normals of the two triangles of each diagonal split, the
 /// larger of the two splits: 0 for a flat element.
 inline Real quad_warp_angle(const V3<Real> p[4]) {

@@ -50,8 +50,8 @@ void RadialReturnLanes::reset(std::size_t slot, const Plasticity& law, Real peeq
 }
 
 Vec RadialReturnLanes::return_row(std::size_t row, const int* lane_law,
-                                  const std::vector<Plasticity>& laws, Vec sn[6], Vec two_mu,
-                                  Real dt, Real* rate) {
+                                  const std::vector<Plasticity>& laws, const Vec start[6],
+                                  Vec sn[6], Vec two_mu, Real dt, Real* rate) {
   const Vec p = (sn[0] + sn[1] + sn[2]) * (1.0 / 3.0);
   const Vec dev[6] = {sn[0] - p, sn[1] - p, sn[2] - p, sn[3], sn[4], sn[5]};
   const Vec q2 = 1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) +
@@ -63,6 +63,9 @@ Vec RadialReturnLanes::return_row(std::size_t row, const int* lane_law,
     if (rate != nullptr) simd::store(rate, zero);
     return zero;
   }
+
+  Vec trial[6];
+  for (int c = 0; c < 6; ++c) trial[c] = sn[c];
 
   // Every lane computes the segment solution; masks keep it where it is valid. Elastic lanes
   // (σ_y = +inf) produce infinities and NaNs that the masks drop.
@@ -80,12 +83,10 @@ Vec RadialReturnLanes::return_row(std::size_t row, const int* lane_law,
   for (int c = 3; c < 6; ++c) sn[c] = simd::select(fast, scale * dev[c], sn[c]);
   simd::store(&m_peeq[row], simd::select(fast, peeq1, peeq0));
   simd::store(&m_yield[row], simd::select(fast, y1, y));
-  Vec dissipation = simd::select(fast, y1 * delta, zero);
   if (rate != nullptr) simd::store(rate, simd::select(fast, delta / dt, zero));
 
   // Yielding lanes the segment solution does not cover: the scalar return.
   const simd::Mask slow = yielding & ~fast;
-  if (!simd::any(slow)) return dissipation;
   for (int l = 0; l < W; ++l) {
     if (!slow[l]) continue;
     const Plasticity& law = laws[static_cast<std::size_t>(lane_law[l])];
@@ -97,9 +98,8 @@ Vec RadialReturnLanes::return_row(std::size_t row, const int* lane_law,
     for (int c = 3; c < 6; ++c) sn[c][l] = s * dev[c][l];
     reset(slot, law, m_peeq[slot] + r.peeq_increment);
     if (rate != nullptr) rate[l] = r.peeq_increment / dt;
-    dissipation[l] = r.yield_stress * r.peeq_increment;
   }
-  return dissipation;
+  return return_work(start, trial, sn, two_mu);
 }
 
 }  // namespace xpl::elements

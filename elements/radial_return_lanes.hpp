@@ -19,6 +19,21 @@
 
 namespace xpl::elements {
 
+/// Plastic work of one increment, ½(σ_n + σ_{n+1}) : Δεᵖ (J/m^3, Voigt 11 22 33 12 13 23),
+/// from the stress at its start, the elastic trial and the returned stress: the return changes
+/// the deviator only, σ_trial − σ_{n+1} = 2G Δεᵖ. The trapezoidal rule of the stress work
+/// (ALLIE) makes ΔALLIE − ΔALLPD = ½(σ_n + σ_{n+1}) : C⁻¹ : (σ_{n+1} − σ_n), the change of the
+/// elastic energy ½ σ : C⁻¹ : σ (up to the spin of the Jaumann rate, second order in dt): ALLSE
+/// is the energy of the stress state. σ_y Δε̄ᵖ = σ_{n+1} : Δεᵖ (the backward-Euler work) books
+/// ½(σ_{n+1} − σ_n) : Δεᵖ more each increment, and ALLSE drifts below it, negative in impacts.
+inline simd::Vec return_work(const simd::Vec start[6], const simd::Vec trial[6],
+                             const simd::Vec end[6], simd::Vec two_mu) {
+  simd::Vec normal = simd::splat(0.0), shear = simd::splat(0.0);
+  for (int c = 0; c < 3; ++c) normal += (start[c] + end[c]) * (trial[c] - end[c]);
+  for (int c = 3; c < 6; ++c) shear += (start[c] + end[c]) * (trial[c] - end[c]);
+  return (normal + 2.0 * shear) / (2.0 * two_mu);
+}
+
 /// Plastic state of the integration points of a hex block, one row of W lanes per batch
 /// (and point): ε̄ᵖ, the static yield stress the next trial is tested against, and the
 /// table segment that holds ε̄ᵖ. Slots are `row + lane`.
@@ -34,11 +49,13 @@ class RadialReturnLanes {
   void reset(std::size_t slot, const Plasticity& law, Real peeq);
 
   /// Return of the W lanes of row `row` (a slot multiple of W), in place on the trial stress
-  /// `sn` (Voigt 11 22 33 12 13 23, Pa); `two_mu` = 2G per lane (Pa), `laws[lane_law[l]]` the
-  /// law of lane l (−1: elastic, never yields), dt > 0 (s). Writes Δε̄ᵖ/dt (1/s, 0 where
-  /// elastic) to `rate` unless it is null; returns the dissipation σ_y Δε̄ᵖ per lane (J/m^3).
+  /// `sn` (Voigt 11 22 33 12 13 23, Pa) of the increment from the stress `start`; `two_mu` =
+  /// 2G per lane (Pa), `laws[lane_law[l]]` the law of lane l (−1: elastic, never yields),
+  /// dt > 0 (s). Writes Δε̄ᵖ/dt (1/s, 0 where elastic) to `rate` unless it is null; returns
+  /// the plastic work per lane, return_work() (J/m^3; 0 where elastic).
   simd::Vec return_row(std::size_t row, const int* lane_law, const std::vector<Plasticity>& laws,
-                       simd::Vec sn[6], simd::Vec two_mu, Real dt, Real* rate);
+                       const simd::Vec start[6], simd::Vec sn[6], simd::Vec two_mu, Real dt,
+                       Real* rate);
 
   Real peeq(std::size_t slot) const { return m_peeq[slot]; }
   /// The static yield stress σ_y(ε̄ᵖ, 0) of the W lanes of row `row` (Pa; +inf in elastic

@@ -90,6 +90,7 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
   m_shear.assign(n_batches * 2 * W, 0.0);
   m_hourglass.assign(n_batches * N_HOURGLASS * W, 0.0);
   m_batch_forms.assign(n_batches, 0);
+  m_fold_exempt.assign(n_batches * W, 0);
   m_slot.assign(n, NO_INDEX);
   m_batch_energy.assign(n_batches * 3, 0.0);
   m_batch_dt.assign(n_batches, 0.0);
@@ -165,6 +166,22 @@ void Shell4rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Re
       mass[node] += share;
       rotary_inertia[node] += inertia;
     }
+  }
+}
+
+void Shell4rBlock::note_reference_corners(const NodalVectors& reference) {
+  for (std::size_t s = 0; s < m_fold_exempt.size(); ++s) {
+    const std::size_t b = s / W, l = s % W;
+    Index nodes[4];
+    for (int a = 0; a < 4; ++a) nodes[a] = m_conn[(b * 4 + a) * W + l];
+    V3<Real> p[4];
+    gather_corners(reference, nodes, p);
+    Real det[4], columns[4];
+    quad_corner_jacobians(quad_frame(p), det, columns);
+    unsigned char exempt = 0;
+    for (int k = 0; k < 4; ++k)
+      if (!(det[k] > 0.0)) exempt |= static_cast<unsigned char>(1u << k);
+    m_fold_exempt[s] = exempt;
   }
 }
 
@@ -358,8 +375,9 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     Vec syy_n = syy + q12 * exx + q11 * eyy;
     Vec sxy_n = sxy + g * exy;
     if constexpr (PLASTIC) {
-      plastic_work +=
-          tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, sxx_n, syy_n, sxy_n, thinning);
+      const Vec start[3] = {sxx, syy, sxy};
+      plastic_work += tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n,
+                                                  syy_n, sxy_n, thinning);
     }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
@@ -508,6 +526,16 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     strain_inc -= plastic_inc;
   }
 
+  // A node pushed across the diagonal of its neighbours folds the element over at that corner
+  // while its area stays positive (the frame follows the diagonals): a fold past
+  // SHELL_FOLD_LIMIT, det J < −τ |J_ξ| |J_η|, squared without a root.
+  Vec fold[4];
+  {
+    Vec det[4], columns[4];
+    quad_corner_jacobians(fe, det, columns);
+    for (int k = 0; k < 4; ++k)
+      fold[k] = det[k] * simd::abs(det[k]) + (SHELL_FOLD_LIMIT * SHELL_FOLD_LIMIT) * columns[k];
+  }
   Real e_strain = 0.0, e_hg = 0.0, e_plastic = 0.0, best_dt = std::numeric_limits<Real>::infinity();
   Index critical = NO_INDEX, failed = NO_INDEX;
   // Corners at nodes another thread also writes go to the exchange buffer instead.
@@ -538,7 +566,10 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     e_hg += hg_work[l];
     if constexpr (PLASTIC) e_plastic += plastic_inc[l];
     const Index model_e = m_element_index[owner];
-    if (!(area[l] > 0.0) || !(fm.area[l] > 0.0) || !std::isfinite(dt_e[l])) {
+    bool folded = false;
+    for (int k = 0; k < 4; ++k)
+      folded |= fold[k][l] < 0.0 && (m_fold_exempt[b * W + l] >> k & 1u) == 0;
+    if (!(area[l] > 0.0) || !(fm.area[l] > 0.0) || !std::isfinite(dt_e[l]) || folded) {
       if (failed == NO_INDEX || model_e < failed) failed = model_e;
     } else if (dt_e[l] < best_dt || (dt_e[l] == best_dt && model_e < critical)) {
       best_dt = dt_e[l];

@@ -68,6 +68,13 @@ enum class ShellHourglass {
   /// with the coefficient SHELL_HOURGLASS_STIFFNESS (resists part of a twist field).
   Stiffness,
 };
+/// A corner of an S4R whose angle exceeds 180° by more than asin(SHELL_FOLD_LIMIT) = 30°
+/// (scaled Jacobian below −SHELL_FOLD_LIMIT, quad_corner_jacobians()) has its node pushed
+/// across the diagonal of its neighbours: the element is folded over, and the run fails
+/// naming it; a corner concave or straight in the reference configuration (the reader accepts
+/// one concave corner) is left out. Not at 180°, as C3D8R's HEX_FOLD_LIMIT: a quad crushed to
+/// a sliver has corners near 0° and 180° that the least motion turns either way.
+inline constexpr Real SHELL_FOLD_LIMIT = 0.5;
 /// Largest number of through-thickness integration points.
 inline constexpr int SHELL_MAX_POINTS = 15;
 
@@ -99,8 +106,9 @@ Real shell_rotary_radius2(Real thickness, Real length, Real poisson, bool exact 
 struct ShellStepTotals : IncrementLimit {
   Real strain_energy_increment = 0.0;     ///< ΔALLSE, J
   Real hourglass_energy_increment = 0.0;  ///< ΔALLAE, J
-  /// ΔALLPD, J: Σ over section points of weight · σ_y Δε̄ᵖ · mid-increment volume. The
-  /// strain energy increment above is the recoverable part (total work minus this).
+  /// ΔALLPD, J: Σ over section points of weight · ½(σ_n + σ_{n+1}) : Δεᵖ · mid-increment
+  /// volume. The strain energy increment above is the recoverable part (total work minus
+  /// this), the elastic energy of the stress state.
   Real plastic_energy_increment = 0.0;
 };
 
@@ -132,6 +140,11 @@ class Shell4rBlock {
   /// Adds the lumped translational mass ρ t A/4 and the scaled rotary inertia to the nodes.
   void add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass,
                        std::vector<Real>& rotary_inertia) const;
+
+  /// Notes the corners of each element that are concave or straight in `reference`
+  /// (n_nodes × 3, m): the reader accepts one concave corner, so the fold check of the force
+  /// pass (SHELL_FOLD_LIMIT) leaves those corners out. Until called, every corner is checked.
+  void note_reference_corners(const NodalVectors& reference);
 
   /// Thickness of each node: the area-weighted mean initial thickness of the shells around
   /// it (n_nodes; 0 for nodes on no shell), for contact.
@@ -287,8 +300,11 @@ class Shell4rBlock {
   std::vector<Index> m_slot;                 ///< block element -> b*W + l
   std::vector<Index> m_color_batches;        ///< batches of colour c: [c], [c+1]
   std::vector<unsigned char> m_batch_forms;  ///< [b]: FORM_OLD | FORM_PHYS of its lanes
-  ShellPlasticState m_plastic;               ///< section-point plasticity (empty when elastic)
-  std::vector<Real> m_batch_energy;          ///< [b][3]: strain, hourglass, plastic
+  /// [b][W]: bit k set where corner k is not checked for a fold (concave or straight in the
+  /// reference configuration: note_reference_corners())
+  std::vector<unsigned char> m_fold_exempt;
+  ShellPlasticState m_plastic;       ///< section-point plasticity (empty when elastic)
+  std::vector<Real> m_batch_energy;  ///< [b][3]: strain, hourglass, plastic
   std::vector<Real> m_batch_dt;
   std::vector<Index> m_batch_critical;
   std::vector<Index> m_batch_failed;

@@ -382,7 +382,7 @@ ShellPlasticState::ShellPlasticState(std::span<const Plasticity* const> lane_law
 }
 
 Vec ShellPlasticState::point_return(std::size_t b, int k, Vec q11, Vec q12, Vec shear, Real dt,
-                                    Vec weight, Vec& sxx, Vec& syy, Vec& sxy,
+                                    Vec weight, const Vec start[3], Vec& sxx, Vec& syy, Vec& sxy,
                                     Vec& thickness_strain) {
   const std::size_t r = row(b, k);
   const Vec y = simd::load(&m_yield[r]);
@@ -413,7 +413,13 @@ Vec ShellPlasticState::point_return(std::size_t b, int k, Vec q11, Vec q12, Vec 
   simd::store(&m_rate[r], dt > 0.0 ? ret.dpeeq * (1.0 / dt) : dissipation);
   // Δεᵖ = Δγ P σ: Δε11ᵖ + Δε22ᵖ = Δγ (σxx + σyy)/3, so Δε33ᵖ = −Δγ (σxx + σyy)/3.
   thickness_strain -= weight * ret.dgamma * (sxx + syy) * (1.0 / 3.0);
-  dissipation = simd::select(yielding, ret.yield * ret.dpeeq, dissipation);
+  // The plastic work ½(σ_n + σ_{n+1}) : Δεᵖ with Δεᵖ = Δγ P σ_{n+1} (engineering shear):
+  // with the trapezoidal stress work, ALLSE is the elastic energy of the stress state
+  // (return_work() of the hex points, radial_return_lanes.hpp, says why).
+  const Vec work = (0.5 / 3.0) * ret.dgamma *
+                   ((start[0] + sxx) * (2.0 * sxx - syy) + (start[1] + syy) * (2.0 * syy - sxx) +
+                    6.0 * (start[2] + sxy) * sxy);
+  dissipation = simd::select(yielding, work, dissipation);
   // The next trial's test: σ_y(ε̄ᵖ_{n+1}, 0), the end yield stress itself without a rate law.
   for (std::size_t l = 0; l < W; ++l) {
     if (!yielding[l]) continue;

@@ -61,12 +61,13 @@ class ShellPlasticState {
   bool batch_plastic(std::size_t b) const { return !empty() && m_batch_plastic[b] != 0; }
 
   /// Plane-stress return of section point k of batch b, in place on the trial stresses
-  /// (Pa): one SIMD yield test, then the scalar return only in the lanes that yield.
-  /// Returns the dissipation σ_y Δε̄ᵖ (J/m^3) and adds Δε33ᵖ to `thickness_strain`
-  /// weighted by `weight`, both zero in the lanes that stay elastic.
+  /// (Pa) of the increment from the stresses `start` (σxx, σyy, σxy at t_n, Pa): one SIMD
+  /// yield test, then the scalar return only in the lanes that yield. Returns the plastic
+  /// work ½(σ_n + σ_{n+1}) : Δεᵖ (J/m^3) and adds Δε33ᵖ to `thickness_strain` weighted by
+  /// `weight`, both zero in the lanes that stay elastic.
   simd::Vec point_return(std::size_t b, int k, simd::Vec q11, simd::Vec q12, simd::Vec shear,
-                         Real dt, simd::Vec weight, simd::Vec& sxx, simd::Vec& syy, simd::Vec& sxy,
-                         simd::Vec& thickness_strain);
+                         Real dt, simd::Vec weight, const simd::Vec start[3], simd::Vec& sxx,
+                         simd::Vec& syy, simd::Vec& sxy, simd::Vec& thickness_strain);
 
   /// ε̄ᵖ (-) of section point k of batch b, lane l; 0 where elastic.
   Real peeq(std::size_t b, int k, std::size_t l) const;

@@ -59,6 +59,13 @@ inline Vec min(Vec a, Vec b) {
 inline Vec max(Vec a, Vec b) {
   return a > b ? a : b;
 }
+/// Whether any lane of `a` is below 0.
+inline bool any_negative(Vec a) {
+  return any(a < 0.0);
+}
+inline Vec abs(Vec a) {
+  return a < 0.0 ? -a : a;
+}
 /// With AVX-512 one vsqrtpd, with AVX two of 4 lanes (GCC's builtins behind _mm512_sqrt_pd
 /// and _mm256_sqrt_pd, without the header, whose GCC 12 version warns under -Wall): under the
 /// default -fmath-errno the lane loop compiles to a root, a compare and a call per lane and is
@@ -88,6 +95,12 @@ inline Real max(Real a, Real b) {
 }
 inline Real sqrt(Real a) {
   return std::sqrt(a);
+}
+inline Real abs(Real a) {
+  return std::abs(a);
+}
+inline bool any_negative(Real a) {
+  return a < 0.0;
 }
 
 }  // namespace xpl::simd

@@ -140,6 +140,7 @@ void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
   state.rotary_inertia.assign(n, 0.0);
   m_moment_internal = NodalVectors::Zero(n, 3);
   m_shell->add_lumped_mass(state.reference, state.mass, state.rotary_inertia);
+  m_shell->note_reference_corners(state.reference);
 }
 
 void ElementSet::add_other_masses(const RigidBodies& rigid, State& state) const {

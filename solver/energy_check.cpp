@@ -132,11 +132,11 @@ void EnergyCheck::check(const State& state, const ElementTotals& totals, Real dt
                         Real largest_speed, ExternalId critical_id, OutputSink& sink) {
   if (totals.failed_element != NO_INDEX) {
     const ExternalId id = m_model.element_ids[totals.failed_element];
-    throw SolverError(
-        "NaN/instability at increment " + std::to_string(state.increment) + ", element " +
-            std::to_string(id) +
-            ": non-positive or undefined volume or area (element inverted or collapsed)",
-        id, state.increment, state.time);
+    throw SolverError("NaN/instability at increment " + std::to_string(state.increment) +
+                          ", element " + std::to_string(id) +
+                          ": non-positive or undefined volume, area or corner Jacobian (element "
+                          "inverted, folded over at a corner, or collapsed)",
+                      id, state.increment, state.time);
   }
   const Energies& e = state.energies;
   if (!std::isfinite(e.kinetic) || !std::isfinite(e.total())) {

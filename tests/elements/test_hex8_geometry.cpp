@@ -134,3 +134,75 @@ TEST_CASE("characteristic length of a cube is its side", "[elements][hex]") {
   CHECK(std::sqrt(max_face_area_squared(a)) == Approx(h * h).epsilon(1e-12));
   CHECK(hex8_volume(x, y, z) == Approx(h * h * h).epsilon(1e-12));
 }
+
+TEST_CASE("the corner fold measure is negative where a scaled corner Jacobian is below -tau",
+          "[elements][hex]") {
+  // The measure from the columns of J at each corner (shape-function derivatives).
+  auto direct = [](const Real x[8], const Real y[8], const Real z[8], Real tau, Real& scaled) {
+    Real smallest = 0.0;
+    scaled = 1.0;
+    for (int c = 0; c < 8; ++c) {
+      Real J[3][3] = {};
+      const Real r = NODE_XI[c], s = NODE_ETA[c], t = NODE_ZETA[c];
+      for (int a = 0; a < 8; ++a) {
+        const Real xi = NODE_XI[a], eta = NODE_ETA[a], zeta = NODE_ZETA[a];
+        const Real dn[3] = {0.125 * xi * (1 + eta * s) * (1 + zeta * t),
+                            0.125 * eta * (1 + xi * r) * (1 + zeta * t),
+                            0.125 * zeta * (1 + xi * r) * (1 + eta * s)};
+        const Real p[3] = {x[a], y[a], z[a]};
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) J[i][j] += p[i] * dn[j];
+      }
+      Real columns = 1.0;
+      for (int j = 0; j < 3; ++j)
+        columns *= J[0][j] * J[0][j] + J[1][j] * J[1][j] + J[2][j] * J[2][j];
+      const Real det = jacobian_det(x, y, z, r, s, t);
+      const Real f = det * std::abs(det) + tau * tau * columns;
+      smallest = c == 0 ? f : std::min(smallest, f);
+      scaled = std::min(scaled, det / std::sqrt(columns));
+    }
+    return smallest;
+  };
+  // The measure of the edges, twice J's columns: 2⁶ times that of J.
+  auto fold_of = [](const Real x[8], const Real y[8], const Real z[8], Real tau) {
+    V3<Real> p[8];
+    for (int a = 0; a < 8; ++a) p[a] = {x[a], y[a], z[a]};
+    return corner_fold(p, tau) / 64.0;
+  };
+  const auto mesh = test::make_block(2, 0.01, 0.2);
+  for (int e = 0; e < 8; ++e) {
+    Real x[8], y[8], z[8], scaled = 0.0;
+    element_coords(mesh, e, x, y, z);
+    // Every corner positive: the smallest det E, 8 det J.
+    direct(x, y, z, 0.5, scaled);
+    REQUIRE(scaled > 0.0);
+    Real smallest = jacobian_det(x, y, z, -1, -1, -1);
+    for (int c = 1; c < 8; ++c)
+      smallest = std::min(smallest, jacobian_det(x, y, z, NODE_XI[c], NODE_ETA[c], NODE_ZETA[c]));
+    CHECK(fold_of(x, y, z, 0.5) * 64.0 == Approx(8.0 * smallest).epsilon(1e-12));
+  }
+  // A cube of side h: det J = (h/2)³ and |J_i| = h/2 at every corner (without a negative
+  // corner the measure is the smallest det E = 8 det J). Node 7 (index 6) pushed
+  // along the diagonal past the plane of its three neighbours (x + y + z = 2h, at s = 2h/3):
+  // the volume stays positive while that corner turns over, its scaled Jacobian falling
+  // through 0 and below −0.5 as the node goes on.
+  const Real h = 0.01;
+  Real x[8], y[8], z[8];
+  for (int a = 0; a < 8; ++a) {
+    x[a] = h * (NODE_XI[a] + 1) / 2;
+    y[a] = h * (NODE_ETA[a] + 1) / 2;
+    z[a] = h * (NODE_ZETA[a] + 1) / 2;
+  }
+  CHECK(fold_of(x, y, z, 0.5) == Approx(std::pow(h / 2, 3) / 8).epsilon(1e-12));
+  for (const Real s : {0.62, 0.55, 0.5}) {
+    x[6] = y[6] = z[6] = s * h;
+    Real scaled = 0.0;
+    const Real expected = direct(x, y, z, 0.5, scaled);
+    INFO("s = " << s << " h, smallest scaled Jacobian " << scaled);
+    CHECK(hex8_volume(x, y, z) > 0.0);
+    CHECK(scaled < 0.0);
+    CHECK(fold_of(x, y, z, 0.5) == Approx(expected).epsilon(1e-12));
+    CHECK((fold_of(x, y, z, 0.5) < 0.0) == (scaled < -0.5));
+    CHECK((scaled < -0.5) == (s < 0.6));
+  }
+}

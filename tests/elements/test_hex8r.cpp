@@ -224,6 +224,34 @@ TEST_CASE("an inverted element is reported", "[elements][hex]") {
   CHECK(totals.failed_element == 0);
 }
 
+TEST_CASE("a corner node pushed through the element is reported though the volume stays positive",
+          "[elements][hex]") {
+  // One point sees the mean gradient only: node 7 (index 6) of a cube pushed along the
+  // diagonal past its three neighbours' plane (x + y + z = 0.02 m, s = 6.67 mm) leaves a
+  // positive volume (and a finite stress) while the element turns inside out at that corner.
+  // Just past the plane the corner is nearly flat (scaled Jacobian −0.25 at 6.2 mm, below the
+  // limit −0.5 from 5.7 mm on).
+  const auto mesh = test::make_block(1, 0.01, 0.0);
+  auto block = make_hex_block(mesh, HourglassForm::Enhanced);
+  NodalVectors x = mesh.coordinates;
+  const Index corner = mesh.connectivity[6];
+  for (const Real s : {0.007, 0.0062, 0.0055, 0.0}) {
+    for (int c = 0; c < 3; ++c) x(corner, c) = s;
+    Real cx[8], cy[8], cz[8];
+    for (int a = 0; a < 8; ++a) {
+      cx[a] = x(mesh.connectivity[a], 0);
+      cy[a] = x(mesh.connectivity[a], 1);
+      cz[a] = x(mesh.connectivity[a], 2);
+    }
+    INFO("s = " << s);
+    REQUIRE(hex8_volume(cx, cy, cz) > 0.0);
+    NodalVectors f = zeros_like(x);
+    HexStepTotals totals;
+    block.internal_forces(x, zeros_like(x), 0.0, 0.0, 0.0, f, totals);
+    CHECK(totals.failed_element == (s < 0.006 ? 0 : NO_INDEX));
+  }
+}
+
 TEST_CASE("lumped mass is rho V / 8 per node", "[elements][hex]") {
   const auto mesh = test::make_block(2, 0.01, 0.2);
   auto block = make_hex_block(mesh);

@@ -153,7 +153,9 @@ TEST_CASE("the batch return of the hex lanes ends on the yield surface for steep
       sn[0][l] = q[l];
     }
     Real rate[W];
-    lanes.return_row(k * W, lane_law, laws, sn, simd::splat(2.0 * G), 1e-6, rate);
+    simd::Vec start[6];
+    for (auto& c : start) c = simd::splat(0.0);
+    lanes.return_row(k * W, lane_law, laws, start, sn, simd::splat(2.0 * G), 1e-6, rate);
     for (int l = 0; l < W; ++l) {
       const Real p = (sn[0][l] + sn[1][l] + sn[2][l]) / 3.0;
       const Real d0 = sn[0][l] - p, d1 = sn[1][l] - p, d2 = sn[2][l] - p;

@@ -29,8 +29,8 @@ struct LaneReference {
   Real peeq, dissipation;
 };
 
-LaneReference scalar_lane(const Plasticity& law, const Real trial[6], Real two_mu, Real peeq,
-                          Real dt) {
+LaneReference scalar_lane(const Plasticity& law, const Real start[6], const Real trial[6],
+                          Real two_mu, Real peeq, Real dt) {
   LaneReference out{};
   for (int c = 0; c < 6; ++c) out.stress[c] = trial[c];
   out.peeq = peeq;
@@ -47,7 +47,10 @@ LaneReference scalar_lane(const Plasticity& law, const Real trial[6], Real two_m
   for (int c = 0; c < 3; ++c) out.stress[c] = p + scale * dev[c];
   for (int c = 3; c < 6; ++c) out.stress[c] = scale * dev[c];
   out.peeq = peeq + r.peeq_increment;
-  out.dissipation = r.yield_stress * r.peeq_increment;
+  // ½(σ_n + σ_{n+1}) : Δεᵖ, Δεᵖ = (σ_trial − σ_{n+1}) / 2μ (shears twice: Voigt).
+  for (int c = 0; c < 6; ++c)
+    out.dissipation +=
+        (c < 3 ? 0.5 : 1.0) * (start[c] + out.stress[c]) * (trial[c] - out.stress[c]) / two_mu;
   return out;
 }
 
@@ -87,19 +90,24 @@ TEST_CASE("the batch radial return of the hexes matches the scalar return lane b
       Real trial[6];
       for (int c = 0; c < 6; ++c) trial[c] = sn[c][l];
       if (lane_law[l] >= 0) {
-        expected[l] = scalar_lane(laws[lane_law[l]], trial, two_mu, peeq[l], dt);
+        expected[l] = scalar_lane(laws[lane_law[l]], &stress[6 * l], trial, two_mu, peeq[l], dt);
         continue;
       }
       expected[l] = LaneReference{};  // elastic lane: the trial stays
       for (int c = 0; c < 6; ++c) expected[l].stress[c] = trial[c];
     }
     Real rate[W];
-    const Vec dissipation = lanes.return_row(0, lane_law, laws, sn, simd::splat(two_mu), dt, rate);
+    Vec start[6];
+    for (int c = 0; c < 6; ++c)
+      for (int l = 0; l < W; ++l) start[c][l] = stress[6 * l + c];
+    const Vec dissipation =
+        lanes.return_row(0, lane_law, laws, start, sn, simd::splat(two_mu), dt, rate);
     for (int l = 0; l < W; ++l) {
       INFO("step " << step << " lane " << l);
       for (int c = 0; c < 6; ++c) CHECK(sn[c][l] == expected[l].stress[c]);
       CHECK(lanes.peeq(static_cast<std::size_t>(l)) == expected[l].peeq);
-      CHECK(dissipation[l] == expected[l].dissipation);
+      // The same sum in another order: round-off of the stresses' size times Δεᵖ.
+      CHECK(dissipation[l] == Approx(expected[l].dissipation).epsilon(1e-12).margin(1e-3));
       // Δε̄ᵖ/dt: the difference of the PEEQs is Δε̄ᵖ to round-off only.
       CHECK(rate[l] == Approx((expected[l].peeq - peeq[l]) / dt).epsilon(1e-9).margin(1e-6));
       if (expected[l].peeq > peeq[l]) {
