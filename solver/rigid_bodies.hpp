@@ -31,8 +31,8 @@
 #include <Eigen/Geometry>
 
 #include "common/types.hpp"
-#include "solver/boundary_state.hpp"
 #include "solver/kinetic_sums.hpp"
+#include "solver/loads/boundary_state.hpp"
 #include "solver/model.hpp"
 #include "solver/state.hpp"
 
