@@ -53,17 +53,15 @@ void CentralDifference::begin_step(int step, State& state, RigidBodies& rigid) {
   sync_rotation(state);
   m_boundary.begin_step(m_model, step, displacement, state.velocity, state.rotation,
                         state.angular_velocity);
-  m_pressures.begin_step(m_model, step);
-  m_gravity.begin_step(m_model, step, state.reference, state.mass);
   state.reaction.setZero();
   if (m_shells) state.reaction_moment.setZero();
   // Reference nodes of rigid bodies drive their body; members cannot be prescribed.
   std::vector<PrescribedDof> active = m_boundary.prescribed();
   m_dropped_members = rigid.empty() ? 0 : rigid.begin_step(active);
   select_prescribed(active, state);
-  collect_loads();
+  m_loads.begin_step(m_model, step, m_boundary, state.reference, state.mass, m_prescribed);
   m_first_update = true;
-  if (m_previous_force.rows() == 0 && (!m_prescribed.empty() || !m_free_load_dofs.empty()))
+  if (m_previous_force.rows() == 0 && (!m_prescribed.empty() || m_loads.has_free_loads()))
     m_previous_force = NodalVectors::Zero(m_model.node_count(), 3);
   if (m_shells && m_previous_moment.rows() == 0 && !m_prescribed.empty())
     m_previous_moment = NodalVectors::Zero(m_model.node_count(), 3);
@@ -90,42 +88,6 @@ void CentralDifference::select_prescribed(const std::vector<PrescribedDof>& acti
             : 0.0;
 }
 
-void CentralDifference::collect_loads() {
-  const auto n = static_cast<std::size_t>(m_model.node_count());
-  m_loads.begin_step(m_model, m_boundary.loads(), m_pressures, m_gravity);
-  // The work of the loads is summed over the free loaded DOFs in the order they were once
-  // listed (CLOADs, then pressure nodes, then gravity nodes), so that ALLWK keeps its
-  // round-off.
-  std::vector<char> is_prescribed(n * 6, 0);
-  for (const PrescribedDof& d : m_prescribed) is_prescribed[d.component * n + d.node] = 1;
-  std::vector<char> is_loaded(n * 3, 0);
-  std::vector<Index> order;
-  for (const LoadedDof& l : m_boundary.loads()) {
-    is_loaded[l.component * n + l.node] = 1;
-    order.push_back(static_cast<Index>(l.component * n + l.node));
-  }
-  for (const std::vector<Index>* nodes : {&m_pressures.nodes(), &m_gravity.nodes()})
-    for (Index node : *nodes)
-      for (int c = 0; c < 3; ++c)
-        if (!is_loaded[c * n + node]) {
-          is_loaded[c * n + node] = 1;
-          order.push_back(static_cast<Index>(c * n + node));
-        }
-  m_free_load_dofs.clear();
-  m_free_load_mask.assign(m_loads.empty() ? 0 : n, 0);
-  for (Index at : order)
-    if (!is_prescribed[at]) {
-      m_free_load_dofs.push_back(at);
-      m_free_load_mask[at % n] |= static_cast<std::uint8_t>(1u << (at / n));
-    }
-  if (!m_free_load_dofs.empty() && m_load_work_force.rows() == 0) {
-    m_load_work_force = NodalVectors::Zero(m_model.node_count(), 3);
-    m_load_work_velocity = NodalVectors::Zero(m_model.node_count(), 3);
-  }
-  // Forces of loads the step no longer has must not stay behind.
-  if (m_force_external.rows() > 0) m_force_external.setZero();
-}
-
 void CentralDifference::report_step(int step, OutputSink& sink) const {
   if (m_dropped_rotations)
     sink.message(Severity::Note, "step " + m_model.steps[step].name +
@@ -140,10 +102,7 @@ void CentralDifference::report_step(int step, OutputSink& sink) const {
 }
 
 void CentralDifference::apply_loads(const State&, Real step_time, Real total_time) {
-  if (m_loads.empty()) return;
-  m_loads.set_time(m_model, m_boundary, step_time, total_time);
-  m_loads_due = true;
-  if (m_force_external.rows() == 0) m_force_external = NodalVectors::Zero(m_model.node_count(), 3);
+  m_loads.apply(m_model, m_boundary, step_time, total_time);
 }
 
 void CentralDifference::advance_positions(State& state, ElementSet& elements, Real dt) {
@@ -217,39 +176,13 @@ RangeSums update_range(const Field& d, Index off, Index first, Index last, Real 
 
 }  // namespace
 
-void CentralDifference::load_chunk(const State& state, const Field& translation,
-                                   const Increment& inc, Index chunk) {
-  const Index n = m_model.node_count();
-  const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
-  {
-    // The loads of the chunk's nodes, and the work of those on free DOFs over the increment
-    // just taken (trapezoidal rule, exact for constant forces), before v_{n-1/2} moves on.
-    Real* fe = m_force_external.data();
-    Real* f_before = m_previous_force.data();
-    Real* mean_force = m_load_work_force.data();
-    Real* v_before = m_load_work_velocity.data();
-    const bool free_loads = !m_free_load_dofs.empty();
-    for (Index i = first; i < last; ++i) {
-      if (!m_loads.loaded(i)) continue;
-      Real f[3];
-      m_loads.force_at(i, state.position, f);
-      for (int c = 0; c < 3; ++c) {
-        const Index at = c * n + i;
-        fe[at] = f[c];
-        if (!free_loads || !(m_free_load_mask[i] >> c & 1u)) continue;
-        mean_force[at] = 0.5 * (f_before[at] + f[c]) * inc.dt_prev;
-        v_before[at] = translation.velocity_half[at];
-        f_before[at] = f[c];
-      }
-    }
-  }
-}
-
 void CentralDifference::update_chunk(State& state, const Field& translation, const Field& rotation,
                                      const Increment& inc, Index chunk) {
   const Index n = m_model.node_count();
   const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
-  if (m_loads_due && !m_loads_evaluated) load_chunk(state, translation, inc, chunk);
+  if (m_loads.pending())
+    m_loads.evaluate(first, last, state.position, translation.velocity_half, inc.dt_prev,
+                     m_previous_force);
   KineticSums ke;
   Real speed = 0.0;
   for (int c = 0; c < 3; ++c) {
@@ -291,12 +224,13 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   inc.t_next_end = t_next_end;
   const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
   // No loads in the model: the external force array does not exist and is not read.
-  const bool loaded = m_force_external.rows() > 0;
+  NodalVectors* force_external = m_loads.force();
+  const bool loaded = force_external != nullptr;
   const Field translation{state.velocity_half.data(),
                           state.velocity.data(),
                           state.acceleration.data(),
                           elements.force_internal().data(),
-                          loaded ? m_force_external.data() : elements.force_internal().data(),
+                          loaded ? force_external->data() : elements.force_internal().data(),
                           loaded ? 1.0 : 0.0,
                           elements.inverse_mass().data(),
                           state.mass.data()};
@@ -321,18 +255,19 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   // corners, so that the fused pass updates the masters with them (solver/ties.hpp).
   const bool tied = m_ties != nullptr && m_ties->active();
   if (tied) {
-    if (m_loads_due) {
+    if (m_loads.pending()) {
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
-      for (Index chunk = 0; chunk < n_chunks; ++chunk) load_chunk(state, translation, inc, chunk);
-      m_loads_evaluated = true;
+      for (Index chunk = 0; chunk < n_chunks; ++chunk)
+        m_loads.evaluate(chunk * NODE_CHUNK, std::min(n, (chunk + 1) * NODE_CHUNK), state.position,
+                         translation.velocity_half, inc.dt_prev, m_previous_force);
+      m_loads.set_evaluated();
     }
-    m_ties->gather(elements.force_internal(), loaded ? &m_force_external : nullptr,
+    m_ties->gather(elements.force_internal(), force_external,
                    m_shells ? &elements.moment_internal() : nullptr);
   }
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
   for (Index chunk = 0; chunk < n_chunks; ++chunk)
     update_chunk(state, translation, rotation, inc, chunk);
-  m_loads_evaluated = false;
   KineticSums ke;
   m_largest_speed = 0.0;
   for (Index chunk = 0; chunk < n_chunks; ++chunk) {
@@ -353,8 +288,8 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
         return is_jump(d, state, inc, v_old, v_new);
       };
     ke += rigid.update(
-        m_model, m_boundary, state, elements.force_internal(), loaded ? &m_force_external : nullptr,
-        dt_prev, dt_next, inc.w_new, inc.w_before,
+        m_model, m_boundary, state, elements.force_internal(), force_external, dt_prev, dt_next,
+        inc.w_new, inc.w_before,
         {state.step_time + 0.5 * dt_next, t_next_half, state.step_time + dt_next, t_next_end},
         jump_test, work, jumps);
   }
@@ -377,10 +312,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   Real jump_spread = jumps.spread;
   if (!m_jumps.empty()) ke += count_jump_work(translation, rotation, inc, work, jump_spread);
   if (tied) m_ties->follow(state);  // slaves after their masters (prescribed and rigid too)
-  if (m_loads_due)
-    for (Index at : m_free_load_dofs)
-      work = multiply_add(m_load_work_force.data()[at], m_load_work_velocity.data()[at], work);
-  m_loads_due = false;
+  m_loads.add_work(work);
   // ALLKE ≥ 0 (R5): the sums are of squares; the corrections for prescribed DOFs and rigid
   // bodies take back what the free update counted, which round-off may leave a hair below 0.
   state.energies.kinetic = std::max(0.0, 0.125 * ke.centred);

@@ -10,9 +10,7 @@
 #include "solver/element_set.hpp"
 #include "solver/kinetic_sums.hpp"
 #include "solver/loads/boundary_state.hpp"
-#include "solver/loads/gravity_loads.hpp"
-#include "solver/loads/nodal_loads.hpp"
-#include "solver/loads/pressure_loads.hpp"
+#include "solver/loads/external_loads.hpp"
 #include "solver/model.hpp"
 #include "solver/node_rotations.hpp"
 #include "solver/output_sink.hpp"
@@ -85,18 +83,12 @@ class CentralDifference {
   /// Keeps only the prescribed DOFs of `active` that act on something (rotations need
   /// rotary inertia); sets their current values.
   void select_prescribed(const std::vector<PrescribedDof>& active, const State& state);
-  /// Loaded DOFs: CLOADs and the three components of every node under pressure or gravity;
-  /// free_loads are those that are not prescribed.
-  void collect_loads();
   /// The fused nodal pass on the nodes of one chunk: their loads (when apply_loads() set them
   /// due) and the load work on free DOFs, then the central-difference update of the free
   /// translations and rotations; the chunk's kinetic sums of v_before and v_{n+1/2} go to
   /// m_chunk_sums (translations at `chunk`, rotations after the translations' chunks).
   void update_chunk(State& state, const Field& translation, const Field& rotation,
                     const Increment& inc, Index chunk);
-  /// The loads of one chunk's nodes and their work (the first part of update_chunk; run as a
-  /// pass of its own before the ties gather the slave forces).
-  void load_chunk(const State& state, const Field& translation, const Increment& inc, Index chunk);
   /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
   /// `work`); returns the correction of the kinetic sums to what the free update counted.
   KineticSums update_prescribed(State& state, const Field& translation, const Field& rotation,
@@ -121,32 +113,21 @@ class CentralDifference {
   PhaseTimers& m_timers;
   bool m_shells;
   BoundaryState m_boundary;
-  PressureLoads m_pressures;
-  GravityLoads m_gravity;
-  NodalLoads m_loads;              ///< the step's loads per node
-  bool m_loads_due = false;        ///< apply_loads() has set the time of the next update's loads
-  bool m_loads_evaluated = false;  ///< load_chunk ran before the fused pass (ties)
+  ExternalLoads m_loads;  ///< CLOAD, pressure and gravity, their forces and work
   const Ties* m_ties = nullptr;
   NodeRotations m_rotations;
   bool m_rotation_synced = true;  ///< state.rotation matches m_rotations
-  /// (n_nodes × 3), non-zero only on loaded DOFs; allocated only when a step has loads (P2).
-  NodalVectors m_force_external;
   std::vector<KineticSums> m_chunk_sums;
   std::vector<Real> m_chunk_speed;  ///< largest |v(n+½)| of each chunk's translations
   Real m_largest_speed = 0.0;       ///< largest_speed()
   /// Σ over the updates of ⅛(Δt(n−½)²/Δt(n+½)² − 1) × the spread: the energy the changes of
   /// the increment moved into ½ v⁻·M·v⁺, taken out of ALLKD (J).
   Real m_increment_shift = 0.0;
-  NodalVectors m_previous_force;   ///< f_ext + reaction at the previous increment
-  NodalVectors m_previous_moment;  ///< moment at prescribed rotations, previous inc.
-  /// Loaded DOFs that are not prescribed, as c · n_nodes + node, in the order their work is
-  /// summed (CLOADs, pressure nodes, gravity nodes).
-  std::vector<Index> m_free_load_dofs;
-  std::vector<std::uint8_t> m_free_load_mask;  ///< per node: bit c set if DOF c is in the list
-  /// The work of the loads on free DOFs over the last increment is Σ mean_force · v_before
-  /// over m_free_load_dofs: ½(f_{n-1} + f_n) Δt (N s) and v_{n-1/2} (m/s), n_nodes × 3,
-  /// written by the nodal pass, summed after it in the list's order.
-  NodalVectors m_load_work_force, m_load_work_velocity;
+  /// The external force on each DOF at the previous increment, f_ext + reaction (n_nodes × 3,
+  /// N), for the trapezoidal work of the loads and the prescribed DOFs alike (a DOF may be
+  /// prescribed in one step and loaded in the next); allocated when a step has either.
+  NodalVectors m_previous_force;
+  NodalVectors m_previous_moment;           ///< moment at prescribed rotations, previous inc.
   std::vector<PrescribedDof> m_prescribed;  ///< the step's prescribed DOFs that exist
   std::vector<Real> m_prescribed_value;     ///< current value of each prescribed DOF
   std::vector<Real> m_v_old_prescribed;     ///< v_{n-1/2} at each prescribed DOF
