@@ -155,14 +155,16 @@ Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed) {
   return dropped;
 }
 
-KineticSums RigidBodies::update(const Model& model, const BoundaryState& boundary, State& state,
+RigidUpdate RigidBodies::update(const PrescribedMotion& motion, State& state,
                                 const NodalVectors& force_internal,
-                                const NodalVectors* force_external, Real dt_prev, Real dt_next,
-                                Real w_new, Real w_before, const std::array<Real, 4>& times,
-                                const JumpTest& jump_test, Real& work, RigidJumps& jumps) {
-  const Real dt_avg = 0.5 * (dt_prev + dt_next);
+                                const NodalVectors* force_external, const NodalIncrement& inc) {
+  const Real dt_prev = inc.dt_prev, dt_next = inc.dt_next, dt_avg = inc.dt_avg;
+  const Real w_new = inc.w_new, w_before = inc.w_before;
   const bool rotations = state.angular_velocity_half.rows() > 0;
-  KineticSums ke_correction;
+  RigidUpdate result;
+  KineticSums& ke_correction = result.kinetic;
+  Real& work = result.work;
+  RigidJumps& jumps = result.jumps;
   for (Body& body : m_bodies) {
     const Index r = body.reference;
     const Eigen::Vector3d x_r = row(state.position, r);
@@ -200,13 +202,10 @@ KineticSums RigidBodies::update(const Model& model, const BoundaryState& boundar
     for (const PrescribedDof& d : body.prescribed) {
       const int k = d.component;
       const Real old = k < 3 ? v_old[k] : w_old[k - 3];
-      Real v_new = 0.0;
-      if (d.type == BoundaryType::Velocity) {
-        v_new = boundary.target(model, d, times[0], times[1]);
-      } else if (dt_next > 0.0) {
-        const Real current = k < 3 ? state.displacement(r, k) : body.rotation[k - 3];
-        v_new = (boundary.target(model, d, times[2], times[3]) - current) / dt_next;
-      }
+      Real current = 0.0;
+      if (d.type != BoundaryType::Velocity)
+        current = k < 3 ? state.displacement(r, k) : body.rotation[k - 3];
+      const Real v_new = motion.velocity_half(d, current, inc);
       fixed[k] = true;
       v_target[k] = v_new;
       acc[k] = dt_avg > 0.0 ? (v_new - old) / dt_avg : 0.0;
@@ -235,11 +234,11 @@ KineticSums RigidBodies::update(const Model& model, const BoundaryState& boundar
     // prescribed acceleration) carries on in the trapezoidal rule; the impulse is booked apart.
     Index jumped = 0;
     Real largest_jump = 0.0;
-    if (jump_test)
+    if (motion.first_update())
       for (const PrescribedDof& d : body.prescribed) {
         const int k = d.component;
         const Real old = k < 3 ? v_old[k] : w_old[k - 3];
-        if (v_target[k] != old && jump_test(d, old, v_target[k])) {
+        if (v_target[k] != old && motion.is_jump(d, inc, old, v_target[k])) {
           ++jumped;
           largest_jump = std::max(largest_jump, std::abs(v_target[k] - old));
         }
@@ -264,7 +263,7 @@ KineticSums RigidBodies::update(const Model& model, const BoundaryState& boundar
     }
 
     // Whole-step velocities, the reference node; the kinetic energy ½ v_before·M·v_{n+1/2}
-    // with the 6×6 matrix at t_n, as for the free DOFs (CentralDifference::Increment).
+    // with the 6×6 matrix at t_n, as for the free DOFs (NodalIncrement).
     const Eigen::Vector3d v_whole = v_old + w_new * (v_new - v_old);
     const Eigen::Vector3d w_whole = w_old + w_new * (w_new_half - w_old);
     Vector6 v_after, v_before;
@@ -330,7 +329,7 @@ KineticSums RigidBodies::update(const Model& model, const BoundaryState& boundar
       body.orientation = q_next;
     }
   }
-  return ke_correction;
+  return result;
 }
 
 }  // namespace xpl
