@@ -115,6 +115,22 @@ class RigidBodies {
     std::vector<PrescribedDof> prescribed;                 ///< DOFs of the reference node
     std::array<Real, 6> previous_reaction{};               ///< for the trapezoidal work
   };
+  struct BodySystem;
+  /// One central-difference update of `body` (update() for each body), added to `result`.
+  static void update_body(Body& body, const PrescribedMotion& motion, State& state,
+                          const NodalVectors& force_internal, const NodalVectors* force_external,
+                          const NodalIncrement& inc, RigidUpdate& result);
+  /// The Newton–Euler system of `body` at t_n from the forces on its nodes (internal and
+  /// external, n_nodes × 3, N); advances its rotation vector over dt_prev to t_n.
+  static BodySystem system_at(Body& body, const State& state, const NodalVectors& force_internal,
+                              const NodalVectors* force_external, Real dt_prev);
+  /// Advances the orientation of `body` by ω(n+½) over dt_next and gives every member the
+  /// half-step velocity that lands it exactly at x_ref + R (X − X_ref) (`x_r`, `v_new`: the
+  /// reference node at t_n and its v(n+½); `v_whole`, `w_whole`: the body's whole-step
+  /// velocities).
+  static void place_members(Body& body, State& state, const Eigen::Vector3d& x_r,
+                            const Eigen::Vector3d& v_new, const Eigen::Vector3d& v_whole,
+                            const Eigen::Vector3d& w_whole, const NodalIncrement& inc);
   std::vector<Body> m_bodies;
   std::vector<Index> m_element_body;
   std::vector<Index> m_node_body;
