@@ -1,21 +1,22 @@
 #pragma once
-/// \file The central-difference update of the nodes (S2): half-step velocities of the free
-/// DOFs, prescribed DOFs and their reactions, rigid bodies, the external loads of the step
-/// and the work they do, and the finite rotations of shell nodes.
+/// \file The central-difference update of the nodes (S2): positions, the free update of the
+/// half-step velocities and the kinetic energy, with the two parts that act on the same pass
+/// over the nodes: the prescribed motion (prescribed_motion.hpp: BCs, reactions, jumps) and
+/// the external loads (loads/external_loads.hpp); the rigid bodies (rigid_bodies.hpp) and the
+/// finite rotations of shell nodes (node_rotations.hpp).
 
-#include <cstdint>
 #include <vector>
 
 #include "common/timer.hpp"
-#include "solver/boundary_state.hpp"
 #include "solver/element_set.hpp"
-#include "solver/gravity_loads.hpp"
 #include "solver/kinetic_sums.hpp"
+#include "solver/loads/boundary_state.hpp"
+#include "solver/loads/external_loads.hpp"
 #include "solver/model.hpp"
-#include "solver/nodal_loads.hpp"
+#include "solver/nodal_increment.hpp"
 #include "solver/node_rotations.hpp"
 #include "solver/output_sink.hpp"
-#include "solver/pressure_loads.hpp"
+#include "solver/prescribed_motion.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
 #include "solver/ties.hpp"
@@ -28,6 +29,8 @@ class CentralDifference {
   /// `model` and `timers` must outlive the update; `shells`: the model has S4R elements, so
   /// nodes carry rotational DOFs (updated here, their finite rotations tracked for UR).
   CentralDifference(const Model& model, PhaseTimers& timers, bool shells);
+  CentralDifference(const CentralDifference&) = delete;  // m_motion keeps &m_boundary
+  CentralDifference& operator=(const CentralDifference&) = delete;
 
   /// Sets the finite rotations of an imported state (rotation vectors, n_nodes × 3, rad) on
   /// shell models; state.rotation takes them too.
@@ -37,12 +40,12 @@ class CentralDifference {
   /// bodies take those of their reference nodes), the loaded DOFs, zero reactions in `state`.
   void begin_step(int step, State& state, RigidBodies& rigid);
   /// Notes on the BCs of the step that begin_step() dropped, to the sink.
-  void report_step(int step, OutputSink& sink) const;
+  void report_step(int step, OutputSink& sink) const { m_motion.report_step(step, sink); }
   /// A warning to the sink when the last update_nodes() met a jump of the prescribed motion
-  /// (see update_prescribed), with the energy the impulse put in; then forgets the jump.
-  void report_jump(int step, OutputSink& sink);
+  /// (PrescribedMotion::report_jump); then forgets the jump.
+  void report_jump(int step, OutputSink& sink) { m_motion.report_jump(step, sink); }
   /// The prescribed DOFs of the step (those the nodal update drives).
-  const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
+  const std::vector<PrescribedDof>& prescribed() const { return m_motion.prescribed(); }
 
   /// External forces (CLOAD, pressure, gravity) at step time `step_time` / total time
   /// `total_time`, on the state's positions: the next update_nodes() evaluates them node by
@@ -69,110 +72,37 @@ class CentralDifference {
   Real largest_speed() const { return m_largest_speed; }
 
  private:
-  /// Pointers to one kind of nodal DOF (translations or rotations), defined in the .cpp.
-  struct Field;
-  /// The times and weights of one update.
-  struct Increment {
-    Real dt_prev, dt_next;
-    Real dt_avg;  ///< (dt_prev + dt_next) / 2
-    Real w_new;   ///< weight of v_{n+1/2} in the whole-step velocity (0 at t = 0)
-    /// v_before = v_{n-1/2} + w_before (v_{n+1/2} - v_{n-1/2}) is the velocity that ALLKE
-    /// pairs with v_{n+1/2}: the velocity at t_n - dt_next/2, (dt_prev - dt_next) / (dt_prev
-    /// + dt_next); 0 at a constant increment (v_{n-1/2}), -1 at t = 0 (2 v_0 - v_{1/2}).
-    Real w_before;
-    Real t_next_half, t_next_end;
-  };
-  /// Keeps only the prescribed DOFs of `active` that act on something (rotations need
-  /// rotary inertia); sets their current values.
-  void select_prescribed(const std::vector<PrescribedDof>& active, const State& state);
-  /// Loaded DOFs: CLOADs and the three components of every node under pressure or gravity;
-  /// free_loads are those that are not prescribed.
-  void collect_loads();
   /// The fused nodal pass on the nodes of one chunk: their loads (when apply_loads() set them
   /// due) and the load work on free DOFs, then the central-difference update of the free
   /// translations and rotations; the chunk's kinetic sums of v_before and v_{n+1/2} go to
   /// m_chunk_sums (translations at `chunk`, rotations after the translations' chunks).
-  void update_chunk(State& state, const Field& translation, const Field& rotation,
-                    const Increment& inc, Index chunk);
-  /// The loads of one chunk's nodes and their work (the first part of update_chunk; run as a
-  /// pass of its own before the ties gather the slave forces).
-  void load_chunk(const State& state, const Field& translation, const Increment& inc, Index chunk);
-  /// Velocities from the BCs at the prescribed DOFs, their reactions and work (added to
-  /// `work`); returns the correction of the kinetic sums to what the free update counted.
-  /// The velocity at t_n (state.velocity, output V) of a DOF with a prescribed velocity is
-  /// the BC's own value at t_n (after t = 0), not the mean of the half-step velocities.
-  KineticSums update_prescribed(State& state, const Field& translation, const Field& rotation,
-                                const Increment& inc, Real& work);
-  /// Whether the velocity v_old → v_new of prescribed DOF `d` at the first update of a step
-  /// is a jump of the BC (its velocity at t_n itself is already the new one) rather than the
-  /// central-difference sampling of a smooth motion (its velocity at t_n lies half-way).
-  bool is_jump(const PrescribedDof& d, const State& state, const Increment& inc, Real v_old,
-               Real v_new) const;
-  /// At the first update of a step: the prescribed DOFs whose velocity jumps (is_jump), with
-  /// their force of the previous increment, into m_jumps.
-  void find_jumps(const State& state, const Increment& inc);
-  /// After update_prescribed: the work of the jumps in m_jumps counted as impulses (their
-  /// trapezoidal term replaced), into `work` and the pending work of the next increment;
-  /// returns the correction of the kinetic sums (a DOF that jumps pairs its states before
-  /// and after the jump; at t = 0 it counts its state before the jump) and adds the jumping
-  /// DOFs' spread to `jump_spread`.
-  KineticSums count_jump_work(const Field& translation, const Field& rotation, const Increment& inc,
-                              Real& work, Real& jump_spread);
+  void update_chunk(State& state, const NodalField& translation, const NodalField& rotation,
+                    const NodalIncrement& inc, Index chunk);
+  /// The kinetic sums of the chunks, added in chunk order (translations first), and the
+  /// largest speed.
+  KineticSums sum_chunks(Index n_chunks);
+  /// ALLKE, ALLKD and ALLWK of the update into `state` from its sums.
+  void book_energies(State& state, const NodalIncrement& inc, const NodalSums& sums);
 
   const Model& m_model;
   PhaseTimers& m_timers;
   bool m_shells;
-  BoundaryState m_boundary;
-  PressureLoads m_pressures;
-  GravityLoads m_gravity;
-  NodalLoads m_loads;              ///< the step's loads per node
-  bool m_loads_due = false;        ///< apply_loads() has set the time of the next update's loads
-  bool m_loads_evaluated = false;  ///< load_chunk ran before the fused pass (ties)
+  BoundaryState m_boundary;  ///< the step's BCs and loads, read by the two parts below
+  PrescribedMotion m_motion;
+  ExternalLoads m_loads;
   const Ties* m_ties = nullptr;
   NodeRotations m_rotations;
   bool m_rotation_synced = true;  ///< state.rotation matches m_rotations
-  /// (n_nodes × 3), non-zero only on loaded DOFs; allocated only when a step has loads (P2).
-  NodalVectors m_force_external;
   std::vector<KineticSums> m_chunk_sums;
   std::vector<Real> m_chunk_speed;  ///< largest |v(n+½)| of each chunk's translations
   Real m_largest_speed = 0.0;       ///< largest_speed()
   /// Σ over the updates of ⅛(Δt(n−½)²/Δt(n+½)² − 1) × the spread: the energy the changes of
   /// the increment moved into ½ v⁻·M·v⁺, taken out of ALLKD (J).
   Real m_increment_shift = 0.0;
-  NodalVectors m_previous_force;   ///< f_ext + reaction at the previous increment
-  NodalVectors m_previous_moment;  ///< moment at prescribed rotations, previous inc.
-  /// Loaded DOFs that are not prescribed, as c · n_nodes + node, in the order their work is
-  /// summed (CLOADs, pressure nodes, gravity nodes).
-  std::vector<Index> m_free_load_dofs;
-  std::vector<std::uint8_t> m_free_load_mask;  ///< per node: bit c set if DOF c is in the list
-  /// The work of the loads on free DOFs over the last increment is Σ mean_force · v_before
-  /// over m_free_load_dofs: ½(f_{n-1} + f_n) Δt (N s) and v_{n-1/2} (m/s), n_nodes × 3,
-  /// written by the nodal pass, summed after it in the list's order.
-  NodalVectors m_load_work_force, m_load_work_velocity;
-  std::vector<PrescribedDof> m_prescribed;  ///< the step's prescribed DOFs that exist
-  std::vector<Real> m_prescribed_value;     ///< current value of each prescribed DOF
-  std::vector<Real> m_v_old_prescribed;     ///< v_{n-1/2} at each prescribed DOF
-  /// The jumps of the prescribed motion met by the last update (BCs jump where they take
-  /// effect: at the first update of a step).
-  struct Jump {
-    Index dofs = 0;      ///< prescribed DOFs whose velocity jumped
-    Real energy = 0.0;   ///< Σ ½m(v_b² - v_a²): the work of the impulses, J
-    Real largest = 0.0;  ///< largest |v_b - v_a|, m/s or rad/s
-    Real time = 0.0;     ///< total time of the update, s
-  };
-  Jump m_jump;
-  /// A prescribed DOF that jumps at this update, with f_before of the trapezoidal rule.
-  struct PendingJump {
-    std::size_t dof;  ///< index into m_prescribed
-    Real f_before;    ///< its force at the previous increment, N or N m
-  };
-  std::vector<PendingJump> m_jumps;
-  bool m_first_update = false;  ///< the next update is the first one of the step
-  /// Work of the impulses of a jump that falls in the increment after it, J: added with the
-  /// work of that increment (the second half of the velocity change, v_n → v_{n+1/2}).
-  Real m_jump_work_pending = 0.0;
-  bool m_dropped_rotations = false;  ///< begin_step dropped BCs on DOFs 4-6
-  Index m_dropped_members = 0;       ///< BCs on rigid member nodes dropped
+  /// The external force on each DOF at the previous increment, f_ext + reaction (n_nodes × 3,
+  /// N), for the trapezoidal work of the loads and the prescribed DOFs alike (a DOF may be
+  /// prescribed in one step and loaded in the next); allocated when a step has either.
+  NodalVectors m_previous_force;
 };
 
 }  // namespace xpl

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "solver/gravity_loads.hpp"
+#include "solver/loads/gravity_loads.hpp"
 #include "solver/mass_scaling.hpp"
 #include "solver/message_text.hpp"
 

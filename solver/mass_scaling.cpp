@@ -7,7 +7,7 @@
 #include "elements/hex8_geometry.hpp"
 #include "elements/hex8r.hpp"
 #include "elements/quad_shell_geometry.hpp"
-#include "solver/gravity_loads.hpp"
+#include "solver/loads/gravity_loads.hpp"
 #include "solver/message_text.hpp"
 
 namespace xpl {

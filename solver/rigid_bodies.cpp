@@ -31,6 +31,26 @@ Eigen::Matrix3d point_inertia(Real m, const Eigen::Vector3d& r) {
   return m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
 }
 
+/// Free rows of M a = rhs: M_FF a_F = b_F − M_FP a_P, solved with the prescribed rows
+/// (`fixed`) made trivial; returns every row's acceleration for the prescribed ones `acc_p`.
+Vector6 solve_free_rows(const Matrix6& mass_matrix, const Vector6& rhs,
+                        const std::array<bool, 6>& fixed, const Vector6& acc_p) {
+  Matrix6 system = mass_matrix;
+  Vector6 b = rhs - mass_matrix * acc_p;
+  for (int k = 0; k < 6; ++k)
+    if (fixed[k]) {
+      system.row(k).setZero();
+      system.col(k).setZero();
+      system(k, k) = 1.0;
+      b[k] = 0.0;
+    }
+  const Vector6 free_acc = system.ldlt().solve(b);
+  Vector6 all = acc_p;
+  for (int k = 0; k < 6; ++k)
+    if (!fixed[k]) all[k] = free_acc[k];
+  return all;
+}
+
 /// The exact rotation by the rotation vector θ as a unit quaternion.
 Eigen::Quaterniond rotation_quaternion(const Eigen::Vector3d& theta) {
   const Real angle = theta.norm();
@@ -155,182 +175,193 @@ Index RigidBodies::begin_step(std::vector<PrescribedDof>& prescribed) {
   return dropped;
 }
 
-KineticSums RigidBodies::update(const Model& model, const BoundaryState& boundary, State& state,
+/// One body's Newton–Euler system at t_n about its reference node (rigid_bodies.hpp).
+struct RigidBodies::BodySystem {
+  Eigen::Vector3d x_r;    ///< position of the reference node, m
+  Eigen::Vector3d v_old;  ///< v(n−½) of the reference node, m/s
+  Eigen::Vector3d w_old;  ///< ω(n−½), rad/s
+  Matrix6 mass_matrix;
+  Vector6 rhs;
+  Real counted = 0.0;  ///< Σ m v² of the body's nodes: a quarter of what the free update summed
+};
+
+RigidUpdate RigidBodies::update(const PrescribedMotion& motion, State& state,
                                 const NodalVectors& force_internal,
-                                const NodalVectors* force_external, Real dt_prev, Real dt_next,
-                                Real w_new, Real w_before, const std::array<Real, 4>& times,
-                                const JumpTest& jump_test, Real& work, RigidJumps& jumps) {
-  const Real dt_avg = 0.5 * (dt_prev + dt_next);
-  const bool rotations = state.angular_velocity_half.rows() > 0;
-  KineticSums ke_correction;
-  for (Body& body : m_bodies) {
-    const Index r = body.reference;
-    const Eigen::Vector3d x_r = row(state.position, r);
-    // Forces on the body and their moment about the reference node; the kinetic sums the free
-    // update counted for these nodes (v⁻ = v⁺ = v_{n-1/2}, their inverse mass being 0).
-    Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
-    Real counted = 0.0;  // Σ m v², a quarter of their centred sum
-    auto gather = [&](Index i) {
-      Eigen::Vector3d f = -row(force_internal, i);
-      if (force_external != nullptr) f += row(*force_external, i);
-      force += f;
-      moment += (row(state.position, i) - x_r).cross(f);
-      counted += state.mass[i] * row(state.velocity, i).squaredNorm();
-    };
-    gather(r);
-    for (Index i : body.members) gather(i);
+                                const NodalVectors* force_external, const NodalIncrement& inc) {
+  RigidUpdate result;
+  for (Body& body : m_bodies)
+    update_body(body, motion, state, force_internal, force_external, inc, result);
+  return result;
+}
 
-    const Eigen::Matrix3d rot = body.orientation.toRotationMatrix();
-    const Eigen::Vector3d c = rot * body.centre_offset;
-    const Eigen::Matrix3d j_ref =
-        rot * body.inertia * rot.transpose() + point_inertia(body.mass, c);
-    const Eigen::Vector3d v_old = row(state.velocity_half, r);
-    const Eigen::Vector3d w_old = body.omega_half;
-    body.rotation += dt_prev * w_old;  // rotation vector at t_n
-    Matrix6 mass_matrix;
-    mass_matrix << body.mass * Eigen::Matrix3d::Identity(), -body.mass * skew(c),
-        body.mass * skew(c), j_ref;
-    Vector6 rhs;
-    rhs << force - body.mass * w_old.cross(w_old.cross(c)), moment - w_old.cross(j_ref * w_old);
+RigidBodies::BodySystem RigidBodies::system_at(Body& body, const State& state,
+                                               const NodalVectors& force_internal,
+                                               const NodalVectors* force_external, Real dt_prev) {
+  BodySystem s;
+  const Index r = body.reference;
+  s.x_r = row(state.position, r);
+  // Forces on the body and their moment about the reference node; the kinetic sums the free
+  // update counted for these nodes (v⁻ = v⁺ = v_{n-1/2}, their inverse mass being 0).
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+  Real counted = 0.0;  // Σ m v², a quarter of their centred sum
+  auto gather = [&](Index i) {
+    Eigen::Vector3d f = -row(force_internal, i);
+    if (force_external != nullptr) f += row(*force_external, i);
+    force += f;
+    moment += (row(state.position, i) - s.x_r).cross(f);
+    counted += state.mass[i] * row(state.velocity, i).squaredNorm();
+  };
+  gather(r);
+  for (Index i : body.members) gather(i);
+  s.counted = counted;
 
-    // Prescribed DOFs: their new velocity, hence their acceleration.
-    Vector6 acc = Vector6::Zero();
-    std::array<bool, 6> fixed{};
-    std::array<Real, 6> v_target{};
+  const Eigen::Matrix3d rot = body.orientation.toRotationMatrix();
+  const Eigen::Vector3d c = rot * body.centre_offset;
+  const Eigen::Matrix3d j_ref = rot * body.inertia * rot.transpose() + point_inertia(body.mass, c);
+  s.v_old = row(state.velocity_half, r);
+  s.w_old = body.omega_half;
+  body.rotation += dt_prev * s.w_old;  // rotation vector at t_n
+  s.mass_matrix << body.mass * Eigen::Matrix3d::Identity(), -body.mass * skew(c),
+      body.mass * skew(c), j_ref;
+  s.rhs << force - body.mass * s.w_old.cross(s.w_old.cross(c)),
+      moment - s.w_old.cross(j_ref * s.w_old);
+  return s;
+}
+
+void RigidBodies::update_body(Body& body, const PrescribedMotion& motion, State& state,
+                              const NodalVectors& force_internal,
+                              const NodalVectors* force_external, const NodalIncrement& inc,
+                              RigidUpdate& result) {
+  const Real dt_prev = inc.dt_prev, dt_avg = inc.dt_avg;
+  const Real w_new = inc.w_new, w_before = inc.w_before;
+  const Index r = body.reference;
+  const BodySystem s = system_at(body, state, force_internal, force_external, dt_prev);
+  const Matrix6& mass_matrix = s.mass_matrix;
+  const Eigen::Vector3d &v_old = s.v_old, &w_old = s.w_old;
+
+  // Prescribed DOFs: their new velocity, hence their acceleration.
+  Vector6 acc = Vector6::Zero();
+  std::array<bool, 6> fixed{};
+  std::array<Real, 6> v_target{};
+  for (const PrescribedDof& d : body.prescribed) {
+    const int k = d.component;
+    const Real old = k < 3 ? v_old[k] : w_old[k - 3];
+    Real current = 0.0;
+    if (d.type != BoundaryType::Velocity)
+      current = k < 3 ? state.displacement(r, k) : body.rotation[k - 3];
+    const Real v_new = motion.velocity_half(d, current, inc);
+    fixed[k] = true;
+    v_target[k] = v_new;
+    acc[k] = dt_avg > 0.0 ? (v_new - old) / dt_avg : 0.0;
+  }
+  auto solve = [&](const Vector6& acc_p) {
+    return solve_free_rows(mass_matrix, s.rhs, fixed, acc_p);
+  };
+  acc = solve(acc);
+  const Vector6 reaction = mass_matrix * acc - s.rhs;
+  // A jump of the prescribed motion: the reactions' smooth part (the body held at zero
+  // prescribed acceleration) carries on in the trapezoidal rule; the impulse is booked apart.
+  Index jumped = 0;
+  Real largest_jump = 0.0;
+  if (motion.first_update())
     for (const PrescribedDof& d : body.prescribed) {
       const int k = d.component;
       const Real old = k < 3 ? v_old[k] : w_old[k - 3];
-      Real v_new = 0.0;
-      if (d.type == BoundaryType::Velocity) {
-        v_new = boundary.target(model, d, times[0], times[1]);
-      } else if (dt_next > 0.0) {
-        const Real current = k < 3 ? state.displacement(r, k) : body.rotation[k - 3];
-        v_new = (boundary.target(model, d, times[2], times[3]) - current) / dt_next;
+      if (v_target[k] != old && motion.is_jump(d, inc, old, v_target[k])) {
+        ++jumped;
+        largest_jump = std::max(largest_jump, std::abs(v_target[k] - old));
       }
-      fixed[k] = true;
-      v_target[k] = v_new;
-      acc[k] = dt_avg > 0.0 ? (v_new - old) / dt_avg : 0.0;
     }
-    // Free rows: M_FF a_F = b_F − M_FP a_P, solved with the prescribed rows made trivial;
-    // returns every row's acceleration for the prescribed ones `acc_p`.
-    auto solve = [&](const Vector6& acc_p) {
-      Matrix6 system = mass_matrix;
-      Vector6 b = rhs - mass_matrix * acc_p;
-      for (int k = 0; k < 6; ++k)
-        if (fixed[k]) {
-          system.row(k).setZero();
-          system.col(k).setZero();
-          system(k, k) = 1.0;
-          b[k] = 0.0;
-        }
-      const Vector6 free_acc = system.ldlt().solve(b);
-      Vector6 all = acc_p;
-      for (int k = 0; k < 6; ++k)
-        if (!fixed[k]) all[k] = free_acc[k];
-      return all;
-    };
-    acc = solve(acc);
-    const Vector6 reaction = mass_matrix * acc - rhs;
-    // A jump of the prescribed motion: the reactions' smooth part (the body held at zero
-    // prescribed acceleration) carries on in the trapezoidal rule; the impulse is booked apart.
-    Index jumped = 0;
-    Real largest_jump = 0.0;
-    if (jump_test)
-      for (const PrescribedDof& d : body.prescribed) {
-        const int k = d.component;
-        const Real old = k < 3 ? v_old[k] : w_old[k - 3];
-        if (v_target[k] != old && jump_test(d, old, v_target[k])) {
-          ++jumped;
-          largest_jump = std::max(largest_jump, std::abs(v_target[k] - old));
-        }
-      }
-    const Vector6 reaction_kept =
-        jumped > 0 ? Vector6(mass_matrix * solve(Vector6::Zero()) - rhs) : reaction;
+  const Vector6 reaction_kept =
+      jumped > 0 ? Vector6(mass_matrix * solve(Vector6::Zero()) - s.rhs) : reaction;
 
-    Eigen::Vector3d v_new, w_new_half;
+  Eigen::Vector3d v_new, w_new_half;
+  for (int k = 0; k < 3; ++k) {
+    v_new[k] = fixed[k] ? v_target[k] : v_old[k] + dt_avg * acc[k];
+    w_new_half[k] = fixed[k + 3] ? v_target[k + 3] : w_old[k] + dt_avg * acc[k + 3];
+  }
+  for (const PrescribedDof& d : body.prescribed) {
+    const int k = d.component;
+    const Real old = k < 3 ? v_old[k] : w_old[k - 3];
+    result.work += 0.5 * (body.previous_reaction[k] + reaction_kept[k]) * dt_prev * old;
+    body.previous_reaction[k] = reaction_kept[k];
+    if (k < 3)
+      state.reaction(r, k) = reaction[k];
+    else if (state.reaction_moment.rows() > 0)
+      state.reaction_moment(r, k - 3) = reaction[k];
+  }
+
+  // Whole-step velocities, the reference node; the kinetic energy ½ v_before·M·v_{n+1/2}
+  // with the 6×6 matrix at t_n, as for the free DOFs (NodalIncrement).
+  const Eigen::Vector3d v_whole = v_old + w_new * (v_new - v_old);
+  const Eigen::Vector3d w_whole = w_old + w_new * (w_new_half - w_old);
+  Vector6 v_after, v_before;
+  v_after << v_new, w_new_half;
+  v_before << v_old + w_before * (v_new - v_old), w_old + w_before * (w_new_half - w_old);
+  Vector6 v_pair = v_after;  // what ALLKE pairs with v_before
+  RigidJumps& jumps = result.jumps;
+  if (jumped > 0) {
+    // The state before the jump paired with the one after it (at t = 0 the state before it
+    // alone), as for a free DOF; the impulse's work is split at that energy.
+    v_before << v_old, w_old;
+    if (!(dt_prev > 0.0)) v_pair = v_before;
+    const Real before = 0.5 * v_before.dot(mass_matrix * v_before);
+    const Real after = 0.5 * v_after.dot(mass_matrix * v_after);
+    const Real kinetic = 0.5 * v_before.dot(mass_matrix * v_pair);
+    result.work += kinetic - before;
+    jumps.pending += after - kinetic;
+    jumps.energy += after - before;
+    jumps.dofs += jumped;
+    jumps.largest = std::max(jumps.largest, largest_jump);
+  }
+  const Vector6 sum = v_before + v_pair, difference = v_pair - v_before;
+  const Real spread = difference.dot(mass_matrix * difference);
+  result.kinetic.centred += sum.dot(mass_matrix * sum) - 4.0 * s.counted;
+  result.kinetic.spread += spread;
+  if (jumped > 0) jumps.spread += spread;
+  for (int k = 0; k < 3; ++k) {
+    state.velocity_half(r, k) = v_new[k];
+    state.velocity(r, k) = v_whole[k];
+    state.acceleration(r, k) = acc[k];
+  }
+  if (state.angular_velocity_half.rows() > 0) {
     for (int k = 0; k < 3; ++k) {
-      v_new[k] = fixed[k] ? v_target[k] : v_old[k] + dt_avg * acc[k];
-      w_new_half[k] = fixed[k + 3] ? v_target[k + 3] : w_old[k] + dt_avg * acc[k + 3];
-    }
-    for (const PrescribedDof& d : body.prescribed) {
-      const int k = d.component;
-      const Real old = k < 3 ? v_old[k] : w_old[k - 3];
-      work += 0.5 * (body.previous_reaction[k] + reaction_kept[k]) * dt_prev * old;
-      body.previous_reaction[k] = reaction_kept[k];
-      if (k < 3)
-        state.reaction(r, k) = reaction[k];
-      else if (state.reaction_moment.rows() > 0)
-        state.reaction_moment(r, k - 3) = reaction[k];
-    }
-
-    // Whole-step velocities, the reference node; the kinetic energy ½ v_before·M·v_{n+1/2}
-    // with the 6×6 matrix at t_n, as for the free DOFs (CentralDifference::Increment).
-    const Eigen::Vector3d v_whole = v_old + w_new * (v_new - v_old);
-    const Eigen::Vector3d w_whole = w_old + w_new * (w_new_half - w_old);
-    Vector6 v_after, v_before;
-    v_after << v_new, w_new_half;
-    v_before << v_old + w_before * (v_new - v_old), w_old + w_before * (w_new_half - w_old);
-    Vector6 v_pair = v_after;  // what ALLKE pairs with v_before
-    if (jumped > 0) {
-      // The state before the jump paired with the one after it (at t = 0 the state before it
-      // alone), as for a free DOF; the impulse's work is split at that energy.
-      v_before << v_old, w_old;
-      if (!(dt_prev > 0.0)) v_pair = v_before;
-      const Real before = 0.5 * v_before.dot(mass_matrix * v_before);
-      const Real after = 0.5 * v_after.dot(mass_matrix * v_after);
-      const Real kinetic = 0.5 * v_before.dot(mass_matrix * v_pair);
-      work += kinetic - before;
-      jumps.pending += after - kinetic;
-      jumps.energy += after - before;
-      jumps.dofs += jumped;
-      jumps.largest = std::max(jumps.largest, largest_jump);
-    }
-    const Vector6 sum = v_before + v_pair, difference = v_pair - v_before;
-    const Real spread = difference.dot(mass_matrix * difference);
-    ke_correction.centred += sum.dot(mass_matrix * sum) - 4.0 * counted;
-    ke_correction.spread += spread;
-    if (jumped > 0) jumps.spread += spread;
-    for (int k = 0; k < 3; ++k) {
-      state.velocity_half(r, k) = v_new[k];
-      state.velocity(r, k) = v_whole[k];
-      state.acceleration(r, k) = acc[k];
-    }
-    if (rotations) {
-      for (int k = 0; k < 3; ++k) {
-        state.angular_velocity_half(r, k) = w_new_half[k];
-        state.angular_velocity(r, k) = w_whole[k];
-        state.rotation(r, k) = body.rotation[k];
-      }
-    }
-
-    // Advance the orientation over dt_next and place every member exactly.
-    body.omega_half = w_new_half;
-    if (dt_next > 0.0) {
-      const Eigen::Quaterniond q_next =
-          (rotation_quaternion(dt_next * w_new_half) * body.orientation).normalized();
-      const Eigen::Matrix3d rot_next = q_next.toRotationMatrix();
-      const Eigen::Vector3d x_r_next = x_r + dt_next * v_new;
-      const Eigen::Vector3d x_ref0 = row(state.reference, r);
-      for (Index i : body.members) {
-        // As the member's reference position plus the body's motion, so that a body at rest
-        // and unrotated (a held die, a fixed plate) keeps its members exactly where they are.
-        const Eigen::Vector3d arm0 = row(state.reference, i) - x_ref0;
-        const Eigen::Vector3d target = row(state.reference, i) + (x_r_next - x_ref0) +
-                                       (rot_next - Eigen::Matrix3d::Identity()) * arm0;
-        const Eigen::Vector3d v_i = (target - row(state.position, i)) / dt_next;
-        const Eigen::Vector3d arm = row(state.position, i) - x_r;
-        const Eigen::Vector3d v_i_whole = v_whole + w_whole.cross(arm);
-        for (int k = 0; k < 3; ++k) {
-          state.acceleration(i, k) =
-              dt_avg > 0.0 ? (v_i[k] - state.velocity_half(i, k)) / dt_avg : 0.0;
-          state.velocity_half(i, k) = v_i[k];
-          state.velocity(i, k) = v_i_whole[k];
-        }
-      }
-      body.orientation = q_next;
+      state.angular_velocity_half(r, k) = w_new_half[k];
+      state.angular_velocity(r, k) = w_whole[k];
+      state.rotation(r, k) = body.rotation[k];
     }
   }
-  return ke_correction;
+  body.omega_half = w_new_half;
+  place_members(body, state, s.x_r, v_new, v_whole, w_whole, inc);
+}
+
+void RigidBodies::place_members(Body& body, State& state, const Eigen::Vector3d& x_r,
+                                const Eigen::Vector3d& v_new, const Eigen::Vector3d& v_whole,
+                                const Eigen::Vector3d& w_whole, const NodalIncrement& inc) {
+  // Advance the orientation over dt_next and place every member exactly.
+  const Real dt_next = inc.dt_next, dt_avg = inc.dt_avg;
+  if (!(dt_next > 0.0)) return;
+  const Eigen::Quaterniond q_next =
+      (rotation_quaternion(dt_next * body.omega_half) * body.orientation).normalized();
+  const Eigen::Matrix3d rot_next = q_next.toRotationMatrix();
+  const Eigen::Vector3d x_r_next = x_r + dt_next * v_new;
+  const Eigen::Vector3d x_ref0 = row(state.reference, body.reference);
+  for (Index i : body.members) {
+    // As the member's reference position plus the body's motion, so that a body at rest and
+    // unrotated (a held die, a fixed plate) keeps its members exactly where they are.
+    const Eigen::Vector3d arm0 = row(state.reference, i) - x_ref0;
+    const Eigen::Vector3d target = row(state.reference, i) + (x_r_next - x_ref0) +
+                                   (rot_next - Eigen::Matrix3d::Identity()) * arm0;
+    const Eigen::Vector3d v_i = (target - row(state.position, i)) / dt_next;
+    const Eigen::Vector3d arm = row(state.position, i) - x_r;
+    const Eigen::Vector3d v_i_whole = v_whole + w_whole.cross(arm);
+    for (int k = 0; k < 3; ++k) {
+      state.acceleration(i, k) = dt_avg > 0.0 ? (v_i[k] - state.velocity_half(i, k)) / dt_avg : 0.0;
+      state.velocity_half(i, k) = v_i[k];
+      state.velocity(i, k) = v_i_whole[k];
+    }
+  }
+  body.orientation = q_next;
 }
 
 }  // namespace xpl

@@ -25,23 +25,19 @@
 /// are not coupled yet and keep their own dynamics (said in the .msg file).
 
 #include <array>
-#include <functional>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "common/types.hpp"
-#include "solver/boundary_state.hpp"
 #include "solver/kinetic_sums.hpp"
+#include "solver/loads/boundary_state.hpp"
 #include "solver/model.hpp"
+#include "solver/nodal_increment.hpp"
+#include "solver/prescribed_motion.hpp"
 #include "solver/state.hpp"
 
 namespace xpl {
-
-/// Whether the velocity v_old → v_new (m/s or rad/s) of a prescribed DOF at this update is a
-/// jump of its boundary condition (CentralDifference::is_jump); empty where no jump can occur
-/// (any update but the first of a step).
-using JumpTest = std::function<bool(const PrescribedDof& dof, Real v_old, Real v_new)>;
 
 /// The jumps of prescribed motion the bodies met at one update.
 struct RigidJumps {
@@ -50,6 +46,15 @@ struct RigidJumps {
   Real largest = 0.0;  ///< largest |v_b − v_a| of a jumping DOF, m/s or rad/s
   Real pending = 0.0;  ///< the part of `energy` that falls in the next increment, J
   Real spread = 0.0;   ///< the kinetic spread (kinetic_sums.hpp) of the bodies that jumped
+};
+
+/// What one update of the bodies adds to the nodal update.
+struct RigidUpdate {
+  /// The correction of the kinetic sums: the bodies' minus what the free update counted for
+  /// their nodes.
+  KineticSums kinetic;
+  Real work = 0.0;   ///< the work of the reactions at the reference nodes (and impulses), J
+  RigidJumps jumps;  ///< the jumps of prescribed motion the bodies met
 };
 
 /// All rigid bodies of a model.
@@ -82,23 +87,20 @@ class RigidBodies {
   /// and drops those on member nodes; returns how many member-node DOFs were dropped.
   Index begin_step(std::vector<PrescribedDof>& prescribed);
 
-  /// One central-difference update of every body, called after the free nodal update with
-  /// the forces at t_n (internal n_nodes × 3; external may be null), the increments dt_prev
-  /// and dt_next, the whole-step weight w_new (0 at t = 0), the weight w_before of the
-  /// velocity that the kinetic energy pairs with v_{n+1/2} (CentralDifference::Increment) and
-  /// the times at which the BCs are evaluated. Writes velocities (half and whole step),
-  /// accelerations, reactions and the reference node rotation into `state`; returns the
-  /// correction of the kinetic sums (the bodies' minus what the free update counted for their
-  /// nodes) and adds the reactions' work. A body whose prescribed velocity jumps (`jump_test`)
-  /// takes the jump as an impulse, as a free DOF does (CentralDifference::count_jump_work): its
-  /// work ½ V_bᵀ M V_b − ½ V_aᵀ M V_a is split at the kinetic energy ½ V_aᵀ M V_b at t_n (at t = 0
+  /// One central-difference update of every body over `inc`, called after the free nodal
+  /// update with the forces at t_n (internal n_nodes × 3, N; external may be null). The
+  /// reference nodes' prescribed DOFs take their v(n+½) from `motion`
+  /// (PrescribedMotion::velocity_half), as free DOFs do. Writes velocities (half and whole
+  /// step), accelerations, reactions and the reference node rotation into `state`; returns
+  /// the correction of the kinetic sums and the reactions' work. A body whose prescribed
+  /// velocity jumps at the first update of a step (PrescribedMotion::is_jump) takes the jump
+  /// as an impulse, as a free DOF does (PrescribedMotion::count_jump_work): its work
+  /// ½ V_bᵀ M V_b − ½ V_aᵀ M V_a is split at the kinetic energy ½ V_aᵀ M V_b at t_n (at t = 0
   /// the state before the jump, ½ V_aᵀ M V_a), the part of the next increment in
   /// `jumps.pending`; the reactions keep their smooth part for the trapezoidal rule.
-  KineticSums update(const Model& model, const BoundaryState& boundary, State& state,
+  RigidUpdate update(const PrescribedMotion& motion, State& state,
                      const NodalVectors& force_internal, const NodalVectors* force_external,
-                     Real dt_prev, Real dt_next, Real w_new, Real w_before,
-                     const std::array<Real, 4>& times, const JumpTest& jump_test, Real& work,
-                     RigidJumps& jumps);
+                     const NodalIncrement& inc);
 
  private:
   struct Body {
@@ -113,6 +115,22 @@ class RigidBodies {
     std::vector<PrescribedDof> prescribed;                 ///< DOFs of the reference node
     std::array<Real, 6> previous_reaction{};               ///< for the trapezoidal work
   };
+  struct BodySystem;
+  /// One central-difference update of `body` (update() for each body), added to `result`.
+  static void update_body(Body& body, const PrescribedMotion& motion, State& state,
+                          const NodalVectors& force_internal, const NodalVectors* force_external,
+                          const NodalIncrement& inc, RigidUpdate& result);
+  /// The Newton–Euler system of `body` at t_n from the forces on its nodes (internal and
+  /// external, n_nodes × 3, N); advances its rotation vector over dt_prev to t_n.
+  static BodySystem system_at(Body& body, const State& state, const NodalVectors& force_internal,
+                              const NodalVectors* force_external, Real dt_prev);
+  /// Advances the orientation of `body` by ω(n+½) over dt_next and gives every member the
+  /// half-step velocity that lands it exactly at x_ref + R (X − X_ref) (`x_r`, `v_new`: the
+  /// reference node at t_n and its v(n+½); `v_whole`, `w_whole`: the body's whole-step
+  /// velocities).
+  static void place_members(Body& body, State& state, const Eigen::Vector3d& x_r,
+                            const Eigen::Vector3d& v_new, const Eigen::Vector3d& v_whole,
+                            const Eigen::Vector3d& w_whole, const NodalIncrement& inc);
   std::vector<Body> m_bodies;
   std::vector<Index> m_element_body;
   std::vector<Index> m_node_body;

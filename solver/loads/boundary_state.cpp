@@ -1,4 +1,4 @@
-#include "solver/boundary_state.hpp"
+#include "solver/loads/boundary_state.hpp"
 
 #include <algorithm>
 #include <map>

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "solver/boundary_state.hpp"
+#include "solver/loads/boundary_state.hpp"
 #include "solver/model.hpp"
 
 namespace xpl {

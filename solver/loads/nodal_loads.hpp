@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "solver/boundary_state.hpp"
-#include "solver/gravity_loads.hpp"
+#include "solver/loads/boundary_state.hpp"
+#include "solver/loads/gravity_loads.hpp"
+#include "solver/loads/pressure_loads.hpp"
 #include "solver/model.hpp"
-#include "solver/pressure_loads.hpp"
 
 namespace xpl {
 

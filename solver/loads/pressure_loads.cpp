@@ -1,4 +1,4 @@
-#include "solver/pressure_loads.hpp"
+#include "solver/loads/pressure_loads.hpp"
 
 #include <algorithm>
 

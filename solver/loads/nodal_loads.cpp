@@ -1,4 +1,4 @@
-#include "solver/nodal_loads.hpp"
+#include "solver/loads/nodal_loads.hpp"
 
 #include <algorithm>
 #include <stdexcept>

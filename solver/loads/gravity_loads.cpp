@@ -1,4 +1,4 @@
-#include "solver/gravity_loads.hpp"
+#include "solver/loads/gravity_loads.hpp"
 
 #include <algorithm>
 
