@@ -48,7 +48,7 @@ TEST_CASE(
   state.mass.assign(n, 0.0);
   PhaseTimers timers;
   RigidBodies rigid;
-  ElementSet elements(model, rigid, state, timers, 1.0);
+  ElementSet elements(model, rigid, state, timers);
   const Real m = state.mass[1];
   REQUIRE(m == Approx(7850.0 * 1e-6 / 8.0).epsilon(1e-12));
   const Real a = force / m;
