@@ -14,12 +14,18 @@
 #                     most) as a process under the sanitizers (default 80, 0 skips them;
 #                     about 0.5 s of CPU per deck)
 #                     The fuzz stage builds only xpl and xpl_fuzz_check with the sanitize preset.
+#   XPL_WERROR=ON|OFF  compiler warnings as errors in both builds (scripts/build.sh); ON by
+#                     default when CI=true (the CI), the build directory's setting otherwise
 # Exit code: ctest's, else the fuzzer's (1 when it found a crash, hang or sanitizer report).
 set -euo pipefail
 
 preset="${1:-release}"
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
+
+# The CI builds with -Werror: a warning fails it. A developer's run keeps warnings warnings
+# unless asked (XPL_WERROR=ON), so that a newer compiler's new warning does not stop a build.
+if [[ ${CI:-} == true ]]; then export XPL_WERROR="${XPL_WERROR:-ON}"; fi
 
 bash scripts/build.sh "$preset"
 

@@ -3,11 +3,13 @@
 
 Usage:
   regress.py check XPL WORK NAME...   run the decks NAME (examples/**/NAME.inp) into WORK and
-                                      compare each with references/NAME.h5 by `xpl compare`;
-                                      exit 1 if any differs
+                                      compare each with references/NAME.h5 by `xpl compare`
+                                      and with references/NAME.summary.txt; exit 1 if any
+                                      differs
   regress.py bless XPL WORK [NAME...] run the decks (default: all of decks.txt) and rewrite
-                                      their references; then review `git diff --stat` and
-                                      commit the references with the change that moved them
+                                      their references; then review `git diff` of the
+                                      summaries and commit the references with the change
+                                      that moved them
   regress.py decks                    check that decks.txt lists every examples/**/*.inp once
                                       (`!NAME` lists one that is left out, with its reason)
                                       and that each deck that runs has a reference
@@ -15,7 +17,13 @@ Usage:
 A reference is a reduced copy of the run's JOB.h5, a few kB: the mesh ids and connectivity
 (for the mesh check), the history of every step at REFERENCE_ROWS times (xpl compare
 evaluates the new run on the reference's times, so fewer rows compare as well), and U and S
-of the last frame; floats rounded to MANTISSA_BITS bits so that gzip packs them.
+of the last frame; floats rounded to MANTISSA_BITS bits so that gzip packs them. Beside it,
+NAME.summary.txt says in a few lines of text how the run ended (status, increments, end time,
+the energy scale and the final ALLKE, ALLIE, ALLAE, ALLPD, ALLWK, ETOTAL, from
+JOB.summary.json), so that a blessed change is reviewable in `git diff`; check compares the
+run with it too, number by number at the same tolerances (an energy's FTOL is of its largest
+|value| in the last step's history of NAME.h5, as xpl compare takes it; of the energy scale,
+the watchdog's, for an energy the history does not hold), the status and units exactly.
 
 Every run must also be a balanced completion (issue 33, SPEC R3): status "completed" in
 JOB.summary.json and the energy watchdog's largest drift (energy_balance.relative_error,
@@ -35,6 +43,7 @@ Tolerances (passed to xpl compare):
   The rounding of the stored references (2^-27 ≈ 7.5e-9 relative) is far below RTOL.
 """
 
+import difflib
 import json
 import math
 import pathlib
@@ -60,6 +69,7 @@ IMPORTS = {"import_target": "import_source"}
 # plain penalty, needed --energy-limit 30 while its drift showed as +27 %; it is 4.4 %).
 EXTRA_ARGS = {}
 ENERGY_LIMIT = 0.10  # xpl's default --energy-limit, as a fraction (no deck runs with another)
+SUMMARY_ENERGIES = ("ALLKE", "ALLIE", "ALLAE", "ALLPD", "ALLWK", "ETOTAL")  # final values
 
 
 def listed_names():
@@ -118,6 +128,76 @@ def check_completed(name, summary_path):
     if problems:
         sys.exit(f"regress.py: {name}: the run is not a balanced completion: "
                  + "; ".join(problems))
+
+
+def summary_path(name):
+    return REFERENCES / f"{name}.summary.txt"
+
+
+def summary_text(name, summary_json):
+    """The text summary of a run (references/NAME.summary.txt): one `key value [unit]` a line;
+    10 significant digits, far below RTOL, so the text alone can be compared."""
+    summary = json.loads(summary_json.read_text())
+    units = summary["units"]
+    rows = [("status", summary["status"], ""),
+            ("increments", str(summary["increments"]), ""),
+            ("end_time", f"{summary['simulated_time']:.9e}", units["time"]),
+            ("energy_scale", f"{summary['energy_balance']['energy_scale']:.9e}",
+             units["energy"])]
+    rows += [(key, f"{summary['energies'][key]:.9e}", units["energy"])
+             for key in SUMMARY_ENERGIES]
+    lines = [f"# {name}: how the run ends (regress.py bless writes it; check compares the run",
+             f"# with it at rtol {RTOL}, ftol {FTOL}: the tolerances of the comparison with "
+             f"{name}.h5)"]
+    lines += [f"{key:<13} {value} {unit}".rstrip() for key, value, unit in rows]
+    return "\n".join(lines) + "\n"
+
+
+def parse_summary(text):
+    rows = {}
+    for line in text.splitlines():
+        if line.strip() and not line.startswith("#"):
+            key, value, *unit = line.split()
+            rows[key] = (value, " ".join(unit))
+    return rows
+
+
+def energy_scales(ref):
+    """The largest |value| of each SUMMARY_ENERGIES dataset of the last step's history in the
+    reference ref (what xpl compare's FTOL is a fraction of); energies it does not hold are
+    left out."""
+    with h5py.File(ref, "r") as f:
+        steps = sorted(f.get("history", {}), key=lambda s: int(s.rsplit("_", 1)[-1]))
+        energy = f["history"][steps[-1]].get("energy", {}) if steps else {}
+        return {key: float(np.nanmax(np.abs(energy[key][:]), initial=0.0))
+                for key in SUMMARY_ENERGIES if key in energy}
+
+
+def summary_differences(ref_text, new_text, scales):
+    """What differs between two summary texts: a number by more than RTOL of itself plus FTOL
+    of its scale (scales[key] for an energy, else the energy scale of the text for an energy,
+    else the number itself); status and units exactly."""
+    ref, new = parse_summary(ref_text), parse_summary(new_text)
+    problems = [f"{key} only in the {'reference' if key in ref else 'run'}"
+                for key in sorted(set(ref) ^ set(new))]
+    energy_scale = abs(float(ref["energy_scale"][0])) if "energy_scale" in ref else 0.0
+    for key in [k for k in ref if k in new]:
+        (ref_value, ref_unit), (new_value, new_unit) = ref[key], new[key]
+        if ref_unit != new_unit:
+            problems.append(f"{key}: unit {new_unit!r}, the reference has {ref_unit!r}")
+        if key == "status":
+            if ref_value != new_value:
+                problems.append(f"status {new_value}, the reference has {ref_value}")
+            continue
+        a, b = float(ref_value), float(new_value)
+        if key in SUMMARY_ENERGIES:
+            scale = scales.get(key, energy_scale)
+        else:
+            scale = abs(a)
+        floor = float(FTOL) * scale
+        if not abs(b - a) <= float(RTOL) * abs(a) + floor:
+            problems.append(f"{key} {new_value}, the reference has {ref_value}")
+    return problems
 
 
 def rounded(data):
@@ -190,6 +270,27 @@ def reference_fields(ref):
     return [name for name in FIELDS if name in held]
 
 
+def check_summary(name, work):
+    """Compares the run's summary with references/NAME.summary.txt; prints what differs (and
+    the text diff a bless would make). Writes the run's text as WORK/NAME/NAME.summary.txt."""
+    new_text = summary_text(name, work / name / f"{name}.summary.json")
+    (work / name / f"{name}.summary.txt").write_text(new_text)
+    if not summary_path(name).exists():
+        print(f"regress.py: {name}: no summary {summary_path(name)}; bless it "
+              f"(docs/dev/testing.md)")
+        return False
+    ref_text = summary_path(name).read_text()
+    problems = summary_differences(ref_text, new_text,
+                                   energy_scales(REFERENCES / f"{name}.h5"))
+    if problems:
+        print(f"regress.py: {name}: the run differs from {summary_path(name)}: "
+              + "; ".join(problems))
+        print("".join(difflib.unified_diff(ref_text.splitlines(True), new_text.splitlines(True),
+                                           f"{summary_path(name)} (reference)",
+                                           f"{work / name / name}.summary.txt (run)")))
+    return not problems
+
+
 def check(xpl, work, names):
     failed = []
     for name in names:
@@ -199,6 +300,7 @@ def check(xpl, work, names):
             print(f"regress.py: {name}: no reference {ref}; bless it (docs/dev/testing.md)")
             failed.append(name)
             continue
+        summary_ok = check_summary(name, work)
         fields = reference_fields(ref)
         result = subprocess.run([xpl, "compare", str(ref), str(new), "--history"] +
                                 (["--fields", ",".join(fields)] if fields else []) +
@@ -206,6 +308,8 @@ def check(xpl, work, names):
                                 capture_output=True, text=True, timeout=120)
         if result.returncode != 0:
             print(result.stdout + result.stderr)
+            failed.append(name)
+        elif not summary_ok:
             failed.append(name)
         else:
             print(f"regress.py: {name}: {result.stdout.strip().splitlines()[-1]}")
@@ -223,6 +327,7 @@ def bless(xpl, work, names):
     for name in names:
         new = run(xpl, name, work)
         reduce(new, REFERENCES / f"{name}.h5")
+        summary_path(name).write_text(summary_text(name, new.with_suffix(".summary.json")))
         size = (REFERENCES / f"{name}.h5").stat().st_size
         print(f"regress.py: blessed {name} ({size / 1024:.0f} kB)")
     return 0
@@ -238,6 +343,7 @@ def decks():
         problems.append("decks.txt lists a deck twice")
     problems += [f"no reference for {n}" for n in deck_names()
                  if not (REFERENCES / f"{n}.h5").exists()]
+    problems += [f"no summary for {n}" for n in deck_names() if not summary_path(n).exists()]
     total = sum(p.stat().st_size for p in REFERENCES.glob("*.h5"))
     for problem in problems:
         print(f"regress.py: {problem}")
