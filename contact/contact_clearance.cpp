@@ -115,11 +115,21 @@ class Clearance {
   std::vector<Index> record_of;  // per slave slot: its record, NO_INDEX when none
 
  private:
-  /// Search zone (m) of slave `node` in `view`: how far above and below the surface.
-  void zone(const ClearanceView& view, Index node, Real& above, Real& below) const {
+  /// Facet size (m) of engine face f on the configuration as read.
+  Real face_size(Index f) const {
+    Vec3 corner[4];
+    face_corners(faces[f], position, {}, corner);
+    return std::sqrt(quad_area(corner));
+  }
+  /// Facet size (m) at slave slot s against master face f: the mean size of the faces around
+  /// it, or for a point node (no face of its own, SPEC C13) the size of f (file comment).
+  Real facet(Index s, Index f) const { return slaves.point(s) ? face_size(f) : size[s]; }
+  /// Search zone (m) of slave `node` in `view`, with facet size `facet`: how far above and
+  /// below the surface.
+  void zone(const ClearanceView& view, Index node, Real facet, Real& above, Real& below) const {
     const Index s = slaves.slot(node);
     const Real zone_default = domain.slave_double_sided(s) ? node_thickness_of(node_thickness, node)
-                                                           : DEFAULT_ZONE_FRACTION * size[s];
+                                                           : DEFAULT_ZONE_FRACTION * facet;
     above = std::isnan(view.search_above) ? zone_default : view.search_above;
     below = std::isnan(view.search_below) ? zone_default : view.search_below;
   }
@@ -131,7 +141,7 @@ class Clearance {
                    std::unordered_map<std::uint64_t, int>& edge_count, ClearanceReport& report);
   Index nearest_master_face(Index node, Index k, std::span<const Index> master,
                             const BroadPhase& near, Height& best_height) const;
-  bool on_perimeter(Index s, const Vec3& p, const ContactFace& bf, const ClosestPoint& cp,
+  bool on_perimeter(Real facet, const Vec3& p, const ContactFace& bf, const ClosestPoint& cp,
                     std::unordered_map<std::uint64_t, int>& edge_count) const;
 };
 
@@ -161,6 +171,7 @@ std::vector<Index> Clearance::slave_nodes(const ClearanceView& view) const {
     if (it == face_index.end()) continue;
     for (Index node : faces[it->second].nodes) nodes.push_back(node);
   }
+  nodes.insert(nodes.end(), view.slave_nodes.begin(), view.slave_nodes.end());
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   nodes.erase(std::remove_if(nodes.begin(), nodes.end(),
@@ -190,11 +201,14 @@ void Clearance::collect_view(const ClearanceView& view, Index v, ClearanceReport
 
   // Candidates from a broad phase over the master faces whose margin covers the widest zone
   // plus the shell half thicknesses (a face whose mid-surface is farther away cannot put the
-  // node in its zone).
+  // node in its zone); a point node's zone is taken with the largest master face.
+  Real largest_face = 0.0;
+  for (Index f : master) largest_face = std::max(largest_face, face_size(f));
   Real reach = 0.0, thickest = 0.0;
   for (Index node : nodes) {
+    const Index s = slaves.slot(node);
     Real above = 0.0, below = 0.0;
-    zone(view, node, above, below);
+    zone(view, node, slaves.point(s) ? largest_face : size[s], above, below);
     reach = std::max({reach, above, below});
     thickest = std::max(thickest, node_thickness_of(node_thickness, node));
   }
@@ -235,7 +249,8 @@ Index Clearance::nearest_master_face(Index node, Index k, std::span<const Index>
 /// Whether the node of slot s at `p` lies beside the master surface: its closest point `cp` on
 /// face `bf` is on a perimeter edge or corner and the node lies beyond it (a node right above
 /// the edge, as the edge nodes of two matching meshes do, still projects onto the surface).
-bool Clearance::on_perimeter(Index s, const Vec3& p, const ContactFace& bf, const ClosestPoint& cp,
+bool Clearance::on_perimeter(Real facet, const Vec3& p, const ContactFace& bf,
+                             const ClosestPoint& cp,
                              std::unordered_map<std::uint64_t, int>& edge_count) const {
   Real lateral = 0.0;
   if (cp.region != QuadRegion::Interior) {
@@ -245,7 +260,7 @@ bool Clearance::on_perimeter(Index s, const Vec3& p, const ContactFace& bf, cons
     const Vec3 offset = p - cp.point;
     lateral = (offset - offset.dot(n_face) * n_face).norm();
   }
-  const bool beside = lateral > PERIMETER_TOLERANCE * size[s];
+  const bool beside = lateral > PERIMETER_TOLERANCE * facet;
   if (beside && cp.region == QuadRegion::Edge &&
       edge_count[edge_key(bf.nodes[cp.feature], bf.nodes[(cp.feature + 1) % 4])] == 1)
     return true;
@@ -271,11 +286,12 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
   const Vec3 p = node_point(position, node);
   const Real slave_half =
       domain.slave_double_sided(s) ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
-  Real above = 0.0, below = 0.0;
-  zone(view, node, above, below);
   Height best_height;
   const Index best = nearest_master_face(node, k, master, near, best_height);
   if (best == NO_INDEX) return;
+  const Real facet_size = facet(s, best);
+  Real above = 0.0, below = 0.0;
+  zone(view, node, facet_size, above, below);
   const Real gap = best_height.h - best_height.master_half - slave_half;
   if (gap > above || gap < -below) return;  // outside the search zone
   auto skip = [&](ClearanceSkip why) { report.skipped.push_back({node, v, why}); };
@@ -283,7 +299,7 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
   const ContactFace& bf = faces[best];
   // An overclosed node of an interference fit is resolved wherever it projects: on the rim of
   // a slice (nodes of two matching meshes at the free faces) it is as overclosed as inside.
-  if (!view.interference && on_perimeter(s, p, bf, cp, edge_count))
+  if (!view.interference && on_perimeter(facet_size, p, bf, cp, edge_count))
     return skip(ClearanceSkip::PerimeterEdge);
   Index pair = NO_INDEX;
   if (domain.weight(s, best, pair) == 0.0) return skip(ClearanceSkip::NotInDomain);
@@ -292,7 +308,7 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
     if (!distance && !(gap < 0.0)) return;  // not overclosed: nothing to resolve
     if (record_of[s] != NO_INDEX) return skip(ClearanceSkip::Repeated);
     const Real side = bf.shell && best_height.h < 0.0 ? -1.0 : 1.0;
-    Record r{s, node, v, best, 0.0, side, slave_half, OVERCLOSURE_TOLERANCE * size[s], gap};
+    Record r{s, node, v, best, 0.0, side, slave_half, OVERCLOSURE_TOLERANCE * facet_size, gap};
     r.target_gap = distance ? -view.interference_distance : -gap;
     r.interference = true;
     r.adjust = distance && view.adjust && adjust_allowed;
@@ -319,7 +335,7 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
   const bool adjust = view.adjust && adjust_allowed;
   if (!adjust && bf.shell && sigma * best_height.h < 0.0) return skip(ClearanceSkip::WrongSide);
   if (record_of[s] != NO_INDEX) return skip(ClearanceSkip::Repeated);
-  Record r{s,   node,        v,     best,  c, sigma, slave_half, OVERCLOSURE_TOLERANCE * size[s],
+  Record r{s,   node,        v,     best,  c, sigma, slave_half, OVERCLOSURE_TOLERANCE * facet_size,
            gap, std::abs(c), false, adjust};
   const std::uint8_t lock = node_lock.empty() ? 0 : node_lock[node];
   if (const std::optional<OffsetReason> locked = lock_reason(lock, best_height.normal)) {

@@ -18,6 +18,10 @@
 ///    node's), the gap above the surface is g = h − T. The node is in the *search zone* when
 ///    −below ≤ g ≤ above (SEARCH BELOW / ABOVE; defaults: a tenth of the facet size at a solid
 ///    slave node, the thickness of a shell slave node). Nodes outside are not touched.
+///    A point node (of a node-based surface on no face of the domain, SPEC C13) has no facet
+///    of its own: its facet size, for the default zone and the tolerances, is that of its
+///    nearest master face, as in the initial-overclosure pass (it is a point against that
+///    face, and the face's size is the scale of the mesh it meets).
 /// 3. Its clearance c is the view's value, or the node's value of the distribution, or, when
 ///    the distribution has none there, the value interpolated at the closest point from the
 ///    face's corners; a node with neither is skipped (reported).
@@ -72,6 +76,8 @@ struct ClearanceView {
   Index assignment = NO_INDEX;  ///< the caller's number of the assignment (reports)
   Index slave_surface = NO_INDEX, master_surface = NO_INDEX;  ///< the caller's surface ids
   std::vector<FaceRef> slave_faces;
+  /// The nodes of a node-based slave surface (SPEC C13; with or instead of `slave_faces`).
+  std::vector<Index> slave_nodes{};
   std::vector<FaceRef> master_faces;
   bool adjust = true;  ///< ADJUST=YES: move nodes; NO: permanent offsets
   Real value = 0.0;    ///< the clearance where `nodal_values` has no say, m

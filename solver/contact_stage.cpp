@@ -240,10 +240,14 @@ std::vector<contact::ClearanceView> ContactStage::clearance_views(
       view.interference_distance = *definition.interference_distance;
     view.ramp_time = definition.step_fraction * s.time_period;
     auto add = [&](Index slave, Index master) {
+      // A node-based surface has no faces to be a master (SPEC C13): of its pair only the view
+      // with its nodes as the slaves exists (the deck reader refuses a view word against it).
+      if (m_model.surfaces[master].type == Surface::Type::Node) return;
       contact::ClearanceView v = view;
       v.slave_surface = slave;
       v.master_surface = master;
       v.slave_faces = faces_of(slave);
+      v.slave_nodes = m_model.surfaces[slave].nodes;
       v.master_faces = faces_of(master);
       views.push_back(std::move(v));
       names.push_back({definition.name, m_model.surfaces[slave].name, m_model.surfaces[master].name,

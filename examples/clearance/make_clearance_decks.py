@@ -21,6 +21,14 @@
   offset_blocks     a tilted block 0.1-0.3 mm above another, clearance 0.5 mm with ADJUST=NO:
                     pushed down, every node starts to carry force after 0.5 mm of travel (not at
                     its geometric gap); separated and pushed again, the same
+  node_clear_elem_adjust   a 0.8 mm C3D8R cube 0.02 mm into a fixed plate (4 x 4 x 1 C3D8R) and
+                    moving down at 1 m/s; clearance 0.01 mm (ADJUST=YES) between its bottom face
+                    S1 (element-based) and the plate's top: its four bottom nodes move 0.03 mm
+                    up, then the cube hits the plate and bounces
+  node_clear_nodes_adjust  the same with the cube's four bottom nodes as a node-based surface
+                    (SPEC C13): the same moves and the same contact force history
+  node_clear_elem_offset, node_clear_nodes_offset  the same two with ADJUST=NO: permanent
+                    offsets of 0.03 mm, nothing moves, the same force history
 
 Units m, kg, s, N, Pa; element size 1 mm. Ids per body in ranges of 100000.
 Standard library only:  python3 examples/clearance/make_clearance_decks.py [OUT_DIR] [--only NAME]
@@ -324,6 +332,65 @@ def offset_blocks():
     return d
 
 
+NODE_CLEAR_OVERLAP = 0.02e-3  # m: the cube's bottom inside the plate's top
+NODE_CLEAR_C = 0.01e-3  # m: the clearance
+NODE_CLEAR_SPEED = 1.0  # m/s: the cube's initial velocity, down
+
+
+def node_clearance(kind, adjust):
+    """A 0.8 mm C3D8R cube over the interior of one face of a fixed 4 x 4 x 1 mm plate (no plate
+    node below it, so the plate's nodes meet no face of the cube), its bottom inside the
+    plate's top and moving down, with a clearance between the cube's bottom and the plate:
+    `elem` the cube's face S1, `nodes` its four bottom nodes as a node-based surface. The slave
+    nodes are the same four and the plate's top is the only master face they meet: the same
+    adjustment (or offsets) and the same contact force history (SPEC C7, C13)."""
+    slave = {"elem": "bottom face S1 (element-based)",
+             "nodes": "four bottom nodes as a node-based surface (SPEC C13)"}[kind]
+    how = ("ADJUST=YES: the four nodes move 0.03 mm up, strain free" if adjust else
+           "ADJUST=NO: permanent offsets of 0.03 mm, nothing moves")
+    notes = [f"A 0.8 mm C3D8R cube over a fixed 4 x 4 x 1 mm C3D8R plate, its bottom {NODE_CLEAR_OVERLAP * 1e3:g} mm",
+             f"inside the plate's top, moving down at {NODE_CLEAR_SPEED:g} m/s. Clearance CNODE = "
+             f"{NODE_CLEAR_C * 1e3:g} mm between the cube's",
+             f"{slave} and the plate's top; {how}.",
+             "The cube hits the plate and bounces; the node_clear_elem_* and node_clear_nodes_* decks",
+             "give the same result (compared with xpl compare). The element-based pair is balanced",
+             "(each view at half weight, the plate's nodes meeting no face of the cube): the elem decks",
+             "double the penalty so that the cube's nodes see the stiffness of the one-sided view."]
+    d = new_deck(f"Contact clearance on a node-based surface ({kind}, ADJUST={'YES' if adjust else 'NO'})",
+                 notes)
+    hex_block(d, 1, "PLATE", (0.0, 0.0, 0.0), (4, 4, 1), sets=("z0",))
+    hex_block(d, 2, "CUBE", (1.1 * H, 1.1 * H, H - NODE_CLEAR_OVERLAP), (1, 1, 1),
+              size=(0.8 * H, 0.8 * H, H), sets=("z0", "all"))
+    material(d, solids=("PLATE", "CUBE"))
+    d.add("*SURFACE, NAME=PLATE_TOP", "PLATE, S2")
+    if kind == "elem":
+        d.add("*SURFACE, NAME=CUBE_BOTTOM", "CUBE, S1")
+    else:
+        d.add("*SURFACE, NAME=CUBE_BOTTOM, TYPE=NODE", "CUBE_Z0")
+    d.add(f"*CONTACT CLEARANCE, NAME=CNODE, ADJUST={'YES' if adjust else 'NO'}, "
+          f"CLEARANCE={fmt(NODE_CLEAR_C)}")
+    d.add("*INITIAL CONDITIONS, TYPE=VELOCITY", f"CUBE_ALL, 3, {fmt(-NODE_CLEAR_SPEED)}")
+    d.add("*BOUNDARY", "PLATE_Z0, 1, 3")
+    d.add("*STEP, NAME=HIT", "*DYNAMIC, EXPLICIT", f", {fmt(REST)}")
+    d.add("*CONTACT", "*CONTACT INCLUSIONS", "CUBE_BOTTOM, PLATE_TOP")
+    if kind == "elem":
+        # Two element-based surfaces form a balanced pair, each view with half the weight; the
+        # plate's nodes meet no face of the cube, so the cube's nodes carry the whole force at
+        # half weight: twice the penalty gives the one-sided stiffness of the node-based view.
+        d.add("*CONTACT CONTROLS ASSIGNMENT, TYPE=SCALE PENALTY", ", , 2.0")
+    # The elem decks name the view of the cube's nodes on the plate (SLAVE: surface 1 is the
+    # slave), which is the one view a node-based surface has: without a view word (adjust) or
+    # named from the plate's side (offset, MASTER: surface 1 is the master).
+    d.add("*CONTACT CLEARANCE ASSIGNMENT",
+          {"elem": "CUBE_BOTTOM, PLATE_TOP, CNODE, SLAVE", "nodes": "CUBE_BOTTOM, PLATE_TOP, CNODE"
+           if adjust else "PLATE_TOP, CUBE_BOTTOM, CNODE, MASTER"}[kind])
+    d.add("*OUTPUT, FIELD, NUMBER INTERVAL=4", "*NODE OUTPUT", "U, V",
+          "*CONTACT OUTPUT", "CSTRESS, CSTATUS, CFORCE")
+    d.add(f"*OUTPUT, HISTORY, TIME INTERVAL={fmt(REST / 200)}", "*ENERGY OUTPUT")
+    d.add("*END STEP")
+    return d
+
+
 DECKS = {
     "deep_blocks": deep_blocks,
     "tangled_shells": tangled_shells,
@@ -332,6 +399,10 @@ DECKS = {
     "cylinders_adjust": cylinders_adjust,
     "distribution": distribution,
     "offset_blocks": offset_blocks,
+    "node_clear_elem_adjust": lambda: node_clearance("elem", True),
+    "node_clear_nodes_adjust": lambda: node_clearance("nodes", True),
+    "node_clear_elem_offset": lambda: node_clearance("elem", False),
+    "node_clear_nodes_offset": lambda: node_clearance("nodes", False),
 }
 
 

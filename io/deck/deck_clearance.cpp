@@ -205,21 +205,32 @@ void read_assignment(DeckState& deck, const DeckBlock& block, bool initializatio
          {std::pair{first, &assignment.first}, std::pair{second, &assignment.second}}) {
       if (surface_name.empty()) continue;
       *index = contact_surface(deck, surface_name, line.where(), keyword.label());
-      if (*index == NO_INDEX) {
-        ok = false;
-      } else if (deck.model.surfaces[static_cast<std::size_t>(*index)].type ==
-                 Surface::Type::Node) {
-        const bool master =
-            assignment.view == ClearanceAssignment::View::Both ||
-            (assignment.view == ClearanceAssignment::View::Master) == (index == &assignment.first);
-        error(deck, line.where(), keyword,
-              "surface " + surface_name + " is node-based" +
-                  (master ? " and would act as a master" : ""),
-              "expected element-based surfaces (*SURFACE, TYPE=ELEMENT): a node-based surface "
-              "has no faces to be a master, and xpl assigns clearances between element-based "
-              "surfaces only");
-        ok = false;
-      }
+      if (*index == NO_INDEX) ok = false;
+    }
+    // A node-based surface (SPEC C13) is slave only: between its nodes and the faces of an
+    // element-based surface one view exists, which no view word may turn round.
+    const auto node_based = [&](Index surface) {
+      return surface != NO_INDEX &&
+             deck.model.surfaces[static_cast<std::size_t>(surface)].type == Surface::Type::Node;
+    };
+    const std::string node_expected =
+        "expected a node-based surface (*SURFACE, TYPE=NODE) as the slave of an element-based "
+        "surface: no view (the one view that exists), MASTER with the node-based surface second "
+        "or SLAVE with it first (a node-based surface has no faces to be a master)";
+    if (node_based(assignment.first) && node_based(assignment.second)) {
+      error(
+          deck, line.where(), keyword,
+          "surfaces " + first + " and " + second + " are both node-based: neither can be a master",
+          node_expected);
+      ok = false;
+    } else if (const bool first_master = assignment.view == ClearanceAssignment::View::Master;
+               assignment.view != ClearanceAssignment::View::Both &&
+               node_based(first_master ? assignment.first : assignment.second)) {
+      error(deck, line.where(), keyword,
+            "surface " + (first_master ? first : second) +
+                " is node-based and would act as a master (" + view + ")",
+            node_expected);
+      ok = false;
     }
     if (ok) deck.clearance_assignments.push_back(std::move(pending));
   }

@@ -12,17 +12,26 @@ namespace xpl::io {
 
 namespace {
 
-/// The (slave, master) surface pairs of an assignment's view.
-std::vector<std::pair<Index, Index>> views_of(const ClearanceAssignment& assignment) {
+/// The (slave, master) surface pairs of an assignment's view that exist: none with a
+/// node-based master (SPEC C13, the reader refuses a view word that asks for one).
+std::vector<std::pair<Index, Index>> views_of(const Model& model,
+                                              const ClearanceAssignment& assignment) {
+  std::vector<std::pair<Index, Index>> views;
   switch (assignment.view) {
     case ClearanceAssignment::View::Master:
-      return {{assignment.second, assignment.first}};
+      views = {{assignment.second, assignment.first}};
+      break;
     case ClearanceAssignment::View::Slave:
-      return {{assignment.first, assignment.second}};
+      views = {{assignment.first, assignment.second}};
+      break;
     case ClearanceAssignment::View::Both:
+      views = {{assignment.first, assignment.second}, {assignment.second, assignment.first}};
       break;
   }
-  return {{assignment.first, assignment.second}, {assignment.second, assignment.first}};
+  std::erase_if(views, [&](const std::pair<Index, Index>& v) {
+    return model.surfaces[static_cast<std::size_t>(v.second)].type == Surface::Type::Node;
+  });
+  return views;
 }
 
 /// One side of a face edge: the edge's node indices (ascending) and whether the face runs
@@ -141,7 +150,7 @@ bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pen
           ? nullptr
           : &deck.model.distributions[static_cast<std::size_t>(clearance.distribution)];
   if (distribution == nullptr && clearance.value >= 0.0) return true;
-  for (const auto& [slave, master] : views_of(assignment)) {
+  for (const auto& [slave, master] : views_of(deck.model, assignment)) {
     if (!solid(slave) && !solid(master)) continue;
     const std::string between = "between surfaces " + surface(slave).name + " (slave) and " +
                                 surface(master).name + " (master), and " +
@@ -157,7 +166,7 @@ bool check_clearance_sign(DeckState& deck, const PendingClearanceAssignment& pen
     // The slave nodes' own values, and the master nodes' when a slave node takes its value
     // from its master face (SPEC C8).
     const auto nodes_of = [&](Index s) {
-      std::vector<Index> nodes;
+      std::vector<Index> nodes = surface(s).nodes;  // a node-based surface's (SPEC C13)
       for (const ElementFace& f : surface(s).faces) {
         const Index* element_nodes = deck.model.nodes_of(f.element);
         const int count =
@@ -199,7 +208,7 @@ bool check_clearance_slaves(DeckState& deck, const PendingClearanceAssignment& p
         rigid[static_cast<std::size_t>(e)] = 1;
   // A slave node of a rigid body moves with its reference node: nothing to adjust or offset.
   std::vector<std::string> names;
-  for (const auto& [slave, master] : views_of(assignment)) {
+  for (const auto& [slave, master] : views_of(deck.model, assignment)) {
     const Surface& s = deck.model.surfaces[static_cast<std::size_t>(slave)];
     if (s.faces.empty() || std::any_of(s.faces.begin(), s.faces.end(), [&](const ElementFace& f) {
           return rigid[static_cast<std::size_t>(f.element)] == 0;

@@ -353,3 +353,45 @@ TEST_CASE(
     }
   }
 }
+
+TEST_CASE("point nodes of a node-based surface: the zone of their nearest master face",
+          "[contact][clearance][node]") {
+  // A 2×2×1 block (h = 1, top faces S2 of size 1) and two free nodes under its top: 0.09 below
+  // (inside the default zone, a tenth of the master face's size) and 0.11 below (outside).
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 2, 2, 1, 1.0);
+  const Index inside = mesh.add_node(0.5, 0.5, 0.91), outside = mesh.add_node(1.5, 0.5, 0.89);
+  DomainSpec spec;
+  spec.surfaces.push_back({"BLOCK", false, faces(0, 4, 1)});
+  contact::DomainSurface points;
+  points.name = "PTS";
+  points.nodes = {inside, outside};
+  spec.surfaces.push_back(std::move(points));
+  spec.inclusions.push_back({1, 0, true});
+  for (const bool adjust : {true, false}) {
+    NodalVectors x = mesh.coordinates;
+    ContactEngine engine(ContactDomain(spec, mesh.topology(), x), {}, {}, x, {});
+    REQUIRE(engine.domain().slave_point(engine.domain().slaves().slot(inside)));
+    ClearanceView v = view({}, faces(0, 4, 1), adjust, 0.02);
+    v.slave_nodes = {inside, outside};
+    const std::vector<ClearanceView> views = {v};
+    const ClearanceReport report =
+        contact::apply_clearances(engine, mesh.topology(), x, {}, {}, views, true);
+    REQUIRE(report.nodes.size() == 1);
+    CHECK(report.skipped.empty());
+    const contact::ClearedNode& c = report.nodes[0];
+    CHECK(c.node == inside);
+    CHECK(c.gap_before == Approx(-0.09).margin(1e-12));
+    CHECK(x(outside, 2) == mesh.coordinates(outside, 2));  // outside the zone: left alone
+    if (adjust) {
+      CHECK(c.distance == Approx(0.11).margin(1e-12));
+      CHECK(x(inside, 2) == Approx(1.02).margin(1e-12));
+      CHECK(c.offset == 0.0);
+    } else {
+      CHECK(c.distance == 0.0);
+      CHECK(x(inside, 2) == mesh.coordinates(inside, 2));
+      CHECK(c.offset == Approx(0.11).margin(1e-12));
+      CHECK(engine.constraints()[engine.domain().slaves().slot(inside)].offset_permanent);
+    }
+  }
+}

@@ -141,7 +141,7 @@ TEST_CASE("clearance assignment errors: names, surfaces, signs, rigid slaves",
                            "TOPS, BODY, NEGD, MASTER\n"
                            "BODY, TOPS, NOBODY\n"
                            "BODY, GHOST, ZERO\n"
-                           "BODY, PTS, ZERO\n"
+                           "BODY, PTS, ZERO, SLAVE\n"
                            "TOPS, tops, ZERO\n"
                            "BODY, TOPS, ZERO, BOTH\n"
                            "BODY, , ZERO\n"
@@ -163,10 +163,11 @@ TEST_CASE("clearance assignment errors: names, surfaces, signs, rigid slaves",
           "the same step",
       assignment("TYPE=X") + "unknown parameter TYPE; accepted parameters: none",
       assignment("BODY, GHOST") + "undefined surface GHOST; expected *SURFACE, NAME=GHOST",
-      assignment("BODY, PTS") +
-          "surface PTS is node-based and would act as a master; expected element-based surfaces "
-          "(*SURFACE, TYPE=ELEMENT): a node-based surface has no faces to be a master, and xpl "
-          "assigns clearances between element-based surfaces only",
+      assignment("BODY, PTS, ZERO, SLAVE") +
+          "surface PTS is node-based and would act as a master (SLAVE); expected a node-based "
+          "surface (*SURFACE, TYPE=NODE) as the slave of an element-based surface: no view (the "
+          "one view that exists), MASTER with the node-based surface second or SLAVE with it "
+          "first (a node-based surface has no faces to be a master)",
       assignment("TOPS, tops") +
           "self contact of surface TOPS; expected two different surfaces (clearances do not "
           "apply to self contact)",

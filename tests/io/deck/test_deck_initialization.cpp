@@ -18,7 +18,8 @@ namespace {
 const std::string SURFACES = two_brick_model() + shell_plate_model() +
                              "*SURFACE, NAME=BODY\nBRICKS\n"
                              "*SURFACE, NAME=TOPS\nPLATE, SPOS\n"
-                             "*SURFACE, NAME=PTS, TYPE=NODE\nPLATE_NODES\n";
+                             "*SURFACE, NAME=PTS, TYPE=NODE\nPLATE_NODES\n"
+                             "*SURFACE, NAME=PTS2, TYPE=NODE\nPLATE_NODES\n";
 
 const std::string STEP = "*DYNAMIC, EXPLICIT\n, 1e-3\n";
 
@@ -42,8 +43,15 @@ TEST_CASE("contact initialization data: clearance, interference fit, zones, view
       "BODY, TOPS, I1, SECOND SURFACE SFC\n"
       "TOPS, BODY, I2, FIRST SURFACE SFC\n"
       "BODY, TOPS, FIT\n"
+      // A node-based surface as the slave of an element-based one (SPEC C13): the one view
+      // that exists, named or not.
+      "PTS, BODY, I2\n"
+      "TOPS, PTS, I1, SECOND SURFACE SFC\n"
+      "PTS, BODY, FIT\n"
       "*CONTACT CLEARANCE ASSIGNMENT\n"
       "BODY, TOPS, I1, MASTER\n"
+      "BODY, PTS, I1\n"
+      "PTS, TOPS, I1, SLAVE\n"
       "*END STEP\n";
   const Model m = io::read_deck_text(deck, "t.inp");
   REQUIRE(m.contact_clearances.size() == 5);
@@ -76,15 +84,22 @@ TEST_CASE("contact initialization data: clearance, interference fit, zones, view
 
   REQUIRE(m.steps[0].contact);
   const std::vector<ClearanceAssignment>& a = m.steps[0].contact->clearances;
-  REQUIRE(a.size() == 4);
+  REQUIRE(a.size() == 9);
   CHECK(a[0].clearance == 0);
   CHECK(a[0].view == ClearanceAssignment::View::Master);  // SECOND SURFACE SFC
   CHECK(a[1].clearance == 1);
   CHECK(a[1].view == ClearanceAssignment::View::Slave);  // FIRST SURFACE SFC
   CHECK(a[2].clearance == 2);
   CHECK(a[2].view == ClearanceAssignment::View::Both);
-  CHECK(a[3].clearance == 4);  // *CONTACT CLEARANCE ASSIGNMENT finds *CONTACT CLEARANCE's I1
-  CHECK(a[3].view == ClearanceAssignment::View::Master);
+  const auto pts = static_cast<Index>(m.surfaces.size() - 2);
+  CHECK(m.surfaces[pts].name == "PTS");
+  CHECK((a[3].first == pts && a[3].clearance == 1 && a[3].view == ClearanceAssignment::View::Both));
+  CHECK((a[4].second == pts && a[4].view == ClearanceAssignment::View::Master));
+  CHECK((a[5].first == pts && a[5].clearance == 2));  // an interference fit: no view word
+  CHECK(a[6].clearance == 4);  // *CONTACT CLEARANCE ASSIGNMENT finds *CONTACT CLEARANCE's I1
+  CHECK(a[6].view == ClearanceAssignment::View::Master);
+  CHECK((a[7].second == pts && a[7].view == ClearanceAssignment::View::Both));
+  CHECK((a[8].first == pts && a[8].view == ClearanceAssignment::View::Slave));
 
   // MINIMUM DISTANCE is accepted with a note of what xpl does with it.
   const auto note =
@@ -118,8 +133,10 @@ TEST_CASE("contact initialization errors, all together", "[io][deck][clearance][
       "BODY, TOPS, NOSUCH\n"
       "BODY, TOPS, OLD\n"
       "PTS, TOPS, ZERO, MASTER\n"
-      "TOPS, PTS, ZERO, MASTER\n"
-      "BODY, PTS, ZERO\n"
+      "TOPS, PTS, ZERO, SLAVE\n"
+      "TOPS, PTS, ZERO, FIRST SURFACE SFC\n"
+      "PTS, TOPS, ZERO, SECOND SURFACE SFC\n"
+      "PTS, PTS2, ZERO\n"
       "BODY, TOPS, FIT, MASTER\n"
       "BODY, TOPS, ZERO, SIDEWAYS\n"
       "*END STEP\n"
@@ -142,6 +159,14 @@ TEST_CASE("contact initialization errors, all together", "[io][deck][clearance][
   const std::string outside =
       " is outside (0, 1]; expected a fraction of the step time 0 < f <= 1 (default 1: the "
       "whole first step)";
+  // A view word that turns a node-based surface into the master (SPEC C13).
+  const std::string node_expected =
+      "expected a node-based surface (*SURFACE, TYPE=NODE) as the slave of an element-based "
+      "surface: no view (the one view that exists), MASTER with the node-based surface second or "
+      "SLAVE with it first (a node-based surface has no faces to be a master)";
+  const auto as_master = [&](const std::string& view) {
+    return " is node-based and would act as a master (" + view + "); " + node_expected;
+  };
   const std::vector<std::string> expected = {
       data("NAME=NEG") +
           "INTERFERENCE FIT=-1e-5 is negative; expected an interference distance h > 0 (an "
@@ -164,19 +189,14 @@ TEST_CASE("contact initialization errors, all together", "[io][deck][clearance][
           "contact initialization ZERO is defined twice at t.inp:" +
           std::to_string(line_of(deck, "NAME=ZERO\n")) +
           "; expected each contact initialization name once",
-      assignment("PTS, TOPS") +
-          "surface PTS is node-based and would act as a master; expected element-based surfaces "
-          "(*SURFACE, TYPE=ELEMENT): a node-based surface has no faces to be a master, and xpl "
-          "assigns clearances between element-based surfaces only",
-      // As the slave (MASTER: surface 1 is the master) it is refused too, without "master".
-      assignment("TOPS, PTS") +
-          "surface PTS is node-based; expected element-based surfaces (*SURFACE, TYPE=ELEMENT): "
-          "a node-based surface has no faces to be a master, and xpl assigns clearances between "
-          "element-based surfaces only",
-      assignment("BODY, PTS") +
-          "surface PTS is node-based and would act as a master; expected element-based surfaces "
-          "(*SURFACE, TYPE=ELEMENT): a node-based surface has no faces to be a master, and xpl "
-          "assigns clearances between element-based surfaces only",
+      assignment("PTS, TOPS, ZERO, MASTER") + "surface PTS" + as_master("MASTER"),
+      assignment("TOPS, PTS, ZERO, SLAVE") + "surface PTS" + as_master("SLAVE"),
+      assignment("TOPS, PTS, ZERO, FIRST") + "surface PTS" + as_master("FIRST SURFACE SFC"),
+      assignment("PTS, TOPS, ZERO, SECOND") + "surface PTS" + as_master("SECOND SURFACE SFC"),
+      assignment("PTS, PTS2") +
+          "surfaces PTS and PTS2 are both node-based: neither can be a "
+          "master; " +
+          node_expected,
       assignment("SIDEWAYS") +
           "bad view 'SIDEWAYS'; expected MASTER (surface 1 is the master: only the nodes of "
           "surface 2 move), SLAVE (surface 1 is the slave), SECOND SURFACE SFC (as MASTER), "
