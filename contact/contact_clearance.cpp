@@ -295,6 +295,17 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
   const Real gap = best_height.h - best_height.master_half - slave_half;
   if (gap > above || gap < -below) return;  // outside the search zone
   auto skip = [&](ClearanceSkip why) { report.skipped.push_back({node, v, why}); };
+  // A record joins the pass held where the node's DOFs are locked along the normal.
+  auto add_record = [&](Record r) {
+    const std::uint8_t lock = node_lock.empty() ? 0 : node_lock[node];
+    if (const std::optional<OffsetReason> locked = lock_reason(lock, best_height.normal)) {
+      r.held = true;
+      r.reason = *locked;
+    }
+    record_of[s] = static_cast<Index>(records.size());
+    records.push_back(r);
+    report.handled[s] = 1;
+  };
   const ClosestPoint& cp = best_height.cp;
   const ContactFace& bf = faces[best];
   // An overclosed node of an interference fit is resolved wherever it projects: on the rim of
@@ -312,14 +323,7 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
     r.target_gap = distance ? -view.interference_distance : -gap;
     r.interference = true;
     r.adjust = distance && view.adjust && adjust_allowed;
-    const std::uint8_t lock = node_lock.empty() ? 0 : node_lock[node];
-    if (const std::optional<OffsetReason> locked = lock_reason(lock, best_height.normal)) {
-      r.held = true;
-      r.reason = *locked;
-    }
-    record_of[s] = static_cast<Index>(records.size());
-    records.push_back(r);
-    report.handled[s] = 1;
+    add_record(r);
     return;
   }
   Real c = view.value;
@@ -337,14 +341,7 @@ void Clearance::record_node(const ClearanceView& view, Index v, Index k, Index n
   if (record_of[s] != NO_INDEX) return skip(ClearanceSkip::Repeated);
   Record r{s,   node,        v,     best,  c, sigma, slave_half, OVERCLOSURE_TOLERANCE * facet_size,
            gap, std::abs(c), false, adjust};
-  const std::uint8_t lock = node_lock.empty() ? 0 : node_lock[node];
-  if (const std::optional<OffsetReason> locked = lock_reason(lock, best_height.normal)) {
-    r.held = true;
-    r.reason = *locked;
-  }
-  record_of[s] = static_cast<Index>(records.size());
-  records.push_back(r);
-  report.handled[s] = 1;
+  add_record(r);
 }
 
 /// The clearance pass's moves: every free record off its target moves along the normal of
