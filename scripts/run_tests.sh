@@ -14,8 +14,8 @@
 #                     most) as a process under the sanitizers (default 80, 0 skips them;
 #                     about 0.5 s of CPU per deck)
 #                     The fuzz stage builds only xpl and xpl_fuzz_check with the sanitize preset.
-#   XPL_WERROR=ON|OFF  compiler warnings as errors in both builds (scripts/build.sh); ON by
-#                     default when CI=true (the CI), the build directory's setting otherwise
+#   XPL_WERROR=ON|OFF  compiler warnings as errors in both builds (scripts/build.sh); the
+#                     build directory's setting when unset (not yet on in CI: below)
 # Exit code: ctest's, else the fuzzer's (1 when it found a crash, hang or sanitizer report).
 set -euo pipefail
 
@@ -23,9 +23,11 @@ preset="${1:-release}"
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
-# The CI builds with -Werror: a warning fails it. A developer's run keeps warnings warnings
-# unless asked (XPL_WERROR=ON), so that a newer compiler's new warning does not stop a build.
-if [[ ${CI:-} == true ]]; then export XPL_WERROR="${XPL_WERROR:-ON}"; fi
+# Not yet on in CI: the build uses -march=native, and on a CPU with AVX2 but no AVX-512 GCC 12
+# warns "may be used uninitialized" inside Eigen in solver/rigid_bodies.cpp (GCC bug 105593),
+# which an AVX-512 machine never compiles; a CI machine of the other kind would fail on it.
+# Turn it on here (export XPL_WERROR=ON when CI=true) once every -march the CI may get builds
+# clean (docs/dev/testing.md).
 
 bash scripts/build.sh "$preset"
 
