@@ -229,8 +229,8 @@ void CentralDifference::book_energies(State& state, const NodalIncrement& inc,
   state.energies.kinetic = std::max(0.0, 0.125 * sums.kinetic.centred);
   // A change of the increment changes the energy central differences conserve: for DOFs with
   // v⁺ − v⁻ = Δt(n+½) a(n) the next increment finds ½ v⁻·M·v⁺ off by
-  // ⅛(Δt(n−½)² − Δt(n+½)²) a·M·a (README). ALLKD books that shift, so that the step's short
-  // last increment, or a new step's first one, does not show as a drift of ETOTAL.
+  // ⅛(Δt(n−½)² − Δt(n+½)²) a·M·a (docs/theory/energy.md). ALLKD books that shift, so that the
+  // step's short last increment, or a new step's first one, does not show as a drift of ETOTAL.
   if (inc.dt_prev > 0.0 && inc.dt_next > 0.0) {
     const Real ratio = inc.dt_prev / inc.dt_next;
     m_increment_shift += 0.125 * (ratio * ratio - 1.0) * (sums.kinetic.spread - sums.jump_spread);

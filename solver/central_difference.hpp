@@ -1,5 +1,5 @@
 #pragma once
-/// \file The central-difference update of the nodes (S2): positions, the free update of the
+/// \file The central-difference update of the nodes (S1): positions, the free update of the
 /// half-step velocities and the kinetic energy, with the two parts that act on the same pass
 /// over the nodes: the prescribed motion (prescribed_motion.hpp: BCs, reactions, jumps) and
 /// the external loads (loads/external_loads.hpp); the rigid bodies (rigid_bodies.hpp) and the

@@ -173,8 +173,8 @@ void EnergyCheck::check(const State& state, const ElementTotals& totals, Real dt
   const Real drift = std::abs(e.total() - m_initial_total);
   // Checked from the first increment: an element that explodes may end the step within a
   // few increments. The balance of central differences holds from the start (every term is
-  // booked by the trapezoidal rule, ALLKE as the scheme conserves it: README), and the scale
-  // holds the initial energies and the work put in, so a start from rest is not measured
+  // booked by the trapezoidal rule, ALLKE as the scheme conserves it: docs/theory/energy.md), and
+  // the scale holds the initial energies and the work put in, so a start from rest is not measured
   // against nothing.
   if (m_max_energy > 0.0 && drift > 0.0) {
     const Real fraction = drift / m_max_energy;

@@ -1,10 +1,9 @@
 #pragma once
-/// \file The kinetic energy of one nodal update as two sums over its DOFs (README, "What ALLKE
-/// measures"). With v⁻ the velocity at the mirror time t_n − Δt(n+½)/2 and v⁺ = v(n+½), the
-/// energy central differences conserve is ½ v⁻·M·v⁺ = ⅛ (v⁻ + v⁺)·M·(v⁻ + v⁺) −
-/// ⅛ (v⁺ − v⁻)·M·(v⁺ − v⁻): the first part is ALLKE, ½ v(t_n)·M·v(t_n) with
-/// v(t_n) = ½(v⁻ + v⁺) = v(n−½) + ½Δt(n−½) a(n), never negative; the second, ALLKD, is the
-/// O(Δt²) rest, −⅛ Δt(n+½)² a(n)·M·a(n).
+/// \file The kinetic energy of one nodal update as two sums over its DOFs (docs/theory/energy.md,
+/// "What ALLKE measures"). With v⁻ the velocity at the mirror time t_n − Δt(n+½)/2 and v⁺ = v(n+½),
+/// the energy central differences conserve is ½ v⁻·M·v⁺ = ⅛ (v⁻ + v⁺)·M·(v⁻ + v⁺) − ⅛ (v⁺ −
+/// v⁻)·M·(v⁺ − v⁻): the first part is ALLKE, ½ v(t_n)·M·v(t_n) with v(t_n) = ½(v⁻ + v⁺) = v(n−½) +
+/// ½Δt(n−½) a(n), never negative; the second, ALLKD, is the O(Δt²) rest, −⅛ Δt(n+½)² a(n)·M·a(n).
 
 #include "common/types.hpp"
 

@@ -40,7 +40,7 @@ struct NodalIncrement {
     // ALLKE pairs v(n+½) = v(t_n + dt_next/2) with the velocity at the mirror time
     // t_n − dt_next/2 under the acceleration at t_n: v(n−½) + (dt_prev − dt_next)/2 a_n, so
     // w_before = (dt_prev − dt_next) / (dt_prev + dt_next): 0 at a constant increment, −1 at
-    // t = 0 (v_0 − dt_next/2 a_0 = 2 v_0 − v(½)). README, "What ALLKE measures".
+    // t = 0 (v_0 − dt_next/2 a_0 = 2 v_0 − v(½)). docs/theory/energy.md, "What ALLKE measures".
     inc.w_before = dt_prev + dt_next > 0.0 ? (dt_prev - dt_next) / (dt_prev + dt_next) : 0.0;
     inc.step_time = step_time;
     inc.time = time;

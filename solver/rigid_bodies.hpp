@@ -19,7 +19,7 @@
 /// x_ref + R (X − X_ref) by giving it the half-step velocity that lands it there, so the
 /// body never deforms. The members' inverse mass is 0 in the nodal update; the kinetic sums of
 /// a body (kinetic_sums.hpp) are those of v⁻ and v_{n+1/2} with the 6×6 matrix above (ALLKE,
-/// ALLKD, README).
+/// ALLKD, docs/theory/energy.md).
 ///
 /// PIN and TIE nodes join the body with their translations; a TIE node's rotations (shells)
 /// are not coupled yet and keep their own dynamics (said in the .msg file).

@@ -12,7 +12,8 @@ struct Energies {
   Real kinetic = 0.0;  ///< ALLKE, ½ v(t_n)·M·v(t_n) ≥ 0 (solver/kinetic_sums.hpp)
   /// ALLKD, the rest of the kinetic energy central differences conserve: ½ v⁻·M·v(n+½) −
   /// ALLKE = −⅛ Δt(n+½)² a·M·a, less what the changes of the increment have moved in and
-  /// out of that term (README, "What ALLKE measures"); O(Δt²), ≤ 0 at a constant increment.
+  /// out of that term (docs/theory/energy.md, "What ALLKE measures"); O(Δt²), ≤ 0 at a constant
+  /// increment.
   Real kinetic_defect = 0.0;
   Real strain = 0.0;         ///< ALLSE, recoverable strain energy
   Real plastic = 0.0;        ///< ALLPD, plastic dissipation ∫σ_y dε̄ᵖ dV
