@@ -221,10 +221,14 @@ RigidBodies::BodySystem RigidBodies::system_at(Body& body, const State& state,
   s.v_old = row(state.velocity_half, r);
   s.w_old = body.omega_half;
   body.rotation += dt_prev * s.w_old;  // rotation vector at t_n
-  s.mass_matrix << body.mass * Eigen::Matrix3d::Identity(), -body.mass * skew(c),
-      body.mass * skew(c), j_ref;
-  s.rhs << force - body.mass * s.w_old.cross(s.w_old.cross(c)),
-      moment - s.w_old.cross(j_ref * s.w_old);
+  // Fixed-size blocks, not the comma initialiser: its run-time-sized blocks make GCC 12 warn
+  // (-Warray-bounds) about AVX loads Eigen never executes for a 3-vector.
+  s.mass_matrix.topLeftCorner<3, 3>() = body.mass * Eigen::Matrix3d::Identity();
+  s.mass_matrix.topRightCorner<3, 3>() = -body.mass * skew(c);
+  s.mass_matrix.bottomLeftCorner<3, 3>() = body.mass * skew(c);
+  s.mass_matrix.bottomRightCorner<3, 3>() = j_ref;
+  s.rhs.head<3>() = force - body.mass * s.w_old.cross(s.w_old.cross(c));
+  s.rhs.tail<3>() = moment - s.w_old.cross(j_ref * s.w_old);
   return s;
 }
 
@@ -296,14 +300,17 @@ void RigidBodies::update_body(Body& body, const PrescribedMotion& motion, State&
   const Eigen::Vector3d v_whole = v_old + w_new * (v_new - v_old);
   const Eigen::Vector3d w_whole = w_old + w_new * (w_new_half - w_old);
   Vector6 v_after, v_before;
-  v_after << v_new, w_new_half;
-  v_before << v_old + w_before * (v_new - v_old), w_old + w_before * (w_new_half - w_old);
+  v_after.head<3>() = v_new;
+  v_after.tail<3>() = w_new_half;
+  v_before.head<3>() = v_old + w_before * (v_new - v_old);
+  v_before.tail<3>() = w_old + w_before * (w_new_half - w_old);
   Vector6 v_pair = v_after;  // what ALLKE pairs with v_before
   RigidJumps& jumps = result.jumps;
   if (jumped > 0) {
     // The state before the jump paired with the one after it (at t = 0 the state before it
     // alone), as for a free DOF; the impulse's work is split at that energy.
-    v_before << v_old, w_old;
+    v_before.head<3>() = v_old;
+    v_before.tail<3>() = w_old;
     if (!(dt_prev > 0.0)) v_pair = v_before;
     const Real before = 0.5 * v_before.dot(mass_matrix * v_before);
     const Real after = 0.5 * v_after.dot(mass_matrix * v_after);
