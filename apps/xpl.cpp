@@ -93,16 +93,34 @@ bool is_help(const std::string& word) {
   return word == "--help" || word == "-h";
 }
 
-/// Makes OpenMP threads sleep at barriers instead of spinning, unless the user chose
-/// (OMP_WAIT_POLICY or GOMP_SPINCOUNT set). libgomp reads its environment when it is loaded,
-/// before main, so xpl sets OMP_WAIT_POLICY=PASSIVE and executes itself again; the second
+/// Whether the user chose how OpenMP threads wait (OMP_WAIT_POLICY or GOMP_SPINCOUNT set).
+bool wait_policy_chosen() {
+  return std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr;
+}
+
+#if XPL_STATIC_OPENMP
+/// Makes OpenMP threads sleep at barriers instead of spinning, unless the user chose. libgomp
+/// reads OMP_WAIT_POLICY once, in its initialiser. Linked statically (CMakeLists.txt,
+/// XPL_STATIC_OPENMP), that initialiser is one of the program's constructors of default
+/// priority; the linker orders constructors by priority, so this one (101, the first a
+/// program may use) sets the variable before libgomp reads it, and after the C library has
+/// set up the environment (which a .preinit_array function would be too early for: glibc
+/// sets `environ` in its own initialiser). The variable stays set for child processes, as
+/// the re-exec below leaves it. tests/apps/check_wait_policy.py checks both.
+__attribute__((constructor(101))) void default_to_passive_wait() {
+  if (!wait_policy_chosen()) setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+}
+#else
+/// As above, with a shared libgomp, which reads its environment when it is loaded, before any
+/// code of xpl runs: xpl sets OMP_WAIT_POLICY=PASSIVE and executes itself again; the second
 /// time the variable is set and this returns. If the exec fails, the run goes on with the
 /// runtime's default.
 void default_to_passive_wait(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
+  if (wait_policy_chosen()) return;
   if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
   execv("/proc/self/exe", argv);
 }
+#endif
 
 /// The signal that asks the run to stop (SIGINT/SIGTERM), 0 until one arrives. The handler
 /// only sets it; the time loop looks at it once per increment.
@@ -206,7 +224,9 @@ bool parse(int argc, char** argv, Arguments& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#if !XPL_STATIC_OPENMP
   default_to_passive_wait(argv);  // first of all: before anything starts OpenMP threads
+#endif
   if (argc == 2 && is_help(argv[1])) {
     std::cout << USAGE;
     return 0;
