@@ -1,6 +1,6 @@
 // xpl command line: `xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]`,
 // `xpl check DECK.inp`; the result-file tools `xpl compare` and `xpl history` are in
-// compare.cpp and history.cpp.
+// compare.cpp and history.cpp, the benchmark `xpl bench` in bench.cpp.
 
 #include <omp.h>
 
@@ -71,6 +71,7 @@ constexpr const char* USAGE =
     "       xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
     "                   [--fields U,S,...] [--frames last|all] [--json]\n"
     "       xpl history JOB.h5 [--step N] [--csv FILE]\n"
+    "       xpl bench [--repeat N] [--quick] [--json] [--models NAME,...]\n"
     "       xpl --help | --version\n"
     "       xpl COMMAND --help   (the command's options)\n"
     "\n"
@@ -80,6 +81,7 @@ constexpr const char* USAGE =
     "  compare  compare two result files for a regression test (exit 0 equal within the\n"
     "           tolerances, 1 different, 2 unusable input)\n"
     "  history  every history series of a result as CSV\n"
+    "  bench    the standard benchmark models, built in memory, timed with 1 and 2 threads\n"
     "Every run and check writes JOB.summary.json (status, timing, energies).\n"
     "OpenMP threads sleep at barriers (OMP_WAIT_POLICY=PASSIVE) unless OMP_WAIT_POLICY or\n"
     "GOMP_SPINCOUNT is set (xpl run --help says more).\n"
@@ -87,7 +89,7 @@ constexpr const char* USAGE =
     "  4 I/O or internal error, 5 the job is already running, 130/143 SIGINT/SIGTERM.\n";
 
 /// The commands xpl knows, for the message about an unknown one.
-constexpr const char* COMMANDS = "run, check, compare or history";
+constexpr const char* COMMANDS = "run, check, compare, history or bench";
 
 bool is_help(const std::string& word) {
   return word == "--help" || word == "-h";
@@ -240,9 +242,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string command = argv[1];
-  if (command == "compare" || command == "history") {
+  if (command == "compare" || command == "history" || command == "bench") {
     const std::vector<std::string> rest(argv + 2, argv + argc);
     try {
+      if (command == "bench") return xpl::apps::bench_main(rest);
       return command == "compare" ? xpl::apps::compare_main(rest) : xpl::apps::history_main(rest);
     } catch (const std::exception& e) {
       std::cerr << "xpl " << command << ": error: " << xpl::apps::cause_of(e) << "\n";
