@@ -319,7 +319,7 @@ std::vector<BenchModel> bench_models(bool quick) {
           {"shell", "S4R plate, pressure, elastic", 224, 0, 250},
           {"contact", "two C3D8R blocks, general contact", 32, 24, 200},
           {"plastic-hex", "C3D8R block, plastic in bending", 40, 0, 250},
-          {"plastic-shell", "S4R plate, stretched, every point yielding", 224, 0, 250}};
+          {"plastic-shell", "S4R plate, stretched, every point yielding", 160, 0, 250}};
 }
 
 }  // namespace xpl::apps
