@@ -315,11 +315,11 @@ std::vector<BenchModel> bench_models(bool quick) {
             {"contact", "two C3D8R blocks, general contact", 6, 4, 20},
             {"plastic-hex", "C3D8R block, plastic in bending", 6, 0, 20},
             {"plastic-shell", "S4R plate, stretched, every point yielding", 12, 0, 20}};
-  return {{"hex", "C3D8R block, elastic", 40, 0, 250},
-          {"shell", "S4R plate, pressure, elastic", 224, 0, 250},
-          {"contact", "two C3D8R blocks, general contact", 32, 24, 200},
-          {"plastic-hex", "C3D8R block, plastic in bending", 40, 0, 250},
-          {"plastic-shell", "S4R plate, stretched, every point yielding", 160, 0, 250}};
+  return {{"hex", "C3D8R block, elastic", 40, 0, 150},
+          {"shell", "S4R plate, pressure, elastic", 224, 0, 150},
+          {"contact", "two C3D8R blocks, general contact", 32, 24, 150},
+          {"plastic-hex", "C3D8R block, plastic in bending", 40, 0, 150},
+          {"plastic-shell", "S4R plate, stretched, every point yielding", 160, 0, 150}};
 }
 
 }  // namespace xpl::apps
