@@ -1,6 +1,7 @@
 #pragma once
-/// \file The result-file tools of the xpl command line, beside `run` and `check`:
-/// `xpl compare` (compare.cpp) and `xpl history` (history.cpp).
+/// \file The commands of the xpl command line beside `run` and `check`: the result-file
+/// tools `xpl compare` (compare.cpp) and `xpl history` (history.cpp), and the timing
+/// benchmark `xpl bench` (bench.cpp).
 
 #include <string>
 #include <vector>
@@ -15,5 +16,9 @@ int compare_main(const std::vector<std::string>& args);
 /// `xpl history JOB.h5 [--step N] [--csv FILE]`; `args` are the words after "history".
 /// Returns the exit code: 0 written, 2 unusable input or a usage error.
 int history_main(const std::vector<std::string>& args);
+
+/// `xpl bench [--repeat N] [--quick] [--json] [--models LIST] [--deck NAME]`; `args` are the
+/// words after "bench". Returns the exit code: 0 done, 2 a usage error, 3 a run failed.
+int bench_main(const std::vector<std::string>& args);
 
 }  // namespace xpl::apps

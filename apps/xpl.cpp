@@ -1,6 +1,6 @@
 // xpl command line: `xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]`,
 // `xpl check DECK.inp`; the result-file tools `xpl compare` and `xpl history` are in
-// compare.cpp and history.cpp.
+// compare.cpp and history.cpp, the benchmark `xpl bench` in bench.cpp.
 
 #include <omp.h>
 
@@ -71,6 +71,7 @@ constexpr const char* USAGE =
     "       xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
     "                   [--fields U,S,...] [--frames last|all] [--json]\n"
     "       xpl history JOB.h5 [--step N] [--csv FILE]\n"
+    "       xpl bench [--repeat N] [--quick] [--json] [--models NAME,...]\n"
     "       xpl --help | --version\n"
     "       xpl COMMAND --help   (the command's options)\n"
     "\n"
@@ -80,6 +81,7 @@ constexpr const char* USAGE =
     "  compare  compare two result files for a regression test (exit 0 equal within the\n"
     "           tolerances, 1 different, 2 unusable input)\n"
     "  history  every history series of a result as CSV\n"
+    "  bench    the standard benchmark models, built in memory, timed with 1 and 2 threads\n"
     "Every run and check writes JOB.summary.json (status, timing, energies).\n"
     "OpenMP threads sleep at barriers (OMP_WAIT_POLICY=PASSIVE) unless OMP_WAIT_POLICY or\n"
     "GOMP_SPINCOUNT is set (xpl run --help says more).\n"
@@ -87,22 +89,40 @@ constexpr const char* USAGE =
     "  4 I/O or internal error, 5 the job is already running, 130/143 SIGINT/SIGTERM.\n";
 
 /// The commands xpl knows, for the message about an unknown one.
-constexpr const char* COMMANDS = "run, check, compare or history";
+constexpr const char* COMMANDS = "run, check, compare, history or bench";
 
 bool is_help(const std::string& word) {
   return word == "--help" || word == "-h";
 }
 
-/// Makes OpenMP threads sleep at barriers instead of spinning, unless the user chose
-/// (OMP_WAIT_POLICY or GOMP_SPINCOUNT set). libgomp reads its environment when it is loaded,
-/// before main, so xpl sets OMP_WAIT_POLICY=PASSIVE and executes itself again; the second
+/// Whether the user chose how OpenMP threads wait (OMP_WAIT_POLICY or GOMP_SPINCOUNT set).
+bool wait_policy_chosen() {
+  return std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr;
+}
+
+#if XPL_STATIC_OPENMP
+/// Makes OpenMP threads sleep at barriers instead of spinning, unless the user chose. libgomp
+/// reads OMP_WAIT_POLICY once, in its initialiser. Linked statically (CMakeLists.txt,
+/// XPL_STATIC_OPENMP), that initialiser is one of the program's constructors of default
+/// priority; the linker orders constructors by priority, so this one (101, the first a
+/// program may use) sets the variable before libgomp reads it, and after the C library has
+/// set up the environment (which a .preinit_array function would be too early for: glibc
+/// sets `environ` in its own initialiser). The variable stays set for child processes, as
+/// the re-exec below leaves it. tests/apps/check_wait_policy.py checks both.
+__attribute__((constructor(101))) void default_to_passive_wait() {
+  if (!wait_policy_chosen()) setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+}
+#else
+/// As above, with a shared libgomp, which reads its environment when it is loaded, before any
+/// code of xpl runs: xpl sets OMP_WAIT_POLICY=PASSIVE and executes itself again; the second
 /// time the variable is set and this returns. If the exec fails, the run goes on with the
 /// runtime's default.
 void default_to_passive_wait(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
+  if (wait_policy_chosen()) return;
   if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
   execv("/proc/self/exe", argv);
 }
+#endif
 
 /// The signal that asks the run to stop (SIGINT/SIGTERM), 0 until one arrives. The handler
 /// only sets it; the time loop looks at it once per increment.
@@ -206,7 +226,9 @@ bool parse(int argc, char** argv, Arguments& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#if !XPL_STATIC_OPENMP
   default_to_passive_wait(argv);  // first of all: before anything starts OpenMP threads
+#endif
   if (argc == 2 && is_help(argv[1])) {
     std::cout << USAGE;
     return 0;
@@ -220,9 +242,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string command = argv[1];
-  if (command == "compare" || command == "history") {
+  if (command == "compare" || command == "history" || command == "bench") {
     const std::vector<std::string> rest(argv + 2, argv + argc);
     try {
+      if (command == "bench") return xpl::apps::bench_main(rest);
       return command == "compare" ? xpl::apps::compare_main(rest) : xpl::apps::history_main(rest);
     } catch (const std::exception& e) {
       std::cerr << "xpl " << command << ": error: " << xpl::apps::cause_of(e) << "\n";
