@@ -16,6 +16,7 @@
 #include "solver/energy_check.hpp"
 #include "solver/increment_control.hpp"
 #include "solver/message_text.hpp"
+#include "solver/model_partition.hpp"
 #include "solver/output_driver.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/thread_team.hpp"
@@ -286,9 +287,11 @@ void ExplicitSolver::Impl::run_step(int step) {
   m_contact_energy.begin_step(m_state.increment);
   const Real period = m_model.steps[step].time_period;
   const Real step_start = m_state.time;
-  if (!m_started)
+  if (!m_started) {
     start_run(step, period);
-  else
+    report_partition(m_model, m_rigid, m_contact.engine(), m_options.partition_parts,
+                     m_options.partition_method, m_options.partition_note, m_sink);
+  } else
     m_next = carry_increment(m_next, period);
   m_increment.report_start(step, m_next);
   m_output.note_short_intervals(m_next.dt);
