@@ -61,13 +61,14 @@ constexpr const char* RUN_USAGE =
 
 /// `xpl check --help`.
 constexpr const char* CHECK_USAGE =
-    "usage: xpl check DECK.inp [-o DIR] [--quiet] [--import PREV.h5]\n"
+    "usage: xpl check DECK.inp [-o DIR] [--quiet] [--import PREV.h5] [--partition N]\n"
     "\n"
     "Data check: reads the deck, builds the model (contact search, initial overclosures),\n"
     "writes frame 0, JOB.sta, JOB.msg and JOB.summary.json into DIR and stops before the\n"
     "first increment. Every error in the deck is reported, as deck.inp:LINE: *KEYWORD: ...\n"
     "  -o DIR  directory for the result files (default: the current directory)\n"
     "  --quiet      no summary on the terminal\n"
+    "  --partition N  report in JOB.msg how the model would be split into N parts (as run)\n"
     "Exit codes: 0 checked, 1 deck or --import error, 2 usage, 4 I/O or internal error,\n"
     "  5 the job is already running.\n";
 

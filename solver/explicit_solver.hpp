@@ -58,8 +58,10 @@ struct SolverOptions {
   /// checks it once per increment and ends the run there as interrupted, last frame written.
   const volatile std::sig_atomic_t* stop_signal = nullptr;
   /// Parts of the domain decomposition (issue 37): when > 1, the model is partitioned once
-  /// after the t = 0 contact search and the partition reported in the .msg
-  /// (solver/model_partition.hpp); the run itself is not distributed yet.
+  /// after the t = 0 contact search (in a data check: after the initial-overclosure pass,
+  /// whose search is the t = 0 one when the domain has overclosures to look for) and the
+  /// partition reported in the .msg (solver/model_partition.hpp); the run itself is not
+  /// distributed yet.
   int partition_parts = 0;
   partition::Method partition_method = partition::Method::Automatic;
   /// A line for the .msg before the partition report (how MPI ranks share the run), or empty.
