@@ -55,11 +55,12 @@ bool MpiSession::available() {
 #endif
 
 std::string MpiSession::note() const {
+  const std::string idle =
+      m_size == 2 ? "rank 1 waits" : "ranks 1-" + std::to_string(m_size - 1) + " wait";
   return "mpi: " + std::to_string(m_size) +
          " ranks; the model is not distributed yet (issue 37 items 3-5): rank 0 runs the whole "
-         "model and writes every result file, ranks 1-" +
-         std::to_string(m_size - 1) +
-         " wait idle; the partition below is the one a distributed run would use";
+         "model and writes every result file, " +
+         idle + " idle; the partition below is the one a distributed run would use";
 }
 
 }  // namespace xpl::apps

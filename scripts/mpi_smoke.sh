@@ -22,7 +22,7 @@ out="$mpi_build/mpi_smoke/$job"
 
 launcher=()
 if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-cmake -S . -B "$mpi_build" -DCMAKE_BUILD_TYPE=Release -DXPL_MPI=ON -DXPL_BUILD_TESTS=OFF \
+cmake -S . -B "$mpi_build" -DCMAKE_BUILD_TYPE=Release -DXPL_MPI=ON \
   "${launcher[@]}" > /dev/null
 cmake --build "$mpi_build" -j"$(nproc)" --target xpl
 cmake -S . -B "$serial_build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" > /dev/null
