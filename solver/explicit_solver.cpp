@@ -289,7 +289,7 @@ void ExplicitSolver::Impl::run_step(int step) {
   const Real step_start = m_state.time;
   if (!m_started) {
     start_run(step, period);
-    report_partition(m_model, m_rigid, m_contact.engine(), m_options.partition_parts,
+    report_partition(m_model, m_rigid, m_ties, m_contact.engine(), m_options.partition_parts,
                      m_options.partition_method, m_options.partition_note, m_sink);
   } else
     m_next = carry_increment(m_next, period);
@@ -446,7 +446,7 @@ RunSummary ExplicitSolver::Impl::check() {
     begin_step(0);
     ElementTotals totals;
     m_next = evaluate_forces(Pass::Check, 0.0, m_model.steps[0].time_period, totals);
-    report_partition(m_model, m_rigid, m_contact.engine(), m_options.partition_parts,
+    report_partition(m_model, m_rigid, m_ties, m_contact.engine(), m_options.partition_parts,
                      m_options.partition_method, m_options.partition_note, m_sink);
     m_sink.message(Severity::Info, "initial stable increment " + format_real(m_next.dt) +
                                        " s (element " + std::to_string(m_critical_id) +

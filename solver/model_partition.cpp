@@ -38,22 +38,25 @@ Real element_cost(const Model& model, Index e, bool rigid) {
 }
 
 partition::MeshPartition partition_model(const Model& model, const RigidBodies& rigid,
-                                         const contact::ContactEngine* engine, int parts,
-                                         partition::Method method) {
+                                         const Ties& ties, const contact::ContactEngine* engine,
+                                         int parts, partition::Method method) {
   const Index n_elements = model.element_count();
   const std::vector<Index>& element_body = rigid.element_body();
   std::vector<Real> weight(static_cast<std::size_t>(n_elements));
   for (Index e = 0; e < n_elements; ++e)
     weight[e] = element_cost(model, e, !element_body.empty() && element_body[e] != NO_INDEX);
 
-  std::vector<std::pair<Index, Index>> contact_edges;
+  // The element of a node: the first that holds it (a node-based slave node may have none:
+  // no edge).
+  std::vector<Index> first_element(static_cast<std::size_t>(model.node_count()), NO_INDEX);
+  for (Index e = n_elements - 1; e >= 0; --e)
+    for (Index k = model.element_offsets[e]; k < model.element_offsets[e + 1]; ++k)
+      first_element[model.element_nodes[k]] = e;
+  std::vector<std::pair<Index, Index>> extra_edges;
+  for (const auto& [slave, corner] : ties.slave_master_nodes())
+    if (first_element[slave] != NO_INDEX && first_element[corner] != NO_INDEX)
+      extra_edges.emplace_back(first_element[slave], first_element[corner]);
   if (engine != nullptr) {
-    // The element of a slave node: the first that holds it (a node-based slave node may have
-    // none: no edge).
-    std::vector<Index> first_element(static_cast<std::size_t>(model.node_count()), NO_INDEX);
-    for (Index e = n_elements - 1; e >= 0; --e)
-      for (Index k = model.element_offsets[e]; k < model.element_offsets[e + 1]; ++k)
-        first_element[model.element_nodes[k]] = e;
     const contact::BroadPhase& broad = engine->broad_phase();
     const std::vector<Index>& slaves = engine->domain().slaves().nodes();
     const auto& faces = engine->domain().faces();
@@ -63,7 +66,7 @@ partition::MeshPartition partition_model(const Model& model, const RigidBodies& 
         if (e == NO_INDEX) continue;
         for (const Index f : broad.candidates(s))
           if (faces[f].element != NO_INDEX && faces[f].element != e)
-            contact_edges.emplace_back(e, faces[f].element);
+            extra_edges.emplace_back(e, faces[f].element);
       }
   }
 
@@ -75,17 +78,17 @@ partition::MeshPartition partition_model(const Model& model, const RigidBodies& 
   input.coordinates = &model.coordinates;
   input.element_group = element_body;
   input.node_group = rigid.node_body();
-  input.extra_edges = contact_edges;
+  input.extra_edges = extra_edges;
   return partition::partition_mesh(input, parts, method);
 }
 
-void report_partition(const Model& model, const RigidBodies& rigid,
+void report_partition(const Model& model, const RigidBodies& rigid, const Ties& ties,
                       const contact::ContactEngine* engine, int parts, partition::Method method,
                       const std::string& note, OutputSink& sink) {
   if (parts < 2) return;
   if (!note.empty()) sink.message(Severity::Info, note);
   const auto start = std::chrono::steady_clock::now();
-  const partition::MeshPartition p = partition_model(model, rigid, engine, parts, method);
+  const partition::MeshPartition p = partition_model(model, rigid, ties, engine, parts, method);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (const std::string& line : partition::partition_report(p, seconds))

@@ -11,6 +11,7 @@
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/rigid_bodies.hpp"
+#include "solver/ties.hpp"
 
 namespace xpl {
 
@@ -22,15 +23,16 @@ namespace xpl {
 Real element_cost(const Model& model, Index e, bool rigid);
 
 /// The model's partition into `parts` with `method`: element costs, rigid bodies (`rigid`)
-/// whole, and an edge between the element of each slave node and the element of each master
-/// face the t = 0 broad phase of `engine` lists for it (null: no contact).
+/// whole, an edge between the element of each slave node and the element of each master
+/// face the t = 0 broad phase of `engine` lists for it (null: no contact), and one between
+/// the element of each tied slave node and those of its master corners (`ties`).
 partition::MeshPartition partition_model(const Model& model, const RigidBodies& rigid,
-                                         const contact::ContactEngine* engine, int parts,
-                                         partition::Method method);
+                                         const Ties& ties, const contact::ContactEngine* engine,
+                                         int parts, partition::Method method);
 
 /// partition_model() timed, its report into the .msg (Info) after `note` (when not empty),
 /// when parts > 1; nothing else.
-void report_partition(const Model& model, const RigidBodies& rigid,
+void report_partition(const Model& model, const RigidBodies& rigid, const Ties& ties,
                       const contact::ContactEngine* engine, int parts, partition::Method method,
                       const std::string& note, OutputSink& sink);
 
