@@ -10,7 +10,7 @@ shift
 parts="${PARTS:-2 3 4 8}"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
-echo "deck,elements,parts,method,imbalance,interface_nodes,cut_edges,graph_edges,seconds"
+echo "deck,elements,parts,method,imbalance,interface_nodes,cut_edges,graph_edges,cut_pairs,pairs,seconds"
 for deck in "$@"; do
   job="$(basename "$deck" .inp)"
   for n in $parts; do
@@ -19,6 +19,6 @@ for deck in "$@"; do
     line="$(grep -h ' partition: [0-9]* parts' "$out/$job/$job.msg" || true)"
     elements="$(grep -h ' partition: part ' "$out/$job/$job.msg" |
       awk '{ s += $4 } END { print s }')"
-    echo "$line" | sed -E "s/^ *partition: ([0-9]+) parts by ([A-Za-z]+) in ([0-9.]+) s: imbalance ([0-9.]+) .*, ([0-9]+) interface nodes, ([0-9]+) of ([0-9]+) graph edges cut/$job,$elements,\1,\2,\4,\5,\6,\7,\3/"
+    echo "$line" | sed -E "s/^ *partition: ([0-9]+) parts by ([A-Za-z]+) in ([0-9.]+) s: imbalance ([0-9.]+) .*, ([0-9]+) interface nodes, ([0-9]+) of ([0-9]+) graph edges cut, ([0-9]+) of ([0-9]+) contact.*/$job,$elements,\1,\2,\4,\5,\6,\7,\8,\9,\3/"
   done
 done

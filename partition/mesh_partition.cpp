@@ -62,6 +62,16 @@ MeshPartition partition_mesh(const PartitionInput& input, int parts, Method meth
         if (vertex_part[v] != vertex_part[graph.neighbours[k]]) ++p.cut_edges;
       }
 
+  std::vector<std::pair<Index, Index>> extra;
+  for (const auto& [a, b] : input.extra_edges)
+    if (a != b && a >= 0 && b >= 0 && a < n_elements && b < n_elements)
+      extra.emplace_back(std::min(a, b), std::max(a, b));
+  std::sort(extra.begin(), extra.end());
+  extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+  p.extra_pairs = static_cast<long>(extra.size());
+  for (const auto& [a, b] : extra)
+    if (p.element_part[a] != p.element_part[b]) ++p.cut_extra_pairs;
+
   // Parts of each node: (node, part) pairs, sorted and unique.
   std::vector<std::pair<Index, int>> uses;
   uses.reserve(input.element_nodes.size());
@@ -114,9 +124,10 @@ std::vector<std::string> partition_report(const MeshPartition& p, double seconds
   char text[256];
   std::snprintf(text, sizeof text,
                 "partition: %d parts by %s in %.3f s: imbalance %.3f (largest part weight / "
-                "mean), %zu interface nodes, %ld of %ld graph edges cut",
+                "mean), %zu interface nodes, %ld of %ld graph edges cut, %ld of %ld contact/tie "
+                "element pairs across parts",
                 p.parts, method_name(p.method), seconds, p.imbalance, p.interface_nodes.size(),
-                p.cut_edges, p.graph_edges);
+                p.cut_edges, p.graph_edges, p.cut_extra_pairs, p.extra_pairs);
   lines.emplace_back(text);
   for (int k = 0; k < p.parts; ++k) {
     const PartStats& s = p.stats[k];

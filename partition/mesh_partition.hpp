@@ -70,6 +70,10 @@ struct MeshPartition {
   /// Graph edges cut (element pairs in different parts, contact edges included), for quality.
   long cut_edges = 0;
   long graph_edges = 0;  ///< undirected edges of the (contracted) element graph
+  /// Distinct element pairs of the input's extra edges (contact, tie partners; self pairs
+  /// left out) and how many of them lie across parts: what the contact exchange will carry.
+  long extra_pairs = 0;
+  long cut_extra_pairs = 0;
 };
 
 /// Splits the elements of `input` into `parts` (≥ 1) parts with `method`. Throws

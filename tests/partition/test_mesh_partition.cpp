@@ -126,6 +126,7 @@ TEST_CASE("bisection of a bar into two cuts across its length at the middle", "[
   CHECK(p.interface_nodes == std::vector<Index>{5, 16, 27, 38});
   CHECK(p.imbalance == 1.0);
   CHECK(p.cut_edges == 1);
+  CHECK(p.extra_pairs == 0);
 }
 
 TEST_CASE("a rigid body stays on one part and owns its reference node", "[partition]") {
@@ -153,7 +154,7 @@ TEST_CASE("a rigid body stays on one part and owns its reference node", "[partit
 
 TEST_CASE("the same input gives the same partition", "[partition]") {
   Block b(9, 7, 6);
-  b.edges = {{0, 300}, {5, 377}, {100, 12}, {100, 12}, {3, 3}};
+  b.edges = {{0, 300}, {5, 377}, {100, 12}, {12, 100}, {3, 3}};
   for (const Method method : methods())
     for (const int parts : {2, 3, 5}) {
       CAPTURE(partition::method_name(method), parts);
@@ -164,6 +165,12 @@ TEST_CASE("the same input gives the same partition", "[partition]") {
         CHECK(again.node_owner == first.node_owner);
       }
       check_consistent(b, first);
+      // Duplicates (either order) and self pairs count once / not at all.
+      CHECK(first.extra_pairs == 3);
+      long cut = 0;
+      for (const auto& [x, y] : {std::pair<Index, Index>{0, 300}, {5, 377}, {12, 100}})
+        cut += first.element_part[x] != first.element_part[y];
+      CHECK(first.cut_extra_pairs == cut);
     }
 }
 
@@ -177,6 +184,8 @@ TEST_CASE("contact edges pull partners together under METIS", "[partition]") {
   for (Index e = 0; e < b.element_count(); e += 8) b.edges.emplace_back(e, e + 7);
   const MeshPartition with = partition::partition_mesh(b.input(), 2, Method::Metis);
   CHECK(with.graph_edges > without.graph_edges);
+  CHECK(with.extra_pairs == 16);  // one per row of 8 elements
+  CHECK(without.extra_pairs == 0);
   check_consistent(b, with);
 }
 
