@@ -136,6 +136,8 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     sopts.threads = args.threads;
     sopts.energy_limit = args.energy_limit / 100.0;
     sopts.stop_signal = stop_signal;
+    sopts.partition_parts = args.partition;
+    sopts.partition_note = args.partition_note;
     if (!args.import.empty()) sopts.initial_state = &initial;
     ExplicitSolver solver(model, *files, sopts);
     if (args.check) {

@@ -27,6 +27,11 @@ struct JobArguments {
   double energy_limit = 10.0;    ///< --energy-limit, percent of the largest energy
   bool quiet = false;            ///< --quiet: no progress line and no summary on stdout
   std::filesystem::path import;  ///< --import: a result file to start from
+  /// --partition N, or the number of MPI ranks: report the partition into N parts in the .msg
+  /// (SolverOptions::partition_parts); 0: none.
+  int partition = 0;
+  /// A note for the .msg before the partition report (how the MPI ranks share the run).
+  std::string partition_note;
 };
 
 /// Runs one job; messages go to std::cerr, the progress and summary to stdout. Never throws:

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "job.hpp"
+#include "mpi_session.hpp"
 #include "subcommands.hpp"
 
 namespace {
@@ -23,10 +24,13 @@ namespace {
 /// runs on (libgomp itself fails to start a team of ~40,000 and crashes at 65,536).
 constexpr int MAX_THREADS = 1024;
 
+/// Most parts --partition accepts.
+constexpr int MAX_PARTS = 65536;
+
 /// `xpl run --help`: the run's synopsis and options.
 constexpr const char* RUN_USAGE =
     "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]\n"
-    "               [--energy-limit PERCENT]\n"
+    "               [--energy-limit PERCENT] [--partition N]\n"
     "\n"
     "Reads the deck, runs every step and writes JOB.h5, JOB.xdmf (ParaView), JOB.sta,\n"
     "JOB.msg and JOB.summary.json into DIR; JOB is the deck's file name without its\n"
@@ -42,6 +46,10 @@ constexpr const char* RUN_USAGE =
     "  --energy-limit PERCENT  the run fails (exit 3) when ETOTAL drifts by more than\n"
     "               PERCENT of the largest energy (default 10; a drift above 1 % is warned\n"
     "               of once in JOB.msg and JOB.sta)\n"
+    "  --partition N  report in JOB.msg how the model would be split into N parts for a\n"
+    "               distributed run (elements, owned and interface nodes, imbalance per\n"
+    "               part); the run itself is unchanged. Under mpirun -np N (a build with\n"
+    "               XPL_MPI=ON) N is the number of ranks\n"
     "A run holds DIR/JOB.lck; a second run of the job in DIR is refused. SIGINT/SIGTERM end\n"
     "the run after the current increment with its last frame written (status interrupted).\n"
     "OpenMP threads wait passively (OMP_WAIT_POLICY=PASSIVE: they sleep instead of\n"
@@ -53,20 +61,21 @@ constexpr const char* RUN_USAGE =
 
 /// `xpl check --help`.
 constexpr const char* CHECK_USAGE =
-    "usage: xpl check DECK.inp [-o DIR] [--quiet] [--import PREV.h5]\n"
+    "usage: xpl check DECK.inp [-o DIR] [--quiet] [--import PREV.h5] [--partition N]\n"
     "\n"
     "Data check: reads the deck, builds the model (contact search, initial overclosures),\n"
     "writes frame 0, JOB.sta, JOB.msg and JOB.summary.json into DIR and stops before the\n"
     "first increment. Every error in the deck is reported, as deck.inp:LINE: *KEYWORD: ...\n"
     "  -o DIR  directory for the result files (default: the current directory)\n"
     "  --quiet      no summary on the terminal\n"
+    "  --partition N  report in JOB.msg how the model would be split into N parts (as run)\n"
     "Exit codes: 0 checked, 1 deck or --import error, 2 usage, 4 I/O or internal error,\n"
     "  5 the job is already running.\n";
 
 /// `xpl --help`: every command's synopsis.
 constexpr const char* USAGE =
     "usage: xpl run DECK.inp [-o DIR] [--threads N] [--quiet] [--import PREV.h5]\n"
-    "               [--energy-limit PERCENT]\n"
+    "               [--energy-limit PERCENT] [--partition N]\n"
     "       xpl check DECK.inp [-o DIR]\n"
     "       xpl compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--ftol F] [--history]\n"
     "                   [--fields U,S,...] [--frames last|all] [--json]\n"
@@ -198,6 +207,19 @@ bool parse(int argc, char** argv, Arguments& args) {
                   << "' is not a finite number > 0 (a percentage, such as 10 for 10 %)\n";
         return false;
       }
+    } else if (w == "--partition") {
+      const std::string* v = value("a number of parts");
+      if (!v) return false;
+      try {
+        std::size_t used = 0;
+        args.partition = std::stoi(*v, &used);
+        if (used != v->size() || args.partition < 1 || args.partition > MAX_PARTS)
+          throw std::invalid_argument(*v);
+      } catch (const std::exception&) {
+        std::cerr << "xpl: --partition: '" << *v << "' is not a whole number from 1 to "
+                  << MAX_PARTS << "\n";
+        return false;
+      }
     } else if (w == "--import") {
       const std::string* v = value("a result file (.h5)");
       if (!v) return false;
@@ -262,6 +284,14 @@ int main(int argc, char** argv) {
     std::cout << (command == "check" ? CHECK_USAGE : RUN_USAGE);
     return 0;
   }
+  // mpirun -np N (XPL_MPI=ON): rank 0 runs the job, the others wait for its exit code
+  // (mpi_session.hpp); one rank runs exactly as without MPI.
+  const xpl::apps::MpiSession mpi(&argc, &argv);
+  if (mpi.rank() != 0) return mpi.share_exit_code(0);
+  if (mpi.size() > 1) {
+    if (args.partition == 0) args.partition = mpi.size();
+    args.partition_note = mpi.note();
+  }
   if (args.threads > omp_get_num_procs())
     std::cerr << "xpl: warning: --threads " << args.threads << " is more than the "
               << omp_get_num_procs()
@@ -269,5 +299,5 @@ int main(int argc, char** argv) {
                  "waits for a descheduled one (slower; the results are the same)\n";
   install_stop_handlers();
   args.check = command == "check";
-  return xpl::apps::run_job(args, &g_stop_signal);
+  return mpi.share_exit_code(xpl::apps::run_job(args, &g_stop_signal));
 }

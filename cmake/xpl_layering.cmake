@@ -6,7 +6,8 @@
 #
 #   common   <- everyone
 #   elements -> common                 contact -> common
-#   solver   -> elements, contact, common
+#   partition -> elements, contact, common   (it uses common only today)
+#   solver   -> partition, elements, contact, common
 #   io       -> solver, elements, contact, common   (io/deck, io/results: one rule for io/)
 #   apps     -> io and below, through the libraries they link
 #   tests    -> what the library they test exposes, plus their own folder

@@ -42,6 +42,9 @@ class ContactStage {
   void set_tied_nodes(std::vector<char> tied) { m_tied = std::move(tied); }
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
+  /// The engine of the current step (null without contact): its t = 0 candidate pairs feed
+  /// the partition (model_partition.hpp).
+  const contact::ContactEngine* engine() const { return m_engine.get(); }
 
   /// Contact forces at the state's positions subtracted from elements.force_internal();
   /// friction and penalty energies into state.energies. `dt_taken` is the increment just

@@ -16,6 +16,7 @@
 #include "solver/energy_check.hpp"
 #include "solver/increment_control.hpp"
 #include "solver/message_text.hpp"
+#include "solver/model_partition.hpp"
 #include "solver/output_driver.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/thread_team.hpp"
@@ -286,9 +287,11 @@ void ExplicitSolver::Impl::run_step(int step) {
   m_contact_energy.begin_step(m_state.increment);
   const Real period = m_model.steps[step].time_period;
   const Real step_start = m_state.time;
-  if (!m_started)
+  if (!m_started) {
     start_run(step, period);
-  else
+    report_partition(m_model, m_rigid, m_ties, m_contact.engine(), m_options.partition_parts,
+                     m_options.partition_method, m_options.partition_note, m_sink);
+  } else
     m_next = carry_increment(m_next, period);
   m_increment.report_start(step, m_next);
   m_output.note_short_intervals(m_next.dt);
@@ -443,6 +446,8 @@ RunSummary ExplicitSolver::Impl::check() {
     begin_step(0);
     ElementTotals totals;
     m_next = evaluate_forces(Pass::Check, 0.0, m_model.steps[0].time_period, totals);
+    report_partition(m_model, m_rigid, m_ties, m_contact.engine(), m_options.partition_parts,
+                     m_options.partition_method, m_options.partition_note, m_sink);
     m_sink.message(Severity::Info, "initial stable increment " + format_real(m_next.dt) +
                                        " s (element " + std::to_string(m_critical_id) +
                                        "), governed by " + cause_text(m_next.cause));

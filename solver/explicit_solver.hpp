@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/timer.hpp"
+#include "partition/mesh_partition.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/state.hpp"
@@ -56,6 +57,15 @@ struct SolverOptions {
   /// Set to a signal number by a signal handler (not owned; may be null): the time loop
   /// checks it once per increment and ends the run there as interrupted, last frame written.
   const volatile std::sig_atomic_t* stop_signal = nullptr;
+  /// Parts of the domain decomposition (issue 37): when > 1, the model is partitioned once
+  /// after the t = 0 contact search (in a data check: after the initial-overclosure pass,
+  /// whose search is the t = 0 one when the domain has overclosures to look for) and the
+  /// partition reported in the .msg (solver/model_partition.hpp); the run itself is not
+  /// distributed yet.
+  int partition_parts = 0;
+  partition::Method partition_method = partition::Method::Automatic;
+  /// A line for the .msg before the partition report (how MPI ranks share the run), or empty.
+  std::string partition_note;
 };
 
 /// What a finished run reports.

@@ -77,6 +77,15 @@ class Ties {
   /// against the tolerance), and ADJUST=YES moving slave nodes by more than the size of the
   /// master face they bind to (with the largest move).
   const std::vector<std::string>& warnings() const { return m_warnings; }
+  /// Every (slave node, master corner node) a binding joins, in binding order: the partition
+  /// keeps them on one part where it can (solver/model_partition.hpp).
+  std::vector<std::pair<Index, Index>> slave_master_nodes() const {
+    std::vector<std::pair<Index, Index>> pairs;
+    for (const Binding& b : m_bindings)
+      for (const Index corner : b.corner)
+        if (corner != NO_INDEX) pairs.emplace_back(b.slave, corner);
+    return pairs;
+  }
 
  private:
   struct Binding {
