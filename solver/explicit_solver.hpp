@@ -10,6 +10,7 @@
 #include "common/timer.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
+#include "solver/run_summary.hpp"
 #include "solver/state.hpp"
 
 namespace xpl {
@@ -56,19 +57,6 @@ struct SolverOptions {
   /// Set to a signal number by a signal handler (not owned; may be null): the time loop
   /// checks it once per increment and ends the run there as interrupted, last frame written.
   const volatile std::sig_atomic_t* stop_signal = nullptr;
-};
-
-/// What a finished run reports.
-struct RunSummary {
-  long increments = 0;
-  Real final_time = 0.0;
-  double element_cycles_per_second = 0.0;  ///< elements × increments / time-loop wall time
-  PhaseTimers timers;
-  Energies energies;    ///< at the end
-  int stop_signal = 0;  ///< the signal that interrupted the run (status interrupted), or 0
-  /// The largest |ETOTAL drift| of the run as a fraction of the largest energy, and when.
-  Real energy_drift = 0.0;
-  Real energy_drift_time = 0.0;  ///< s
 };
 
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.

@@ -8,10 +8,10 @@
 #include "solver/central_difference.hpp"
 #include "solver/contact_stage.hpp"
 #include "solver/element_set.hpp"
-#include "solver/explicit_solver.hpp"
 #include "solver/model.hpp"
 #include "solver/output_schedule.hpp"
 #include "solver/output_sink.hpp"
+#include "solver/run_summary.hpp"
 #include "solver/state.hpp"
 
 namespace xpl {
