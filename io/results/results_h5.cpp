@@ -9,8 +9,6 @@
 #include <system_error>
 #include <thread>
 
-#include "elements/lane_state.hpp"
-#include "elements/quad_shell_geometry.hpp"
 #include "io/results/results_mesh.hpp"
 #include "solver/output_variables.hpp"
 
@@ -32,7 +30,7 @@ void check_rows(const NodalVectors& field, Index n_nodes, const char* name) {
 
 void check_size(const std::vector<Real>& values, std::size_t expected, const char* name) {
   if (values.size() != expected) {
-    throw std::invalid_argument(std::string("write_frame: state.") + name + " has " +
+    throw std::invalid_argument(std::string("write_frame: frame field ") + name + " has " +
                                 std::to_string(values.size()) + " values; expected " +
                                 std::to_string(expected));
   }
@@ -40,8 +38,8 @@ void check_size(const std::vector<Real>& values, std::size_t expected, const cha
 
 /// Throws std::invalid_argument, before anything is written, if a field the frame needs does
 /// not have the size of the model.
-void check_frame(const State& state, const FrameRequest& what, Index n_nodes,
-                 std::size_t n_elements, bool shells, bool plastic_shells) {
+void check_frame(const State& state, const FrameFields& fields, const FrameRequest& what,
+                 Index n_nodes, std::size_t n_elements, bool shells, bool plastic_shells) {
   if (what.displacement) {
     check_rows(state.reference, n_nodes, "reference");
     check_rows(state.position, n_nodes, "position");
@@ -49,35 +47,40 @@ void check_frame(const State& state, const FrameRequest& what, Index n_nodes,
   if (what.velocity) check_rows(state.velocity, n_nodes, "V");
   if (what.acceleration) check_rows(state.acceleration, n_nodes, "A");
   if (what.reaction) check_rows(state.reaction, n_nodes, "RF");
-  if (what.stress) check_size(state.stress, n_elements * 6, "stress");
-  if (what.volume) check_size(state.volume, n_elements, "volume");
-  if (what.plastic_strain) check_size(state.peeq, n_elements, "peeq");
+  if (what.stress) {
+    check_size(fields.stress, n_elements * 6, "stress");
+    check_size(fields.stress_global, n_elements * 6, "stress_global");
+  }
+  if (what.volume) check_size(fields.volume, n_elements, "volume");
+  if (what.plastic_strain) check_size(fields.peeq, n_elements, "peeq");
   if (what.plastic_strain && plastic_shells) {
-    check_size(state.peeq_bottom, n_elements, "peeq_bottom");
-    check_size(state.peeq_middle, n_elements, "peeq_middle");
-    check_size(state.peeq_top, n_elements, "peeq_top");
+    check_size(fields.peeq_bottom, n_elements, "peeq_bottom");
+    check_size(fields.peeq_middle, n_elements, "peeq_middle");
+    check_size(fields.peeq_top, n_elements, "peeq_top");
   }
   if (!shells) return;
   if (what.displacement) check_rows(state.rotation, n_nodes, "UR");
   if (what.velocity) check_rows(state.angular_velocity, n_nodes, "VR");
   if (what.reaction) check_rows(state.reaction_moment, n_nodes, "RM");
   if (what.stress) {
-    check_size(state.stress_bottom, n_elements * 6, "stress_bottom");
-    check_size(state.stress_top, n_elements * 6, "stress_top");
+    check_size(fields.stress_bottom, n_elements * 6, "stress_bottom");
+    check_size(fields.stress_top, n_elements * 6, "stress_top");
+    check_size(fields.stress_bottom_global, n_elements * 6, "stress_bottom_global");
+    check_size(fields.stress_top_global, n_elements * 6, "stress_top_global");
   }
-  if (what.thickness) check_size(state.thickness, n_elements, "thickness");
+  if (what.thickness) check_size(fields.thickness, n_elements, "thickness");
 }
 
-void check_contact(const State& state, const FrameRequest& what, Index n_nodes) {
+void check_contact(const FrameFields& fields, const FrameRequest& what, Index n_nodes) {
   const auto n = static_cast<std::size_t>(n_nodes);
   if (what.contact_stress) {
-    check_size(state.contact_pressure, n, "contact_pressure");
-    check_rows(state.contact_shear, n_nodes, "CSHEAR");
+    check_size(fields.contact_pressure, n, "contact_pressure");
+    check_rows(fields.contact_shear, n_nodes, "CSHEAR");
   }
-  if (what.contact_status) check_size(state.contact_status, n, "contact_status");
+  if (what.contact_status) check_size(fields.contact_status, n, "contact_status");
   if (what.contact_force) {
-    check_rows(state.contact_normal_force, n_nodes, "CNORMF");
-    check_rows(state.contact_shear_force, n_nodes, "CSHEARF");
+    check_rows(fields.contact_normal_force, n_nodes, "CNORMF");
+    check_rows(fields.contact_shear_force, n_nodes, "CSHEARF");
   }
 }
 
@@ -102,18 +105,19 @@ std::vector<double> mises_rows(const std::vector<Real>& stress) {
 
 /// Largest von Mises stress through the thickness: of S_SNEG, S and S_SPOS on shells, of S on
 /// solids (whose S_SNEG and S_SPOS rows are NaN).
-std::vector<double> mises_max(const Model& model, const State& state) {
-  std::vector<double> out = mises_rows(state.stress);
+std::vector<double> mises_max(const Model& model, const FrameFields& fields) {
+  std::vector<double> out = mises_rows(fields.stress);
   for (std::size_t e = 0; e < out.size(); ++e) {
     if (!is_shell(model.element_types[e])) continue;
     out[e] = std::max(
-        {out[e], von_mises(&state.stress_bottom[e * 6]), von_mises(&state.stress_top[e * 6])});
+        {out[e], von_mises(&fields.stress_bottom[e * 6]), von_mises(&fields.stress_top[e * 6])});
   }
   return out;
 }
 
-/// Writes the frame dataset of `v` from the state.
-void write_variable(hid_t group, const OutputVariable& v, const Model& model, const State& state) {
+/// Writes the frame dataset of `v` from the state and the frame fields.
+void write_variable(hid_t group, const OutputVariable& v, const Model& model, const State& state,
+                    const FrameFields& fields) {
   switch (v.id) {
     case OutputId::U:
       return write_nodal(group, v, state.position - state.reference);
@@ -130,41 +134,41 @@ void write_variable(hid_t group, const OutputVariable& v, const Model& model, co
     case OutputId::RM:
       return write_nodal(group, v, state.reaction_moment);
     case OutputId::S:
-      return write_values(group, v, state.stress);
+      return write_values(group, v, fields.stress);
     case OutputId::EVOL:
-      return write_values(group, v, state.volume);
+      return write_values(group, v, fields.volume);
     case OutputId::MISES:
-      return write_values(group, v, mises_rows(state.stress));
+      return write_values(group, v, mises_rows(fields.stress));
     case OutputId::MISES_SNEG:
-      return write_values(group, v, mises_rows(state.stress_bottom));
+      return write_values(group, v, mises_rows(fields.stress_bottom));
     case OutputId::MISES_SPOS:
-      return write_values(group, v, mises_rows(state.stress_top));
+      return write_values(group, v, mises_rows(fields.stress_top));
     case OutputId::MISES_MAX:
-      return write_values(group, v, mises_max(model, state));
+      return write_values(group, v, mises_max(model, fields));
     case OutputId::STH:
-      return write_values(group, v, state.thickness);
+      return write_values(group, v, fields.thickness);
     case OutputId::PEEQ:
-      return write_values(group, v, state.peeq);
+      return write_values(group, v, fields.peeq);
     case OutputId::S_SNEG:
-      return write_values(group, v, state.stress_bottom);
+      return write_values(group, v, fields.stress_bottom);
     case OutputId::S_SPOS:
-      return write_values(group, v, state.stress_top);
+      return write_values(group, v, fields.stress_top);
     case OutputId::PEEQ_SNEG:
-      return write_values(group, v, state.peeq_bottom);
+      return write_values(group, v, fields.peeq_bottom);
     case OutputId::PEEQ_SMID:
-      return write_values(group, v, state.peeq_middle);
+      return write_values(group, v, fields.peeq_middle);
     case OutputId::PEEQ_SPOS:
-      return write_values(group, v, state.peeq_top);
+      return write_values(group, v, fields.peeq_top);
     case OutputId::CPRESS:
-      return write_values(group, v, state.contact_pressure);
+      return write_values(group, v, fields.contact_pressure);
     case OutputId::CSHEAR:
-      return write_nodal(group, v, state.contact_shear);
+      return write_nodal(group, v, fields.contact_shear);
     case OutputId::CSTATUS:
-      return write_values(group, v, state.contact_status);
+      return write_values(group, v, fields.contact_status);
     case OutputId::CNORMF:
-      return write_nodal(group, v, state.contact_normal_force);
+      return write_nodal(group, v, fields.contact_normal_force);
     case OutputId::CSHEARF:
-      return write_nodal(group, v, state.contact_shear_force);
+      return write_nodal(group, v, fields.contact_shear_force);
     case OutputId::CFN:
     case OutputId::CFS:
       break;
@@ -192,71 +196,35 @@ void describe(hid_t group, const std::string& name, const std::string& component
   h5::set_string_attribute(data.get(), "description", std::string(description));
 }
 
-/// Component order of the XDMF copies of a tensor: VTK's Tensor6 (XX YY ZZ XY YZ XZ), i.e.
-/// the Abaqus rows S11 S22 S33 S12 S23 S13.
-constexpr int VTK_ORDER[6] = {0, 1, 2, 3, 5, 4};
-
-/// One stress row (Abaqus order) in VTK order.
-void to_vtk(const Real* abaqus, Real* vtk) {
-  for (int c = 0; c < 6; ++c) vtk[c] = abaqus[VTK_ORDER[c]];
-}
-
-/// The stress row `local` (Abaqus order, axes e1 e2 e3) in global axes (Abaqus order):
-/// σ_ij = Σ_ab E_ai σ_ab E_bj with E the rows e1, e2, e3.
-void to_global(const elements::QuadFrame<Real>& f, const Real* local, Real* global) {
-  const Real E[3][3] = {
-      {f.e1.x, f.e1.y, f.e1.z}, {f.e2.x, f.e2.y, f.e2.z}, {f.e3.x, f.e3.y, f.e3.z}};
-  const Real L[3][3] = {{local[0], local[3], local[4]},
-                        {local[3], local[1], local[5]},
-                        {local[4], local[5], local[2]}};
-  Real G[3][3] = {};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) G[i][j] += E[a][i] * L[a][b] * E[b][j];
-  const Real out[6] = {G[0][0], G[1][1], G[2][2], G[0][1], G[0][2], G[1][2]};
-  std::copy(out, out + 6, global);
-}
-
 /// Writes /xdmf/NNNNNN (`path`): the tensors the XDMF file shows, in VTK order, in global axes
 /// (S, S_SNEG, S_SPOS) and, on shell models, the shells' local-axes ones (S_LOCAL, ...; NaN
 /// rows for solids). The datasets of /frames/NNNNNN keep the Abaqus order; the copies live
-/// outside the frame group so that a frame holds datasets only, as before.
+/// outside the frame group so that a frame holds datasets only, as before. The global-axis
+/// copies come with the frame (FrameFields::stress_global, ...).
 void write_xdmf_tensors(hid_t file, const std::string& path, const Model& model,
-                        const State& state) {
+                        const FrameFields& fields) {
   const h5::Handle group = h5::require_group(file, path);
   const bool shells = model.has_shells();
   const auto n = static_cast<std::size_t>(model.element_count());
   struct Tensor {
     const char* name;
-    const std::vector<Real>* rows;
+    const std::vector<Real>* rows;    ///< Abaqus order, local axes on shells
+    const std::vector<Real>* global;  ///< global axes, VTK order
   };
-  const Tensor tensors[] = {
-      {"S", &state.stress}, {"S_SNEG", &state.stress_bottom}, {"S_SPOS", &state.stress_top}};
+  const Tensor tensors[] = {{"S", &fields.stress, &fields.stress_global},
+                            {"S_SNEG", &fields.stress_bottom, &fields.stress_bottom_global},
+                            {"S_SPOS", &fields.stress_top, &fields.stress_top_global}};
   const std::string global_names = "XX,YY,ZZ,XY,YZ,XZ";
   for (const Tensor& t : tensors) {
-    if (!shells && t.rows != &state.stress) continue;
-    std::vector<double> global(n * 6), local;
-    if (shells) local.assign(n * 6, std::nan(""));
-    for (std::size_t e = 0; e < n; ++e) {
-      const Real* row = &(*t.rows)[e * 6];
-      const auto type = model.element_types[e];
-      if (!is_shell(type)) {
-        to_vtk(row, &global[e * 6]);
-        continue;
-      }
-      const Index* nodes = model.nodes_of(static_cast<Index>(e));
-      elements::V3<Real> p[4];
-      for (int k = 0; k < 4; ++k)
-        p[k] = {state.position(nodes[k], 0), state.position(nodes[k], 1),
-                state.position(nodes[k], 2)};
-      Real rotated[6];
-      to_global(elements::quad_frame(p), row, rotated);
-      to_vtk(rotated, &global[e * 6]);
-      to_vtk(row, &local[e * 6]);
+    if (!shells && t.rows != &fields.stress) continue;
+    std::vector<double> local;
+    if (shells) {
+      local.assign(n * 6, std::nan(""));
+      for (std::size_t e = 0; e < n; ++e)
+        if (is_shell(model.element_types[e])) to_vtk(&(*t.rows)[e * 6], &local[e * 6]);
     }
     const std::string name = t.name;
-    h5::write_real(group.get(), name, global, {n, 6});
+    h5::write_real(group.get(), name, *t.global, {n, 6});
     describe(group.get(), name, global_names, "Pa",
              "copy of " + name + " for the XDMF file: global axes, VTK order");
     if (!shells) continue;
@@ -382,12 +350,13 @@ void ResultsH5::append_history(Real time, std::span<const Real> values) {
 }
 
 std::string ResultsH5::write_frame(const Model& model, const State& state,
-                                   const FrameRequest& what) {
+                                   const FrameFields& fields, const FrameRequest& what) {
   // A scan of one byte per element: negligible next to the fields of a frame.
   const bool shells = model.has_shells();
   const auto n_elements = static_cast<std::size_t>(model.element_count());
-  check_frame(state, what, model.node_count(), n_elements, shells, model.has_plastic_shells());
-  check_contact(state, what, model.node_count());
+  check_frame(state, fields, what, model.node_count(), n_elements, shells,
+              model.has_plastic_shells());
+  check_contact(fields, what, model.node_count());
   char name[16];
   std::snprintf(name, sizeof name, "%06d", m_frames);
   with_file([&](hid_t file) {
@@ -404,16 +373,16 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
     h5::set_int64_attribute(g, "increment", state.increment);
 
     for (const OutputVariable* v : frame_variables(what, output_scope(model))) {
-      write_variable(g, *v, model, state);
+      write_variable(g, *v, model, state, fields);
       describe(g, std::string(v->name), component_list(*v), m_units.label(v->unit), v->description);
     }
-    if (what.stress) write_xdmf_tensors(file, std::string("xdmf/") + name, model, state);
-    if (what.stress && !state.hourglass_state.empty()) {
+    if (what.stress) write_xdmf_tensors(file, std::string("xdmf/") + name, model, fields);
+    if (what.stress && !fields.hourglass_state.empty()) {
       // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
       // --import (io/results/import_state.hpp).
-      const auto width = static_cast<std::size_t>(elements::HOURGLASS_STATE_WIDTH);
-      check_size(state.hourglass_state, n_elements * width, "hourglass_state");
-      h5::write_real(g, "HGSTATE", state.hourglass_state, {n_elements, width});
+      const auto width = static_cast<std::size_t>(FrameFields::HOURGLASS_WIDTH);
+      check_size(fields.hourglass_state, n_elements * width, "hourglass_state");
+      h5::write_real(g, "HGSTATE", fields.hourglass_state, {n_elements, width});
     }
   });
   ++m_frames;

@@ -48,7 +48,8 @@ class ResultsH5 {
   void append_history(Real time, std::span<const Real> values);
   /// Writes /frames/NNNNNN and returns its name ("000000"). On shell models U, V, RF, S come
   /// with UR, VR, RM, S_SNEG + S_SPOS; STH is written only on shell models.
-  std::string write_frame(const Model& model, const State& state, const FrameRequest& what);
+  std::string write_frame(const Model& model, const State& state, const FrameFields& fields,
+                          const FrameRequest& what);
   /// Writes a setup table as a group of column datasets (OutputSink::write_table).
   void write_table(const ResultTable& table);
   /// Writes pending history rows, the final status and error text. A run that
