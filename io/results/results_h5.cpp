@@ -379,7 +379,7 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
     if (what.stress) write_xdmf_tensors(file, std::string("xdmf/") + name, model, fields);
     if (what.stress && !fields.hourglass_state.empty()) {
       // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
-      // --import (io/results/import_state.hpp).
+      // --import (io/result_tools/import_state.hpp).
       const auto width = static_cast<std::size_t>(FrameFields::HOURGLASS_WIDTH);
       check_size(fields.hourglass_state, n_elements * width, "hourglass_state");
       h5::write_real(g, "HGSTATE", fields.hourglass_state, {n_elements, width});

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/results/h5_handles.hpp"
-#include "io/results/json_value.hpp"
+#include "io/result_tools/h5_handles.hpp"
+#include "io/result_tools/json_value.hpp"
 #include "io/results/results_history.hpp"
 #include "io/results/xdmf_writer.hpp"
 #include "solver/output_sink.hpp"

@@ -14,7 +14,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "io/results/h5_handles.hpp"
+#include "io/result_tools/h5_handles.hpp"
 #include "solver/frame_fields.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"

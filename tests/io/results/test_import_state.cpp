@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "io/results/import_state.hpp"
+#include "io/result_tools/import_state.hpp"
 #include "io/results/result_files.hpp"
 #include "results/shell_fixture.hpp"
 

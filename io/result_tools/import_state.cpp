@@ -1,4 +1,4 @@
-#include "io/results/import_state.hpp"
+#include "io/result_tools/import_state.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <type_traits>
 #include <unordered_map>
 
-#include "io/results/h5_handles.hpp"
-#include "io/results/h5_reader.hpp"
+#include "io/result_tools/h5_handles.hpp"
+#include "io/result_tools/h5_reader.hpp"
 #include "solver/frame_fields.hpp"
 
 namespace xpl::io {
