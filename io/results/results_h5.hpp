@@ -10,14 +10,12 @@
 
 #include "io/result_tools/h5_handles.hpp"
 #include "io/result_tools/json_value.hpp"
+#include "io/results/results_frame.hpp"
 #include "io/results/results_history.hpp"
 #include "io/results/xdmf_writer.hpp"
 #include "solver/output_sink.hpp"
 
 namespace xpl::io {
-
-/// Von Mises stress of one stress row (S11 S22 S33 S12 S13 S23), Pa.
-Real von_mises(const Real* s);
 
 /// The HDF5 result file of one job. Every write (the mesh, a frame, a block of history rows,
 /// a table, the status) opens JOB.h5, writes and closes it again with every handle, so that
