@@ -21,7 +21,7 @@
 #include "common/error.hpp"
 #include "elements/simd.hpp"
 #include "io/deck/deck_reader.hpp"
-#include "io/results/json_value.hpp"
+#include "io/result_tools/json_value.hpp"
 #include "solver/explicit_solver.hpp"
 #include "subcommands.hpp"
 
@@ -53,7 +53,7 @@ class NullSink : public OutputSink {
   void begin_run(const Model&) override {}
   void begin_step(const Model&, int) override {}
   void declare_history(const std::vector<HistorySeries>&) override {}
-  void write_frame(const Model&, const State&, const FrameRequest&) override {}
+  void write_frame(const Model&, const State&, const FrameFields&, const FrameRequest&) override {}
   void append_history(Real, std::span<const Real>) override {}
   void status(const StatusLine&) override {}
   void message(Severity, const std::string&) override {}

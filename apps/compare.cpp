@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "io/results/compare_values.hpp"
-#include "io/results/result_compare.hpp"
+#include "io/result_tools/compare_values.hpp"
+#include "io/result_tools/result_compare.hpp"
 #include "subcommands.hpp"
 
 namespace xpl::apps {

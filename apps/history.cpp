@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "io/results/compare_values.hpp"
-#include "io/results/h5_reader.hpp"
+#include "io/result_tools/compare_values.hpp"
+#include "io/result_tools/h5_reader.hpp"
 #include "subcommands.hpp"
 
 namespace xpl::apps {

@@ -15,7 +15,7 @@
 
 #include "common/error.hpp"
 #include "io/deck/deck_reader.hpp"
-#include "io/results/import_state.hpp"
+#include "io/result_tools/import_state.hpp"
 #include "io/results/job_lock.hpp"
 #include "io/results/result_files.hpp"
 #include "solver/explicit_solver.hpp"

@@ -8,7 +8,11 @@
 #   elements -> common                 contact -> common
 #   partition -> elements, contact, common   (it uses common only today)
 #   solver   -> partition, elements, contact, common
-#   io       -> solver, elements, contact, common   (io/deck, io/results: one rule for io/)
+#   io       -> solver, partition, elements, contact, common   (io/deck)
+#               solver, common                      (io/results, io/result_tools: the solver's
+#                                                    types only; elements/ and contact/ reach
+#                                                    them through solver's headers, so only
+#                                                    the layering_sources test enforces it)
 #   apps     -> io and below, through the libraries they link
 #   tests    -> what the library they test exposes, plus their own folder
 #

@@ -347,13 +347,13 @@ void ContactStage::check_penalty(const ElementIncrement& elements, int step,
                      format_real(threshold) + " Pa/m would not");
 }
 
-void ContactStage::fill_output(State& state) const {
+void ContactStage::fill_output(FrameFields& frame) const {
   const Index n = m_model.node_count();
-  state.contact_pressure.assign(n, 0.0);
-  state.contact_status.assign(n, 0.0);
-  state.contact_shear = NodalVectors::Zero(n, 3);
-  state.contact_normal_force = NodalVectors::Zero(n, 3);
-  state.contact_shear_force = NodalVectors::Zero(n, 3);
+  frame.contact_pressure.assign(n, 0.0);
+  frame.contact_status.assign(n, 0.0);
+  frame.contact_shear = NodalVectors::Zero(n, 3);
+  frame.contact_normal_force = NodalVectors::Zero(n, 3);
+  frame.contact_shear_force = NodalVectors::Zero(n, 3);
   if (!m_engine) return;
   const contact::SlaveNodes& slaves = m_engine->domain().slaves();
   for (Index s = 0; s < slaves.size(); ++s) {
@@ -369,14 +369,14 @@ void ContactStage::fill_output(State& state) const {
     const Real area = slaves.areas()[s];
     const bool shell_node = point || m_engine->domain().slave_double_sided(s);
     const Real pressure = shell_node ? std::abs(along) : -along;
-    if (area > 0.0) state.contact_pressure[i] = pressure / area;
+    if (area > 0.0) frame.contact_pressure[i] = pressure / area;
     const auto own = m_engine->output_status(s);
-    state.contact_status[i] =
+    frame.contact_status[i] =
         own == contact::OutputStatus::Open ? 1.0 : static_cast<Real>(static_cast<int>(own));
     for (int c = 0; c < 3; ++c) {
-      if (area > 0.0) state.contact_shear(i, c) = ft[c] / area;
-      state.contact_normal_force(i, c) = fn[c];
-      state.contact_shear_force(i, c) = ft[c];
+      if (area > 0.0) frame.contact_shear(i, c) = ft[c] / area;
+      frame.contact_normal_force(i, c) = fn[c];
+      frame.contact_shear_force(i, c) = ft[c];
     }
   }
 }

@@ -72,8 +72,8 @@ class ContactStage {
   void check_penalty(const ElementIncrement& elements, int step,
                      const std::vector<Real>& inverse_mass) const;
 
-  /// Per-node contact pressure, status and forces into `state` (zero without contact).
-  void fill_output(State& state) const;
+  /// Per-node contact pressure, status and forces into `frame` (zero without contact).
+  void fill_output(FrameFields& frame) const;
   /// Appends the history columns of the contact pairs (CFN, CFS per pair) to `series`.
   void add_history_series(std::vector<HistorySeries>& series) const;
   /// Appends the current values of those columns to `row`, N.

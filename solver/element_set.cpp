@@ -390,44 +390,45 @@ void ElementSet::report_increment_limit(OutputSink& sink) {
                    format_real(e.seconds) + " s)");
 }
 
-void ElementSet::gather_output(State& state, const FrameRequest& what) const {
+void ElementSet::gather_output(const State& state, const FrameRequest& what,
+                               FrameFields& frame) const {
   if (what.plastic_strain) {
     // PEEQ of every element (0 where elastic); each block writes the rows of its elements.
-    state.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);
-    if (m_hex) m_hex->gather_plastic_strain(state.peeq);
-    if (m_hex8) m_hex8->gather_plastic_strain(state.peeq);
-    if (m_shell) m_shell->gather_plastic_strain(state.peeq);
+    frame.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);
+    if (m_hex) m_hex->gather_plastic_strain(frame.peeq);
+    if (m_hex8) m_hex8->gather_plastic_strain(frame.peeq);
+    if (m_shell) m_shell->gather_plastic_strain(frame.peeq);
     if (m_model.has_plastic_shells()) {
       // Per section point: NaN rows for solids and rigid elements, like S_SNEG and S_SPOS.
       const auto n = static_cast<std::size_t>(m_model.element_count());
       const Real nan = std::numeric_limits<Real>::quiet_NaN();
-      state.peeq_bottom.assign(n, nan);
-      state.peeq_middle.assign(n, nan);
-      state.peeq_top.assign(n, nan);
+      frame.peeq_bottom.assign(n, nan);
+      frame.peeq_middle.assign(n, nan);
+      frame.peeq_top.assign(n, nan);
       if (m_shell)
-        m_shell->gather_section_plastic_strain(state.peeq_bottom, state.peeq_middle,
-                                               state.peeq_top);
+        m_shell->gather_section_plastic_strain(frame.peeq_bottom, frame.peeq_middle,
+                                               frame.peeq_top);
     }
   }
   if (!what.stress && !what.volume && !what.thickness) return;
   // Element output arrays exist only in runs that write element output (P2).
   const auto n_elements = static_cast<std::size_t>(m_model.element_count());
-  state.stress.resize(n_elements * 6, 0.0);
-  state.volume.resize(n_elements, 0.0);
-  if (m_hex) m_hex->gather_output(state.stress, state.volume);
-  if (m_hex8) m_hex8->gather_output(state.stress, state.volume);
+  frame.stress.resize(n_elements * 6, 0.0);
+  frame.volume.resize(n_elements, 0.0);
+  if (m_hex) m_hex->gather_output(frame.stress, frame.volume);
+  if (m_hex8) m_hex8->gather_output(frame.stress, frame.volume);
   if (what.stress && has_hourglass_state()) {
-    state.hourglass_state.assign(n_elements * elements::HOURGLASS_STATE_WIDTH, 0.0);
-    if (m_hex) m_hex->gather_hourglass_state(state.hourglass_state);
-    if (m_shell) m_shell->gather_hourglass_state(state.hourglass_state);
+    frame.hourglass_state.assign(n_elements * elements::HOURGLASS_STATE_WIDTH, 0.0);
+    if (m_hex) m_hex->gather_hourglass_state(frame.hourglass_state);
+    if (m_shell) m_shell->gather_hourglass_state(frame.hourglass_state);
   }
   if (m_shell) {
     const Real nan = std::numeric_limits<Real>::quiet_NaN();
-    state.stress_bottom.resize(n_elements * 6, nan);
-    state.stress_top.resize(n_elements * 6, nan);
-    state.thickness.resize(n_elements, nan);
-    m_shell->gather_output(state.position, state.stress, state.stress_bottom, state.stress_top,
-                           state.thickness);
+    frame.stress_bottom.resize(n_elements * 6, nan);
+    frame.stress_top.resize(n_elements * 6, nan);
+    frame.thickness.resize(n_elements, nan);
+    m_shell->gather_output(state.position, frame.stress, frame.stress_bottom, frame.stress_top,
+                           frame.thickness);
   }
 }
 

@@ -83,7 +83,7 @@ class ElementSet {
   /// accumulated hourglass resultants), written with S and restored by set_hourglass_state.
   bool has_hourglass_state() const { return m_hex != nullptr || m_shell != nullptr; }
   /// Sets imported hourglass state (n_elements × elements::HOURGLASS_STATE_WIDTH, the rows
-  /// gather_output writes into State::hourglass_state).
+  /// gather_output writes into FrameFields::hourglass_state).
   void set_hourglass_state(std::span<const Real> rows);
   /// Sets the imported current thickness of the shells (STH, n_elements, m).
   void set_shell_thickness(std::span<const Real> thickness);
@@ -106,7 +106,7 @@ class ElementSet {
 
   /// Element output requested by `what` (stress, section stresses, volume, thickness, PEEQ) into
   /// `state`; the arrays are allocated on first use (n_elements rows).
-  void gather_output(State& state, const FrameRequest& what) const;
+  void gather_output(const State& state, const FrameRequest& what, FrameFields& frame) const;
 
   /// Internal nodal forces of the increment (n_nodes × 3), N; contact adds its forces here.
   NodalVectors& force_internal() { return m_force_internal; }

@@ -11,6 +11,7 @@
 #include "partition/mesh_partition.hpp"
 #include "solver/model.hpp"
 #include "solver/output_sink.hpp"
+#include "solver/run_summary.hpp"
 #include "solver/state.hpp"
 
 namespace xpl {
@@ -66,19 +67,6 @@ struct SolverOptions {
   partition::Method partition_method = partition::Method::Automatic;
   /// A line for the .msg before the partition report (how MPI ranks share the run), or empty.
   std::string partition_note;
-};
-
-/// What a finished run reports.
-struct RunSummary {
-  long increments = 0;
-  Real final_time = 0.0;
-  double element_cycles_per_second = 0.0;  ///< elements × increments / time-loop wall time
-  PhaseTimers timers;
-  Energies energies;    ///< at the end
-  int stop_signal = 0;  ///< the signal that interrupted the run (status interrupted), or 0
-  /// The largest |ETOTAL drift| of the run as a fraction of the largest energy, and when.
-  Real energy_drift = 0.0;
-  Real energy_drift_time = 0.0;  ///< s
 };
 
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.

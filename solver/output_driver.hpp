@@ -8,10 +8,11 @@
 #include "solver/central_difference.hpp"
 #include "solver/contact_stage.hpp"
 #include "solver/element_set.hpp"
-#include "solver/explicit_solver.hpp"
+#include "solver/frame_fields.hpp"
 #include "solver/model.hpp"
 #include "solver/output_schedule.hpp"
 #include "solver/output_sink.hpp"
+#include "solver/run_summary.hpp"
 #include "solver/state.hpp"
 
 namespace xpl {
@@ -46,9 +47,10 @@ class OutputDriver {
   /// Whether a history row is due at `step_time` (and the step has history output).
   bool history_due(Real step_time, bool last);
 
-  /// One field frame of `what`: element output, contact output and rotations gathered into
-  /// `state` first. Once a frame has written U, every later frame writes it too (a frame of
-  /// another request without U would be drawn undeformed in ParaView).
+  /// One field frame of `what`: element output, contact output and the global-axis copies of
+  /// shell stresses gathered into the driver's FrameFields, rotations into `state`, first. Once a
+  /// frame has written U, every later frame writes it too (a frame of another request without U
+  /// would be drawn undeformed in ParaView).
   void write_frame(State& state, const FrameRequest& what, const ElementSet& elements,
                    const ContactStage& contact, CentralDifference& nodes);
   /// One history row (requests, then contact pair forces) at state.time.
@@ -69,6 +71,7 @@ class OutputDriver {
   OutputSink& m_sink;
   PhaseTimers& m_timers;
   OutputSchedule m_schedule;
+  FrameFields m_frame;  ///< the output-only fields of the last frame
   std::vector<Real> m_history_row;
   bool m_displacement_written = false;  ///< a frame has written U
 };

@@ -10,6 +10,7 @@
 
 #include "common/timer.hpp"
 #include "common/types.hpp"
+#include "solver/frame_fields.hpp"
 #include "solver/model.hpp"
 #include "solver/state.hpp"
 
@@ -115,8 +116,10 @@ class OutputSink {
   /// Declares the history columns of the current step (called after begin_step, before any
   /// append_history of that step).
   virtual void declare_history(const std::vector<HistorySeries>& series) = 0;
-  /// One field frame at state.time (frame 0 is the initial state).
-  virtual void write_frame(const Model& model, const State& state, const FrameRequest& what) = 0;
+  /// One field frame at state.time (frame 0 is the initial state): the nodal fields of
+  /// `state`, the output-only fields of `fields` (filled for `what`).
+  virtual void write_frame(const Model& model, const State& state, const FrameFields& fields,
+                           const FrameRequest& what) = 0;
   /// One history row; `values` holds the declared series' columns back to back.
   virtual void append_history(Real time, std::span<const Real> values) = 0;
   /// One .sta line.

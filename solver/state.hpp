@@ -1,5 +1,5 @@
 #pragma once
-/// \file The evolving solution: nodal fields, element output fields, energies, clock.
+/// \file The evolving solution: nodal fields, energies, clock.
 
 #include <vector>
 
@@ -53,41 +53,8 @@ struct State {
   NodalVectors reaction_moment;        ///< RM at prescribed rotational DOFs, N·m
   std::vector<Real> rotary_inertia;    ///< lumped, scaled (see the shell element), kg·m^2
 
-  /// Cauchy stress per element, filled before each field frame (n_elements × 6, row-major,
-  /// Abaqus order S11 S22 S33 S12 S13 S23), Pa. Solids: global axes. Shells: the middle
-  /// section point, in the shell's local axes (Abaqus default: local 1 = projection of the
-  /// global x axis on the shell, local 2 = n × 1), S33 = 0, S13/S23 = transverse shear.
-  std::vector<Real> stress;
-  /// Shell section stresses at the bottom (SNEG) and top (SPOS) section points, same layout
-  /// as `stress`; rows of non-shell elements are NaN. Empty unless the model has shells.
-  std::vector<Real> stress_bottom, stress_top;
-  /// Current shell thickness STH (n_elements), m; NaN for non-shell elements. Empty unless
-  /// the model has shells.
-  std::vector<Real> thickness;
-  /// Current element volume, filled with `stress` (n_elements), m^3.
-  std::vector<Real> volume;
-  /// Accumulated hourglass resultants (n_elements × elements::HOURGLASS_STATE_WIDTH, each
-  /// block's own layout: Hex8rBlock/Shell4rBlock::gather_hourglass_state; 0 for elements
-  /// without), filled with `stress` on models with C3D8R or S4R elements, else empty: the
-  /// state --import needs to continue a run with the same hourglass forces.
-  std::vector<Real> hourglass_state;
-  /// Equivalent plastic strain PEEQ (n_elements), -: 0 for elastic elements; shells: the
-  /// largest of their section points. Filled before a frame that asks for it (plastic models).
-  std::vector<Real> peeq;
-  /// Shell PEEQ at the bottom (SNEG), middle and top (SPOS) section points (n_elements each),
-  /// -: 0 for elastic shells, NaN for non-shell elements. Filled with `peeq` on models with
-  /// plastic shells only, else empty.
-  std::vector<Real> peeq_bottom, peeq_middle, peeq_top;
-
-  // Contact output per node, filled before a frame that asks for it (zero away from contact).
-  // The node's total contact force F (as slave and as face corner) split along its outward
-  // normal n: CNORMF = (F·n) n, CSHEARF = F − CNORMF; CPRESS = −F·n / A and CSHEAR =
-  // CSHEARF / A with A the tributary area (|F·n| / A on double-sided shell nodes).
-  std::vector<Real> contact_pressure;  ///< CPRESS (n_nodes), Pa
-  NodalVectors contact_shear;          ///< CSHEAR (n_nodes × 3), Pa
-  std::vector<Real> contact_status;    ///< CSTATUS (n_nodes): 0 open, 1 slipping, 2 sticking
-  NodalVectors contact_normal_force;   ///< CNORMF (n_nodes × 3), N
-  NodalVectors contact_shear_force;    ///< CSHEARF (n_nodes × 3), N
+  // The output-only fields (stresses, PEEQ, contact output, ...) are not part of the
+  // solution: the OutputDriver owns them (FrameFields, solver/frame_fields.hpp).
 
   Energies energies;
   Real time = 0.0;       ///< total time t_n, s

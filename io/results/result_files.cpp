@@ -247,9 +247,10 @@ void ResultFiles::declare_history(const std::vector<HistorySeries>& series) {
   m_impl->h5_file.declare_history(series);
 }
 
-void ResultFiles::write_frame(const Model& model, const State& state, const FrameRequest& what) {
+void ResultFiles::write_frame(const Model& model, const State& state, const FrameFields& fields,
+                              const FrameRequest& what) {
   m_impl->check_space();
-  const std::string frame = m_impl->h5_file.write_frame(model, state, what);
+  const std::string frame = m_impl->h5_file.write_frame(model, state, fields, what);
   const auto step = static_cast<std::size_t>(state.step);
   m_impl->xdmf_file.add_frame(frame, state.time, what, state.step + 1,
                               step < model.steps.size() ? model.steps[step].name : "",

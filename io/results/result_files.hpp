@@ -32,7 +32,8 @@ class ResultFiles final : public OutputSink {
   void begin_run(const Model& model) override;
   void begin_step(const Model& model, int step) override;
   void declare_history(const std::vector<HistorySeries>& series) override;
-  void write_frame(const Model& model, const State& state, const FrameRequest& what) override;
+  void write_frame(const Model& model, const State& state, const FrameFields& fields,
+                   const FrameRequest& what) override;
   void append_history(Real time, std::span<const Real> values) override;
   void status(const StatusLine& line) override;
   void message(Severity severity, const std::string& text) override;

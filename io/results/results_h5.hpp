@@ -8,16 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "io/results/h5_handles.hpp"
-#include "io/results/json_value.hpp"
+#include "io/result_tools/h5_handles.hpp"
+#include "io/result_tools/json_value.hpp"
+#include "io/results/results_frame.hpp"
 #include "io/results/results_history.hpp"
 #include "io/results/xdmf_writer.hpp"
 #include "solver/output_sink.hpp"
 
 namespace xpl::io {
-
-/// Von Mises stress of one stress row (S11 S22 S33 S12 S13 S23), Pa.
-Real von_mises(const Real* s);
 
 /// The HDF5 result file of one job. Every write (the mesh, a frame, a block of history rows,
 /// a table, the status) opens JOB.h5, writes and closes it again with every handle, so that
@@ -48,7 +46,8 @@ class ResultsH5 {
   void append_history(Real time, std::span<const Real> values);
   /// Writes /frames/NNNNNN and returns its name ("000000"). On shell models U, V, RF, S come
   /// with UR, VR, RM, S_SNEG + S_SPOS; STH is written only on shell models.
-  std::string write_frame(const Model& model, const State& state, const FrameRequest& what);
+  std::string write_frame(const Model& model, const State& state, const FrameFields& fields,
+                          const FrameRequest& what);
   /// Writes a setup table as a group of column datasets (OutputSink::write_table).
   void write_table(const ResultTable& table);
   /// Writes pending history rows, the final status and error text. A run that

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "common/units.hpp"
-#include "io/results/h5_handles.hpp"
+#include "io/result_tools/h5_handles.hpp"
 #include "solver/output_sink.hpp"
 
 namespace xpl::io {

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/results/h5_handles.hpp"
+#include "io/result_tools/h5_handles.hpp"
 #include "io/results/xdmf_writer.hpp"
 #include "solver/model.hpp"
 

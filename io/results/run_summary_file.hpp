@@ -10,7 +10,7 @@
 #include "common/timer.hpp"
 #include "common/types.hpp"
 #include "common/units.hpp"
-#include "io/results/json_value.hpp"
+#include "io/result_tools/json_value.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/state.hpp"
 

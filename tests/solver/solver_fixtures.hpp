@@ -28,7 +28,8 @@ class CaptureSink : public OutputSink {
   void begin_run(const Model&) override {}
   void begin_step(const Model&, int) override {}
   void declare_history(const std::vector<HistorySeries>& s) override { series = s; }
-  void write_frame(const Model&, const State& state, const FrameRequest&) override {
+  void write_frame(const Model&, const State& state, const FrameFields&,
+                   const FrameRequest&) override {
     frame_times.push_back(state.time);
   }
   void append_history(Real time, std::span<const Real> values) override {

@@ -37,15 +37,16 @@ class UniaxialSink : public test::CaptureSink {
  public:
   std::vector<Sample> samples;
   Index loaded_node = 1;  // node (H, 0, 0)
-  void write_frame(const Model& model, const State& state, const FrameRequest& what) override {
-    CaptureSink::write_frame(model, state, what);
+  void write_frame(const Model& model, const State& state, const FrameFields& fields,
+                   const FrameRequest& what) override {
+    CaptureSink::write_frame(model, state, fields, what);
     Sample s;
     s.time = state.time;
     s.strain = std::log((H + state.displacement(loaded_node, 0)) / H);
-    s.stress = state.stress[0];
-    for (int c = 1; c < 6; ++c) s.lateral = std::max(s.lateral, std::abs(state.stress[c]));
-    s.peeq = state.peeq.empty() ? -1.0 : state.peeq[0];
-    s.log_volume = std::log(state.volume[0] / (H * H * H));
+    s.stress = fields.stress[0];
+    for (int c = 1; c < 6; ++c) s.lateral = std::max(s.lateral, std::abs(fields.stress[c]));
+    s.peeq = fields.peeq.empty() ? -1.0 : fields.peeq[0];
+    s.log_volume = std::log(fields.volume[0] / (H * H * H));
     samples.push_back(s);
   }
   Real energy(const std::string& name, std::size_t row) const {

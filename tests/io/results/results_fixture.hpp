@@ -14,8 +14,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "io/results/h5_handles.hpp"
+#include "io/result_tools/h5_handles.hpp"
+#include "solver/frame_fields.hpp"
 #include "solver/model.hpp"
+#include "solver/output_sink.hpp"
 #include "solver/state.hpp"
 
 namespace xpl::test {
@@ -77,10 +79,22 @@ inline Model tiny_model() {
   return model;
 }
 
+/// A frame for the writer: the solution (State) and the output-only fields (FrameFields) of
+/// one made-up frame, in one object so that a test reads `frame.position` and `frame.stress`
+/// alike.
+struct TestFrame : State, FrameFields {};
+
+/// Writes `frame` to `sink` (OutputSink::write_frame of its two parts).
+inline void write_frame(OutputSink& sink, const Model& model, const TestFrame& frame,
+                        const FrameRequest& what) {
+  sink.write_frame(model, frame, frame, what);
+}
+
 /// The state of frame `frame`: x = X + u with u_n = (0.01 n, −0.02 n, 0.001 frame),
-/// v = 10 u, a = 100 u, RF = −u, S of element e = (1 2 3 4 5 6) × (e + 1) × (frame + 1).
-inline State tiny_state(const Model& model, int frame) {
-  State state;
+/// v = 10 u, a = 100 u, RF = −u, S of element e = (1 2 3 4 5 6) × (e + 1) × (frame + 1) (and
+/// its XDMF copy as the output driver fills it).
+inline TestFrame tiny_state(const Model& model, int frame) {
+  TestFrame state;
   state.reference = model.coordinates;
   NodalVectors u(12, 3);
   for (Index n = 0; n < 12; ++n) u.row(n) << 0.01 * n, -0.02 * n, 0.001 * frame;
@@ -100,6 +114,7 @@ inline State tiny_state(const Model& model, int frame) {
   state.step_time = state.time;
   state.increment = 10 * frame;
   state.step = 0;
+  global_axis_stresses(model, state.position, state);  // as the output driver does
   return state;
 }
 

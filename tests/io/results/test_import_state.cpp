@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "io/results/import_state.hpp"
+#include "io/result_tools/import_state.hpp"
 #include "io/results/result_files.hpp"
 #include "results/shell_fixture.hpp"
 
@@ -27,7 +27,7 @@ std::filesystem::path write_run(const std::filesystem::path& directory, const Mo
   files.begin_run(model);
   files.begin_step(model, 0);
   for (int frame = 0; frame < frames; ++frame) {
-    files.write_frame(model, make_state(model, frame), request(frame));
+    write_frame(files, model, make_state(model, frame), request(frame));
   }
   files.end_run(status, "", PhaseTimers{}, 0.0);
   return files.h5_path();
@@ -74,7 +74,7 @@ TEST_CASE("import: the last frame of a hex result file", "[io][results][import]"
   const Model model = tiny_model();
   const auto h5 = write_tiny_run(scratch.path());
   const io::ImportedState imported = io::read_imported_state(h5, model);
-  const State last = tiny_state(model, 2);
+  const TestFrame last = tiny_state(model, 2);
 
   CHECK(imported.source == h5.string());
   CHECK(imported.time == last.time);
@@ -101,7 +101,7 @@ TEST_CASE("import: rows are mapped by deck id onto the model's order", "[io][res
   const auto h5 = write_tiny_run(scratch.path());
   const Model model = reversed_tiny_model();
   const io::ImportedState imported = io::read_imported_state(h5, model);
-  const State last = tiny_state(tiny_model(), 2);
+  const TestFrame last = tiny_state(tiny_model(), 2);
   for (Index n = 0; n < 12; ++n) {
     for (int c = 0; c < 3; ++c) {
       CHECK(imported.displacement(11 - n, c) == last.position(n, c) - last.reference(n, c));
@@ -122,7 +122,7 @@ TEST_CASE("import: shell fields, and notes on what the last frame lacks",
     const auto h5 =
         write_run(scratch.path(), model, 2, mixed_state, [](int) { return all_fields(); });
     const io::ImportedState imported = io::read_imported_state(h5, model);
-    const State last = mixed_state(model, 1);
+    const TestFrame last = mixed_state(model, 1);
     REQUIRE(imported.rotation.rows() == 12);
     REQUIRE(imported.angular_velocity.rows() == 12);
     CHECK(imported.rotation == last.rotation);
@@ -167,7 +167,7 @@ TEST_CASE("import: coordinates within the tolerance are accepted and U follows t
   // Model size: the diagonal of 1 × 0.25 × 0.125 m, ~1.04 m; tolerance ~1.04e-9 m.
   model.coordinates(5, 1) += 5e-10;
   const io::ImportedState imported = io::read_imported_state(h5, model);
-  const State last = tiny_state(tiny_model(), 2);
+  const TestFrame last = tiny_state(tiny_model(), 2);
   // The current position is the file's: X_model + U = X_file + U_file (to the round-off of
   // a few additions of values ~0.25 m, 1e-16 m each).
   CHECK(model.coordinates(5, 1) + imported.displacement(5, 1) ==
@@ -285,7 +285,7 @@ TEST_CASE("import: missing files, other files and incomplete frames are refused"
     const auto h5 = write_run(
         scratch.path(), model, 1,
         [](const Model& m, int frame) {
-          State state = tiny_state(m, frame);
+          TestFrame state = tiny_state(m, frame);
           state.velocity(4, 2) = std::numeric_limits<Real>::infinity();
           return state;
         },

@@ -79,7 +79,7 @@ TEST_CASE("results: wide history series, several steps and an overwritten file",
         files.append_history(r, row);
       }
     }
-    if (run == 0) files.write_frame(model, tiny_state(model, 0), {.volume = true});
+    if (run == 0) write_frame(files, model, tiny_state(model, 0), {.volume = true});
     files.end_run(RunStatus::Completed, "", PhaseTimers{}, 0.0);
   }
   const auto file = open_h5(directory / "job.h5");

@@ -40,8 +40,8 @@ void drive(io::ResultFiles& files, const Model& model, int frames) {
   const int rows_per_frame = N_ROWS / std::max(frames - 1, 1);
   int row = 0;
   for (int f = 0; f < frames; ++f) {
-    const State state = tiny_state(model, f);
-    files.write_frame(model, state, everything());
+    const TestFrame state = tiny_state(model, f);
+    write_frame(files, model, state, everything());
     for (int r = 0; f + 1 < frames && r < rows_per_frame; ++r, ++row) {
       files.append_history(1e-7 * row, history_row(row));
     }
@@ -102,7 +102,7 @@ TEST_CASE("results: a completed run writes the documented HDF5 layout", "[io][re
     CHECK_FALSE(exists(f, "/frames/000003"));
     for (int frame = 0; frame < 3; ++frame) {
       const std::string group = "/frames/00000" + std::to_string(frame);
-      const State expected = tiny_state(model, frame);
+      const TestFrame expected = tiny_state(model, frame);
       CHECK(numeric_attribute<double>(f, group, "time")[0] == expected.time);
       CHECK(numeric_attribute<double>(f, group, "step_time")[0] == expected.step_time);
       CHECK(numeric_attribute<std::int64_t>(f, group, "step")[0] == 1);
@@ -198,7 +198,7 @@ TEST_CASE("results: the status is 'running' until end_run, the file readable bet
   io::ResultFiles files(directory, "live", {.progress = false});
   files.begin_run(model);
   files.begin_step(model, 0);
-  files.write_frame(model, tiny_state(model, 0), {.displacement = true});
+  write_frame(files, model, tiny_state(model, 0), {.displacement = true});
   // JOB.h5 is closed between writes (issue 19): it can be opened as it is, mid-run. (Closed
   // again before the next write: in one process HDF5 refuses to reopen for writing a file
   // that is open read-only.)
@@ -208,7 +208,7 @@ TEST_CASE("results: the status is 'running' until end_run, the file readable bet
     CHECK(shape(file.get(), "/frames/000000/U") == std::vector<hsize_t>{12, 3});
     CHECK_FALSE(exists(file.get(), "/frames/000000/V"));
   }
-  files.write_frame(model, tiny_state(model, 1), {.velocity = true});
+  write_frame(files, model, tiny_state(model, 1), {.velocity = true});
   {
     const auto file = open_h5(files.h5_path());
     CHECK(string_attribute(file.get(), "/", "status") == "running");

@@ -29,7 +29,7 @@ void run(io::ResultFiles& files, const Model& model) {
   files.begin_step(model, 0);
   for (int frame = 0; frame < 4; ++frame) {
     const FrameRequest what = frame < 3 ? all_fields() : FrameRequest{.displacement = true};
-    files.write_frame(model, mixed_state(model, frame), what);
+    write_frame(files, model, mixed_state(model, frame), what);
   }
   files.end_run(RunStatus::Completed, "", PhaseTimers{}, 0.0);
 }
@@ -64,7 +64,7 @@ TEST_CASE("results: a hex between two shells writes per-type meshes and shell fi
   SECTION("frames with every field") {
     for (int frame = 0; frame < 3; ++frame) {
       const std::string group = "/frames/00000" + std::to_string(frame);
-      const State expected = mixed_state(model, frame);
+      const TestFrame expected = mixed_state(model, frame);
       // Issue 19: the shell surfaces' Mises stresses and the largest through the thickness.
       CHECK(links(f, group) == Strings{"A", "EVOL", "HGSTATE", "MISES", "MISES_MAX", "MISES_SNEG",
                                        "MISES_SPOS", "RF", "RM", "S", "STH", "S_SNEG", "S_SPOS",
@@ -158,7 +158,7 @@ TEST_CASE("results: hex-only models write no shell datasets, even when STH is as
   io::ResultFiles files(scratch.path(), "job", {.progress = false});
   files.begin_run(model);
   files.begin_step(model, 0);
-  files.write_frame(model, tiny_state(model, 0), all_fields());
+  write_frame(files, model, tiny_state(model, 0), all_fields());
   files.end_run(RunStatus::Completed, "", PhaseTimers{}, 0.0);
 
   const auto file = open_h5(files.h5_path());
@@ -190,20 +190,20 @@ TEST_CASE("results: shell fields of the wrong size are rejected before anything 
   io::ResultFiles files(scratch.path(), "job", {.progress = false});
   files.begin_run(model);
   files.begin_step(model, 0);
-  State state = mixed_state(model, 0);
+  TestFrame state = mixed_state(model, 0);
   state.rotation.resize(0, 3);  // as if the solver had not allocated the rotations
-  CHECK_THROWS_WITH(files.write_frame(model, state, {.displacement = true}),
+  CHECK_THROWS_WITH(write_frame(files, model, state, {.displacement = true}),
                     "write_frame: state field UR has 0 rows; the model has 12 nodes");
   state = mixed_state(model, 0);
   state.stress_top.pop_back();
-  CHECK_THROWS_WITH(files.write_frame(model, state, {.stress = true}),
-                    "write_frame: state.stress_top has 17 values; expected 18");
+  CHECK_THROWS_WITH(write_frame(files, model, state, {.stress = true}),
+                    "write_frame: frame field stress_top has 17 values; expected 18");
   state = mixed_state(model, 0);
   state.thickness.clear();
-  CHECK_THROWS_WITH(files.write_frame(model, state, {.thickness = true}),
-                    "write_frame: state.thickness has 0 values; expected 3");
+  CHECK_THROWS_WITH(write_frame(files, model, state, {.thickness = true}),
+                    "write_frame: frame field thickness has 0 values; expected 3");
   // Nothing of the rejected frames reached the file: the next frame is a complete frame 0.
-  files.write_frame(model, mixed_state(model, 0), {.displacement = true});
+  write_frame(files, model, mixed_state(model, 0), {.displacement = true});
   files.end_run(RunStatus::Completed, "", PhaseTimers{}, 0.0);
   const auto file = open_h5(files.h5_path());
   CHECK(links(file.get(), "/frames") == Strings{"000000"});

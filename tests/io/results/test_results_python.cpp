@@ -32,7 +32,7 @@ TEST_CASE("results: write the result files read by check_results.py", "[.][io][r
                          {"node/FIXED/U3", 4, {1000, 1021, 1042, 1063}, "U3", "m"}});
   for (int frame = 0; frame < 4; ++frame) {
     // The last frame has no stress: a frame lists only the fields it has.
-    files.write_frame(model, tiny_state(model, frame), {true, true, true, true, frame < 3, true});
+    write_frame(files, model, tiny_state(model, frame), {true, true, true, true, frame < 3, true});
     for (int r = 0; r < 300; ++r) {
       const std::vector<Real> row{r * 0.5, 1.0, 2.0, 3.0, 4.0 + r};
       files.append_history(1e-4 * frame + 1e-7 * r, row);
@@ -56,7 +56,7 @@ TEST_CASE("results: write the mixed hex + shell result files read by check_resul
     // The last frame has no stress and no thickness.
     FrameRequest what = all_fields();
     what.stress = what.thickness = frame < 2;
-    files.write_frame(model, mixed_state(model, frame), what);
+    write_frame(files, model, mixed_state(model, frame), what);
     const Real kinetic = frame;
     files.append_history(1e-4 * frame, {&kinetic, 1});
   }

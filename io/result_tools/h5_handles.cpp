@@ -1,4 +1,4 @@
-#include "io/results/h5_handles.hpp"
+#include "io/result_tools/h5_handles.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "io/results/import_state.hpp"
+#include "io/result_tools/import_state.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +11,9 @@
 #include <type_traits>
 #include <unordered_map>
 
-#include "elements/lane_state.hpp"
-#include "io/results/h5_handles.hpp"
-#include "io/results/h5_reader.hpp"
+#include "io/result_tools/h5_handles.hpp"
+#include "io/result_tools/h5_reader.hpp"
+#include "solver/frame_fields.hpp"
 
 namespace xpl::io {
 
@@ -362,7 +362,7 @@ ImportedState read_file(hid_t file, const Model& model) {
                   [](ElementType t) { return t == ElementType::C3D8R || t == ElementType::S4R; });
   if (hourglass_elements && has("HGSTATE")) {
     state.hourglass_state = read_cells(file, frame + "/HGSTATE", element_of_row, model, all_rows,
-                                       elements::HOURGLASS_STATE_WIDTH);
+                                       FrameFields::HOURGLASS_WIDTH);
   } else if (hourglass_elements && has("S")) {
     state.notes.push_back("no HGSTATE in the last frame: the hourglass forces start at zero");
   }

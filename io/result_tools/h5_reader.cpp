@@ -1,4 +1,4 @@
-#include "io/results/h5_reader.hpp"
+#include "io/result_tools/h5_reader.hpp"
 
 #include <algorithm>
 #include <chrono>

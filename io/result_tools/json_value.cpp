@@ -1,4 +1,4 @@
-#include "io/results/json_value.hpp"
+#include "io/result_tools/json_value.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "io/results/json_value.hpp"
+#include "io/result_tools/json_value.hpp"
 
 namespace xpl::io {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/results/result_compare.hpp"
+#include "io/result_tools/result_compare.hpp"
 
 namespace xpl::io {
 

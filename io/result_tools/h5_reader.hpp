@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/results/h5_handles.hpp"
+#include "io/result_tools/h5_handles.hpp"
 
 namespace xpl::io::h5 {
 

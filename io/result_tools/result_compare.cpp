@@ -1,4 +1,4 @@
-#include "io/results/result_compare.hpp"
+#include "io/result_tools/result_compare.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <optional>
 #include <unordered_map>
 
-#include "io/results/compare_values.hpp"
-#include "io/results/h5_reader.hpp"
+#include "io/result_tools/compare_values.hpp"
+#include "io/result_tools/h5_reader.hpp"
 
 namespace xpl::io {
 

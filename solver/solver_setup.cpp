@@ -1,0 +1,117 @@
+// The set-up of a run (ExplicitSolver::Impl, explicit_solver_impl.hpp): the parts of the time
+// loop built in order, the initial or imported state, and the set-up report.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "solver/explicit_solver_impl.hpp"
+#include "solver/message_text.hpp"
+
+namespace xpl {
+
+ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions options)
+    : m_model(model),
+      m_sink(sink),
+      m_options(options),
+      m_state(initial_state(model)),
+      m_rigid(model),
+      m_ties(model, m_state),
+      m_elements(model, m_rigid, m_state, m_timers),
+      m_nodes(model, m_timers, m_elements.has_shells()),
+      m_energy(model, options.energy_limit),
+      m_increment(model, sink, options.dt_safety, options.dt_floor_ratio, m_energy.transit_time()),
+      m_contact(model, sink, m_timers, m_increment, options.initial_state != nullptr),
+      m_output(model, sink, m_timers) {
+  if (m_ties.active()) {
+    // Slave masses to their master corners before the rigid bodies sum theirs.
+    m_ties.distribute_mass(m_state);
+    m_elements.update_inverse_mass(m_ties.changed_nodes(), m_state, m_rigid);
+    m_nodes.set_ties(&m_ties);
+    m_contact.set_tied_nodes(m_ties.tied_nodes());
+  }
+  const std::vector<std::string> rigid_messages = set_up_rigid_bodies();
+  if (m_options.initial_state != nullptr) apply_initial_state(*m_options.initial_state);
+  report_setup(rigid_messages);
+}
+
+State ExplicitSolver::Impl::initial_state(const Model& model) {
+  const Index n = model.node_count();
+  State state;
+  state.reference = model.coordinates;
+  state.position = model.coordinates;
+  state.velocity =
+      model.initial_velocity.rows() == n ? model.initial_velocity : NodalVectors::Zero(n, 3);
+  state.velocity_half = state.velocity;
+  state.acceleration = NodalVectors::Zero(n, 3);
+  state.reaction = NodalVectors::Zero(n, 3);
+  state.mass.assign(n, 0.0);
+  return state;
+}
+
+std::vector<std::string> ExplicitSolver::Impl::set_up_rigid_bodies() {
+  if (m_rigid.empty()) return {};
+  if (!m_elements.has_shells()) {
+    // The reference nodes carry rotations (UR, VR, RM) even without shells.
+    const Index n = m_model.node_count();
+    m_state.rotation = NodalVectors::Zero(n, 3);
+    m_state.angular_velocity = NodalVectors::Zero(n, 3);
+    m_state.angular_velocity_half = NodalVectors::Zero(n, 3);
+    m_state.reaction_moment = NodalVectors::Zero(n, 3);
+  }
+  return m_rigid.setup(m_model, m_state.mass, m_state);
+}
+
+void ExplicitSolver::Impl::apply_initial_state(const InitialState& imported) {
+  const Index n = m_model.node_count();
+  if (imported.displacement.rows() != n || imported.velocity.rows() != n)
+    throw std::invalid_argument("imported state: U and V must have one row per node");
+  m_state.position = m_state.reference + imported.displacement;
+  m_state.velocity = imported.velocity;
+  m_state.velocity_half = imported.velocity;
+  if (m_elements.has_shells() && imported.rotation.rows() == n) {
+    m_nodes.import_rotation(imported.rotation, m_state);
+    if (imported.angular_velocity.rows() == n) {
+      m_state.angular_velocity = imported.angular_velocity;
+      m_state.angular_velocity_half = imported.angular_velocity;
+    }
+  }
+  if (!imported.stress.empty())
+    m_elements.set_stress(m_state.position, imported.stress,
+                          imported.stress_bottom.empty() ? imported.stress : imported.stress_bottom,
+                          imported.stress_top.empty() ? imported.stress : imported.stress_top);
+  if (!imported.peeq.empty() || !imported.peeq_middle.empty())
+    m_elements.set_plastic_strain(imported.peeq, imported.peeq_middle, imported.peeq_bottom,
+                                  imported.peeq_top);
+  if (!imported.hourglass_state.empty()) m_elements.set_hourglass_state(imported.hourglass_state);
+  if (!imported.shell_thickness.empty()) m_elements.set_shell_thickness(imported.shell_thickness);
+}
+
+void ExplicitSolver::Impl::report_setup(const std::vector<std::string>& rigid_messages) {
+  m_sink.begin_run(m_model);
+  const InitialState* imported = m_options.initial_state;
+  if (imported != nullptr)
+    m_sink.message(Severity::Info,
+                   "the run starts from the imported state of " + imported->source +
+                       " (positions, velocities" +
+                       (imported->stress.empty() ? "" : ", element stresses") +
+                       (imported->peeq.empty() ? "" : ", equivalent plastic strains") +
+                       (imported->shell_thickness.empty() ? "" : ", shell thicknesses") +
+                       (imported->hourglass_state.empty() ? "" : ", hourglass forces") +
+                       "); time starts at 0. " +
+                       (imported->hourglass_state.empty() ? "Hourglass forces and contact state"
+                                                          : "Contact state") +
+                       " start at zero; ALLSE counts the strain energy from here on");
+  for (const DeckMessage& m : m_model.deck_messages)
+    m_sink.message(m.warning ? Severity::Warning : Severity::Note, escape_control(m.text));
+  for (const SectionControls& c : m_model.section_controls)
+    if (c.hourglass == HourglassType::RelaxStiffness)
+      m_sink.message(Severity::Note, "section controls " + c.name +
+                                         ": HOURGLASS=RELAX STIFFNESS is run as STIFFNESS "
+                                         "(Flanagan-Belytschko stiffness form)");
+  for (const std::string& m : rigid_messages) m_sink.message(Severity::Info, m);
+  for (const std::string& m : m_ties.messages()) m_sink.message(Severity::Info, m);
+  for (const std::string& m : m_ties.warnings()) m_sink.message(Severity::Warning, m);
+  m_elements.report_setup(m_state.reference, m_sink);
+}
+
+}  // namespace xpl
