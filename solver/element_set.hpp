@@ -10,10 +10,10 @@
 
 #include "common/timer.hpp"
 #include "contact/contact_faces.hpp"
-#include "elements/hex8.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "elements/increment_limit.hpp"
-#include "elements/shell4r.hpp"
+#include "elements/shell/shell4r.hpp"
 #include "solver/global_increment.hpp"
 #include "solver/increment_control.hpp"
 #include "solver/mass_scaling.hpp"

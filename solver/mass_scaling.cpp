@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8r.hpp"
-#include "elements/quad_shell_geometry.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8r.hpp"
+#include "elements/shell/quad_shell_geometry.hpp"
 #include "solver/loads/gravity_loads.hpp"
 #include "solver/message_text.hpp"
 

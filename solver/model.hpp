@@ -13,7 +13,7 @@
 #include "common/error.hpp"
 #include "common/types.hpp"
 #include "common/units.hpp"
-#include "elements/plasticity.hpp"
+#include "elements/material/plasticity.hpp"
 
 namespace xpl {
 

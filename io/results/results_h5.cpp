@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "elements/lane_state.hpp"
-#include "elements/quad_shell_geometry.hpp"
+#include "elements/shell/quad_shell_geometry.hpp"
 #include "io/results/results_mesh.hpp"
 #include "solver/output_variables.hpp"
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/quad_shell_geometry.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/shell/quad_shell_geometry.hpp"
 
 namespace xpl {
 

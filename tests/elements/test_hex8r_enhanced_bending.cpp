@@ -15,9 +15,9 @@
 #include <Eigen/Dense>
 
 #include "cantilever_fixture.hpp"
-#include "elements/hex8.hpp"
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

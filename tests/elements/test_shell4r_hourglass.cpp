@@ -5,7 +5,7 @@
 
 #include <Eigen/Dense>
 
-#include "elements/shell4r.hpp"
+#include "elements/shell/shell4r.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

@@ -9,10 +9,10 @@
 #include <omp.h>
 #include <Eigen/Dense>
 
-#include "elements/hex8.hpp"
-#include "elements/hex8r.hpp"
-#include "elements/shell4r.hpp"
-#include "elements/thread_partition.hpp"
+#include "elements/hex/hex8.hpp"
+#include "elements/hex/hex8r.hpp"
+#include "elements/shell/shell4r.hpp"
+#include "elements/parallel/thread_partition.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

@@ -18,9 +18,9 @@
 
 #include "common/types.hpp"
 #include "elements/increment_limit.hpp"
-#include "elements/plasticity.hpp"
-#include "elements/simd.hpp"
-#include "elements/thread_partition.hpp"
+#include "elements/material/plasticity.hpp"
+#include "elements/parallel/simd.hpp"
+#include "elements/parallel/thread_partition.hpp"
 
 namespace xpl::elements {
 

@@ -1,4 +1,4 @@
-#include "elements/thread_partition.hpp"
+#include "elements/parallel/thread_partition.hpp"
 
 namespace xpl::elements {
 

@@ -1,10 +1,10 @@
-#include "elements/plasticity.hpp"
+#include "elements/material/plasticity.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "elements/plasticity_root.hpp"
+#include "elements/material/plasticity_root.hpp"
 
 namespace xpl::elements {
 

@@ -13,7 +13,7 @@
 /// a batch of W elements.
 
 #include "common/types.hpp"
-#include "elements/simd.hpp"
+#include "elements/parallel/simd.hpp"
 #include "elements/vec3.hpp"
 
 namespace xpl::elements {

@@ -2,8 +2,8 @@
 /// \file Gather of one batch of hexes into mode space, shared by the C3D8R and C3D8 force
 /// passes (hex8r.cpp, hex8.cpp) and their linear stiffness products.
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/simd.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/parallel/simd.hpp"
 
 namespace xpl::elements {
 

@@ -1,11 +1,11 @@
-#include "elements/hex_batches.hpp"
+#include "elements/hex/hex_batches.hpp"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "elements/element_coloring.hpp"
-#include "elements/hex8_geometry.hpp"
+#include "elements/parallel/element_coloring.hpp"
+#include "elements/hex/hex8_geometry.hpp"
 
 namespace xpl::elements {
 

@@ -1,4 +1,4 @@
-#include "elements/shell4r.hpp"
+#include "elements/shell/shell4r.hpp"
 
 #include <omp.h>
 
@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "elements/element_coloring.hpp"
-#include "elements/quad_shell_geometry.hpp"
-#include "elements/shell4r_hourglass.hpp"
+#include "elements/parallel/element_coloring.hpp"
+#include "elements/shell/quad_shell_geometry.hpp"
+#include "elements/shell/shell4r_hourglass.hpp"
 
 namespace xpl::elements {
 

@@ -1,4 +1,4 @@
-#include "elements/hex8.hpp"
+#include "elements/hex/hex8.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8_point.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8_point.hpp"
 
 namespace xpl::elements {
 

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "elements/plasticity.hpp"
-#include "elements/simd.hpp"
+#include "elements/material/plasticity.hpp"
+#include "elements/parallel/simd.hpp"
 
 namespace xpl::elements {
 

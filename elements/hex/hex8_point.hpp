@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8r_gather.hpp"
-#include "elements/simd.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8r_gather.hpp"
+#include "elements/parallel/simd.hpp"
 #include "elements/vec3.hpp"
 
 namespace xpl::elements {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "elements/hex8.hpp"
+#include "elements/hex/hex8.hpp"
 
 namespace xpl::elements {
 

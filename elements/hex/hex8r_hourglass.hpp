@@ -7,8 +7,8 @@
 /// element: the stiffness form's resultants, or the enhanced form's frame stresses), and the
 /// hourglass power (W) whose integral is the artificial energy ALLAE.
 
-#include "elements/hex8r_enhanced.hpp"
-#include "elements/simd.hpp"
+#include "elements/hex/hex8r_enhanced.hpp"
+#include "elements/parallel/simd.hpp"
 
 namespace xpl::elements {
 

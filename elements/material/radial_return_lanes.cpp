@@ -1,4 +1,4 @@
-#include "elements/radial_return_lanes.hpp"
+#include "elements/material/radial_return_lanes.hpp"
 
 #include <algorithm>
 #include <cmath>

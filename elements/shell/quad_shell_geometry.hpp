@@ -16,7 +16,7 @@
 ///   γ = (1 − s_a, −1 − s_b, 1 + s_a, −1 + s_b).
 /// All functions are templates over the lane type (`Real` or `simd::Vec`).
 
-#include "elements/simd.hpp"
+#include "elements/parallel/simd.hpp"
 #include "elements/vec3.hpp"
 
 namespace xpl::elements {

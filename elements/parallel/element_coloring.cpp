@@ -1,4 +1,4 @@
-#include "elements/element_coloring.hpp"
+#include "elements/parallel/element_coloring.hpp"
 
 #include <algorithm>
 

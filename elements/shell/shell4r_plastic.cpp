@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "elements/shell4r.hpp"
+#include "elements/shell/shell4r.hpp"
 
 namespace xpl::elements {
 

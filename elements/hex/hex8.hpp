@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "elements/hex_batches.hpp"
-#include "elements/plasticity.hpp"
-#include "elements/radial_return_lanes.hpp"
-#include "elements/simd.hpp"
+#include "elements/hex/hex_batches.hpp"
+#include "elements/material/plasticity.hpp"
+#include "elements/material/radial_return_lanes.hpp"
+#include "elements/parallel/simd.hpp"
 
 namespace xpl::elements {
 

@@ -38,9 +38,9 @@
 #include "common/types.hpp"
 #include "elements/increment_limit.hpp"
 #include "elements/lane_state.hpp"
-#include "elements/shell_plasticity.hpp"
-#include "elements/simd.hpp"
-#include "elements/thread_partition.hpp"
+#include "elements/material/shell_plasticity.hpp"
+#include "elements/parallel/simd.hpp"
+#include "elements/parallel/thread_partition.hpp"
 
 namespace xpl::elements {
 

@@ -1,8 +1,8 @@
 // The linear stiffness product of the C3D8 block (Hex8Block::add_stiffness_product), for the
 // global estimate of the highest frequency (solver/global_increment.*).
-#include "elements/hex8.hpp"
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8_point.hpp"
+#include "elements/hex/hex8.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8_point.hpp"
 
 namespace xpl::elements {
 

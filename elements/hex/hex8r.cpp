@@ -1,4 +1,4 @@
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8r.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <string>
 #include <type_traits>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8r_gather.hpp"
-#include "elements/hex8r_hourglass.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8r_gather.hpp"
+#include "elements/hex/hex8r_hourglass.hpp"
 
 namespace xpl::elements {
 

@@ -1,11 +1,11 @@
-#include "elements/shell_plasticity.hpp"
+#include "elements/material/shell_plasticity.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
 
-#include "elements/plasticity_root.hpp"
+#include "elements/material/plasticity_root.hpp"
 
 namespace xpl::elements {
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8r.hpp"
 
 namespace xpl::elements {
 

@@ -28,7 +28,7 @@
 /// All functions are templates over the lane type (`Real` or `simd::Vec`).
 ///
 
-#include "elements/hex8_geometry.hpp"
+#include "elements/hex/hex8_geometry.hpp"
 
 namespace xpl::elements {
 

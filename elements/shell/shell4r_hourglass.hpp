@@ -33,7 +33,7 @@
 /// Flanagan–Belytschko stiffness form of the older control in both forms.
 /// All functions are templates over the lane type (`Real` or `simd::Vec`).
 
-#include "elements/quad_shell_geometry.hpp"
+#include "elements/shell/quad_shell_geometry.hpp"
 
 namespace xpl::elements {
 
