@@ -15,7 +15,7 @@ using simd::Vec;
 
 Hex8Block::Hex8Block(std::vector<Index> element_index, const std::vector<Index>& connectivity,
                      const std::vector<HexMaterial>& materials, Index node_count)
-    : m_batches(std::move(element_index), connectivity, materials, node_count, N_CONST) {
+    : HexBlock(std::move(element_index), connectivity, materials, node_count, N_CONST) {
   const auto nb = static_cast<std::size_t>(m_batches.batch_count());
   m_stress.assign(nb * HEX8_POINTS * 6 * W, 0.0);
   m_point_volume.assign(nb * HEX8_POINTS * W, 0.0);

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "elements/hex/hex_batches.hpp"
+#include "elements/hex/hex_block.hpp"
 #include "elements/material/plasticity.hpp"
 #include "elements/material/radial_return_lanes.hpp"
 #include "elements/parallel/simd.hpp"
@@ -30,22 +30,15 @@ namespace xpl::elements {
 inline constexpr int HEX8_POINTS = 8;
 
 /// A set of C3D8 elements and their state (stress and PEEQ per integration point).
-class Hex8Block {
+class Hex8Block : public HexBlock {
  public:
+  static constexpr const char* NAME = "C3D8";
+  static constexpr const char* SETUP_NOTE =
+      "; 2x2x2 points, mean dilatation (selectively reduced), no hourglass control";
   /// `element_index`: model index of each element; `connectivity`: 8 node indices per element
   /// (Abaqus order); `materials`: one per element (the hourglass fields are not used).
   Hex8Block(std::vector<Index> element_index, const std::vector<Index>& connectivity,
             const std::vector<HexMaterial>& materials, Index node_count);
-
-  /// Number of elements.
-  Index size() const { return m_batches.size(); }
-  /// Number of colours.
-  int color_count() const { return m_batches.color_count(); }
-
-  /// Adds ρ V₀ / 8 to each node of each element (reference coordinates n_nodes × 3, m).
-  void add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const {
-    m_batches.add_lumped_mass(reference, mass);
-  }
 
   /// One internal-force evaluation, as Hex8rBlock::internal_forces: `position` x_{n+1} and
   /// `velocity_half` v_{n+1/2} (n_nodes × 3), `dt` (0 at the start); strain rates on the
@@ -57,17 +50,11 @@ class Hex8Block {
                        HexStepTotals& totals);
 
   /// \name The pieces of internal_forces() for a pass over several blocks (as Hex8rBlock's).
-  void mark_nodes(int parts, std::vector<Index>& node_part) const {
-    m_batches.mark_nodes(parts, node_part);
-  }
-  void set_partition(int parts, const BoundaryNodes& boundary) {
-    m_batches.set_partition(parts, boundary);
-  }
-  int parts() const { return m_batches.parts(); }
   void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
                       Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force);
-  void add_boundary_forces(Index k, Index node, NodalVectors& force) const {
-    m_batches.add_boundary_forces(k, node, force);
+  void forces_of_part(int part, const ForcePass& p) {
+    forces_of_part(part, p.position, p.velocity_half, p.dt, p.bulk_linear, p.bulk_quadratic,
+                   p.force);
   }
   /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
   void add_totals(HexStepTotals& totals) const;
@@ -75,10 +62,16 @@ class Hex8Block {
   /// Writes the element stress (row e·6.., S11 S22 S33 S12 S13 S23: the volume average of the
   /// integration points) and current volume of every element at its model index.
   void gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const;
+  void gather_output(const OutputArrays& out) const { gather_output(out.stress, out.volume); }
   /// Sets the stress of every integration point of every element from model-sized rows
   /// (n_elements × 6, Pa): an imported state has one stress per element, so the points start
   /// equal.
   void set_stress(std::span<const Real> stress);
+  /// The element kinds' form (element_kind.hpp): a solid reads the `middle` rows.
+  void set_stress(const NodalVectors& /*position*/, std::span<const Real> middle,
+                  std::span<const Real> /*bottom*/, std::span<const Real> /*top*/) {
+    set_stress(middle);
+  }
 
   /// Volume-averaged stress of block element i (constructor order), for tests.
   std::array<Real, 6> stress(Index i) const;
@@ -127,7 +120,6 @@ class Hex8Block {
   simd::Vec plastic_return(Index batch, int q, const simd::Vec start[6], simd::Vec sn[6], Real dt);
   void setup_plasticity(const std::vector<HexMaterial>& materials);
 
-  HexBatches m_batches;  ///< layout, constants, increment limits and partition
   // State, batch b lane l:
   std::vector<Real> m_stress;          ///< [b][point 8][6][W]
   std::vector<Real> m_point_volume;    ///< [b][point 8][W] det J at x_{n+1} (weight 1), m^3

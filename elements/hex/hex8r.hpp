@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "elements/hex/hex_batches.hpp"
+#include "elements/hex/hex_block.hpp"
 #include "elements/lane_state.hpp"
 #include "elements/material/plasticity.hpp"
 #include "elements/material/radial_return_lanes.hpp"
@@ -58,22 +58,15 @@ inline constexpr Real HOURGLASS_VISCOSITY = 0.1;
 inline constexpr Real HEX_FOLD_LIMIT = 0.5;
 
 /// A set of C3D8R elements and their state (stress, hourglass forces).
-class Hex8rBlock {
+class Hex8rBlock : public HexBlock {
  public:
+  static constexpr const char* NAME = "C3D8R";
+  /// What the setup message says after the element and colour counts.
+  static constexpr const char* SETUP_NOTE = " (race-free parallel assembly)";
   /// `element_index`: model index of each element; `connectivity`: 8 node indices per
   /// element (Abaqus order, same order as element_index); `materials`: one per element.
   Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
              const std::vector<HexMaterial>& materials, Index node_count);
-
-  /// Number of elements.
-  Index size() const { return m_batches.size(); }
-  /// Number of colours.
-  int color_count() const { return m_batches.color_count(); }
-
-  /// Adds ρ V₀ / 8 to each node of each element (reference coordinates n_nodes × 3, m).
-  void add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const {
-    m_batches.add_lumped_mass(reference, mass);
-  }
 
   /// One internal-force evaluation at the end of an increment.
   /// `position` x_{n+1} and `velocity_half` v_{n+1/2} (n_nodes × 3); `dt` = t_{n+1} − t_n
@@ -85,25 +78,15 @@ class Hex8rBlock {
                        Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
                        HexStepTotals& totals);
 
-  /// \name The pieces of internal_forces() for a pass over several blocks (ElementSet).
-  /// Marks the nodes each of `parts` parts touches (mark_part_nodes()).
-  void mark_nodes(int parts, std::vector<Index>& node_part) const {
-    m_batches.mark_nodes(parts, node_part);
-  }
-  /// Takes the partition into `parts` parts whose boundary nodes (over every block of the
-  /// pass) are `boundary`.
-  void set_partition(int parts, const BoundaryNodes& boundary) {
-    m_batches.set_partition(parts, boundary);
-  }
-  /// Number of parts of the partition held (0: none yet).
-  int parts() const { return m_batches.parts(); }
+  /// \name The pieces of internal_forces() for a pass over several blocks (ElementSet; the
+  /// partition's in HexBlock).
   /// Part `part` of the force pass (same arguments as internal_forces()): its batches of every
   /// colour, forces at boundary nodes into the exchange buffer, the rest into `force`.
   void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
                       Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force);
-  /// Adds the exchanged corner forces of boundary node k (rank), `node`, into `force`.
-  void add_boundary_forces(Index k, Index node, NodalVectors& force) const {
-    m_batches.add_boundary_forces(k, node, force);
+  void forces_of_part(int part, const ForcePass& p) {
+    forces_of_part(part, p.position, p.velocity_half, p.dt, p.bulk_linear, p.bulk_quadratic,
+                   p.force);
   }
   /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
   void add_totals(HexStepTotals& totals) const;
@@ -111,6 +94,7 @@ class Hex8rBlock {
   /// Writes stress (row e·6.., S11 S22 S33 S12 S13 S23) and current volume of every element
   /// of the block at its model index into model-sized arrays.
   void gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const;
+  void gather_output(const OutputArrays& out) const { gather_output(out.stress, out.volume); }
 
   /// Sets the stress of every element of the block from model-sized rows (n_elements × 6,
   /// row e·6.., S11 S22 S33 S12 S13 S23, global axes, Pa): the inverse of gather_output's
@@ -119,6 +103,11 @@ class Hex8rBlock {
   /// set_hourglass_state), and so is the volume that gather_output reports (set by the next
   /// internal-force pass).
   void set_stress(std::span<const Real> stress);
+  /// The element kinds' form (element_kind.hpp): a solid reads the `middle` rows.
+  void set_stress(const NodalVectors& /*position*/, std::span<const Real> middle,
+                  std::span<const Real> /*bottom*/, std::span<const Real> /*top*/) {
+    set_stress(middle);
+  }
 
   /// Writes the hourglass state of every block element at its model index into model-sized
   /// rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp): the stiffness form's
@@ -189,7 +178,6 @@ class Hex8rBlock {
   void stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* ux,
                        const Real* uy, const Real* uz, Real* yx, Real* yy, Real* yz) const;
 
-  HexBatches m_batches;  ///< layout, constants, increment limits and partition
   // State, batch b lane l:
   std::vector<Real> m_stress;  ///< [b][6][W]
   /// [b][12][W] hourglass state: stiffness form Q_α (4 modes × 3, N), enhanced form its

@@ -4,8 +4,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "elements/parallel/element_coloring.hpp"
 #include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex_block.hpp"
+#include "elements/parallel/element_coloring.hpp"
 
 namespace xpl::elements {
 
@@ -36,7 +37,7 @@ HexBatches::HexBatches(std::vector<Index> element_index, const std::vector<Index
       c[LAMBDA * W] = lambda;
       c[TWO_MU * W] = 2.0 * mu;
       c[DENSITY * W] = m.density;
-      c[WAVE_SPEED * W] = std::sqrt((lambda + 2.0 * mu) / m.density);
+      c[WAVE_SPEED * W] = hex_wave_speed(m);
       // The selectively reduced hex's regular-mesh limits lie within 1 % of the one-point
       // hex's (highest mode of a 6×6×6 mesh: 0.974, 0.889, 0.859 L_e/c_d at ν = 0.3, 0.45,
       // 0.49 against 0.978, 0.892, 0.860), so both take this estimate; the global estimate
@@ -68,7 +69,7 @@ void HexBatches::add_lumped_mass(const NodalVectors& reference, std::vector<Real
         y[a] = reference(node, 1);
         z[a] = reference(node, 2);
       }
-      const Real share = constants(b)[DENSITY * W + l] * hex8_volume(x, y, z) / 8.0;
+      const Real share = hex_node_mass(constants(b)[DENSITY * W + l], x, y, z);
       for (int a = 0; a < 8; ++a) mass[corners[a * W + l]] += share;
     }
 }

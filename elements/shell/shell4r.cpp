@@ -114,7 +114,7 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
       c[SHEAR * W] = g;
       c[SHEAR_T * W] = SHELL_SHEAR_FACTOR * g;
       c[NU_RATIO * W] = nu / (1.0 - nu);
-      c[DT_SPEED * W] = std::sqrt(q11 / p.density) * std::sqrt(1.0 + std::max(nu, 0.0));
+      c[DT_SPEED * W] = shell_wave_speed(p);
       c[HG_MODULUS * W] = SHELL_HOURGLASS_STIFFNESS * p.hourglass_scale * p.young;
       const bool physical = p.hourglass == ShellHourglass::Physical;
       c[HG_OLD * W] = physical ? 0.0 : c[HG_MODULUS * W];
@@ -146,6 +146,25 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
   m_plastic = ShellPlasticState(lane_law, m_points);
 }
 
+Real shell_wave_speed(const ShellProperties& p) {
+  const Real nu = p.poisson;
+  const Real q11 = p.young / (1.0 - nu * nu);
+  return std::sqrt(q11 / p.density) * std::sqrt(1.0 + std::max(nu, 0.0));
+}
+
+Real Shell4rBlock::node_mass(const ShellProperties& p, const V3<Real>* corners) {
+  const V3<Real> c[4] = {corners[0], corners[1], corners[2], corners[3]};
+  return p.density * p.thickness * quad_frame(c).area / 4.0;
+}
+
+Real Shell4rBlock::stable_increment(const ShellProperties& p, const V3<Real>* corners,
+                                    Real /*bulk_linear*/) {
+  const V3<Real> c[4] = {corners[0], corners[1], corners[2], corners[3]};
+  const QuadFrame<Real> frame = quad_frame(c);
+  const Real length = 1.41421356237309515 * frame.area / frame.diagonal;
+  return length / shell_wave_speed(p);
+}
+
 void Shell4rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass,
                                    std::vector<Real>& rotary_inertia) const {
   for (Index i = 0; i < size(); ++i) {
@@ -157,7 +176,7 @@ void Shell4rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Re
     const QuadFrame<Real> frame = quad_frame(p);
     const Real area = frame.area;
     const Real t = m_const[(b * N_CONST + THICKNESS0) * W + l];
-    const Real share = m_const[(b * N_CONST + DENSITY) * W + l] * t * area / 4.0;
+    const Real share = m_const[(b * N_CONST + DENSITY) * W + l] * t * area / 4.0;  // node_mass()
     const Real length = 1.41421356237309515 * area / frame.diagonal;
     const Real inertia =
         share * shell_rotary_radius2(t, length, m_const[(b * N_CONST + POISSON) * W + l],

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "elements/element_kind.hpp"
 #include "elements/increment_limit.hpp"
 #include "elements/lane_state.hpp"
 #include "elements/material/shell_plasticity.hpp"
@@ -124,9 +125,22 @@ struct ShellSectionOutput {
   Real peeq_max = 0.0;  ///< largest PEEQ over all section points, -
 };
 
-/// A set of S4R elements and their state.
+/// Speed of the one-point quad's breathing mode, √(E/ρ(1−ν²)) · √(1+ν) (ν < 0 taken as 0),
+/// m/s: the stable increment is √2 A / (longer diagonal) over it.
+Real shell_wave_speed(const ShellProperties& p);
+
+/// A set of S4R elements and their state (an element kind, element_kind.hpp).
 class Shell4rBlock {
  public:
+  static constexpr const char* NAME = "S4R";
+  static constexpr const char* SETUP_NOTE =
+      "; rotary inertia scaled to (m/4)·max(t²/12, c_nu L²) per node so that the membrane "
+      "wave sets the stable increment";
+  static constexpr int NODES = 4;
+  static constexpr bool ROTATIONS = true;  ///< its nodes have rotational DOFs
+  using Properties = ShellProperties;
+  using Totals = ShellStepTotals;
+
   /// `element_index`: model index per element; `connectivity`: 4 node indices per element;
   /// `properties`: one per element.
   Shell4rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
@@ -136,6 +150,15 @@ class Shell4rBlock {
   int color_count() const { return static_cast<int>(m_color_batches.size()) - 1; }
   /// Model index of block element i.
   Index element_index(Index i) const { return m_element_index[i]; }
+
+  /// Mass share per node ρ t A/4 (kg) of one element with properties `p` and corners
+  /// `corners` (4, m; A the area of their quad_frame()).
+  static Real node_mass(const ShellProperties& p, const V3<Real>* corners);
+  /// Stable increment (s) of one element at rest with properties `p` and corners `corners`
+  /// (4, m), as the force pass estimates it: √2 A / (longer diagonal) / shell_wave_speed()
+  /// (the membrane estimate; the bulk viscosity does not enter, nor the tilt-mode limit of
+  /// ROTARY INERTIA=EXACT).
+  static Real stable_increment(const ShellProperties& p, const V3<Real>* corners, Real bulk_linear);
 
   /// Adds the lumped translational mass ρ t A/4 and the scaled rotary inertia to the nodes.
   void add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass,
@@ -185,6 +208,13 @@ class Shell4rBlock {
       m[2 * n] += e[5];
     }
   }
+  void forces_of_part(int part, const ForcePass& p) {
+    forces_of_part(part, p.position, p.velocity_half, p.angular_velocity_half, p.dt, p.force,
+                   p.moment);
+  }
+  void add_boundary_forces(Index k, Index node, const ForcePass& p) const {
+    add_boundary_forces(k, node, p.force, p.moment);
+  }
   void add_totals(ShellStepTotals& totals) const;
 
   /// Section output of block element i in the configuration `position`.
@@ -195,6 +225,9 @@ class Shell4rBlock {
   void gather_output(const NodalVectors& position, std::vector<Real>& stress,
                      std::vector<Real>& bottom, std::vector<Real>& top,
                      std::vector<Real>& thickness) const;
+  void gather_output(const OutputArrays& out) const {
+    gather_output(out.position, out.stress, out.stress_bottom, out.stress_top, out.thickness);
+  }
 
   /// Sets the stresses of every block element from model-sized rows (n_elements × 6, row
   /// e·6.., S11 S22 S33 S12 S13 S23, Pa) at the middle, bottom (SNEG) and top (SPOS) section
@@ -216,6 +249,11 @@ class Shell4rBlock {
   /// (set_thickness, set_hourglass_state).
   void set_output_stress(const NodalVectors& position, std::span<const Real> middle,
                          std::span<const Real> bottom, std::span<const Real> top);
+  /// set_output_stress() under the element kinds' name (element_kind.hpp).
+  void set_stress(const NodalVectors& position, std::span<const Real> middle,
+                  std::span<const Real> bottom, std::span<const Real> top) {
+    set_output_stress(position, middle, bottom, top);
+  }
 
   /// Writes the hourglass resultants of every block element at its model index into
   /// model-sized rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp): the N_HOURGLASS
