@@ -8,6 +8,7 @@
 
 #include "elements/hex/hex8_geometry.hpp"
 #include "elements/hex/hex8_point.hpp"
+#include "elements/hex/hex_kernel.hpp"
 
 namespace xpl::elements {
 
@@ -112,34 +113,17 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
       for (int j = 0; j < 3; ++j) L[i][j] *= inv_det;
     // B-bar: the point's own dilatation replaced by the element's mean dilatation.
     const Vec shift = (1.0 / 3.0) * (tr - (L[0][0] + L[1][1] + L[2][2]));
-    const Vec d00 = L[0][0] + shift, d11 = L[1][1] + shift, d22 = L[2][2] + shift;
-    const Vec d01 = 0.5 * (L[0][1] + L[1][0]), d02 = 0.5 * (L[0][2] + L[2][0]),
-              d12 = 0.5 * (L[1][2] + L[2][1]);
-    const Vec w01 = 0.5 * (L[0][1] - L[1][0]), w02 = 0.5 * (L[0][2] - L[2][0]),
-              w12 = 0.5 * (L[1][2] - L[2][1]);
+    const hex_kernel::Rates rate = hex_kernel::rates(L, shift);
     Real* sq = sig + q * 6 * W;
     Vec s[6];
     for (int c = 0; c < 6; ++c) s[c] = simd::load(sq + c * W);
     // Jaumann-rate update σ̇ = λ tr(D̄) I + 2μ D̄ + Wσ − σW (as Hex8rBlock).
-    const Vec r00 = w01 * s[3] + w02 * s[4];
-    const Vec r11 = -w01 * s[3] + w12 * s[5];
-    const Vec r22 = -w02 * s[4] - w12 * s[5];
-    const Vec r01 = w01 * s[1] + w02 * s[5], r10 = -w01 * s[0] + w12 * s[4];
-    const Vec r02 = w01 * s[5] + w02 * s[2], r20 = -w02 * s[0] - w12 * s[3];
-    const Vec r12 = -w01 * s[4] + w12 * s[2], r21 = -w02 * s[3] - w12 * s[1];
     Vec sn[6];
-    sn[0] = s[0] + dt * (lt + two_mu * d00 + 2.0 * r00);
-    sn[1] = s[1] + dt * (lt + two_mu * d11 + 2.0 * r11);
-    sn[2] = s[2] + dt * (lt + two_mu * d22 + 2.0 * r22);
-    sn[3] = s[3] + dt * (two_mu * d01 + r01 + r10);
-    sn[4] = s[4] + dt * (two_mu * d02 + r02 + r20);
-    sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
+    hex_kernel::jaumann_update(s, rate, lt, two_mu, dt, sn);
     if constexpr (PLASTIC)
       if (dt > 0.0) dissipation += mid.det * plastic_return(batch, q, s, sn, dt);
     for (int c = 0; c < 6; ++c) simd::store(sq + c * W, sn[c]);
-    strain_power += mid.det * 0.5 *
-                    ((s[0] + sn[0]) * d00 + (s[1] + sn[1]) * d11 + (s[2] + sn[2]) * d22 +
-                     2.0 * ((s[3] + sn[3]) * d01 + (s[4] + sn[4]) * d02 + (s[5] + sn[5]) * d12));
+    strain_power += mid.det * 0.5 * hex_kernel::stress_power2(s, sn, rate);
 
     // Forces on x_{n+1}: the deviator through the cofactor columns, the pressure below.
     const PointFrame<Vec> end = point_frame(ax, p);
@@ -152,14 +136,9 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
   }
 
   // Characteristic length, bulk viscosity and stable increment as Hex8rBlock.
-  const Vec area = simd::sqrt(max_face_area_squared(ax));
-  const Vec length = vol / area;
-  const Vec compress = simd::min(tr, simd::splat(0.0));
-  const Vec b2l = b2 * length;
-  const Vec sv = b1 * density * wave * length * tr - density * b2l * b2l * compress * compress;
-  const Vec xi = b1 - b2 * b2 * (length / wave) * compress;
-  const Vec dt_e =
-      simd::load(cst + DT_FACTOR * W) * (length / wave) * (simd::sqrt(1.0 + xi * xi) - xi);
+  const hex_kernel::BulkViscosity bulk = hex_kernel::bulk_viscosity(
+      ax, vol, tr, density, wave, simd::load(cst + DT_FACTOR * W), b1, b2);
+  const Vec sv = bulk.sv;
 
   // Volumetric forces: the mean stress (and bulk viscosity) through the exact volume gradient.
   const Vec mean = pressure_volume / vol + sv;
@@ -182,11 +161,8 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
     plastic_inc = dissipation;
     strain_inc -= plastic_inc;
   }
-  // Bulk-viscosity work by the trapezoidal rule, as Hex8rBlock books it (see there): the
-  // pressure of the last call acted over this increment too.
-  Real* sv_store = &m_viscous_before[static_cast<std::size_t>(batch) * W];
-  const Vec visc_inc = dt * volm * (0.5 * (simd::load(sv_store) + sv)) * tr;
-  simd::store(sv_store, sv);
+  const Vec visc_inc = hex_kernel::viscous_work(
+      &m_viscous_before[static_cast<std::size_t>(batch) * W], sv, dt, volm, tr);
 
   m_batches.scatter(batch, fnx, fny, fnz, fx, fy, fz);
   Real e_strain = 0.0, e_visc = 0.0, e_plastic = 0.0;
@@ -202,7 +178,7 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
   m_batch_energy[batch * 3 + 0] = e_strain;
   m_batch_energy[batch * 3 + 1] = e_visc;
   m_batch_energy[batch * 3 + 2] = e_plastic;
-  m_batches.record_limit(batch, dt_e, ok);
+  m_batches.record_limit(batch, bulk.dt_e, ok);
 }
 
 void Hex8Block::gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {

@@ -11,6 +11,7 @@
 #include "elements/hex/hex8_geometry.hpp"
 #include "elements/hex/hex8r_gather.hpp"
 #include "elements/hex/hex8r_hourglass.hpp"
+#include "elements/hex/hex_kernel.hpp"
 
 namespace xpl::elements {
 
@@ -101,6 +102,135 @@ void Hex8rBlock::add_totals(HexStepTotals& totals) const {
   m_batches.merge_limits(totals);
 }
 
+namespace {
+
+constexpr int W = simd::W;
+
+/// The hourglass coefficients of a batch's lanes: κ_s 2μ, κ_v ρ c_d A_max (Flanagan–Belytschko,
+/// without their ⅛ factors) and κμ, κλ̄ of the enhanced form (0 in lanes of the other forms).
+struct HourglassLanes {
+  Vec stiffness;
+  Vec viscosity;
+  Vec mu;
+  Vec lambda;
+};
+
+/// The hourglass resultants Q_α (α = modes 4..7) of a batch applied on x_{n+1} (`ax`, `av`,
+/// `g`, `vol` there; `L` the mid velocity gradient), their power, and the state they leave
+/// in `hgq` ([12][W]): the Flanagan–Belytschko forms (FB), the enhanced form (ENHANCED), or
+/// both, each lane taking the enhanced one where its κμ > 0. `relax` and `hg_limit` bound the
+/// enhanced resultants of plastic lanes (hex8r.hpp).
+template <bool PLASTIC, bool FB, bool ENHANCED>
+XPL_KERNEL_INLINE void hourglass_resultants(const V3<Vec> ax[8], const V3<Vec> av[8],
+                                            const V3<Vec> g[8], const Vec L[3][3], Vec vol,
+                                            Vec inv_vol, const HourglassLanes& lanes, Real dt,
+                                            const Vec& relax, const Vec& hg_limit, Real* hgq,
+                                            V3<Vec> Q[4], Vec& hg_power) {
+  [[maybe_unused]] Vec stored[12];
+  if constexpr (FB) {
+    // Flanagan–Belytschko: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α) on x_{n+1}.
+    Vec Ln[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Ln[i][j] = simd::splat(0.0);
+    Vec gsum = simd::splat(0.0);
+    for (int k = 1; k < 7; ++k) {
+      const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
+      const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) Ln[i][j] += vi[i] * gj[j];
+      gsum += dot(g[k], g[k]);
+    }
+    V3<Vec> old[4];
+    for (int m = 0; m < 4; ++m) {
+      const Real* qs = hgq + m * 3 * W;
+      old[m] = {simd::load(qs), simd::load(qs + W), simd::load(qs + 2 * W)};
+    }
+    const Vec k_hg = lanes.stiffness * (gsum * 0.125) * (0.125 * inv_vol);
+    const Vec c_hg = lanes.viscosity * 0.125;
+    HourglassStep hg;
+    flanagan_belytschko_step(ax, av, Ln, inv_vol, k_hg, c_hg, dt, old, hg);
+    for (int m = 0; m < 4; ++m) {
+      stored[3 * m] = hg.stored[m].x;
+      stored[3 * m + 1] = hg.stored[m].y;
+      stored[3 * m + 2] = hg.stored[m].z;
+      Q[m] = hg.force[m];
+    }
+    hg_power = hg.power;
+  }
+  if constexpr (ENHANCED) {
+    // The enhanced form, its state in the element's frame (L: the mid velocity gradient).
+    const Vec mu = lanes.mu;
+    Vec old[ENHANCED_STATE], next[ENHANCED_STATE];
+    for (int k = 0; k < ENHANCED_STATE; ++k) old[k] = simd::load(hgq + k * W);
+    V3<Vec> force[4];
+    Vec power;
+    enhanced_step(ax, av, g[3], L, vol, inv_vol, mu, lanes.lambda, dt, PLASTIC ? &relax : nullptr,
+                  PLASTIC ? &hg_limit : nullptr, old, next, force, power);
+    if constexpr (!FB) {
+      for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = next[k];
+      for (int m = 0; m < 4; ++m) Q[m] = force[m];
+      hg_power = power;
+    } else {
+      const simd::Mask use = mu > 0.0;
+      for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = simd::select(use, next[k], stored[k]);
+      for (int m = 0; m < 4; ++m) Q[m] = select3(use, force[m], Q[m]);
+      hg_power = simd::select(use, power, hg_power);
+    }
+  }
+  for (int k = 0; k < 12; ++k) simd::store(hgq + k * W, stored[k]);
+}
+
+/// The mean velocity gradient L = (1/V) Σ_k av_k ⊗ g_k over the geometry (g, V) of one point.
+XPL_KERNEL_INLINE void mean_velocity_gradient(const V3<Vec> av[8], const V3<Vec> g[8], Vec volume,
+                                              Vec L[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) L[i][j] = simd::splat(0.0);
+  for (int k = 1; k < 7; ++k) {
+    const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
+    const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) L[i][j] += vi[i] * gj[j];
+  }
+  const Vec inv_volume = 1.0 / volume;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) L[i][j] *= inv_volume;
+}
+
+/// Corner forces (fnx, fny, fnz, N) of the stress `sn`, the bulk-viscosity pressure `sv` and
+/// the hourglass resultants `Q` on x_{n+1} (modes `ax`, volume gradient `g`, 1/V).
+XPL_KERNEL_INLINE void corner_forces(const Vec sn[6], Vec sv, const V3<Vec> Q[4],
+                                     const V3<Vec> ax[8], const V3<Vec> g[8], Vec inv_vol,
+                                     Vec fnx[8], Vec fny[8], Vec fnz[8]) {
+  // Forces: f_I = P b_I + Σ_α Γ_αI Q_α with P = σ + s_v I − (8/V) Σ_α Q_α ⊗ a_α, and
+  // b_I = ⅛ Σ_k Λ_kI g_k, so in mode space F_k = ⅛ P g_k (+ Q_α for k = 4..7).
+  Vec P[3][3] = {
+      {sn[0] + sv, sn[3], sn[4]}, {sn[3], sn[1] + sv, sn[5]}, {sn[4], sn[5], sn[2] + sv}};
+  for (int m = 0; m < 4; ++m) {
+    const Vec qi[3] = {Q[m].x, Q[m].y, Q[m].z};
+    const Vec aj[3] = {ax[4 + m].x, ax[4 + m].y, ax[4 + m].z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) P[i][j] -= 8.0 * inv_vol * qi[i] * aj[j];
+  }
+  Vec Fx[8], Fy[8], Fz[8];
+  Fx[0] = Fy[0] = Fz[0] = simd::splat(0.0);
+  for (int k = 1; k < 7; ++k) {
+    Fx[k] = 0.125 * (P[0][0] * g[k].x + P[0][1] * g[k].y + P[0][2] * g[k].z);
+    Fy[k] = 0.125 * (P[1][0] * g[k].x + P[1][1] * g[k].y + P[1][2] * g[k].z);
+    Fz[k] = 0.125 * (P[2][0] * g[k].x + P[2][1] * g[k].y + P[2][2] * g[k].z);
+  }
+  Fx[7] = Fy[7] = Fz[7] = simd::splat(0.0);
+  for (int m = 0; m < 4; ++m) {
+    Fx[4 + m] += Q[m].x;
+    Fy[4 + m] += Q[m].y;
+    Fz[4 + m] += Q[m].z;
+  }
+  from_modes(Fx, fnx);
+  from_modes(Fy, fny);
+  from_modes(Fz, fnz);
+}
+
+}  // namespace
+
 template <bool PLASTIC, Hex8rBlock::HourglassPath PATH>
 void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, const Real* pz,
                                const Real* vx, const Real* vy, const Real* vz, Real dt, Real b1,
@@ -130,19 +260,9 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
     volume_gradient(am, gm, volm);
   }
 
-  // Velocity gradient on the mid geometry: V L = Σ_k av_k ⊗ g_k.
+  // Velocity gradient on the mid geometry.
   Vec L[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) L[i][j] = simd::splat(0.0);
-  for (int k = 1; k < 7; ++k) {
-    const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
-    const Vec gj[3] = {gm[k].x, gm[k].y, gm[k].z};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) L[i][j] += vi[i] * gj[j];
-  }
-  const Vec inv_volm = 1.0 / volm;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) L[i][j] *= inv_volm;
+  mean_velocity_gradient(av, gm, volm, L);
 
   const Vec lambda = simd::load(cst + LAMBDA * W);
   const Vec two_mu = simd::load(cst + TWO_MU * W);
@@ -150,29 +270,12 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   const Vec wave = simd::load(cst + WAVE_SPEED * W);
 
   // Jaumann-rate elastic update: σ̇ = λ tr(D) I + 2μ D + Wσ − σW.
-  const Vec d00 = L[0][0], d11 = L[1][1], d22 = L[2][2];
-  const Vec d01 = 0.5 * (L[0][1] + L[1][0]), d02 = 0.5 * (L[0][2] + L[2][0]),
-            d12 = 0.5 * (L[1][2] + L[2][1]);
-  const Vec w01 = 0.5 * (L[0][1] - L[1][0]), w02 = 0.5 * (L[0][2] - L[2][0]),
-            w12 = 0.5 * (L[1][2] - L[2][1]);
-  const Vec tr = d00 + d11 + d22;
+  const hex_kernel::Rates rate = hex_kernel::rates(L);
+  const Vec tr = rate.d[0] + rate.d[1] + rate.d[2];
   Vec s[6];
   for (int c = 0; c < 6; ++c) s[c] = simd::load(sig + c * W);
-  // R = Wσ (σ symmetric: s0 s1 s2 = 11 22 33, s3 = 12, s4 = 13, s5 = 23); Wσ − σW = R + Rᵀ.
-  const Vec r00 = w01 * s[3] + w02 * s[4];
-  const Vec r11 = -w01 * s[3] + w12 * s[5];
-  const Vec r22 = -w02 * s[4] - w12 * s[5];
-  const Vec r01 = w01 * s[1] + w02 * s[5], r10 = -w01 * s[0] + w12 * s[4];
-  const Vec r02 = w01 * s[5] + w02 * s[2], r20 = -w02 * s[0] - w12 * s[3];
-  const Vec r12 = -w01 * s[4] + w12 * s[2], r21 = -w02 * s[3] - w12 * s[1];
-  const Vec lt = lambda * tr;
   Vec sn[6];
-  sn[0] = s[0] + dt * (lt + two_mu * d00 + 2.0 * r00);
-  sn[1] = s[1] + dt * (lt + two_mu * d11 + 2.0 * r11);
-  sn[2] = s[2] + dt * (lt + two_mu * d22 + 2.0 * r22);
-  sn[3] = s[3] + dt * (two_mu * d01 + r01 + r10);
-  sn[4] = s[4] + dt * (two_mu * d02 + r02 + r20);
-  sn[5] = s[5] + dt * (two_mu * d12 + r12 + r21);
+  hex_kernel::jaumann_update(s, rate, lambda * tr, two_mu, dt, sn);
   // The elastic update is the trial state of the J2 return (its plastic work per lane, Pa).
   [[maybe_unused]] Vec dissipation = simd::splat(0.0);
   // The enhanced resultants of a yielding lane relax with its stress, and stay within its
@@ -197,108 +300,29 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
     }
   }
   for (int c = 0; c < 6; ++c) simd::store(sig + c * W, sn[c]);
-  const Vec strain_power =
-      0.5 * ((s[0] + sn[0]) * d00 + (s[1] + sn[1]) * d11 + (s[2] + sn[2]) * d22 +
-             2.0 * ((s[3] + sn[3]) * d01 + (s[4] + sn[4]) * d02 + (s[5] + sn[5]) * d12));
+  const Vec strain_power = 0.5 * hex_kernel::stress_power2(s, sn, rate);
 
-  // Characteristic length L_e = V / A_max and bulk viscosity (tensile-positive pressure).
-  const Vec area = simd::sqrt(max_face_area_squared(ax));
-  const Vec length = vol / area;
-  const Vec compress = simd::min(tr, simd::splat(0.0));
-  const Vec b2l = b2 * length;
-  const Vec sv = b1 * density * wave * length * tr - density * b2l * b2l * compress * compress;
-
-  // Stable increment with bulk-viscosity damping ξ (Abaqus-style estimate).
-  const Vec xi = b1 - b2 * b2 * (length / wave) * compress;
-  const Vec dt_e =
-      simd::load(cst + DT_FACTOR * W) * (length / wave) * (simd::sqrt(1.0 + xi * xi) - xi);
+  // Characteristic length L_e = V / A_max, bulk viscosity and the stable increment.
+  const hex_kernel::BulkViscosity bulk = hex_kernel::bulk_viscosity(
+      ax, vol, tr, density, wave, simd::load(cst + DT_FACTOR * W), b1, b2);
+  const Vec sv = bulk.sv;
 
   // Hourglass resultants Q_α (α = modes 4..7) applied on x_{n+1} and the state they leave.
   const Vec inv_vol = 1.0 / vol;
   V3<Vec> Q[4];
   Vec hg_power;
-  [[maybe_unused]] Vec stored[12];
-  if constexpr (PATH != HourglassPath::Enhanced) {
-    // Flanagan–Belytschko: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α) on x_{n+1}.
-    Vec Ln[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) Ln[i][j] = simd::splat(0.0);
-    Vec gsum = simd::splat(0.0);
-    for (int k = 1; k < 7; ++k) {
-      const Vec vi[3] = {av[k].x, av[k].y, av[k].z};
-      const Vec gj[3] = {g[k].x, g[k].y, g[k].z};
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) Ln[i][j] += vi[i] * gj[j];
-      gsum += dot(g[k], g[k]);
-    }
-    V3<Vec> old[4];
-    for (int m = 0; m < 4; ++m) {
-      const Real* qs = hgq + m * 3 * W;
-      old[m] = {simd::load(qs), simd::load(qs + W), simd::load(qs + 2 * W)};
-    }
-    const Vec k_hg =
-        simd::load(cst + HG_STIFFNESS * W) * two_mu * (gsum * 0.125) * (0.125 * inv_vol);
-    const Vec c_hg = simd::load(cst + HG_VISCOSITY * W) * density * wave * area * 0.125;
-    HourglassStep hg;
-    flanagan_belytschko_step(ax, av, Ln, inv_vol, k_hg, c_hg, dt, old, hg);
-    for (int m = 0; m < 4; ++m) {
-      stored[3 * m] = hg.stored[m].x;
-      stored[3 * m + 1] = hg.stored[m].y;
-      stored[3 * m + 2] = hg.stored[m].z;
-      Q[m] = hg.force[m];
-    }
-    hg_power = hg.power;
+  {
+    const HourglassLanes lanes{simd::load(cst + HG_STIFFNESS * W) * two_mu,
+                               simd::load(cst + HG_VISCOSITY * W) * density * wave * bulk.area,
+                               simd::load(cst + HG_MU * W), simd::load(cst + HG_LAMBDA * W)};
+    constexpr bool FB = PATH != HourglassPath::Enhanced;
+    constexpr bool ENHANCED = PATH != HourglassPath::FlanaganBelytschko;
+    hourglass_resultants<PLASTIC, FB, ENHANCED>(ax, av, g, L, vol, inv_vol, lanes, dt, relax,
+                                                hg_limit, hgq, Q, hg_power);
   }
-  if constexpr (PATH != HourglassPath::FlanaganBelytschko) {
-    // The enhanced form, its state in the element's frame (L: the mid velocity gradient).
-    const Vec mu = simd::load(cst + HG_MU * W);
-    Vec old[ENHANCED_STATE], next[ENHANCED_STATE];
-    for (int k = 0; k < ENHANCED_STATE; ++k) old[k] = simd::load(hgq + k * W);
-    V3<Vec> force[4];
-    Vec power;
-    enhanced_step(ax, av, g[3], L, vol, inv_vol, mu, simd::load(cst + HG_LAMBDA * W), dt,
-                  PLASTIC ? &relax : nullptr, PLASTIC ? &hg_limit : nullptr, old, next, force,
-                  power);
-    if constexpr (PATH == HourglassPath::Enhanced) {
-      for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = next[k];
-      for (int m = 0; m < 4; ++m) Q[m] = force[m];
-      hg_power = power;
-    } else {
-      const simd::Mask use = mu > 0.0;
-      for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = simd::select(use, next[k], stored[k]);
-      for (int m = 0; m < 4; ++m) Q[m] = select3(use, force[m], Q[m]);
-      hg_power = simd::select(use, power, hg_power);
-    }
-  }
-  for (int k = 0; k < 12; ++k) simd::store(hgq + k * W, stored[k]);
 
-  // Forces: f_I = P b_I + Σ_α Γ_αI Q_α with P = σ + s_v I − (8/V) Σ_α Q_α ⊗ a_α, and
-  // b_I = ⅛ Σ_k Λ_kI g_k, so in mode space F_k = ⅛ P g_k (+ Q_α for k = 4..7).
-  Vec P[3][3] = {
-      {sn[0] + sv, sn[3], sn[4]}, {sn[3], sn[1] + sv, sn[5]}, {sn[4], sn[5], sn[2] + sv}};
-  for (int m = 0; m < 4; ++m) {
-    const Vec qi[3] = {Q[m].x, Q[m].y, Q[m].z};
-    const Vec aj[3] = {ax[4 + m].x, ax[4 + m].y, ax[4 + m].z};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) P[i][j] -= 8.0 * inv_vol * qi[i] * aj[j];
-  }
-  Vec Fx[8], Fy[8], Fz[8];
-  Fx[0] = Fy[0] = Fz[0] = simd::splat(0.0);
-  for (int k = 1; k < 7; ++k) {
-    Fx[k] = 0.125 * (P[0][0] * g[k].x + P[0][1] * g[k].y + P[0][2] * g[k].z);
-    Fy[k] = 0.125 * (P[1][0] * g[k].x + P[1][1] * g[k].y + P[1][2] * g[k].z);
-    Fz[k] = 0.125 * (P[2][0] * g[k].x + P[2][1] * g[k].y + P[2][2] * g[k].z);
-  }
-  Fx[7] = Fy[7] = Fz[7] = simd::splat(0.0);
-  for (int m = 0; m < 4; ++m) {
-    Fx[4 + m] += Q[m].x;
-    Fy[4 + m] += Q[m].y;
-    Fz[4 + m] += Q[m].z;
-  }
   Vec fnx[8], fny[8], fnz[8];
-  from_modes(Fx, fnx);
-  from_modes(Fy, fny);
-  from_modes(Fz, fnz);
+  corner_forces(sn, sv, Q, ax, g, inv_vol, fnx, fny, fnz);
 
   simd::store(&m_volume[static_cast<std::size_t>(batch) * W], vol);
   // Stress work minus plastic work: ALLSE is the elastic energy of the stress state.
@@ -308,13 +332,8 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
     plastic_inc = volm * dissipation;
     strain_inc -= plastic_inc;
   }
-  // Bulk-viscosity work by the trapezoidal rule, as every other term of the balance: the
-  // pressure of the last call acted over this increment too (ALLKE = ½ v(n−½)·M·v(n+½) counts
-  // it so). This increment's pressure alone overstates the damping of a mode at ω by about
-  // (ωΔt)²/4 of it.
-  Real* sv_store = &m_viscous_before[static_cast<std::size_t>(batch) * W];
-  const Vec visc_inc = dt * volm * (0.5 * (simd::load(sv_store) + sv)) * tr;
-  simd::store(sv_store, sv);
+  const Vec visc_inc = hex_kernel::viscous_work(
+      &m_viscous_before[static_cast<std::size_t>(batch) * W], sv, dt, volm, tr);
   const Vec hg_inc = dt * hg_power;
 
   // Scatter (lanes of a batch share no node) and per-batch reductions over real lanes.
@@ -333,7 +352,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   m_batch_energy[batch * 4 + 1] = e_hg;
   m_batch_energy[batch * 4 + 2] = e_visc;
   m_batch_energy[batch * 4 + 3] = e_plastic;
-  m_batches.record_limit(batch, dt_e, ok);
+  m_batches.record_limit(batch, bulk.dt_e, ok);
 }
 
 void Hex8rBlock::gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {

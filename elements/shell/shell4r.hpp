@@ -79,6 +79,11 @@ inline constexpr Real SHELL_FOLD_LIMIT = 0.5;
 /// Largest number of through-thickness integration points.
 inline constexpr int SHELL_MAX_POINTS = 15;
 
+template <class T>
+struct QuadFrame;
+struct ShellPlaneRates;
+struct ShellSectionResultants;
+
 /// Material and section constants of one shell element.
 struct ShellProperties {
   Real density = 0.0;          ///< kg/m^3
@@ -317,6 +322,19 @@ class Shell4rBlock {
   template <bool PLASTIC>
   void compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
                      const Real* const w[3], Real dt, Real* const f[3], Real* const m[3]);
+  /// The pieces of compute_batch (shell4r.cpp), inlined into it: the through-thickness
+  /// integration of batch b with its plasticity and thickness update, and the stable increment,
+  /// fold check, scatter and per-batch reductions.
+  template <bool PLASTIC>
+  [[gnu::always_inline]] inline ShellSectionResultants section_resultants(
+      std::size_t b, Real dt, const ShellPlaneRates& rates);
+  template <bool PLASTIC>
+  [[gnu::always_inline]] inline void finish_batch(Index batch, const QuadFrame<simd::Vec>& fe,
+                                                  simd::Vec mid_area, simd::Vec work,
+                                                  simd::Vec plastic_work, simd::Vec hg_work,
+                                                  const V3<simd::Vec> fn[4],
+                                                  const V3<simd::Vec> mn[4], Real* const f[3],
+                                                  Real* const m[3]);
   void own_partition(int parts, Index node_count);
   std::size_t slot_of(Index i) const { return static_cast<std::size_t>(m_slot[i]); }
   /// Number of through-thickness points of the element in batch b, lane l.
