@@ -19,7 +19,7 @@
 
 #include "bench_decks.hpp"
 #include "common/error.hpp"
-#include "elements/simd.hpp"
+#include "elements/parallel/simd.hpp"
 #include "io/deck/deck_reader.hpp"
 #include "io/result_tools/json_value.hpp"
 #include "solver/explicit_solver.hpp"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The S4R plane-stress return alone (benchmarks/shell_return_micro.cpp) built against
-# elements/shell_plasticity.cpp of two revisions, run alternately REPS times per case; prints
+# elements/material/shell_plasticity.cpp (elements/shell_plasticity.cpp before issue 36) of two
+# revisions, run alternately REPS times per case; prints
 # the user CPU seconds (best / median), which a loaded machine disturbs far less than wall
 # time. Usage: bash benchmarks/run_shell_return_micro.sh OLD_REV [NEW_REV (working tree)]
 # Environment: REPS (7), N (4000 increments), MARCH (native).
@@ -13,12 +14,18 @@ reps=${REPS:-7}
 n=${N:-4000}
 work=build/bench/shell_return
 mkdir -p "$work"
-git show "$old_rev:elements/shell_plasticity.cpp" >"$work/old.cpp"
-if [[ -n $new_rev ]]; then git show "$new_rev:elements/shell_plasticity.cpp" >"$work/new.cpp"
-else cp elements/shell_plasticity.cpp "$work/new.cpp"; fi
+# The return and, since issue 36, the state's constructor in a file of its own.
+show() { # REV OUT
+  git show "$1:elements/material/shell_plasticity.cpp" >"$2" 2>/dev/null ||
+    git show "$1:elements/shell_plasticity.cpp" >"$2"
+  git show "$1:elements/material/shell_plastic_state.cpp" >>"$2" 2>/dev/null || true
+}
+show "$old_rev" "$work/old.cpp"
+if [[ -n $new_rev ]]; then show "$new_rev" "$work/new.cpp"
+else cat elements/material/shell_plasticity.cpp elements/material/shell_plastic_state.cpp >"$work/new.cpp"; fi
 for v in old new; do
   g++ -O3 -march="${MARCH:-native}" -std=c++20 -w -DNDEBUG -I. -isystem /usr/include/eigen3 \
-    benchmarks/shell_return_micro.cpp "$work/$v.cpp" elements/plasticity.cpp -o "$work/$v"
+    benchmarks/shell_return_micro.cpp "$work/$v.cpp" elements/material/plasticity.cpp -o "$work/$v"
 done
 for case in "0 0" "1 50"; do
   for v in old new; do "$work/$v" $case "$n"; done

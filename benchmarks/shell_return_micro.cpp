@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <random>
 #include <vector>
-#include "elements/shell_plasticity.hpp"
+#include "elements/material/shell_plasticity.hpp"
 using namespace xpl;
 using namespace xpl::elements;
 int main(int argc, char** argv) {

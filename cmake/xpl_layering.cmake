@@ -16,6 +16,15 @@
 #   apps     -> io and below, through the libraries they link
 #   tests    -> what the library they test exposes, plus their own folder
 #
+# Within a folder, subfolders may be layered too (xpl_sublayers): elements/hex/ and
+# elements/shell/ (one element kind each) include elements/material/, elements/parallel/ and
+# the headers directly in elements/, never each other, so that a new kind is one new folder:
+#
+#   elements/<kind>/  -> elements/material, elements/parallel, elements/*.hpp
+#   elements/material -> elements/parallel        elements/*.hpp -> elements/parallel
+#
+# The layering_sources test checks these (the include roots cannot: they are per folder).
+#
 # A library's consumers see its root through PUBLIC propagation: that is safe because every
 # root is a subset of the roots of the layers above it (solver links contact PUBLIC, and
 # contact's root holds only common/ and contact/). The one path around the roots is a quoted
@@ -50,6 +59,15 @@ function(xpl_layer target)
   set_property(GLOBAL APPEND PROPERTY XPL_LAYERED_TARGETS ${target})
 endfunction()
 
+# xpl_sublayers(<folder> <sub>=<subs it may include>...): files in <folder>/<sub>/ may include
+# "<folder>/<x>/..." only for x = <sub> or one of the listed subfolders; <sub> "." stands for
+# the files directly in <folder>/. Any subfolder of <folder> not listed is unrestricted.
+function(xpl_sublayers folder)
+  foreach(entry IN LISTS ARGN)
+    set_property(GLOBAL APPEND PROPERTY XPL_SUBLAYERS "${folder}/${entry}")
+  endforeach()
+endfunction()
+
 # Every target built in <folder>... (and their subfolders) must have a layer. Writes the table
 # that check_sources.cmake reads: one "<folder of the target>=<folders it may include>" entry
 # per target.
@@ -77,5 +95,9 @@ function(xpl_check_layers)
       string(APPEND table "list(APPEND XPL_LAYERS \"${folder}=${folders}\") # ${target}\n")
     endforeach()
   endwhile()
+  get_property(sublayers GLOBAL PROPERTY XPL_SUBLAYERS)
+  foreach(entry IN LISTS sublayers)
+    string(APPEND table "list(APPEND XPL_SUBLAYERS \"${entry}\")\n")
+  endforeach()
   file(WRITE ${XPL_INCLUDE_ROOTS_DIR}/layers.cmake "${table}")
 endfunction()

@@ -23,9 +23,9 @@ namespace xpl {
 /// The guarded OpenMP regions, named for fault injection in tests.
 enum class ParallelSite : int {
   None = 0,
-  ElementForces,    ///< element forces of a thread's part (elements/thread_partition.hpp)
-  ElementBoundary,  ///< sums at nodes two parts share (elements/thread_partition.hpp)
-  HexStiffness,     ///< C3D8R stiffness product (elements/hex8r_stiffness.cpp)
+  ElementForces,    ///< element forces of a thread's part (elements/parallel/thread_partition.hpp)
+  ElementBoundary,  ///< sums at nodes two parts share (elements/parallel/thread_partition.hpp)
+  HexStiffness,     ///< C3D8R stiffness product (elements/hex/hex8r_stiffness.cpp)
   ContactSearch,    ///< closest master face per slave node (contact/contact_engine.cpp)
   ContactForces,    ///< penalty and friction forces (contact/contact_engine.cpp)
   BroadPhase,       ///< candidate faces per slave node (contact/broad_phase.cpp)

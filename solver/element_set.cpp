@@ -15,67 +15,38 @@ namespace xpl {
 
 namespace {
 
-/// `mass_factor`: the element's *FIXED MASS SCALING factor (1: none), applied to the density.
-elements::HexMaterial hex_material(const Model& model, Index element, Real mass_factor) {
-  const SolidSection& section = model.solid_sections[model.element_section[element]];
-  const Material& m = model.materials[section.material];
-  elements::HexMaterial h;
-  h.density = m.density * mass_factor;
-  h.young = m.young;
-  h.poisson = m.poisson;
-  if (m.plastic) h.plastic = &*m.plastic;
-  // The enhanced form unless HOURGLASS= asks for STIFFNESS, RELAX STIFFNESS (run as
-  // STIFFNESS) or VISCOUS (R5: the default stabilisation is physical).
-  h.hourglass = elements::HourglassForm::Enhanced;
-  if (section.controls != NO_INDEX) {
-    const SectionControls& c = model.section_controls[section.controls];
-    if (c.hourglass_given && c.hourglass == HourglassType::Viscous)
-      h.hourglass = elements::HourglassForm::Viscous;
-    else if (c.hourglass_given && c.hourglass != HourglassType::Enhanced)
-      h.hourglass = elements::HourglassForm::Stiffness;
-    h.hourglass_scale =
-        h.hourglass == elements::HourglassForm::Viscous ? c.viscous_scale : c.stiffness_scale;
-  }
-  return h;
-}
-
-elements::ShellProperties shell_properties(const Model& model, Index element, Real mass_factor) {
-  const ShellSection& section = model.shell_sections[model.element_section[element]];
-  const Material& m = model.materials[section.material];
-  elements::ShellProperties p;
-  p.density = m.density * mass_factor;
-  p.young = m.young;
-  p.poisson = m.poisson;
-  p.thickness = section.thickness;
-  p.integration_points = section.integration_points;
-  p.offset = section.offset;
-  p.rotary_exact = section.rotary_exact;
-  if (m.plastic) p.plastic = &*m.plastic;
-  if (section.controls != NO_INDEX) {
-    const SectionControls& c = model.section_controls[section.controls];
-    p.hourglass_scale = c.stiffness_scale;
-    // HOURGLASS=STIFFNESS, VISCOUS, RELAX STIFFNESS: the older stiffness form.
-    if (c.hourglass_given && c.hourglass != HourglassType::Enhanced)
-      p.hourglass = elements::ShellHourglass::Stiffness;
-  }
-  return p;
-}
-
 bool deformable(const RigidBodies& rigid, Index e) {
   return rigid.element_body().empty() || rigid.element_body()[e] == NO_INDEX;
 }
 
 }  // namespace
 
+template <class F>
+void ElementSet::for_each_block(F&& f) const {
+  std::apply([&](const auto&... block) { ((block ? f(*block) : void()), ...); }, m_blocks);
+}
+
+template <class F>
+void ElementSet::for_each_block(F&& f) {
+  std::apply([&](auto&... block) { ((block ? f(*block) : void()), ...); }, m_blocks);
+}
+
+template <std::size_t... I, class F>
+void ElementSet::for_each_block(std::index_sequence<I...>, F&& f) {
+  ((std::get<I>(m_blocks) ? f(*std::get<I>(m_blocks)) : void()), ...);
+}
+
 ElementSet::ElementSet(const Model& model, const RigidBodies& rigid, State& state,
                        PhaseTimers& timers)
     : m_model(model), m_timers(timers) {
   m_force_internal = NodalVectors::Zero(model.node_count(), 3);
   m_mass_scaling = fixed_mass_scaling(model, rigid, state.reference);
-  build_hex_block(rigid, state);
-  build_shell_block(rigid, state);
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (build_block<std::tuple_element_t<I, ElementKinds>>(rigid, state), ...);
+  }
+  (std::make_index_sequence<std::tuple_size_v<ElementKinds>>{});
   add_other_masses(rigid, state);
-  if (m_shell) {
+  if (m_rotations) {
     m_inverse_inertia.assign(model.node_count(), 0.0);
     for (Index i = 0; i < model.node_count(); ++i)
       if (state.rotary_inertia[i] > 0.0) m_inverse_inertia[i] = 1.0 / state.rotary_inertia[i];
@@ -89,47 +60,30 @@ ElementSet::ElementSet(const Model& model, const RigidBodies& rigid, State& stat
   set_inverse_mass(rigid, state.mass);
 }
 
-void ElementSet::build_hex_block(const RigidBodies& rigid, State& state) {
-  std::vector<Index> hex_elements;
+template <class K>
+void ElementSet::build_block(const RigidBodies& rigid, State& state) {
+  std::vector<Index> elements;
   std::vector<Index> connectivity;
-  std::vector<elements::HexMaterial> materials;
-  std::vector<Index> full_elements, full_connectivity;  // C3D8
-  std::vector<elements::HexMaterial> full_materials;
+  std::vector<typename K::Properties> properties;
   for (Index e = 0; e < m_model.element_count(); ++e) {
-    if (!is_hex(m_model.element_types[e]) || !deformable(rigid, e)) continue;
-    const bool full = m_model.element_types[e] == ElementType::C3D8;
-    std::vector<Index>& conn = full ? full_connectivity : connectivity;
-    (full ? full_elements : hex_elements).push_back(e);
-    conn.insert(conn.end(), m_model.nodes_of(e), m_model.nodes_of(e) + 8);
-    (full ? full_materials : materials).push_back(hex_material(m_model, e, mass_factor(e)));
+    if (!KindBinding<K>::takes(m_model.element_types[e]) || !deformable(rigid, e)) continue;
+    elements.push_back(e);
+    connectivity.insert(connectivity.end(), m_model.nodes_of(e), m_model.nodes_of(e) + K::NODES);
+    properties.push_back(KindBinding<K>::properties(m_model, e, mass_factor(e)));
   }
-  if (!hex_elements.empty()) {
-    m_hex = std::make_unique<elements::Hex8rBlock>(hex_elements, connectivity, materials,
-                                                   m_model.node_count());
-    m_hex->add_lumped_mass(state.reference, state.mass);
-  }
-  if (!full_elements.empty()) {
-    m_hex8 = std::make_unique<elements::Hex8Block>(full_elements, full_connectivity, full_materials,
-                                                   m_model.node_count());
-    m_hex8->add_lumped_mass(state.reference, state.mass);
-  }
+  if (elements.empty()) return;
+  auto& block = std::get<std::unique_ptr<K>>(m_blocks);
+  block = std::make_unique<K>(elements, connectivity, properties, m_model.node_count());
+  if constexpr (requires { K::ROTATIONS; })
+    if (!m_rotations) add_rotations(state);
+  block->add_lumped_mass(state.reference, state.mass, state.rotary_inertia);
+  if constexpr (requires { block->note_reference_corners(state.reference); })
+    block->note_reference_corners(state.reference);
 }
 
-void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
+void ElementSet::add_rotations(State& state) {
+  // Rotational DOFs exist only in models with a kind that has them (P2).
   const Index n = m_model.node_count();
-  std::vector<Index> shell_elements;
-  std::vector<elements::ShellProperties> shell_props;
-  std::vector<Index> connectivity;
-  for (Index e = 0; e < m_model.element_count(); ++e) {
-    if (!is_shell(m_model.element_types[e]) || !deformable(rigid, e)) continue;
-    shell_elements.push_back(e);
-    const Index* nodes = m_model.nodes_of(e);
-    connectivity.insert(connectivity.end(), nodes, nodes + 4);
-    shell_props.push_back(shell_properties(m_model, e, mass_factor(e)));
-  }
-  if (shell_elements.empty()) return;
-  // Rotational DOFs exist only in shell models (P2).
-  m_shell = std::make_unique<elements::Shell4rBlock>(shell_elements, connectivity, shell_props, n);
   state.rotation = NodalVectors::Zero(n, 3);
   // *INITIAL CONDITIONS: dofs 4–6 and rigid spins (zero unless given).
   state.angular_velocity = m_model.initial_angular_velocity.rows() == n
@@ -139,8 +93,7 @@ void ElementSet::build_shell_block(const RigidBodies& rigid, State& state) {
   state.reaction_moment = NodalVectors::Zero(n, 3);
   state.rotary_inertia.assign(n, 0.0);
   m_moment_internal = NodalVectors::Zero(n, 3);
-  m_shell->add_lumped_mass(state.reference, state.mass, state.rotary_inertia);
-  m_shell->note_reference_corners(state.reference);
+  m_rotations = true;
 }
 
 void ElementSet::add_other_masses(const RigidBodies& rigid, State& state) const {
@@ -156,7 +109,7 @@ void ElementSet::add_other_masses(const RigidBodies& rigid, State& state) const 
 
 void ElementSet::set_node_thickness(const RigidBodies& rigid, const NodalVectors& reference) {
   const Index n = m_model.node_count();
-  if (m_shell) m_node_thickness = m_shell->node_thickness(reference, n);
+  if (shells()) m_node_thickness = shells()->node_thickness(reference, n);
   for (Index e = 0; e < m_model.element_count(); ++e) {
     if (deformable(rigid, e) || !is_shell(m_model.element_types[e])) continue;
     if (m_node_thickness.empty()) m_node_thickness.assign(n, 0.0);
@@ -194,8 +147,18 @@ Real ElementSet::mass_factor(Index e) const {
 }
 
 Index ElementSet::size() const {
-  return (m_hex ? m_hex->size() : 0) + (m_hex8 ? m_hex8->size() : 0) +
-         (m_shell ? m_shell->size() : 0);
+  Index n = 0;
+  for_each_block([&](const auto& block) { n += block.size(); });
+  return n;
+}
+
+bool ElementSet::has_hourglass_state() const {
+  bool any = false;
+  for_each_block([&](const auto& block) {
+    if constexpr (requires(std::vector<Real> & rows) { block.gather_hourglass_state(rows); })
+      any = true;
+  });
+  return any;
 }
 
 void ElementSet::report_setup(const NodalVectors& reference, OutputSink& sink) const {
@@ -205,21 +168,12 @@ void ElementSet::report_setup(const NodalVectors& reference, OutputSink& sink) c
     sink.message(Severity::Warning, std::to_string(m_massless) +
                                         " node(s) belong to no element and have no mass; "
                                         "they keep their initial velocity");
-  if (m_hex)
-    sink.message(Severity::Info, "C3D8R elements: " + std::to_string(m_hex->size()) + " in " +
-                                     std::to_string(m_hex->color_count()) +
-                                     " colours (race-free parallel assembly)");
-  if (m_hex8)
-    sink.message(Severity::Info, "C3D8 elements: " + std::to_string(m_hex8->size()) + " in " +
-                                     std::to_string(m_hex8->color_count()) +
-                                     " colours; 2x2x2 points, mean dilatation (selectively "
-                                     "reduced), no hourglass control");
-  if (!m_shell) return;
-  sink.message(Severity::Info,
-               "S4R elements: " + std::to_string(m_shell->size()) + " in " +
-                   std::to_string(m_shell->color_count()) +
-                   " colours; rotary inertia scaled to (m/4)·max(t²/12, c_nu L²) per node so "
-                   "that the membrane wave sets the stable increment");
+  for_each_block([&](const auto& block) {
+    sink.message(Severity::Info,
+                 std::string(block.NAME) + " elements: " + std::to_string(block.size()) + " in " +
+                     std::to_string(block.color_count()) + " colours" + block.SETUP_NOTE);
+  });
+  if (!shells()) return;
   report_warped_shells(reference, sink);
   for (const SectionControls& c : m_model.section_controls)
     if (c.hourglass == HourglassType::Viscous)
@@ -246,12 +200,13 @@ void ElementSet::report_warped_shells(const NodalVectors& reference, OutputSink&
   constexpr int MAX_LISTED = 20;
   int warped = 0;
   Real worst = 0.0;
-  for (Index i = 0; i < m_shell->size(); ++i) {
-    const Real angle = m_shell->warp_angle(reference, i);
+  const elements::Shell4rBlock& shell = *shells();
+  for (Index i = 0; i < shell.size(); ++i) {
+    const Real angle = shell.warp_angle(reference, i);
     worst = std::max(worst, angle);
     if (angle <= WARN_DEGREES) continue;
     if (++warped > MAX_LISTED) continue;
-    const Index e = m_shell->element_index(i);
+    const Index e = shell.element_index(i);
     const SourceLocation where = m_model.element_where(e);
     sink.message(Severity::Warning,
                  where.file + ":" + std::to_string(where.line) + ": *ELEMENT: S4R element " +
@@ -268,39 +223,41 @@ void ElementSet::report_warped_shells(const NodalVectors& reference, OutputSink&
 
 void ElementSet::set_stress(const NodalVectors& position, std::span<const Real> middle,
                             std::span<const Real> bottom, std::span<const Real> top) {
-  if (m_hex) m_hex->set_stress(middle);
-  if (m_hex8) m_hex8->set_stress(middle);
-  if (m_shell) m_shell->set_output_stress(position, middle, bottom, top);
+  for_each_block([&](auto& block) { block.set_stress(position, middle, bottom, top); });
 }
 
 void ElementSet::set_plastic_strain(std::span<const Real> peeq, std::span<const Real> middle,
                                     std::span<const Real> bottom, std::span<const Real> top) {
-  if (m_hex && !peeq.empty()) m_hex->set_plastic_strain(peeq);
-  if (m_hex8 && !peeq.empty()) m_hex8->set_plastic_strain(peeq);
-  if (m_shell && !middle.empty()) m_shell->set_plastic_strain(middle, bottom, top);
+  for_each_block([&](auto& block) {
+    // Solids take one value per element, shells their three section points.
+    if constexpr (requires { block.set_plastic_strain(middle, bottom, top); }) {
+      if (!middle.empty()) block.set_plastic_strain(middle, bottom, top);
+    } else if (!peeq.empty()) {
+      block.set_plastic_strain(peeq);
+    }
+  });
 }
 
 void ElementSet::set_hourglass_state(std::span<const Real> rows) {
-  if (m_hex) m_hex->set_hourglass_state(rows);
-  if (m_shell) m_shell->set_hourglass_state(rows);
+  for_each_block([&](auto& block) {
+    if constexpr (requires { block.set_hourglass_state(rows); }) block.set_hourglass_state(rows);
+  });
 }
 
 void ElementSet::set_shell_thickness(std::span<const Real> thickness) {
-  if (m_shell) m_shell->set_thickness(thickness);
+  for_each_block([&](auto& block) {
+    if constexpr (requires { block.set_thickness(thickness); }) block.set_thickness(thickness);
+  });
 }
 
 void ElementSet::use_partition(int parts) {
   if (m_parts == parts) return;
   // The boundary nodes are those two parts share over all blocks, so that a node's
-  // contributions keep their order (C3D8R colours, then S4R, then C3D8) too.
+  // contributions keep their order (ForcePassOrder) too.
   std::vector<Index> node_part(static_cast<std::size_t>(m_model.node_count()), elements::UNTOUCHED);
-  if (m_hex) m_hex->mark_nodes(parts, node_part);
-  if (m_shell) m_shell->mark_nodes(parts, node_part);
-  if (m_hex8) m_hex8->mark_nodes(parts, node_part);
+  for_each_block(ForcePassOrder{}, [&](auto& block) { block.mark_nodes(parts, node_part); });
   const elements::BoundaryNodes boundary = elements::boundary_nodes(node_part);
-  if (m_hex) m_hex->set_partition(parts, boundary);
-  if (m_shell) m_shell->set_partition(parts, boundary);
-  if (m_hex8) m_hex8->set_partition(parts, boundary);
+  for_each_block(ForcePassOrder{}, [&](auto& block) { block.set_partition(parts, boundary); });
   m_boundary_nodes = boundary.nodes;
   m_parts = parts;
 }
@@ -311,43 +268,29 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
   // One parallel region for every block and colour (thread_partition.hpp).
   const int parts = std::max(1, omp_get_max_threads());
   use_partition(parts);
+  const elements::ForcePass pass{state.position,
+                                 state.velocity_half,
+                                 state.angular_velocity_half,
+                                 dt,
+                                 s.bulk_linear,
+                                 s.bulk_quadratic,
+                                 m_force_internal,
+                                 m_moment_internal};
   elements::partitioned_pass(
       parts, static_cast<Index>(m_boundary_nodes.size()),
       [&](int p) {
-        if (m_hex)
-          m_hex->forces_of_part(p, state.position, state.velocity_half, dt, s.bulk_linear,
-                                s.bulk_quadratic, m_force_internal);
-        if (m_shell)
-          m_shell->forces_of_part(p, state.position, state.velocity_half,
-                                  state.angular_velocity_half, dt, m_force_internal,
-                                  m_moment_internal);
-        if (m_hex8)
-          m_hex8->forces_of_part(p, state.position, state.velocity_half, dt, s.bulk_linear,
-                                 s.bulk_quadratic, m_force_internal);
+        for_each_block(ForcePassOrder{}, [&](auto& block) { block.forces_of_part(p, pass); });
       },
       [&](Index k) {
         const Index node = m_boundary_nodes[k];
-        if (m_hex) m_hex->add_boundary_forces(k, node, m_force_internal);
-        if (m_shell) m_shell->add_boundary_forces(k, node, m_force_internal, m_moment_internal);
-        if (m_hex8) m_hex8->add_boundary_forces(k, node, m_force_internal);
+        for_each_block(ForcePassOrder{},
+                       [&](auto& block) { block.add_boundary_forces(k, node, pass); });
       });
-  if (m_hex) {
-    elements::HexStepTotals t;
-    m_hex->add_totals(t);
+  for_each_block([&](const auto& block) {
+    typename std::remove_cvref_t<decltype(block)>::Totals t;
+    block.add_totals(t);
     totals.add(t);
-    totals.viscous_energy_increment += t.viscous_energy_increment;
-  }
-  if (m_hex8) {
-    elements::HexStepTotals t;
-    m_hex8->add_totals(t);
-    totals.add(t);
-    totals.viscous_energy_increment += t.viscous_energy_increment;
-  }
-  if (m_shell) {
-    elements::ShellStepTotals t;
-    m_shell->add_totals(t);
-    totals.add(t);
-  }
+  });
 }
 
 ElementEstimate ElementSet::increment_estimate(const State& state, const ElementTotals& totals) {
@@ -355,19 +298,26 @@ ElementEstimate ElementSet::increment_estimate(const State& state, const Element
   e.stable_dt = totals.stable_dt;
   e.critical_element = totals.critical_element;
   const Step& s = m_model.steps[state.step];
-  // Shell-only models pass their own stress test; the global estimate covers the hexes.
-  if ((m_hex || m_hex8) && !s.increment.fixed) {
+  // The kinds with a stiffness product (the hexes) take the global estimate; shell-only
+  // models pass their own stress test.
+  bool stiffness = false;
+  for_each_block([&](const auto& block) {
+    if constexpr (requires(NodalVectors & y) { block.add_stiffness_product(y, y, y); })
+      stiffness = true;
+  });
+  if (stiffness && !s.increment.fixed) {
     ScopedTimer timer(m_timers, Phase::InternalForce);
     const auto product = [this, &state](const NodalVectors& u, NodalVectors& y) {
-      if (m_hex) m_hex->add_stiffness_product(state.position, u, y);
-      if (m_hex8) m_hex8->add_stiffness_product(state.position, u, y);
+      for_each_block([&](const auto& block) {
+        if constexpr (requires { block.add_stiffness_product(state.position, u, y); })
+          block.add_stiffness_product(state.position, u, y);
+      });
     };
     e.global_ratio =
         m_global.apply(product, state.position.rows(), m_inverse_mass, s.bulk_linear, totals);
   }
   return e;
 }
-
 ElementEstimate ElementSet::increment_estimate(const State& state) {
   ElementTotals totals;
   compute_forces(state, 0.0, totals);
@@ -395,9 +345,7 @@ void ElementSet::gather_output(const State& state, const FrameRequest& what,
   if (what.plastic_strain) {
     // PEEQ of every element (0 where elastic); each block writes the rows of its elements.
     frame.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);
-    if (m_hex) m_hex->gather_plastic_strain(frame.peeq);
-    if (m_hex8) m_hex8->gather_plastic_strain(frame.peeq);
-    if (m_shell) m_shell->gather_plastic_strain(frame.peeq);
+    for_each_block([&](const auto& block) { block.gather_plastic_strain(frame.peeq); });
     if (m_model.has_plastic_shells()) {
       // Per section point: NaN rows for solids and rigid elements, like S_SNEG and S_SPOS.
       const auto n = static_cast<std::size_t>(m_model.element_count());
@@ -405,9 +353,13 @@ void ElementSet::gather_output(const State& state, const FrameRequest& what,
       frame.peeq_bottom.assign(n, nan);
       frame.peeq_middle.assign(n, nan);
       frame.peeq_top.assign(n, nan);
-      if (m_shell)
-        m_shell->gather_section_plastic_strain(frame.peeq_bottom, frame.peeq_middle,
-                                               frame.peeq_top);
+      for_each_block([&](const auto& block) {
+        if constexpr (requires {
+                        block.gather_section_plastic_strain(frame.peeq_bottom, frame.peeq_middle,
+                                                            frame.peeq_top);
+                      })
+          block.gather_section_plastic_strain(frame.peeq_bottom, frame.peeq_middle, frame.peeq_top);
+      });
     }
   }
   if (!what.stress && !what.volume && !what.thickness) return;
@@ -415,26 +367,28 @@ void ElementSet::gather_output(const State& state, const FrameRequest& what,
   const auto n_elements = static_cast<std::size_t>(m_model.element_count());
   frame.stress.resize(n_elements * 6, 0.0);
   frame.volume.resize(n_elements, 0.0);
-  if (m_hex) m_hex->gather_output(frame.stress, frame.volume);
-  if (m_hex8) m_hex8->gather_output(frame.stress, frame.volume);
   if (what.stress && has_hourglass_state()) {
     frame.hourglass_state.assign(n_elements * elements::HOURGLASS_STATE_WIDTH, 0.0);
-    if (m_hex) m_hex->gather_hourglass_state(frame.hourglass_state);
-    if (m_shell) m_shell->gather_hourglass_state(frame.hourglass_state);
+    for_each_block([&](const auto& block) {
+      if constexpr (requires { block.gather_hourglass_state(frame.hourglass_state); })
+        block.gather_hourglass_state(frame.hourglass_state);
+    });
   }
-  if (m_shell) {
+  if (shells()) {
+    // Section output: NaN rows for the solids and rigid elements (P2: only on shell models).
     const Real nan = std::numeric_limits<Real>::quiet_NaN();
     frame.stress_bottom.resize(n_elements * 6, nan);
     frame.stress_top.resize(n_elements * 6, nan);
     frame.thickness.resize(n_elements, nan);
-    m_shell->gather_output(state.position, frame.stress, frame.stress_bottom, frame.stress_top,
-                           frame.thickness);
   }
+  const elements::OutputArrays out{state.position,      frame.stress,     frame.volume,
+                                   frame.stress_bottom, frame.stress_top, frame.thickness};
+  for_each_block([&](const auto& block) { block.gather_output(out); });
 }
 
 void ElementSet::clear_forces() {
   m_force_internal.setZero();
-  if (m_shell) m_moment_internal.setZero();
+  if (m_rotations) m_moment_internal.setZero();
 }
 
 }  // namespace xpl

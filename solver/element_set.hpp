@@ -1,19 +1,19 @@
 #pragma once
-/// \file The deformable elements of a model as one set: the C3D8R, C3D8 and S4R blocks, the lumped
-/// nodal masses and rotary inertias they make, their internal forces and the stable
-/// increment they allow.
+/// \file The deformable elements of a model as one set: one block per element kind
+/// (element_kinds.hpp: C3D8R, C3D8, S4R), folded over at compile time; the lumped nodal masses
+/// and rotary inertias they make, their internal forces and the stable increment they allow.
 
 #include <limits>
 #include <memory>
 #include <span>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "common/timer.hpp"
 #include "contact/contact_faces.hpp"
-#include "elements/hex8.hpp"
-#include "elements/hex8r.hpp"
 #include "elements/increment_limit.hpp"
-#include "elements/shell4r.hpp"
+#include "solver/element_kinds.hpp"
 #include "solver/global_increment.hpp"
 #include "solver/increment_control.hpp"
 #include "solver/mass_scaling.hpp"
@@ -32,9 +32,8 @@ struct ElementTotals : elements::IncrementLimit {
   Real viscous_energy_increment = 0.0;
   Real plastic_energy_increment = 0.0;  ///< ΔALLPD: plastic dissipation of the pass
 
-  /// Adds one block's totals (strain and hourglass energy, plastic dissipation where the
-  /// block's totals have a `plastic_energy_increment`, increment limit; the caller adds the
-  /// viscous energy of the blocks that have it).
+  /// Adds one block's totals (strain and hourglass energy, plastic dissipation and viscous
+  /// energy where the block's totals have them, increment limit).
   template <class BlockTotals>
   void add(const BlockTotals& t) {
     strain_energy_increment += t.strain_energy_increment;
@@ -42,6 +41,8 @@ struct ElementTotals : elements::IncrementLimit {
     if constexpr (requires { t.plastic_energy_increment; })
       plastic_energy_increment += t.plastic_energy_increment;
     merge(t);
+    if constexpr (requires { t.viscous_energy_increment; })
+      viscous_energy_increment += t.viscous_energy_increment;
   }
 };
 
@@ -58,7 +59,7 @@ class ElementSet {
   ElementSet(const Model& model, const RigidBodies& rigid, State& state, PhaseTimers& timers);
 
   /// Whether the model has S4R elements (and so nodes with rotational DOFs).
-  bool has_shells() const { return m_shell != nullptr; }
+  bool has_shells() const { return shells() != nullptr; }
   /// Number of deformable elements (the element cycles of the run summary).
   Index size() const;
 
@@ -81,7 +82,7 @@ class ElementSet {
 
   /// Whether the model's elements carry hourglass state (C3D8R or S4R elements: their
   /// accumulated hourglass resultants), written with S and restored by set_hourglass_state.
-  bool has_hourglass_state() const { return m_hex != nullptr || m_shell != nullptr; }
+  bool has_hourglass_state() const;
   /// Sets imported hourglass state (n_elements × elements::HOURGLASS_STATE_WIDTH, the rows
   /// gather_output writes into FrameFields::hourglass_state).
   void set_hourglass_state(std::span<const Real> rows);
@@ -131,10 +132,25 @@ class ElementSet {
   const std::vector<contact::ElementKind>& element_kinds() const { return m_element_kinds; }
 
  private:
-  void build_hex_block(const RigidBodies& rigid, State& state);
+  /// Builds the block of kind K (none without elements of its types) and lumps its masses.
+  template <class K>
+  void build_block(const RigidBodies& rigid, State& state);
+  /// Allocates the rotational fields of `state` at zero (models with rotational DOFs, P2).
+  void add_rotations(State& state);
   /// The `*FIXED MASS SCALING` factor of element e (1 without scaling).
   Real mass_factor(Index e) const;
-  void build_shell_block(const RigidBodies& rigid, State& state);
+  /// Calls `f(block)` for the block of every kind present, in ElementKinds order or in the
+  /// order of the kind indices `I...`.
+  template <class F>
+  void for_each_block(F&& f) const;
+  template <class F>
+  void for_each_block(F&& f);
+  template <std::size_t... I, class F>
+  void for_each_block(std::index_sequence<I...>, F&& f);
+  /// The S4R block, or nullptr.
+  const elements::Shell4rBlock* shells() const {
+    return std::get<std::unique_ptr<elements::Shell4rBlock>>(m_blocks).get();
+  }
   /// Masses of the rigid elements and point masses into state.mass.
   void add_other_masses(const RigidBodies& rigid, State& state) const;
   void set_node_thickness(const RigidBodies& rigid, const NodalVectors& reference);
@@ -145,9 +161,10 @@ class ElementSet {
 
   const Model& m_model;
   PhaseTimers& m_timers;
-  std::unique_ptr<elements::Hex8rBlock> m_hex;
-  std::unique_ptr<elements::Hex8Block> m_hex8;  ///< the C3D8 elements
-  std::unique_ptr<elements::Shell4rBlock> m_shell;
+  /// One block per kind (nullptr: the model has no such elements), in ElementKinds order.
+  std::tuple<std::unique_ptr<elements::Hex8rBlock>, std::unique_ptr<elements::Hex8Block>,
+             std::unique_ptr<elements::Shell4rBlock>>
+      m_blocks;
   NodalVectors m_force_internal;   ///< (n_nodes × 3), zeroed after each use
   NodalVectors m_moment_internal;  ///< (n_nodes × 3) on shell models, else 0 rows
   std::vector<Real> m_inverse_mass;
@@ -158,6 +175,7 @@ class ElementSet {
   GlobalIncrementLimit m_global;        ///< bound on the element estimate from ω_max
   int m_parts = 0;                      ///< parts of the blocks' partition (0: none yet)
   std::vector<Index> m_boundary_nodes;  ///< nodes two parts share (thread_partition.hpp)
+  bool m_rotations = false;             ///< nodes have rotational DOFs (a kind with ROTATIONS)
   MassScalingReport m_mass_scaling;     ///< `*FIXED MASS SCALING` done in the constructor
 };
 

@@ -1,6 +1,6 @@
 #include "solver/frame_fields.hpp"
 
-#include "elements/shell_stress_axes.hpp"
+#include "elements/shell/shell_stress_axes.hpp"
 
 namespace xpl {
 

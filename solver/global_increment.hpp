@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "elements/increment_limit.hpp"
 
 namespace xpl {

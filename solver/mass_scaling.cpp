@@ -4,10 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8r.hpp"
-#include "elements/quad_shell_geometry.hpp"
-#include "solver/loads/gravity_loads.hpp"
+#include "solver/element_kinds.hpp"
 #include "solver/message_text.hpp"
 
 namespace xpl {
@@ -18,51 +15,11 @@ bool deformable(const RigidBodies& rigid, Index e) {
   return rigid.element_body().empty() || rigid.element_body()[e] == NO_INDEX;
 }
 
-const Material& material_of(const Model& model, Index e) {
-  const Index section = model.element_section[e];
-  return model.materials[is_shell(model.element_types[e]) ? model.shell_sections[section].material
-                                                          : model.solid_sections[section].material];
-}
-
 std::string where_text(const SourceLocation& where) {
   return where.file + ":" + std::to_string(where.line);
 }
 
 }  // namespace
-
-Real element_stable_increment(const Model& model, Index e, const NodalVectors& reference,
-                              Real bulk_linear) {
-  const Material& m = material_of(model, e);
-  const Index* nodes = model.nodes_of(e);
-  const Real nu = m.poisson;
-  if (is_shell(model.element_types[e])) {
-    // As Shell4rBlock: √2 A / (longer diagonal) over the plate wave speed.
-    elements::V3<Real> p[4];
-    for (int a = 0; a < 4; ++a)
-      p[a] = {reference(nodes[a], 0), reference(nodes[a], 1), reference(nodes[a], 2)};
-    const elements::QuadFrame<Real> f = elements::quad_frame(p);
-    const Real speed =
-        std::sqrt(m.young / ((1.0 - nu * nu) * m.density)) * std::sqrt(1.0 + std::max(nu, 0.0));
-    return std::sqrt(2.0) * f.area / f.diagonal / speed;
-  }
-  // As Hex8rBlock / Hex8Block at rest: L_e = V / A_max, damping ξ = b1.
-  Real x[8], y[8], z[8];
-  for (int a = 0; a < 8; ++a) {
-    x[a] = reference(nodes[a], 0);
-    y[a] = reference(nodes[a], 1);
-    z[a] = reference(nodes[a], 2);
-  }
-  elements::V3<Real> modes[8], g[8];
-  Real volume = 0.0;
-  elements::to_modes(x, y, z, modes);
-  elements::volume_gradient(modes, g, volume);
-  const Real length = volume / std::sqrt(elements::max_face_area_squared(modes));
-  const Real lambda = m.young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  const Real mu = m.young / (2.0 * (1.0 + nu));
-  const Real wave = std::sqrt((lambda + 2.0 * mu) / m.density);
-  return elements::poisson_dt_factor(nu) * length / wave *
-         (std::sqrt(1.0 + bulk_linear * bulk_linear) - bulk_linear);
-}
 
 MassScalingReport fixed_mass_scaling(const Model& model, const RigidBodies& rigid,
                                      const NodalVectors& reference) {

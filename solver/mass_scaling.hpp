@@ -30,11 +30,6 @@ struct MassScalingReport {
   std::vector<Real> factor;
 };
 
-/// Stable increment estimate of deformable element e at rest in the configuration
-/// `reference` (n_nodes × 3), s, with the linear bulk viscosity `bulk_linear`.
-Real element_stable_increment(const Model& model, Index e, const NodalVectors& reference,
-                              Real bulk_linear);
-
 /// The mass factors of the first step's `*FIXED MASS SCALING` definitions for the deformable
 /// elements in the configuration `reference`, with their report.
 MassScalingReport fixed_mass_scaling(const Model& model, const RigidBodies& rigid,

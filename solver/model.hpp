@@ -13,7 +13,7 @@
 #include "common/error.hpp"
 #include "common/types.hpp"
 #include "common/units.hpp"
-#include "elements/plasticity.hpp"
+#include "elements/material/plasticity.hpp"
 
 namespace xpl {
 
@@ -83,7 +83,7 @@ enum class HourglassType {
   RelaxStiffness,  ///< Abaqus' integral-viscoelastic form; xpl runs it as Stiffness (noted in .msg)
   /// The physical stabilisations, the default of both elements when HOURGLASS= is not given:
   /// S4R's of the bending and transverse-shear patterns (shell4r_hourglass.hpp), C3D8R's
-  /// enhanced assumed-strain form (elements/hex8r_enhanced.hpp).
+  /// enhanced assumed-strain form (elements/hex/hex8r_enhanced.hpp).
   Enhanced,
 };
 

@@ -2,29 +2,9 @@
 
 #include <algorithm>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/quad_shell_geometry.hpp"
+#include "solver/element_kinds.hpp"
 
 namespace xpl {
-
-Real element_node_mass(const Model& model, Index e, const NodalVectors& reference) {
-  const Index* nodes = model.nodes_of(e);
-  if (is_shell(model.element_types[e])) {
-    const ShellSection& s = model.shell_sections[model.element_section[e]];
-    elements::V3<Real> p[4];
-    for (int a = 0; a < 4; ++a)
-      p[a] = {reference(nodes[a], 0), reference(nodes[a], 1), reference(nodes[a], 2)};
-    return model.materials[s.material].density * s.thickness * elements::quad_frame(p).area / 4.0;
-  }
-  Real x[8], y[8], z[8];
-  for (int a = 0; a < 8; ++a) {
-    x[a] = reference(nodes[a], 0);
-    y[a] = reference(nodes[a], 1);
-    z[a] = reference(nodes[a], 2);
-  }
-  const SolidSection& s = model.solid_sections[model.element_section[e]];
-  return model.materials[s.material].density * elements::hex8_volume(x, y, z) / 8.0;
-}
 
 void GravityLoads::begin_step(const Model& model, int step, const NodalVectors& reference,
                               const std::vector<Real>& nodal_mass) {

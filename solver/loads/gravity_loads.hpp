@@ -41,8 +41,4 @@ class GravityLoads {
   std::vector<Index> m_nodes;
 };
 
-/// Lumped mass per node of element e in the configuration `reference`: ρV/8 (C3D8R),
-/// ρtA/4 (S4R), kg.
-Real element_node_mass(const Model& model, Index e, const NodalVectors& reference);
-
 }  // namespace xpl

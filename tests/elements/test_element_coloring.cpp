@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "elements/element_coloring.hpp"
+#include "elements/parallel/element_coloring.hpp"
 #include "hex_fixtures.hpp"
 
 TEST_CASE("no two elements of a colour share a node", "[elements][coloring]") {

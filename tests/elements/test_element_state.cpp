@@ -12,8 +12,8 @@
 
 #include <Eigen/Geometry>
 
-#include "elements/hex8r.hpp"
-#include "elements/shell4r.hpp"
+#include "elements/hex/hex8r.hpp"
+#include "elements/shell/shell4r.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

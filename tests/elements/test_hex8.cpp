@@ -11,8 +11,8 @@
 #include <cmath>
 #include <random>
 
-#include "elements/hex8.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "cantilever_fixture.hpp"
-#include "elements/hex8.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8.hpp"
+#include "elements/hex/hex8r.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "elements/hex8_geometry.hpp"
+#include "elements/hex/hex8_geometry.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

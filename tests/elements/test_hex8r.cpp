@@ -6,8 +6,8 @@
 #include <omp.h>
 #include <Eigen/Dense>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

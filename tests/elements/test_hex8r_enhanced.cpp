@@ -1,4 +1,4 @@
-// The enhanced assumed-strain hourglass stabilisation of C3D8R (elements/hex8r_enhanced.hpp,
+// The enhanced assumed-strain hourglass stabilisation of C3D8R (elements/hex/hex8r_enhanced.hpp,
 // issue 32): the patch test, rigid rotation of stored resultants, energy, forces as the
 // derivative of an energy, the plastic relaxation and bound (a hinge at M_p), and lanes of
 // mixed forms in one batch. Bending against beam theory: test_hex8r_enhanced_bending.cpp.
@@ -13,8 +13,8 @@
 
 #include <Eigen/Dense>
 
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

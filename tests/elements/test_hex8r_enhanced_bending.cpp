@@ -1,5 +1,5 @@
 // Bending with the enhanced assumed-strain hourglass stabilisation of C3D8R
-// (elements/hex8r_enhanced.hpp, issue 32): a cantilever with one element through the thickness
+// (elements/hex/hex8r_enhanced.hpp, issue 32): a cantilever with one element through the thickness
 // against beam theory, static (from the stiffness product; element aspect ratios 4 to 0.25,
 // ν = 0 and 0.3, skewed and tapered meshes) and dynamic (its first bending period from the
 // explicit force pass), beside the stiffness form. Prints the tables of benchmarks/RESULTS.md.
@@ -15,9 +15,9 @@
 #include <Eigen/Dense>
 
 #include "cantilever_fixture.hpp"
-#include "elements/hex8.hpp"
-#include "elements/hex8_geometry.hpp"
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8.hpp"
+#include "elements/hex/hex8_geometry.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

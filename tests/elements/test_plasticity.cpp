@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "elements/plasticity.hpp"
+#include "elements/material/plasticity.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

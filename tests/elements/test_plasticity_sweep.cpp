@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "elements/plasticity.hpp"
-#include "elements/radial_return_lanes.hpp"
-#include "elements/shell_plasticity.hpp"
+#include "elements/material/plasticity.hpp"
+#include "elements/material/radial_return_lanes.hpp"
+#include "elements/material/shell_plasticity.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

@@ -4,8 +4,8 @@
 #include <random>
 #include <vector>
 
-#include "elements/plasticity.hpp"
-#include "elements/radial_return_lanes.hpp"
+#include "elements/material/plasticity.hpp"
+#include "elements/material/radial_return_lanes.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

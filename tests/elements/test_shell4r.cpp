@@ -5,8 +5,8 @@
 
 #include <Eigen/Dense>
 
-#include "elements/quad_shell_geometry.hpp"
-#include "elements/shell4r.hpp"
+#include "elements/shell/quad_shell_geometry.hpp"
+#include "elements/shell/shell4r.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

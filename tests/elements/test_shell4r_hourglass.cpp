@@ -6,9 +6,9 @@
 
 #include <Eigen/Dense>
 
-#include "elements/quad_shell_geometry.hpp"
-#include "elements/shell4r.hpp"
-#include "elements/shell4r_increment.hpp"
+#include "elements/shell/quad_shell_geometry.hpp"
+#include "elements/shell/shell4r.hpp"
+#include "elements/shell/shell4r_increment.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "elements/shell4r.hpp"
+#include "elements/shell/shell4r.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

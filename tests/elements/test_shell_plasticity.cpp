@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "elements/shell_plasticity.hpp"
+#include "elements/material/shell_plasticity.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;

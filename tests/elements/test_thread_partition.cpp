@@ -1,4 +1,4 @@
-// The per-thread partition of the element pass (elements/thread_partition.hpp): forces do
+// The per-thread partition of the element pass (elements/parallel/thread_partition.hpp): forces do
 // not depend on the number of parts, bit for bit, and the exchange slots keep every node's
 // contributions in batch order.
 #include <catch2/catch.hpp>
@@ -9,10 +9,10 @@
 #include <omp.h>
 #include <Eigen/Dense>
 
-#include "elements/hex8.hpp"
-#include "elements/hex8r.hpp"
-#include "elements/shell4r.hpp"
-#include "elements/thread_partition.hpp"
+#include "elements/hex/hex8.hpp"
+#include "elements/hex/hex8r.hpp"
+#include "elements/shell/shell4r.hpp"
+#include "elements/parallel/thread_partition.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;

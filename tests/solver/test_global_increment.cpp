@@ -11,7 +11,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "elements/hex8r.hpp"
+#include "elements/hex/hex8r.hpp"
 #include "solver/global_increment.hpp"
 
 using namespace xpl;

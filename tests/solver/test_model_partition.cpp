@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <regex>
 
-#include "elements/plasticity.hpp"
+#include "elements/material/plasticity.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/model_partition.hpp"
 #include "solver_fixtures.hpp"

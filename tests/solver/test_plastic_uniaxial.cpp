@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "elements/plasticity.hpp"
+#include "elements/material/plasticity.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver_fixtures.hpp"
 

@@ -1,0 +1,213 @@
+#include "elements/shell/shell4r.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "elements/shell/quad_shell_geometry.hpp"
+#include "elements/shell/shell4r_hourglass.hpp"
+#include "elements/shell/shell4r_kernel.hpp"
+
+namespace xpl::elements {
+
+using shell4r_kernel::corner_forces;
+using shell4r_kernel::gather_nodes;
+using simd::Vec;
+
+void Shell4rBlock::internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
+                                   const NodalVectors& angular_velocity_half, Real dt,
+                                   NodalVectors& force, NodalVectors& moment,
+                                   ShellStepTotals& totals) {
+  const int parts = std::max(1, omp_get_max_threads());
+  own_partition(parts, static_cast<Index>(position.rows()));
+  partitioned_pass(
+      parts, static_cast<Index>(m_boundary_nodes.size()),
+      [&](int p) {
+        forces_of_part(p, position, velocity_half, angular_velocity_half, dt, force, moment);
+      },
+      [&](Index k) { add_boundary_forces(k, m_boundary_nodes[k], force, moment); });
+  add_totals(totals);
+}
+
+void Shell4rBlock::own_partition(int parts, Index node_count) {
+  if (m_own_partition && m_parts == parts) return;
+  std::vector<Index> node_part(node_count, UNTOUCHED);
+  mark_nodes(parts, node_part);
+  const BoundaryNodes boundary = boundary_nodes(node_part);
+  set_partition(parts, boundary);
+  m_boundary_nodes = boundary.nodes;
+  m_own_partition = true;
+}
+
+void Shell4rBlock::mark_nodes(int parts, std::vector<Index>& node_part) const {
+  mark_part_nodes(m_conn, m_lane_owner, m_color_batches, 4, W, parts, node_part);
+}
+
+void Shell4rBlock::set_partition(int parts, const BoundaryNodes& boundary) {
+  m_parts = parts;
+  m_own_partition = false;
+  m_exchange = CornerExchange(m_conn, m_lane_owner, 4, W, boundary);
+  m_exchange_force.assign(static_cast<std::size_t>(m_exchange.size()) * 6, 0.0);
+}
+
+void Shell4rBlock::forces_of_part(int part, const NodalVectors& position,
+                                  const NodalVectors& velocity_half,
+                                  const NodalVectors& angular_velocity_half, Real dt,
+                                  NodalVectors& force, NodalVectors& moment) {
+  const Index nn = static_cast<Index>(position.rows());
+  const Real* const p[3] = {position.data(), position.data() + nn, position.data() + 2 * nn};
+  const Real* const v[3] = {velocity_half.data(), velocity_half.data() + nn,
+                            velocity_half.data() + 2 * nn};
+  const Real* const w[3] = {angular_velocity_half.data(), angular_velocity_half.data() + nn,
+                            angular_velocity_half.data() + 2 * nn};
+  Real* const f[3] = {force.data(), force.data() + nn, force.data() + 2 * nn};
+  Real* const m[3] = {moment.data(), moment.data() + nn, moment.data() + 2 * nn};
+  for (int c = 0; c < color_count(); ++c) {
+    const auto [first, last] = part_batches(m_color_batches, c, part, m_parts);
+    for (Index b = first; b < last; ++b) {
+      if (m_plastic.batch_plastic(static_cast<std::size_t>(b)))
+        compute_batch<true>(b, p, v, w, dt, f, m);
+      else
+        compute_batch<false>(b, p, v, w, dt, f, m);
+    }
+  }
+}
+
+void Shell4rBlock::add_totals(ShellStepTotals& totals) const {
+  const Index n_batches = m_color_batches.back();
+  for (Index b = 0; b < n_batches; ++b) {
+    totals.strain_energy_increment += m_batch_energy[b * 3 + 0];
+    totals.hourglass_energy_increment += m_batch_energy[b * 3 + 1];
+    totals.plastic_energy_increment += m_batch_energy[b * 3 + 2];
+    totals.merge(m_batch_dt[b], m_batch_critical[b], m_batch_failed[b]);
+  }
+}
+
+template <bool PLASTIC>
+void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
+                                 const Real* const w[3], Real dt, Real* const f[3],
+                                 Real* const m[3]) {
+  const std::size_t b = static_cast<std::size_t>(batch);
+  const Index* conn = &m_conn[b * 4 * W];
+  const Real* cst = &m_const[b * N_CONST * W];
+  auto constant = [&](Constant k) { return simd::load(cst + k * W); };
+
+  V3<Vec> x[4], vel[4], om[4];
+  gather_nodes(conn, p, v, w, x, vel, om);
+
+  // Rates on the mid-increment geometry: exactly strain free for rigid rotations.
+  V3<Vec> xm[4];
+  for (int a = 0; a < 4; ++a) xm[a] = x[a] - (0.5 * dt) * vel[a];
+  const QuadFrame<Vec> fm = quad_frame(xm);
+  QuadCombos<Vec> vx, vy, vz, tx, ty, tz;
+  local_combos(fm, vel, vx, vy, vz);
+  local_combos(fm, om, tx, ty, tz);
+  const V3<Vec> om_sum = om[0] + om[1] + om[2] + om[3];
+  const Vec tbx = 0.25 * dot(fm.e1, om_sum), tby = 0.25 * dot(fm.e2, om_sum);
+  // Velocities of the projections of the (warped) nodes onto the element plane.
+  const Vec zh = fm.warp;
+  const QuadCombos<Vec> ux = {vx.d02 - zh * ty.d02, vx.d13 + zh * ty.d13, vx.hg - 4.0 * zh * tby};
+  const QuadCombos<Vec> uy = {vy.d02 + zh * tx.d02, vy.d13 - zh * tx.d13, vy.hg + 4.0 * zh * tbx};
+
+  const Vec dxx = grad_x(fm, ux), dyy = grad_y(fm, uy);
+  const Vec gxy = grad_x(fm, uy) + grad_y(fm, ux);
+  const Vec kxx = grad_x(fm, ty), kyy = -grad_y(fm, tx);
+  const Vec kxy = grad_y(fm, ty) - grad_x(fm, tx);
+  Vec gxz = grad_x(fm, vz) + tby, gyz = grad_y(fm, vz) - tbx;
+  // Physical form: the transverse shear is the assumed strain of the edge shears
+  // (shell4r_hourglass.hpp) instead of the one-point value; PHYS_ON selects it per lane.
+  const unsigned char forms = m_batch_forms[b];
+  EdgeShear<Vec> edge{};
+  if (forms & FORM_PHYS) {
+    Vec wz[4], thx[4], thy[4], s[4];
+    for (int a = 0; a < 4; ++a) {
+      wz[a] = dot(fm.e3, vel[a]);
+      thx[a] = dot(fm.e1, om[a]);
+      thy[a] = dot(fm.e2, om[a]);
+    }
+    edge_shear_rates(quad_edges(fm, xm), wz, thx, thy, s);
+    edge = edge_shear(fm, quad_natural(fm), s);
+    if (forms == FORM_PHYS) {
+      gxz = edge.gxz;
+      gyz = edge.gyz;
+    } else {
+      const Vec on = constant(PHYS_ON);
+      gxz += on * (edge.gxz - gxz);
+      gyz += on * (edge.gyz - gyz);
+    }
+  }
+
+  const ShellPlaneRates rates{dxx, dyy, gxy, kxx, kyy, kxy, gxz, gyz};
+  const ShellSectionResultants sr = section_resultants<PLASTIC>(b, dt, rates);
+  const Vec q11 = constant(Q11), t = sr.t, qx = sr.qx, qy = sr.qy;
+
+  // Hourglass resultants (accumulated in the corotational frame). In-plane patterns: stiffness
+  // form in both forms; bending and transverse shear: the form of the lane (the other form's
+  // coefficients are zero on it), each evaluated only when a lane of the batch uses it.
+  const Vec bb = 2.0 * (fm.b1a * fm.b1a + fm.b1b * fm.b1b + fm.b2a * fm.b2a + fm.b2b * fm.b2b);
+  const Vec c_plane = constant(HG_MODULUS) * t * fm.area * bb * 0.25;
+  Real* hstore = &m_hourglass[b * N_HOURGLASS * W];
+  Vec hq[N_HOURGLASS];
+  for (Vec& h : hq) h = simd::splat(0.0);
+  Vec hg_work = simd::splat(0.0);
+  // Advances resultant h by Δ = dt·(its rate of change) and adds its work over `rate`.
+  auto store = [&](int h, Vec increment, Vec rate) {
+    const Vec old = simd::load(hstore + h * W);
+    hq[h] = old + increment;
+    simd::store(hstore + h * W, hq[h]);
+    hg_work += (0.5 * dt) * (old + hq[h]) * rate;
+  };
+  auto advance = [&](int h, Vec stiffness, Vec rate) { store(h, (stiffness * dt) * rate, rate); };
+  advance(0, c_plane, hourglass_rate(fm, ux));
+  advance(1, c_plane, hourglass_rate(fm, uy));
+  const Vec rate_tx = hourglass_rate(fm, tx), rate_ty = hourglass_rate(fm, ty);
+  if (forms & FORM_OLD) {
+    const Vec bend = constant(HG_OLD) * t * t * t * (1.0 / 12.0);
+    const Vec c_rot = bend * fm.area * bb * 0.25;
+    advance(2, bend * bb, hourglass_rate(fm, vz));
+    advance(3, c_rot, rate_tx);
+    advance(4, c_rot, rate_ty);
+  }
+  const QuadFrame<Vec> fe = quad_frame(x);
+  // Shear resultants acting through the one-point shear (stiffness-form lanes) and through
+  // the edge shears (physical lanes, with the linear-part resultants).
+  Vec qx_point = qx, qy_point = qy;
+  Vec hz[4], hbx[4], hby[4];  // physical form: normal forces and β-forces per node
+  for (int a = 0; a < 4; ++a) hz[a] = hbx[a] = hby[a] = simd::splat(0.0);
+  if (forms & FORM_PHYS) {
+    const Vec scale = constant(HG_PHYS);
+    const QuadNatural<Vec> nat = quad_natural(fm);
+    const Vec shear_k = (scale * constant(SHEAR_T)) * t * fm.area * (1.0 / 3.0);
+    advance(5, shear_k * nat.aa, edge.g_xi);
+    advance(6, shear_k * nat.cc, edge.g_eta);
+    // Bending: q̇ = (γ·θy, −γ·θx)/4, Ṁ = K_b q̇.
+    const Vec q1 = 0.25 * rate_ty, q2 = -0.25 * rate_tx;
+    Vec k1, k2;
+    bending_hourglass_apply(nat, constant(POISSON), q1, q2, k1, k2);
+    const Vec bend_k = (scale * q11) * t * t * t * (1.0 / 36.0) * fm.area;
+    store(7, (bend_k * dt) * k1, q1);
+    store(8, (bend_k * dt) * k2, q2);
+    Vec qx_edge = qx, qy_edge = qy;
+    if (forms == FORM_PHYS) {
+      qx_point = qy_point = simd::splat(0.0);
+    } else {
+      const Vec on = constant(PHYS_ON);
+      qx_edge = on * qx;
+      qy_edge = on * qy;
+      qx_point = qx - qx_edge;
+      qy_point = qy - qy_edge;
+    }
+    edge_shear_forces(fe, quad_natural(fe), quad_edges(fe, x), qx_edge, qy_edge, hq[5], hq[6], hz,
+                      hbx, hby);
+  }
+
+  // Forces and moments on x_{n+1}.
+  V3<Vec> fn[4], mn[4];
+  corner_forces(fe, {sr.nxx, sr.nyy, sr.nxy, sr.mxx, sr.myy, sr.mxy, qx_point, qy_point}, hq, hz,
+                hbx, hby, forms & FORM_OLD, forms & FORM_PHYS, fn, mn);
+
+  finish_batch<PLASTIC>(batch, fe, fm.area, sr.work, sr.plastic_work, hg_work, fn, mn, f, m);
+}
+
+}  // namespace xpl::elements

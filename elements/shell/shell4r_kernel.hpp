@@ -1,0 +1,277 @@
+#pragma once
+/// \file The pieces of the S4R force kernel (Shell4rBlock::compute_batch, shell4r.cpp, the one
+/// file that includes this): node gather, through-thickness integration, nodal forces, the
+/// stable increment and the per-batch reductions, all inlined into the kernel.
+
+#include <cmath>
+#include <limits>
+
+#include "common/types.hpp"
+#include "elements/parallel/kernel_inline.hpp"
+#include "elements/parallel/simd.hpp"
+#include "elements/shell/quad_shell_geometry.hpp"
+#include "elements/shell/shell4r.hpp"
+#include "elements/shell/shell4r_increment.hpp"
+#include "elements/vec3.hpp"
+
+namespace xpl::elements {
+
+using simd::Vec;
+
+/// Strain rates of a batch's reference surface on the mid-increment geometry (1/s): membrane
+/// d, curvature κ (1/(m·s)), transverse shear γ.
+struct ShellPlaneRates {
+  Vec dxx, dyy, gxy, kxx, kyy, kxy, gxz, gyz;
+};
+
+/// What the through-thickness integration of a batch leaves: the end thickness (m), the
+/// resultants per unit length (N/m, N), the strain and plastic work per unit area (J/m²).
+struct ShellSectionResultants {
+  Vec t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work;
+};
+
+namespace shell4r_kernel {
+
+constexpr int W = simd::W;
+
+/// Node signs of the gradient operator: B_I = sign_I · (b_a for I = 0, 2; b_b for I = 1, 3).
+constexpr Real B_SIGN[4] = {1.0, 1.0, -1.0, -1.0};
+/// Hourglass pattern Γ.
+constexpr Real GAMMA[4] = {1.0, -1.0, 1.0, -1.0};
+
+/// The in-plane (N), bending (M) and transverse-shear (Q, through the one-point shear)
+/// resultants of a batch, per unit length.
+struct ShellResultants {
+  Vec nxx, nyy, nxy, mxx, myy, mxy, qx, qy;
+};
+
+/// Nodal forces `fn` and moments `mn` (global axes) of a batch on x_{n+1} (frame `fe`) from
+/// its resultants `r`, its hourglass resultants `hq` and, on physical-form lanes, the normal
+/// forces `hz` and β-forces `hbx`, `hby` of the edge shears; `old_form`, `phys_form`: whether
+/// a lane of the batch uses the stiffness or the physical hourglass form.
+XPL_KERNEL_INLINE void corner_forces(const QuadFrame<Vec>& fe, const ShellResultants& r,
+                                     const Vec hq[], const Vec hz[4], const Vec hbx[4],
+                                     const Vec hby[4], bool old_form, bool phys_form, V3<Vec> fn[4],
+                                     V3<Vec> mn[4]) {
+  const Vec area = fe.area;
+  const Vec ba[2] = {fe.b1a, fe.b1b}, bc[2] = {fe.b2a, fe.b2b};
+  const Vec gam[4] = {1.0 - fe.sa, -1.0 - fe.sb, 1.0 + fe.sa, -1.0 + fe.sb};
+  for (int a = 0; a < 4; ++a) {
+    const Vec b1 = B_SIGN[a] * ba[a % 2], b2 = B_SIGN[a] * bc[a % 2];
+    const Vec fbx = area * (b1 * r.nxx + b2 * r.nxy) + gam[a] * hq[0];
+    const Vec fby = area * (b2 * r.nyy + b1 * r.nxy) + gam[a] * hq[1];
+    Vec fz = area * (b1 * r.qx + b2 * r.qy);
+    const Vec za = GAMMA[a] * fe.warp;
+    Vec mx = area * (-b2 * r.myy - b1 * r.mxy - 0.25 * r.qy);
+    Vec my = area * (b1 * r.mxx + b2 * r.mxy + 0.25 * r.qx);
+    if (old_form) {
+      fz = fz + gam[a] * hq[2];
+      mx = mx + gam[a] * hq[3];
+      my = my + gam[a] * hq[4];
+    }
+    mx = mx + za * fby;
+    my = my - za * fbx;
+    if (phys_form) {
+      // β = (θy, −θx): a β-force (bx, by) is the moment (−by, bx).
+      const Vec quarter = 0.25 * gam[a];
+      fz += hz[a];
+      mx -= hby[a] + quarter * hq[8];
+      my += hbx[a] + quarter * hq[7];
+    }
+    fn[a] = fbx * fe.e1 + fby * fe.e2 + fz * fe.e3;
+    mn[a] = mx * fe.e1 + my * fe.e2;
+  }
+}
+
+/// Positions `x`, velocities `vel` and angular velocities `om` of the 4 corners of a batch
+/// (component arrays p, v, w; corner node indices `conn`, [corner 4][W]).
+XPL_KERNEL_INLINE void gather_nodes(const Index* conn, const Real* const p[3],
+                                    const Real* const v[3], const Real* const w[3], V3<Vec> x[4],
+                                    V3<Vec> vel[4], V3<Vec> om[4]) {
+  for (int a = 0; a < 4; ++a) {
+    const Index* idx = conn + a * W;
+    x[a] = {simd::gather(p[0], idx), simd::gather(p[1], idx), simd::gather(p[2], idx)};
+    vel[a] = {simd::gather(v[0], idx), simd::gather(v[1], idx), simd::gather(v[2], idx)};
+    om[a] = {simd::gather(w[0], idx), simd::gather(w[1], idx), simd::gather(w[2], idx)};
+  }
+}
+
+}  // namespace shell4r_kernel
+
+template <bool PLASTIC>
+ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
+                                                        const ShellPlaneRates& r) {
+  const Real* cst = &m_const[b * N_CONST * W];
+  auto constant = [&](Constant k) { return simd::load(cst + k * W); };
+  const Vec dxx = r.dxx, dyy = r.dyy, gxy = r.gxy, kxx = r.kxx, kyy = r.kyy, kxy = r.kxy;
+  const Vec gxz = r.gxz, gyz = r.gyz;
+  // Plane stress: the thickness follows the in-plane dilatation of the reference surface,
+  // ε̇_zz = −ν/(1−ν)(d_xx + d_yy + z_ref(κ_xx + κ_yy)). It is advanced before the resultants:
+  // the strain increments see the mid-increment thickness (as the rates see the mid-increment
+  // geometry) and the resultants at t_{n+1} the end thickness, so N and M are functions of the
+  // state at t_{n+1}. Resultants taken with the thickness of t_n lag the stresses by one
+  // increment; in compressed walls (tr N < 0) that lag does negative work on every membrane
+  // vibration, ∝ ν/(1−ν)·|σ|/E·ωΔt per cycle, and a crushed tube gains energy until it fails.
+  const Vec q11 = constant(Q11), q12 = constant(Q12), g = constant(SHEAR);
+  const Vec offset = constant(OFFSET);
+  const Vec t_old = simd::load(&m_thickness[b * W]);
+  Vec t = t_old * (1.0 - constant(NU_RATIO) * dt * (dxx + dyy - offset * t_old * (kxx + kyy)));
+  simd::store(&m_thickness[b * W], t);
+  const Vec t_mid = 0.5 * (t_old + t);
+  // Through-thickness integration (z from the reference surface, which is OFFSET·t above
+  // the mid-surface), plane stress.
+  Vec nxx = simd::splat(0.0), nyy = nxx, nxy = nxx, mxx = nxx, myy = nxx, mxy = nxx;
+  Vec work = simd::splat(0.0);  // strain energy increment per unit area
+  // Plastic batches: dissipation per unit area and Σ weight · Δε33ᵖ over the section points.
+  Vec plastic_work = simd::splat(0.0), thinning = simd::splat(0.0);
+  for (int k = 0; k < m_points; ++k) {
+    const Vec zeta = 0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset;
+    const Vec weight = simd::load(&m_weight[(b * m_points + k) * W]);
+    const Vec zk = t_mid * zeta, tw = t_mid * weight;  // mid-increment: strain and work
+    const Vec zk_n = t * zeta, tw_n = t * weight;      // end of increment: resultants
+    const Vec exx = dt * (dxx + zk * kxx), eyy = dt * (dyy + zk * kyy);
+    const Vec exy = dt * (gxy + zk * kxy);
+    Real* s = &m_stress[(b * m_points + k) * 3 * W];
+    const Vec sxx = simd::load(s), syy = simd::load(s + W), sxy = simd::load(s + 2 * W);
+    Vec sxx_n = sxx + q11 * exx + q12 * eyy;
+    Vec syy_n = syy + q12 * exx + q11 * eyy;
+    Vec sxy_n = sxy + g * exy;
+    if constexpr (PLASTIC) {
+      const Vec start[3] = {sxx, syy, sxy};
+      plastic_work += tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n,
+                                                  syy_n, sxy_n, thinning);
+    }
+    simd::store(s, sxx_n);
+    simd::store(s + W, syy_n);
+    simd::store(s + 2 * W, sxy_n);
+    nxx += tw_n * sxx_n;
+    nyy += tw_n * syy_n;
+    nxy += tw_n * sxy_n;
+    mxx += (tw_n * zk_n) * sxx_n;
+    myy += (tw_n * zk_n) * syy_n;
+    mxy += (tw_n * zk_n) * sxy_n;
+    work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
+  }
+  if constexpr (PLASTIC) {
+    // Plastic incompressibility: Δε33 = −ν/(1−ν)(Δε11ᵉ + Δε22ᵉ) − (Δε11ᵖ + Δε22ᵖ). The update
+    // above took the elastic term on the total strain Δεᵉ + Δεᵖ, so the plastic part adds
+    // (1 − ν/(1−ν)) Δε33ᵖ, Δε33ᵖ averaged through the thickness with the weights. N scales with
+    // t and M with t², so the resultants follow the end thickness as in the elastic case.
+    const Vec r = 1.0 + (1.0 - constant(NU_RATIO)) * thinning;
+    t = t * r;
+    simd::store(&m_thickness[b * W], t);
+    const Vec r2 = r * r;
+    nxx *= r;
+    nyy *= r;
+    nxy *= r;
+    mxx *= r2;
+    myy *= r2;
+    mxy *= r2;
+  }
+  Real* shear = &m_shear[b * 2 * W];
+  const Vec kg = constant(SHEAR_T);
+  const Vec txz = simd::load(shear), tyz = simd::load(shear + W);
+  const Vec txz_n = txz + (kg * dt) * gxz, tyz_n = tyz + (kg * dt) * gyz;
+  simd::store(shear, txz_n);
+  simd::store(shear + W, tyz_n);
+  work += (0.5 * dt) * t_mid * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
+  const Vec qx = t * txz_n, qy = t * tyz_n;
+  return {t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work};
+}
+
+template <bool PLASTIC>
+void Shell4rBlock::finish_batch(Index batch, const QuadFrame<Vec>& fe, Vec mid_area, Vec work,
+                                Vec plastic_work, Vec hg_work, const V3<Vec> fn[4],
+                                const V3<Vec> mn[4], Real* const f[3], Real* const m[3]) {
+  const std::size_t b = static_cast<std::size_t>(batch);
+  const Index* conn = &m_conn[b * 4 * W];
+  const Real* cst = &m_const[b * N_CONST * W];
+  auto constant = [&](Constant k) { return simd::load(cst + k * W); };
+  const Vec area = fe.area;
+  // Stable increment of the one-point quad: its breathing mode has ω = 2 c √(1+ν) / h on a
+  // square; L = √2 A / (longer diagonal) is h on a square and shorter on skewed elements.
+  // A quad crushed to a sliver is faster than L says: the increment is also held to the
+  // proven membrane bound of shell4r_increment.hpp (the same on a square).
+  const Vec length = 1.41421356237309515 * area / fe.diagonal;
+  Vec dt_e = length / constant(DT_SPEED);
+  {
+    const Vec rho = constant(DENSITY);
+    const Vec omega2 = shell_membrane_omega2(fe, constant(Q11) / rho, constant(POISSON),
+                                             constant(HG_MODULUS) / rho);
+    dt_e = simd::min(dt_e, 2.0 / simd::sqrt(simd::max(omega2, simd::splat(1e-300))));
+  }
+  if (m_rotary_exact) {
+    // ROTARY INERTIA=EXACT: the fastest transverse-shear mode, a tilt of the normal against
+    // the rotations, ω² = κ_s G (4/L² + 12/t0²)/ρ (shell4r.hpp) with a margin, may set the
+    // increment.
+    const Vec t0 = constant(THICKNESS0);
+    const Vec omega2 = constant(ROT_SPEED2) * (4.0 / (length * length) + 12.0 / (t0 * t0));
+    dt_e = simd::min(dt_e, 2.0 / simd::sqrt(simd::max(omega2, simd::splat(1e-300))));
+  }
+  Vec strain_inc = mid_area * work;
+  Vec plastic_inc = simd::splat(0.0);
+  if constexpr (PLASTIC) {
+    // The trapezoidal work is the total; ALLSE keeps the recoverable part.
+    plastic_inc = mid_area * plastic_work;
+    strain_inc -= plastic_inc;
+  }
+
+  // A node pushed across the diagonal of its neighbours folds the element over at that corner
+  // while its area stays positive (the frame follows the diagonals): a fold past
+  // SHELL_FOLD_LIMIT, det J < −τ |J_ξ| |J_η|, squared without a root.
+  Vec fold[4];
+  {
+    Vec det[4], columns[4];
+    quad_corner_jacobians(fe, det, columns);
+    for (int k = 0; k < 4; ++k)
+      fold[k] = det[k] * simd::abs(det[k]) + (SHELL_FOLD_LIMIT * SHELL_FOLD_LIMIT) * columns[k];
+  }
+  Real e_strain = 0.0, e_hg = 0.0, e_plastic = 0.0, best_dt = std::numeric_limits<Real>::infinity();
+  Index critical = NO_INDEX, failed = NO_INDEX;
+  // Corners at nodes another thread also writes go to the exchange buffer instead.
+  const Index* slots = m_exchange.batch_slots(batch);
+  for (int l = 0; l < W; ++l) {
+    const Index owner = m_lane_owner[b * W + l];
+    if (owner == NO_INDEX) continue;
+    for (int a = 0; a < 4; ++a) {
+      if (slots != nullptr && slots[a * W + l] != NO_INDEX) {
+        Real* e = &m_exchange_force[6 * static_cast<std::size_t>(slots[a * W + l])];
+        e[0] = fn[a].x[l];
+        e[1] = fn[a].y[l];
+        e[2] = fn[a].z[l];
+        e[3] = mn[a].x[l];
+        e[4] = mn[a].y[l];
+        e[5] = mn[a].z[l];
+        continue;
+      }
+      const Index node = conn[a * W + l];
+      f[0][node] += fn[a].x[l];
+      f[1][node] += fn[a].y[l];
+      f[2][node] += fn[a].z[l];
+      m[0][node] += mn[a].x[l];
+      m[1][node] += mn[a].y[l];
+      m[2][node] += mn[a].z[l];
+    }
+    e_strain += strain_inc[l];
+    e_hg += hg_work[l];
+    if constexpr (PLASTIC) e_plastic += plastic_inc[l];
+    const Index model_e = m_element_index[owner];
+    bool folded = false;
+    for (int k = 0; k < 4; ++k)
+      folded |= fold[k][l] < 0.0 && (m_fold_exempt[b * W + l] >> k & 1u) == 0;
+    if (!(area[l] > 0.0) || !(mid_area[l] > 0.0) || !std::isfinite(dt_e[l]) || folded) {
+      if (failed == NO_INDEX || model_e < failed) failed = model_e;
+    } else if (dt_e[l] < best_dt || (dt_e[l] == best_dt && model_e < critical)) {
+      best_dt = dt_e[l];
+      critical = model_e;
+    }
+  }
+  m_batch_energy[b * 3 + 0] = e_strain;
+  m_batch_energy[b * 3 + 1] = e_hg;
+  m_batch_energy[b * 3 + 2] = e_plastic;
+  m_batch_dt[b] = best_dt;
+  m_batch_critical[b] = critical;
+  m_batch_failed[b] = failed;
+}
+
+}  // namespace xpl::elements
