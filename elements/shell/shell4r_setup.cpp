@@ -136,9 +136,9 @@ Real Shell4rBlock::stable_increment(const ShellProperties& p, const V3<Real>* co
   // As the kernel (shell4r_kernel.hpp): also held to the membrane bound of a crushed quad.
   const Real nu = p.poisson;
   const Real q11 = p.young / (1.0 - nu * nu);
-  const Real omega2 = shell_membrane_omega2(
-      frame, q11 / p.density, nu,
-      SHELL_HOURGLASS_STIFFNESS * p.hourglass_scale * p.young / p.density);
+  const Real omega2 =
+      shell_membrane_omega2(frame, q11 / p.density, nu,
+                            SHELL_HOURGLASS_STIFFNESS * p.hourglass_scale * p.young / p.density);
   return std::min(length / shell_wave_speed(p), 2.0 / std::sqrt(std::max(omega2, 1e-300)));
 }
 
