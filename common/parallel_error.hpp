@@ -30,7 +30,7 @@ enum class ParallelSite : int {
   ContactForces,    ///< penalty and friction forces (contact/contact_engine.cpp)
   BroadPhase,       ///< candidate faces per slave node (contact/broad_phase.cpp)
   Overclosure,      ///< initial overclosure moves and crossed edges (initial_overclosure.cpp)
-  Clearance,        ///< contact clearance moves (contact/contact_clearance.cpp)
+  Clearance,        ///< contact clearance moves (contact/clearance_moves.cpp)
   COUNT
 };
 

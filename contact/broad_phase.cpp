@@ -31,12 +31,20 @@ BroadPhase::BroadPhase(Real margin, Real rebuild_motion)
 void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
                        const NodalVectors& position, std::span<const Real> node_thickness,
                        std::span<const Real> back_depth) {
-  const auto n_faces = static_cast<Index>(faces.size());
-  const auto n_slave = static_cast<Index>(slave_nodes.size());
-  const auto n_nodes = static_cast<Index>(position.rows());
   ++m_builds;
+  const JointBox joint = box_faces(faces, position, node_thickness, back_depth);
+  size_grid(joint, static_cast<Index>(faces.size()));
+  bin_faces(static_cast<Index>(faces.size()));
+  find_candidates(faces, slave_nodes, position);
+  track_nodes(faces, slave_nodes, position);
+}
 
-  // Inflated face boxes and their joint box.
+/// Inflated face boxes and their joint box.
+BroadPhase::JointBox BroadPhase::box_faces(std::span<const ContactFace> faces,
+                                           const NodalVectors& position,
+                                           std::span<const Real> node_thickness,
+                                           std::span<const Real> back_depth) {
+  const auto n_faces = static_cast<Index>(faces.size());
   m_box_lo.resize(3 * static_cast<std::size_t>(n_faces));
   m_box_hi.resize(3 * static_cast<std::size_t>(n_faces));
   Real lo0 = std::numeric_limits<Real>::max(), lo1 = lo0, lo2 = lo0;
@@ -73,15 +81,19 @@ void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index
     hi1 = std::max(hi1, m_box_hi[3 * f + 1]);
     hi2 = std::max(hi2, m_box_hi[3 * f + 2]);
   }
+  return {{lo0, lo1, lo2}, {hi0, hi1, hi2}, extent_sum};
+}
 
-  // Bucket size: the mean box size, grown until the grid has O(n_faces) buckets. The sum may
-  // round differently with other thread counts; that moves bucket walls, never the result,
-  // which is decided by the exact box test and sorted by face index.
+/// Bucket size: the mean box size, grown until the grid has O(n_faces) buckets. The sum may
+/// round differently with other thread counts; that moves bucket walls, never the result,
+/// which is decided by the exact box test and sorted by face index.
+void BroadPhase::size_grid(const JointBox& joint, Index n_faces) {
   m_dims = {0, 0, 0};
   if (n_faces > 0) {
-    m_origin = Vec3(lo0, lo1, lo2);
-    const Real span[3] = {hi0 - lo0, hi1 - lo1, hi2 - lo2};
-    m_cell = extent_sum / n_faces;
+    m_origin = Vec3(joint.lo[0], joint.lo[1], joint.lo[2]);
+    const Real span[3] = {joint.hi[0] - joint.lo[0], joint.hi[1] - joint.lo[1],
+                          joint.hi[2] - joint.lo[2]};
+    m_cell = joint.extent_sum / n_faces;
     const double max_buckets = MAX_BUCKETS_PER_FACE * n_faces + 64.0;
     for (;;) {
       double total = 1.0;
@@ -92,9 +104,11 @@ void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index
     for (int d = 0; d < 3; ++d)
       m_dims[d] = static_cast<Index>(std::max(1.0, std::ceil(span[d] / m_cell)));
   }
-  const Index n_cells = m_dims[0] * m_dims[1] * m_dims[2];
+}
 
-  // Bucket -> faces by counting sort: faces ascending within each bucket.
+/// Bucket -> faces by counting sort: faces ascending within each bucket.
+void BroadPhase::bin_faces(Index n_faces) {
+  const Index n_cells = m_dims[0] * m_dims[1] * m_dims[2];
   auto for_each_bucket = [&](Index f, auto&& visit) {
     Index a[3], b[3];
     for (int d = 0; d < 3; ++d) {
@@ -112,8 +126,12 @@ void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index
   m_cell_fill.assign(m_cell_offsets.begin(), m_cell_offsets.end() - 1);
   for (Index f = 0; f < n_faces; ++f)
     for_each_bucket(f, [&](Index c) { m_cell_faces[m_cell_fill[c]++] = f; });
+}
 
-  // Candidates: count per slave node, prefix sum, fill (both passes parallel, no races).
+/// Candidates: count per slave node, prefix sum, fill (both passes parallel, no races).
+void BroadPhase::find_candidates(std::span<const ContactFace> faces,
+                                 std::span<const Index> slave_nodes, const NodalVectors& position) {
+  const auto n_slave = static_cast<Index>(slave_nodes.size());
   m_offsets.resize(static_cast<std::size_t>(n_slave) + 1);
   m_offsets[0] = 0;
   ParallelErrors count_errors;
@@ -136,8 +154,12 @@ void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index
                   m_candidates.data() + m_offsets[s]);
     });
   fill_errors.rethrow_if_any();
+}
 
-  // Nodes to watch: every face corner and every slave node, ascending.
+/// Nodes to watch: every face corner and every slave node, ascending.
+void BroadPhase::track_nodes(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
+                             const NodalVectors& position) {
+  const auto n_nodes = static_cast<Index>(position.rows());
   m_is_tracked.assign(static_cast<std::size_t>(n_nodes), 0);
   for (const ContactFace& f : faces)
     for (Index n : f.nodes) m_is_tracked[n] = 1;

@@ -61,6 +61,20 @@ class BroadPhase {
   const std::array<Index, 3>& grid_size() const { return m_dims; }
 
  private:
+  /// Joint box of the inflated face boxes, and the sum of their largest extents (m).
+  struct JointBox {
+    Real lo[3], hi[3];
+    Real extent_sum;
+  };
+  // The steps of build(), in order.
+  JointBox box_faces(std::span<const ContactFace> faces, const NodalVectors& position,
+                     std::span<const Real> node_thickness, std::span<const Real> back_depth);
+  void size_grid(const JointBox& joint, Index n_faces);
+  void bin_faces(Index n_faces);
+  void find_candidates(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
+                       const NodalVectors& position);
+  void track_nodes(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
+                   const NodalVectors& position);
   /// Counts the candidate faces of `node` at `p` and, when `out` is not null, writes them there.
   Index scan_bucket(Index node, const Vec3& p, std::span<const ContactFace> faces,
                     Index* out) const;

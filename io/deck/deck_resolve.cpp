@@ -119,147 +119,191 @@ void resolve_sets(DeckState& deck, bool node_sets) {
   for (std::size_t s = 0; s < count; ++s) resolve_set(deck, node_sets, static_cast<Index>(s), 0);
 }
 
+namespace {
+
+/// What one set collects while its items are resolved: the Model's members and, beside them
+/// in an element set, MASS/ROTARYI elements (`points`) and geometry elements (section-less
+/// CPS4 & co.; those run as S4R are members).
+struct SetMembers {
+  DeckState& deck;
+  bool node_sets;
+  std::string what;  ///< "node" or "element"
+  std::vector<Index> members;
+  std::vector<Index>& points;
+  std::vector<Index> geometry;
+  bool has_points;
+  bool has_geometry;
+
+  std::size_t count() const { return members.size() + points.size() + geometry.size(); }
+};
+
+/// One id: a member, a point or geometry element, or an error (unless a refused element).
+void add_id(SetMembers& m, const SetItem& item) {
+  DeckState& deck = m.deck;
+  const auto& ids = m.node_sets ? deck.node_index : deck.element_index;
+  const auto it = ids.find(item.first);
+  const auto point =
+      m.has_points ? deck.point_element_index.find(item.first) : deck.point_element_index.end();
+  const auto shape =
+      m.has_geometry ? deck.geometry_index.find(item.first) : deck.geometry_index.end();
+  if (it != ids.end())
+    m.members.push_back(it->second);
+  else if (point != deck.point_element_index.end())
+    m.points.push_back(point->second);
+  else if (shape != deck.geometry_index.end())
+    m.geometry.push_back(shape->second);
+  else if (m.node_sets || !deck.refused_element(item.first))
+    deck.errors.add(item.where, item.keyword,
+                    "undefined " + m.what + " " + deck.id_text(item.first),
+                    "expected a defined " + m.what + " id");
+}
+
+/// A range (GENERATE): the ids of the range that are defined; undefined ones are skipped
+/// (sparse numbering), and the cost is bounded by the smaller of the range and the number of
+/// defined ids. A range with no defined id is an error (unless it holds a refused element).
+void add_range(SetMembers& m, const SetItem& item) {
+  DeckState& deck = m.deck;
+  const auto& ids = m.node_sets ? deck.node_index : deck.element_index;
+  const std::size_t before = m.count();
+  const long long span = (item.last - item.first) / item.increment + 1;
+  if (static_cast<unsigned long long>(span) <= ids.size()) {
+    for (long long id = item.first; id <= item.last; id += item.increment) {
+      const auto it = ids.find(id);
+      if (it != ids.end()) m.members.push_back(it->second);
+    }
+  } else {
+    for (const auto& [id, index] : ids)
+      if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+        m.members.push_back(index);
+  }
+  if (m.has_points)
+    for (const auto& [id, index] : deck.point_element_index)
+      if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+        m.points.push_back(index);
+  if (m.has_geometry)
+    for (const auto& [id, index] : deck.geometry_index)
+      if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+        m.geometry.push_back(index);
+  const auto refused = [&] {
+    for (ExternalId id : deck.refused_element_ids)
+      if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
+        return true;
+    return false;
+  };
+  if (m.count() == before && (m.node_sets || !refused()))
+    deck.errors.add(item.where, item.keyword,
+                    "range " + std::to_string(deck.local_id(item.first)) + ".." +
+                        deck.id_text(item.last) + " contains no defined " + m.what,
+                    "expected a range over defined " + m.what + " ids");
+}
+
+/// A set included by name into set `set` (at nesting `depth`): resolved first, then its
+/// members taken over; an undefined or circular one is an error.
+void add_set(SetMembers& m, const SetItem& item, Index set, int depth) {
+  DeckState& deck = m.deck;
+  const bool node_sets = m.node_sets;
+  const auto& names = node_sets ? deck.node_set_by_name : deck.element_set_by_name;
+  std::vector<NamedSet>& sets = node_sets ? deck.model.node_sets : deck.model.element_sets;
+  const auto it = names.find(item.name);
+  const std::string set_keyword = node_sets ? "*NSET, NSET=" : "*ELSET, ELSET=";
+  if (it == names.end()) {
+    if (!node_sets && deck.refused_element_set(item.name)) return;
+    deck.errors.add(item.where, item.keyword, "undefined " + m.what + " set " + item.name,
+                    "expected " + set_keyword + item.name);
+    return;
+  }
+  const PendingSet& other = node_sets ? deck.node_sets[it->second] : deck.element_sets[it->second];
+  if (other.state == 1 || depth >= MAX_SET_NESTING) {
+    deck.errors.add(item.where, item.keyword,
+                    m.what + " set " + sets[set].name + " includes " + item.name +
+                        ", which includes " + sets[set].name + " again",
+                    "expected sets without circular references");
+    return;
+  }
+  resolve_set(deck, node_sets, it->second, depth + 1);
+  const std::vector<Index>& included = sets[static_cast<std::size_t>(it->second)].members;
+  m.members.insert(m.members.end(), included.begin(), included.end());
+  if (!node_sets) {
+    const std::vector<Index>& other_points = deck.element_sets[it->second].point_members;
+    m.points.insert(m.points.end(), other_points.begin(), other_points.end());
+    const std::vector<Index>& other_shapes = deck.element_sets[it->second].geometry_members;
+    m.geometry.insert(m.geometry.end(), other_shapes.begin(), other_shapes.end());
+  }
+}
+
+/// The nodes of an element set (its elements, point elements and geometry elements).
+void add_nodes_of_element_set(SetMembers& m, const SetItem& item) {
+  DeckState& deck = m.deck;
+  const auto it = deck.element_set_by_name.find(item.name);
+  if (it == deck.element_set_by_name.end()) {
+    if (deck.refused_element_set(item.name)) return;
+    deck.errors.add(item.where, item.keyword, "undefined element set " + item.name,
+                    "expected *ELSET, ELSET=" + item.name);
+    return;
+  }
+  for (Index e : deck.model.element_sets[static_cast<std::size_t>(it->second)].members)
+    for (Index k = deck.model.element_offsets[e]; k < deck.model.element_offsets[e + 1]; ++k)
+      if (deck.model.element_nodes[k] != NO_INDEX) m.members.push_back(deck.model.element_nodes[k]);
+  for (Index p : deck.element_sets[it->second].point_members)
+    if (deck.point_elements[static_cast<std::size_t>(p)].node != NO_INDEX)
+      m.members.push_back(deck.point_elements[static_cast<std::size_t>(p)].node);
+  for (Index g : deck.element_sets[it->second].geometry_members) {
+    const GeometryElement& shape = deck.geometry_elements[static_cast<std::size_t>(g)];
+    for (int k = 0; k < shape.n_nodes; ++k) {
+      const auto node = deck.node_index.find(shape.node_ids[static_cast<std::size_t>(k)]);
+      if (node != deck.node_index.end()) m.members.push_back(node->second);
+    }
+  }
+}
+
+void sort_unique(std::vector<Index>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+}  // namespace
+
 void resolve_set(DeckState& deck, bool node_sets, Index set, int depth) {
   PendingSet& pending = node_sets ? deck.node_sets[set] : deck.element_sets[set];
   if (pending.state != 0) return;
   pending.state = 1;
-  const auto& ids = node_sets ? deck.node_index : deck.element_index;
-  const auto& names = node_sets ? deck.node_set_by_name : deck.element_set_by_name;
-  const std::string what = node_sets ? "node" : "element";
-  std::vector<NamedSet>& sets = node_sets ? deck.model.node_sets : deck.model.element_sets;
-  std::vector<Index> members = std::move(pending.members);
-  // MASS/ROTARYI elements of an element set: kept beside the Model's members.
-  std::vector<Index>& points = pending.point_members;
-  const bool has_points = !node_sets && !deck.point_element_index.empty();
-  // Geometry elements (section-less CPS4 & co.): kept beside too; those run as S4R are members.
-  std::vector<Index> geometry;
-  const bool has_geometry = !node_sets && !deck.geometry_elements.empty();
+  SetMembers m{deck,
+               node_sets,
+               node_sets ? "node" : "element",
+               std::move(pending.members),
+               pending.point_members,
+               {},
+               !node_sets && !deck.point_element_index.empty(),
+               !node_sets && !deck.geometry_elements.empty()};
   for (Index g : pending.geometry_members) {
     const GeometryElement& element = deck.geometry_elements[static_cast<std::size_t>(g)];
     if (element.promoted)
-      members.push_back(deck.element_index.at(element.id));
+      m.members.push_back(deck.element_index.at(element.id));
     else
-      geometry.push_back(g);
+      m.geometry.push_back(g);
   }
   for (const SetItem& item : pending.items) {
     switch (item.kind) {
-      case SetItem::Kind::Id: {
-        const auto it = ids.find(item.first);
-        const auto point =
-            has_points ? deck.point_element_index.find(item.first) : deck.point_element_index.end();
-        const auto shape =
-            has_geometry ? deck.geometry_index.find(item.first) : deck.geometry_index.end();
-        if (it != ids.end())
-          members.push_back(it->second);
-        else if (point != deck.point_element_index.end())
-          points.push_back(point->second);
-        else if (shape != deck.geometry_index.end())
-          geometry.push_back(shape->second);
-        else if (node_sets || !deck.refused_element(item.first))
-          deck.errors.add(item.where, item.keyword,
-                          "undefined " + what + " " + deck.id_text(item.first),
-                          "expected a defined " + what + " id");
+      case SetItem::Kind::Id:
+        add_id(m, item);
         break;
-      }
-      case SetItem::Kind::Range: {
-        // Ids of the range that are not defined are skipped (GENERATE over sparse numbering);
-        // cost is bounded by the smaller of the range and the number of defined ids.
-        const std::size_t before = members.size() + points.size() + geometry.size();
-        const long long span = (item.last - item.first) / item.increment + 1;
-        if (static_cast<unsigned long long>(span) <= ids.size()) {
-          for (long long id = item.first; id <= item.last; id += item.increment) {
-            const auto it = ids.find(id);
-            if (it != ids.end()) members.push_back(it->second);
-          }
-        } else {
-          for (const auto& [id, index] : ids)
-            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
-              members.push_back(index);
-        }
-        if (has_points)
-          for (const auto& [id, index] : deck.point_element_index)
-            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
-              points.push_back(index);
-        if (has_geometry)
-          for (const auto& [id, index] : deck.geometry_index)
-            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
-              geometry.push_back(index);
-        const auto refused = [&] {
-          for (ExternalId id : deck.refused_element_ids)
-            if (id >= item.first && id <= item.last && (id - item.first) % item.increment == 0)
-              return true;
-          return false;
-        };
-        if (members.size() + points.size() + geometry.size() == before && (node_sets || !refused()))
-          deck.errors.add(item.where, item.keyword,
-                          "range " + std::to_string(deck.local_id(item.first)) + ".." +
-                              deck.id_text(item.last) + " contains no defined " + what,
-                          "expected a range over defined " + what + " ids");
+      case SetItem::Kind::Range:
+        add_range(m, item);
         break;
-      }
-      case SetItem::Kind::SetName: {
-        const auto it = names.find(item.name);
-        const std::string set_keyword = node_sets ? "*NSET, NSET=" : "*ELSET, ELSET=";
-        if (it == names.end()) {
-          if (!node_sets && deck.refused_element_set(item.name)) break;
-          deck.errors.add(item.where, item.keyword, "undefined " + what + " set " + item.name,
-                          "expected " + set_keyword + item.name);
-          break;
-        }
-        const PendingSet& other =
-            node_sets ? deck.node_sets[it->second] : deck.element_sets[it->second];
-        if (other.state == 1 || depth >= MAX_SET_NESTING) {
-          deck.errors.add(item.where, item.keyword,
-                          what + " set " + sets[set].name + " includes " + item.name +
-                              ", which includes " + sets[set].name + " again",
-                          "expected sets without circular references");
-          break;
-        }
-        resolve_set(deck, node_sets, it->second, depth + 1);
-        const std::vector<Index>& included = sets[static_cast<std::size_t>(it->second)].members;
-        members.insert(members.end(), included.begin(), included.end());
-        if (!node_sets) {
-          const std::vector<Index>& other_points = deck.element_sets[it->second].point_members;
-          points.insert(points.end(), other_points.begin(), other_points.end());
-          const std::vector<Index>& other_shapes = deck.element_sets[it->second].geometry_members;
-          geometry.insert(geometry.end(), other_shapes.begin(), other_shapes.end());
-        }
+      case SetItem::Kind::SetName:
+        add_set(m, item, set, depth);
         break;
-      }
-      case SetItem::Kind::NodesOfElementSet: {
-        const auto it = deck.element_set_by_name.find(item.name);
-        if (it == deck.element_set_by_name.end()) {
-          if (deck.refused_element_set(item.name)) break;
-          deck.errors.add(item.where, item.keyword, "undefined element set " + item.name,
-                          "expected *ELSET, ELSET=" + item.name);
-          break;
-        }
-        for (Index e : deck.model.element_sets[static_cast<std::size_t>(it->second)].members)
-          for (Index k = deck.model.element_offsets[e]; k < deck.model.element_offsets[e + 1]; ++k)
-            if (deck.model.element_nodes[k] != NO_INDEX)
-              members.push_back(deck.model.element_nodes[k]);
-        for (Index p : deck.element_sets[it->second].point_members)
-          if (deck.point_elements[static_cast<std::size_t>(p)].node != NO_INDEX)
-            members.push_back(deck.point_elements[static_cast<std::size_t>(p)].node);
-        for (Index g : deck.element_sets[it->second].geometry_members) {
-          const GeometryElement& shape = deck.geometry_elements[static_cast<std::size_t>(g)];
-          for (int k = 0; k < shape.n_nodes; ++k) {
-            const auto node = deck.node_index.find(shape.node_ids[static_cast<std::size_t>(k)]);
-            if (node != deck.node_index.end()) members.push_back(node->second);
-          }
-        }
+      case SetItem::Kind::NodesOfElementSet:
+        add_nodes_of_element_set(m, item);
         break;
-      }
     }
   }
-  std::sort(members.begin(), members.end());
-  members.erase(std::unique(members.begin(), members.end()), members.end());
-  sets[static_cast<std::size_t>(set)].members = std::move(members);
-  std::sort(points.begin(), points.end());
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  std::sort(geometry.begin(), geometry.end());
-  geometry.erase(std::unique(geometry.begin(), geometry.end()), geometry.end());
-  pending.geometry_members = std::move(geometry);
+  std::vector<NamedSet>& sets = node_sets ? deck.model.node_sets : deck.model.element_sets;
+  sort_unique(m.members);
+  sets[static_cast<std::size_t>(set)].members = std::move(m.members);
+  sort_unique(m.points);
+  sort_unique(m.geometry);
+  pending.geometry_members = std::move(m.geometry);
   pending.state = 2;
 }
 
