@@ -26,6 +26,14 @@ inline constexpr Real ENERGY_WARNING_FRACTION = 0.01;
 /// pinched), is not measured against nothing.
 inline constexpr Real ROUND_OFF_MOTION = 1e-10;
 
+/// |ALLKD| above this multiple of the energy put in (EnergyCheck::input), in two checks in a row
+/// and growing, fails the run. A stable mode of frequency ω keeps the energy central
+/// differences conserve, E = (1 − r) × its largest strain energy with r = (ωΔt/2)², and holds
+/// |ALLKD| = r × its strain energy, so |ALLKD| ≤ r/(1 − r) × E ≤ r/(1 − r) × the input: 4.3 for
+/// an element at the safety factor 0.9 (ωΔt = 1.8; 5.3 measured on a one-element C3D8R
+/// benchmark), 14 with a default contact spring on top (ω²Δt² = 3.74). 20 is ωΔt = 1.95.
+inline constexpr Real DEFECT_INPUT_FACTOR = 20.0;
+
 /// The largest ETOTAL drift of a run: where it was and the energy that moved most then.
 struct EnergyDrift {
   Real fraction = 0.0;      ///< |ETOTAL − ETOTAL_0| / energy scale
@@ -66,27 +74,46 @@ class EnergyCheck {
   /// The model's wave transit time: its largest extent over the fastest dilatational wave
   /// speed of its materials, s (0 when it has no elastic material).
   Real transit_time() const { return m_transit_time; }
+  /// The energy put into the model so far: the magnitudes of the initial energies (ALLKD
+  /// left out), plus the largest change of ALLWK and the largest energy the contact penalties
+  /// have given to the nodes (a fall of ALLPW) since t = 0, or the largest ALLKE so far when
+  /// that is more (the work of prescribed motion is booked an increment late), and at least
+  /// the round-off floor of scale(), J. Unlike scale() it does not grow with an instability:
+  /// central differences go unstable through ωΔt = 2, where a mode changes sign every
+  /// increment, so it builds strain energy (ALLSE) and ALLKD while the whole-step velocities
+  /// v(n) = ½ (v(n−½) + v(n+½)) of ALLKE nearly cancel; the work done on the model does not grow.
+  Real input() const { return m_input; }
 
  private:
   /// The drift of `state` against the reference, with the term that moved most.
   EnergyDrift drift_of(const State& state) const;
   /// Raises the energy scale to the magnitudes of the terms of `e`.
   void widen_scale(const Energies& e);
+  /// Raises input() to the work, the contact release and the ALLKE of `e`.
+  void widen_input(const Energies& e);
   /// Throws SolverError naming the fastest node of `state` when a node moved farther than the
   /// model's extent in one increment `dt` (s).
   void check_speed(const State& state, Real dt, Real largest_speed, ExternalId critical_id) const;
 
   const Model& m_model;
   Real m_energy_limit;
-  Real m_transit_time = 0.0;     ///< s
-  Real m_extent = 0.0;           ///< diagonal of the model's bounding box at t = 0, m
-  Real m_wave_speed = 0.0;       ///< fastest dilatational wave speed, m/s
-  Real m_max_energy = 0.0;       ///< the energy scale (scale()), J
-  bool m_defect_beyond = false;  ///< |ALLKD| was beyond the scale at the last check
-  Real m_last_defect = 0.0;      ///< |ALLKD| at the last check, J
-  Real m_initial_total = 0.0;    ///< ETOTAL after the first update, J
-  std::vector<Real> m_initial;   ///< each term of the balance then (ENERGIES order), J
-  bool m_warned = false;         ///< the 1 % warning has been given
+  Real m_transit_time = 0.0;      ///< s
+  Real m_extent = 0.0;            ///< diagonal of the model's bounding box at t = 0, m
+  Real m_wave_speed = 0.0;        ///< fastest dilatational wave speed, m/s
+  Real m_max_energy = 0.0;        ///< the energy scale (scale()), J
+  bool m_defect_beyond = false;   ///< |ALLKD| was beyond the scale at the last check
+  Real m_last_defect = 0.0;       ///< |ALLKD| at the last check, J
+  bool m_defect_created = false;  ///< |ALLKD| was beyond DEFECT_INPUT_FACTOR × input() then
+  Real m_input_initial = 0.0;     ///< the initial part of input() and its floor, J
+  Real m_input = 0.0;             ///< input(), J
+  Real m_largest_work = 0.0;      ///< largest |ALLWK − ALLWK(0)| so far, J
+  Real m_largest_release = 0.0;   ///< largest ALLPW(0) − ALLPW so far, J
+  Real m_largest_kinetic = 0.0;   ///< largest ALLKE so far, J
+  Real m_initial_work = 0.0;      ///< ALLWK after the first update, J
+  Real m_initial_contact = 0.0;   ///< ALLPW after the first update, J
+  Real m_initial_total = 0.0;     ///< ETOTAL after the first update, J
+  std::vector<Real> m_initial;    ///< each term of the balance then (ENERGIES order), J
+  bool m_warned = false;          ///< the 1 % warning has been given
   EnergyDrift m_largest;
 };
 

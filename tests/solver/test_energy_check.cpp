@@ -184,3 +184,60 @@ TEST_CASE("the health check: energies at round-off are not measured against noth
   e.kinetic = 0.8e-3;
   CHECK_THROWS_WITH(f.check(1e-3, e, 1.0), Catch::Contains("energy balance lost"));
 }
+
+TEST_CASE("the health check: a mode that grows with ALLSE carrying the scale along",
+          "[solver][energy]") {
+  // Stress scene 43 (an S4R box with 4.5:1 elements on a rigid plate, issue 32) held a
+  // period-2Δt mode from increment ~20 on: ALLSE rose to 0.12 J against 0.002 J of initial
+  // kinetic energy while ALLKD fell by the same amount, so ETOTAL stayed within 2 %, |ALLKD|
+  // never passed the largest energy (ALLSE) and the run "completed". The energy put in (the
+  // initial ALLKE, no work) does not grow with the mode.
+  CheckFixture f;
+  const Real kinetic0 = 2e-3;
+  EnergyCheck health(f.model, 0.1);
+  f.state.energies = Energies{};
+  f.state.energies.kinetic = kinetic0;
+  health.start(f.state);
+  auto state_with = [&](Real created, long increment) {
+    f.state.increment = increment;
+    f.state.energies = Energies{};
+    f.state.energies.kinetic = kinetic0 - 1e-4;
+    f.state.energies.strain = 1e-4 + created;
+    f.state.energies.kinetic_defect = -created;  // balanced: ETOTAL unchanged
+  };
+  // Below DEFECT_INPUT_FACTOR (20) times the input: what a stable mode can hold.
+  state_with(3.9e-2, 40);
+  CHECK_NOTHROW(health.check(f.state, ElementTotals{}, 1e-7, 1.0, 1, f.sink));
+  // Beyond once: not yet (a prescribed velocity ramp from rest starts with |ALLKD| = ALLKE).
+  state_with(8e-2, 41);
+  CHECK_NOTHROW(health.check(f.state, ElementTotals{}, 1e-7, 1.0, 1, f.sink));
+  CHECK(health.input() == Approx(kinetic0).epsilon(1e-9));
+  // Beyond again and growing: the mode grows; ETOTAL is still balanced.
+  state_with(1.2e-1, 42);
+  CHECK(f.state.energies.total() == Approx(kinetic0).epsilon(1e-12));
+  CHECK_THROWS_WITH(health.check(f.state, ElementTotals{}, 1e-7, 1.0, 1, f.sink),
+                    Catch::Contains("more energy than was put into the model"));
+}
+
+TEST_CASE("the health check: ALLKD of energy put in by work is no instability",
+          "[solver][energy]") {
+  // The same growth with the energy put in by loads (ALLWK): |ALLKD| stays below
+  // DEFECT_INPUT_FACTOR times the work done, the run goes on (without the work it would fail
+  // at the second increment).
+  CheckFixture f;
+  EnergyCheck health(f.model, 0.1);
+  f.state.energies = Energies{};
+  f.state.energies.kinetic = 2e-3;
+  health.start(f.state);
+  for (long i = 0; i < 3; ++i) {
+    const Real created = 5e-2 * static_cast<Real>(i + 1);
+    f.state.increment = 40 + i;
+    f.state.energies = Energies{};
+    f.state.energies.kinetic = 2e-3;
+    f.state.energies.strain = 2.0 * created;
+    f.state.energies.kinetic_defect = -created;
+    f.state.energies.external_work = created;  // ETOTAL balanced by the work
+    CHECK_NOTHROW(health.check(f.state, ElementTotals{}, 1e-7, 1.0, 1, f.sink));
+  }
+  CHECK(health.input() == Approx(2e-3 + 0.15).epsilon(1e-9));
+}
