@@ -7,6 +7,7 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <string>
 
 #include "partition/exchange_plan.hpp"
 
@@ -262,4 +263,43 @@ TEST_CASE("the exchange plan is symmetric and covers every contribution", "[part
     CHECK(owned == mesh.node_count);
     CHECK(std::vector<Index>(interface.begin(), interface.end()) == partition.interface_nodes);
   }
+}
+
+TEST_CASE("the partition reports the exchange of a plane cut", "[partition][exchange]") {
+  // 4 × 2 × 2 unit hexes cut by the bisection at x = 2: 3 × 3 = 9 shared nodes; part 0 has at
+  // them 4 corner nodes of 1 element, 4 edge nodes of 2 and the centre of 4: 16 slots.
+  const Index nx = 4, ny = 2, nz = 2;
+  const auto node = [&](Index i, Index j, Index k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  NodalVectors coordinates((nx + 1) * (ny + 1) * (nz + 1), 3);
+  for (Index k = 0; k <= nz; ++k)
+    for (Index j = 0; j <= ny; ++j)
+      for (Index i = 0; i <= nx; ++i) coordinates.row(node(i, j, k)) << i, j, k;
+  std::vector<Index> offsets{0}, nodes;
+  for (Index k = 0; k < nz; ++k)
+    for (Index j = 0; j < ny; ++j)
+      for (Index i = 0; i < nx; ++i) {
+        for (const Index n : {node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k),
+                              node(i, j + 1, k), node(i, j, k + 1), node(i + 1, j, k + 1),
+                              node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)})
+          nodes.push_back(n);
+        offsets.push_back(static_cast<Index>(nodes.size()));
+      }
+  PartitionInput input;
+  input.node_count = static_cast<Index>(coordinates.rows());
+  input.element_offsets = offsets;
+  input.element_nodes = nodes;
+  input.coordinates = &coordinates;
+  const MeshPartition p = partition::partition_mesh(input, 2, partition::Method::Bisection);
+  for (int k = 0; k < 2; ++k) {
+    CHECK(p.stats[k].neighbours == 1);
+    CHECK(p.stats[k].shared_nodes == 9);
+    CHECK(p.stats[k].send_slots == 16);
+  }
+  const std::vector<std::string> report = partition::partition_report(p, 0.0);
+  REQUIRE(report.size() == 3);
+  CHECK(report[1].find("1 neighbours, 9 shared nodes, 16 force slots sent (0.4 kB)") !=
+        std::string::npos);
+  // One part: nothing to exchange.
+  const MeshPartition one = partition::partition_mesh(input, 1, partition::Method::Bisection);
+  CHECK(one.stats[0].send_slots == 0);
 }
