@@ -9,11 +9,12 @@
 //              global reduction of one increment.
 // Best and median of the repetitions, in CSV on rank 0. Built only with XPL_MPI=ON
 // (target xpl_mpi_pingpong); run, e.g.:
-//   mpirun --allow-run-as-root --oversubscribe -np 2 build/mpi/xpl_mpi_pingpong
+//   mpirun --allow-run-as-root --oversubscribe -np 2 build/mpi/xpl_mpi_pingpong [BYTES...]
 #include <mpi.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 namespace {
@@ -48,7 +49,12 @@ int main(int argc, char** argv) {
   const int reps = 7;
   if (rank == 0) std::printf("test,ranks,bytes,seconds_best,seconds_median,MB_per_s_best\n");
   std::vector<char> out(1 << 24), in(1 << 24), in2(1 << 24);
-  for (long bytes = 8; bytes <= (1L << 24); bytes *= 4) {
+  // Message sizes: the arguments (bytes, at most 16 MiB), else 8 B to 16 MiB by 4.
+  std::vector<long> sizes;
+  for (int a = 1; a < argc; ++a) sizes.push_back(std::clamp(std::atol(argv[a]), 1L, 1L << 24));
+  if (sizes.empty())
+    for (long bytes = 8; bytes <= (1L << 24); bytes *= 4) sizes.push_back(bytes);
+  for (const long bytes : sizes) {
     const int iterations = bytes <= 65536 ? 200 : bytes <= (1 << 20) ? 40 : 8;
     const int n = static_cast<int>(bytes);
     const auto pp = timed(reps, iterations, [&] {
