@@ -6,6 +6,7 @@
 
 #include "partition/bisection.hpp"
 #include "partition/element_graph.hpp"
+#include "partition/exchange_plan.hpp"
 #include "partition/metis_graph.hpp"
 
 namespace xpl::partition {
@@ -110,6 +111,17 @@ MeshPartition partition_mesh(const PartitionInput& input, int parts, Method meth
   }
   for (Index i = 0; i < input.node_count; ++i) ++p.stats[p.node_owner[i]].owned_nodes;
 
+  if (parts > 1) {
+    const ExchangePlan plan = make_exchange_plan(input, p);
+    for (int k = 0; k < parts; ++k) {
+      PartStats& s = p.stats[k];
+      s.neighbours = static_cast<Index>(plan.part[k].neighbours.size());
+      s.send_slots = plan.part[k].send_slots();
+      for (const NeighbourExchange& x : plan.part[k].neighbours)
+        s.shared_nodes += static_cast<Index>(x.nodes.size());
+    }
+  }
+
   Real total = 0.0, largest = 0.0;
   for (const PartStats& s : p.stats) {
     total += s.weight;
@@ -121,7 +133,7 @@ MeshPartition partition_mesh(const PartitionInput& input, int parts, Method meth
 
 std::vector<std::string> partition_report(const MeshPartition& p, double seconds) {
   std::vector<std::string> lines;
-  char text[256];
+  char text[320];
   std::snprintf(text, sizeof text,
                 "partition: %d parts by %s in %.3f s: imbalance %.3f (largest part weight / "
                 "mean), %zu interface nodes, %ld of %ld graph edges cut, %ld of %ld contact/tie "
@@ -133,8 +145,10 @@ std::vector<std::string> partition_report(const MeshPartition& p, double seconds
     const PartStats& s = p.stats[k];
     std::snprintf(text, sizeof text,
                   "partition: part %d: %d elements (weight %.1f), %d owned nodes, %d interface "
-                  "nodes",
-                  k, s.elements, s.weight, s.owned_nodes, s.interface_nodes);
+                  "nodes; exchange per increment: %d neighbours, %d shared nodes, %d force "
+                  "slots sent (%.1f kB)",
+                  k, s.elements, s.weight, s.owned_nodes, s.interface_nodes, s.neighbours,
+                  s.shared_nodes, s.send_slots, s.send_slots * 3.0 * sizeof(Real) / 1000.0);
     lines.emplace_back(text);
   }
   return lines;

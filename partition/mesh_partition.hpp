@@ -54,6 +54,12 @@ struct PartStats {
   Index owned_nodes = 0;      ///< nodes owned (the lowest part using them is this one)
   Index interface_nodes = 0;  ///< nodes used by this part and at least one other
   Real weight = 0.0;          ///< sum of element weights
+  /// The exchange of an increment (exchange_plan.hpp), parts > 1 only: the parts it shares
+  /// nodes with, those nodes counted once per neighbour, and the contribution slots it sends
+  /// them (every element corner of this part at a node a neighbour uses, once per neighbour).
+  Index neighbours = 0;
+  Index shared_nodes = 0;
+  Index send_slots = 0;
 };
 
 /// The result of partition_mesh().
