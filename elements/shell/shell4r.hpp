@@ -24,8 +24,9 @@
 /// (4 (2(1+ν)/(κ_s(1−ν)) − 1)): the smallest value for which the fastest transverse-shear
 /// mode of the element (a tilt of the normal against a rotation, ω² = κ_s G (4/L² + 1/r²)/ρ)
 /// stays below the membrane breathing mode ω² = 4 c² (1+ν)/L² that sets the increment.
-/// Thick elements (t²/12 above it) keep their physical inertia. (Before issue 21 the scale
-/// was A/8 on every element, which added ~19 % to the polar inertia of a strip 4 elements
+/// Thick elements (t²/12 above it) keep their physical inertia. Skewed and tapered quads get
+/// r² times shell_rotary_shape_factor() (shell4r_increment.hpp; 1 on rectangles). (Before issue 21
+/// the scale was A/8 on every element, which added ~19 % to the polar inertia of a strip 4 elements
 /// wide and made its torsion frequency low.)
 ///
 /// Elements are coloured and batched like the C3D8R block: race-free, deterministic.

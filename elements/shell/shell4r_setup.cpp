@@ -155,9 +155,12 @@ void Shell4rBlock::add_lumped_mass(const NodalVectors& reference, std::vector<Re
     const Real t = m_const[(b * N_CONST + THICKNESS0) * W + l];
     const Real share = m_const[(b * N_CONST + DENSITY) * W + l] * t * area / 4.0;  // node_mass()
     const Real length = 1.41421356237309515 * area / frame.diagonal;
+    const bool exact = m_const[(b * N_CONST + ROT_EXACT) * W + l] > 0.0;
+    // Skewed and tapered quads need more (shell4r_increment.hpp); 1 on rectangles.
+    const Real shape = exact ? 1.0 : shell_rotary_shape_factor(frame, p);
     const Real inertia =
-        share * shell_rotary_radius2(t, length, m_const[(b * N_CONST + POISSON) * W + l],
-                                     m_const[(b * N_CONST + ROT_EXACT) * W + l] > 0.0);
+        share * shape *
+        shell_rotary_radius2(t, length, m_const[(b * N_CONST + POISSON) * W + l], exact);
     for (Index node : nodes) {
       mass[node] += share;
       rotary_inertia[node] += inertia;
