@@ -11,8 +11,8 @@
 
 #include "elements/hex/hex8.hpp"
 #include "elements/hex/hex8r.hpp"
-#include "elements/shell/shell4r.hpp"
 #include "elements/parallel/thread_partition.hpp"
+#include "elements/shell/shell4r.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;
