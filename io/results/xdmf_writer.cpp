@@ -194,16 +194,23 @@ std::string XdmfWriter::grid(const std::string& frame, Real time, const FrameReq
 void XdmfWriter::add_frame(const std::string& frame, Real time, const FrameRequest& what, int step,
                            const std::string& step_name, Real step_time) {
   m_grids += grid(frame, time, what, step, step_name, step_time, true);
+  m_last_grid = grid(frame, time, what, step, step_name, step_time, false);
   ++m_frames;
+  m_pending = true;
+}
+
+void XdmfWriter::write_pending() {
+  if (!m_pending) return;
   write();
   // The newest frame alone: meshio.read and the meshio CLI read a single uniform grid.
   write_file(m_last_path,
              "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
              "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n"
              "  <Domain>\n" +
-                 grid(frame, time, what, step, step_name, step_time, false) +
+                 m_last_grid +
                  "  </Domain>\n"
                  "</Xdmf>\n");
+  m_pending = false;
 }
 
 void XdmfWriter::write() const {

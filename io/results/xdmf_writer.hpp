@@ -1,6 +1,7 @@
 #pragma once
 /// \file JOB.xdmf: an XDMF 3 temporal collection that points into JOB.h5, so that ParaView
-/// and meshio can read the frames. Rewritten (atomically) after every frame.
+/// and meshio can read the frames. Rewritten (atomically) when its owner asks, which
+/// io/results/result_files.cpp does at most once a second during a run and at its end.
 
 #include <filesystem>
 #include <string>
@@ -53,10 +54,16 @@ class XdmfWriter {
   /// The mesh of all frames (call before the first add_frame).
   void set_mesh(XdmfMesh mesh);
   /// Adds the frame /frames/`frame` at total time `time` of step `step` (1-based, named
-  /// `step_name`, at step time `step_time`) with the fields `what` and rewrites the file, and
-  /// JOB_last.xdmf: the newest frame alone, as one uniform grid that meshio.read reads.
+  /// `step_name`, at step time `step_time`) with the fields `what`; write_pending writes it.
   void add_frame(const std::string& frame, Real time, const FrameRequest& what, int step = 0,
                  const std::string& step_name = "", Real step_time = 0.0);
+  /// Rewrites the file with every frame added so far, and JOB_last.xdmf: the newest frame
+  /// alone, as one uniform grid that meshio.read reads; nothing when no frame came since the
+  /// last write. Call it only once the frames are in JOB.h5: the file never names a frame
+  /// the .h5 does not hold.
+  void write_pending();
+  /// Frames added since the last write_pending.
+  bool pending() const { return m_pending; }
   /// Number of frames listed.
   int frame_count() const { return m_frames; }
 
@@ -73,8 +80,10 @@ class XdmfWriter {
   std::filesystem::path m_last_path;  ///< JOB_last.xdmf
   std::string m_h5_name;              ///< XML-escaped
   XdmfMesh m_mesh;
-  std::string m_grids;  ///< XML of every frame so far
+  std::string m_grids;      ///< XML of every frame so far
+  std::string m_last_grid;  ///< XML of the newest frame, for JOB_last.xdmf
   int m_frames = 0;
+  bool m_pending = false;  ///< frames added since the files were last written
 };
 
 }  // namespace xpl::io

@@ -14,7 +14,8 @@ Usage: check_viz.py CASE XPL REPO OUT_DIR, CASE one of
             default locking, no HDF5_USE_FILE_LOCKING): an open refused while xpl writes is
             retried; every open sees status "running" and a growing prefix of whole frames (>= 2
             distinct counts), equal to the final file's; a reader holding the file 1.5 s makes
-            the run wait (noted in JOB.msg), not fail; `xpl history` works mid-run; the end
+            the run wait (noted in JOB.msg), not fail; `xpl history` works mid-run; JOB.xdmf
+            lists frames mid-run, never one the .h5 lacks, and every frame at the end; the end
             "completed"
   paraview  the shear job through pvpython's XDMF reader: S's component 5 is named XZ and holds
             S13, node_id / element_id are there, the sets are 0/1 arrays and the reader gives
@@ -278,13 +279,18 @@ def case_live(xpl, repo, out):
                                 "--quiet"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                text=True, env=clean_env())
     counts = {"busy": 0}
-    opens, counts_seen, frames_read, held = 0, [], {}, False
+    opens, counts_seen, frames_read, held, xdmf_seen = 0, [], {}, False, 0
     history_rows, history_csv = 0, None
     t0 = time.monotonic()
     while process.poll() is None and time.monotonic() - t0 < 60:
         if not h5_path.exists():
             time.sleep(0.005)
             continue
+        # JOB.xdmf, read before the .h5: it may lag the .h5 (rewritten at most once a
+        # second) but never names a frame the .h5 does not hold yet.
+        xdmf_path = results / "block.xdmf"
+        listed = sorted(set(re.findall(r"/frames/(\d{6})/", xdmf_path.read_text()))) \
+            if xdmf_path.exists() else []
         f = open_when_free(h5_path, counts, t0 + 60)
         # Once the file is open nothing may fail: every read below is of a closed, complete
         # file (no exception is caught here).
@@ -296,6 +302,10 @@ def case_live(xpl, repo, out):
             # with a time after the last one's.
             check(names == [f"{k:06d}" for k in range(len(names))], f"frames {names}")
             check(len(names) >= (counts_seen[-1] if counts_seen else 0), "frames disappeared")
+            check(set(listed) <= set(names), f"JOB.xdmf lists frames {sorted(set(listed) - set(names))} "
+                  "the .h5 does not hold")
+            if running and listed:
+                xdmf_seen = max(xdmf_seen, len(listed))
             for name in names:
                 if name in frames_read:
                     continue
@@ -338,6 +348,9 @@ def case_live(xpl, repo, out):
             frame = f["frames"][name]
             check(frame.attrs["time"] == t and np.array_equal(frame["U"][()], u)
                   and np.array_equal(frame["S"][()], s), f"frame {name} read during the run")
+    check(xdmf_seen > 0, "JOB.xdmf listed no frame while the run wrote them")
+    listed = set(re.findall(r"/frames/(\d{6})/", (results / "block.xdmf").read_text()))
+    check(len(listed) == total, f"the final JOB.xdmf lists {len(listed)} of {total} frames")
     distinct = sorted(set(counts_seen))
     check(len(distinct) >= 2, f"the reader saw only the frame counts {distinct}")
     check(held, "the run ended before the reader could hold the file")
@@ -352,7 +365,8 @@ def case_live(xpl, repo, out):
     print(f"live: {opens} reads during the run ({counts['busy']} opens refused while xpl wrote, "
           f"retried), {len(distinct)} distinct frame counts up to {distinct[-1]} of {total}; "
           f"{len(frames_read)} frames read during the run equal the final file's; the run "
-          f"waited for a reader that held the file 1.5 s; xpl history read "
+          f"waited for a reader that held the file 1.5 s; JOB.xdmf listed up to {xdmf_seen} "
+          f"frames mid-run, all of them in the .h5; xpl history read "
           f"{len(csv_lines) - 1} rows mid-run; final status completed")
 
 
