@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
-#include "common/parallel_error.hpp"
 #include "contact/closest_point.hpp"
 
 namespace xpl::contact {
@@ -105,83 +103,9 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   }
 
   ScopedTimer timer(timers, Phase::ContactForce);
-  // The springs' memory and stiffness, both sides of every slot.
-  ParallelErrors errors;
-#pragma omp parallel for schedule(static)
-  for (Index s = 0; s < n_slave; ++s)
-    errors.guard(ParallelSite::ContactForces, s, [&] {
-      ContactConstraint& c = m_constraints[s];
-      ContactConstraint& c2 = m_second[s];
-      const SlaveTouch& t = m_touch[s];
-      const SlaveTouch& t2 = m_second_touch[s];
-      // The memory of a side follows its side (file comment): each constraint continues
-      // with the touch that looks the way it looked last increment.
-      if ((c.master_face != NO_INDEX || c2.master_face != NO_INDEX) && !c.offset_permanent &&
-          !c2.offset_permanent) {
-        const auto alike = [](const SlaveTouch& now, const ContactConstraint& before) {
-          return now.face != NO_INDEX && before.master_face != NO_INDEX
-                     ? now.normal.dot(before.normal)
-                     : -2.0;
-        };
-        if (alike(t, c2) + alike(t2, c) > alike(t, c) + alike(t2, c2)) std::swap(c, c2);
-      }
-      // Interference ramp (set_interference): the offset of this update's step time.
-      if (!m_interference.empty() && m_interference[s].amount > 0.0) {
-        const Interference& ramp = m_interference[s];
-        const Real r = ramp.duration > 0.0 ? std::max(0.0, 1.0 - m_step_time / ramp.duration) : 0.0;
-        m_ramp_before[s] = c.offset;
-        c.offset = ramp.base + ramp.amount * r;
-      }
-      prepare_spring(s, c, t, m_spring[2 * s], position, velocity_half, dt, dt_penalty, mass,
-                     inverse_mass);
-      if (t2.face == NO_INDEX) {
-        // No face on the other side is penetrated: that side's offset is spent (C3).
-        c2.master_face = NO_INDEX;
-        c2.status = ContactStatus::Inactive;
-        c2.tangential_force = Vec3::Zero();
-        if (!c2.offset_permanent) c2.offset = 0.0;
-        c2.stiffness = 0.0;
-        m_spring[2 * s + 1].k = 0.0;
-        return;
-      }
-      // A node held with an offset at the start is held on both sides (C3, C6).
-      if (!m_updated && c2.master_face == NO_INDEX && c.offset > 0.0)
-        c2.offset = std::max(c2.offset, -t2.gap);
-      prepare_spring(s, c2, t2, m_spring[2 * s + 1], position, velocity_half, dt, dt_penalty, mass,
-                     inverse_mass);
-    });
-  errors.rethrow_if_any();
-
+  prepare_springs(position, velocity_half, dt, dt_penalty, mass, inverse_mass);
   cap_default_springs(dt_penalty, mass, inverse_mass);
-
-#pragma omp parallel for schedule(static)
-  for (Index s = 0; s < n_slave; ++s)
-    errors.guard(ParallelSite::ContactForces, s, [&] {
-      m_dissipation[s] = 0.0;
-      m_second_dissipation[s] = 0.0;
-      m_stored[s] = 0.0;
-      OutputStatus status = OutputStatus::Open;
-      if (m_user_stiffness) m_user_k[2 * s] = m_user_k[2 * s + 1] = 0.0;
-      const Real fn_before = m_normal_force[s];
-      const Vec3 f = spring_force(s, 0, m_constraints[s], m_touch[s], dt, dt_penalty, status);
-      if (!m_interference.empty() && m_interference[s].amount > 0.0) {
-        // The work of the ramp step on the spring, in the trapezoidal measure of the work the
-        // contact forces do on the nodes (ForceAssembly): with F = k (d − d0), ½ k e² grows
-        // by ½ (F_n + F_{n+1}) (Δd − Δd0), the nodes' part of which ALLPW books.
-        m_ramp_work[s] =
-            0.5 * (fn_before + m_spring[2 * s].fn) * (m_ramp_before[s] - m_constraints[s].offset);
-      }
-      for (int d = 0; d < 3; ++d) m_slave_force[3 * s + d] = f[d];
-      m_normal_force[s] = m_spring[2 * s].fn;
-      const Vec3 f2 =
-          m_second_touch[s].face == NO_INDEX
-              ? Vec3::Zero()
-              : spring_force(s, 1, m_second[s], m_second_touch[s], dt, dt_penalty, status);
-      for (int d = 0; d < 3; ++d) m_second_force[3 * s + d] = f2[d];
-      m_second_normal_force[s] = m_spring[2 * s + 1].fn;
-      m_output_status[s] = status;
-    });
-  errors.rethrow_if_any();
+  spring_forces(dt, dt_penalty);
 
   // Assembly, sums and work, in slot order (independent of the thread count).
   m_assembly.assemble(

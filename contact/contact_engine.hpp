@@ -162,6 +162,15 @@ class ContactEngine {
     bool acts = false;
     Real fn = 0.0;
   };
+  /// The springs' memory and stiffness, both sides of every slot (after the search; parallel
+  /// over slots): which constraint follows which touch, the interference ramp's offset, and
+  /// prepare_spring of each side.
+  void prepare_springs(const NodalVectors& position, const NodalVectors& velocity_half, Real dt,
+                       Real dt_penalty, std::span<const Real> mass,
+                       std::span<const Real> inverse_mass);
+  /// The force of every slot's springs (spring_force, parallel over slots) into the per-slot
+  /// forces, normal forces, energies and statuses, with the interference ramp's work.
+  void spring_forces(Real dt, Real dt_penalty);
   /// The onset offset, memory (gap, normal) and stiffness of the spring of slot s on touch
   /// `t` (none: the constraint becomes inactive), into `spring`.
   void prepare_spring(Index s, ContactConstraint& c, const SlaveTouch& t, Spring& spring,
