@@ -42,6 +42,36 @@ SlaveTouch opposite_touch(const SlaveTouch& best, const std::array<SlaveTouch, N
   return SlaveTouch{};
 }
 
+/// How far (m, squared) from the node an admissible penetration can lie: a touch admissible()
+/// keeps with gap < 0 and −gap ≤ `limit` (depth + half thickness + allowance, m; `half_t` the
+/// node's half thickness, m) is at most max(half_t, √(limit² + (limit − half_t)²)) away.
+/// Inside the face region, or beside it on the outside, the distance is |gap + half_t| ≤
+/// max(half_t, limit − half_t); beside it below the face plane the lateral test bounds the
+/// offset beyond the edge by |gap|.
+Real penetration_reach_sq(Real limit, Real half_t) {
+  return std::max(half_t * half_t, limit * limit + (limit - half_t) * (limit - half_t));
+}
+
+/// Whether the face with these corners (m) is certainly irrelevant to a node at `p` (m): all
+/// of it farther than `nearer_than` (m) and than √`reach_sq` (penetration_reach_sq). The face
+/// lies in the box of its corners, so the distance to that box bounds the distance to its
+/// closest point from below. A relative slack of 1e-9 covers the rounding of the closest
+/// point, so skipping such a face changes no bit of the search.
+bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real reach_sq) {
+  Real out_sq = 0.0, extent = 0.0, scale = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const Real lo = std::min({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
+    const Real hi = std::max({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
+    const Real out = std::max({lo - p[d], p[d] - hi, 0.0});
+    out_sq += out * out;
+    extent = std::max(extent, hi - lo);
+    scale = std::max(scale, std::abs(p[d]));
+  }
+  const Real bound = std::sqrt(out_sq);
+  const Real below = bound - 1e-9 * (bound + extent) - 1e-12 * scale;
+  return below > nearer_than && below * below > reach_sq;
+}
+
 }  // namespace
 
 ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
@@ -86,7 +116,7 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
 
 bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& position,
                                std::span<const Real> node_thickness, SlaveTouch& out,
-                               Real& distance) const {
+                               Real& distance, Real nearer_than) const {
   const std::vector<ContactFace>& faces = m_domain.faces();
   const Index s = v.slot;
   const ContactFace* held = v.held;
@@ -123,15 +153,26 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   if (!v.point_node && (double_sided ? !v.free_edge && std::abs(cosine) < OPPOSING_COSINE
                                      : cosine > -OPPOSING_COSINE))
     return false;
-  const ClosestPoint cp = closest_point_on_quad(corner, v.point);
   const Real half_t = v.half_t;
-  const Real gap = cp.gap - half_t;
   Real depth = m_domain.face_depth(f);
   if (faces[f].shell) {
     Real t = 0.0;
     for (Index c : faces[f].nodes) t += node_thickness_of(node_thickness, c);
     depth = DEPTH_LIMIT_FRACTION * 0.25 * t;  // of the mean thickness
   }
+  const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
+  if (f == v.continuing) depth *= 2.0;  // contact at speed (file comment)
+  // A face within the search margin of the node can be skipped only when the penetration
+  // reach is shorter than that margin (shells: about a thickness against a margin of a third
+  // of a face; a solid face's depth reaches beyond it, and the test would only cost).
+  if (!kept_side && m_try_skip) {
+    const Real reach_sq = penetration_reach_sq(depth + half_t + v.allowance, half_t);
+    if (reach_sq < m_broad.margin() * m_broad.margin() &&
+        beyond_face_box(corner, v.point, nearer_than, reach_sq))
+      return false;
+  }
+  const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+  const Real gap = cp.gap - half_t;
   // Behind the face's plane but beside its edge or corner, the node penetrates the face only
   // while its offset beyond the edge is smaller than its penetration (it is nearer to the
   // face than to clearing it sideways). Farther out the gap "along the face normal" measures
@@ -143,8 +184,6 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
     const Real lateral_sq = cp.distance * cp.distance - cp.gap * cp.gap;
     if (lateral_sq > gap * gap) return false;
   }
-  const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
-  if (f == v.continuing) depth *= 2.0;  // contact at speed (file comment)
   if (!kept_side && -gap > depth + half_t + v.allowance) return false;
   out = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
   distance = cp.distance;
@@ -171,8 +210,33 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         int n_penetrated = 0;
         int n_seen = 0;
         const SlaveView view = slave_view(s, position, node_thickness);
+        const std::span<const Index> listed = m_broad.candidates(s);
+        // The face of last increment's touch first, when the loop below considers it: its
+        // distance bounds that of the nearest face from the start, so that admissible() skips
+        // the closest points of the faces beyond it (same result, the loop still takes the
+        // faces in order; the touch found here is reused when the loop reaches its face).
+        const Index previous = m_constraints[s].master_face;
+        SlaveTouch previous_touch;
+        Real previous_distance = 0.0;
+        bool previous_known = false, previous_admissible = false;
+        if (m_try_skip && previous != NO_INDEX &&
+            (previous == view.continuing ||
+             std::binary_search(listed.begin(), listed.end(), previous))) {
+          previous_known = true;
+          previous_admissible = admissible(view, previous, position, node_thickness, previous_touch,
+                                           previous_distance);
+        }
+        const Real bound =
+            previous_admissible ? previous_distance : std::numeric_limits<Real>::max();
         const auto consider = [&](Index f) {
-          if (!admissible(view, f, position, node_thickness, candidate, distance)) return;
+          if (previous_known && f == previous) {
+            if (!previous_admissible) return;
+            candidate = previous_touch;
+            distance = previous_distance;
+          } else if (!admissible(view, f, position, node_thickness, candidate, distance,
+                                 std::min(best_distance, bound))) {
+            return;
+          }
           if (distance < best_distance) {
             best_distance = distance;
             best = candidate;
@@ -182,7 +246,6 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
             ++n_seen;
           }
         };
-        const std::span<const Index> listed = m_broad.candidates(s);
         for (Index f : listed) consider(f);
         // The face pressed last increment, deeper than the broad phase's slab (contact at speed).
         if (view.continuing != NO_INDEX &&
@@ -238,6 +301,17 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
   const Index n_slave = slaves.size();
   m_active_slot.assign(static_cast<std::size_t>(n_slave), 0);
   m_active_face.assign(m_domain.faces().size(), 0);
+  m_try_skip = false;
+  for (Index f = 0; f < static_cast<Index>(m_domain.faces().size()) && !m_try_skip; ++f) {
+    const ContactFace& face = m_domain.faces()[f];
+    Real depth = m_domain.face_depth(f);
+    if (face.shell) {
+      Real t = 0.0;
+      for (Index c : face.nodes) t += node_thickness_of(node_thickness, c);
+      depth = DEPTH_LIMIT_FRACTION * 0.25 * t;
+    }
+    m_try_skip = depth < m_broad.margin();
+  }
   for (Index s = 0; s < n_slave; ++s) {
     if (m_broad.candidates(s).empty()) continue;
     m_active_slot[s] = 1;
