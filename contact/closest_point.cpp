@@ -17,6 +17,12 @@ constexpr Real NEWTON_STEP_TOLERANCE = 1e-13;
 /// centre normal) above which a face gets Newton starts in its four quadrants as well as at
 /// its centre: a 2 % twist.
 constexpr Real STRONG_WARP = 0.02;
+/// Safety factor of the convexity test (convex_on_square) against rounding.
+constexpr Real CONVEX_MARGIN = 2.0;
+/// A boundary point is the minimum over the face only when the distance grows into the face
+/// by more than this times |x_ξ| (|x_ξ| + |x_η|) per unit of ξ (and the same in η), so that
+/// rounding cannot decide it.
+constexpr Real KKT_MARGIN = 1e-8;
 constexpr Real START_XI[5] = {0.0, -0.5, 0.5, 0.5, -0.5};
 constexpr Real START_ETA[5] = {0.0, -0.5, -0.5, 0.5, 0.5};
 
@@ -64,12 +70,87 @@ bool newton_interior(const Bilinear& q, const Vec3& p, Real& xi, Real& eta) {
   return false;
 }
 
+/// Whether |x(ξ, η) − p|² is certainly strictly convex on the whole square, so that it has at
+/// most one stationary point inside it, its minimum. Half its Hessian is
+/// [[x_ξ·x_ξ, x_ξ·x_η + s], [x_ξ·x_η + s, x_η·x_η]] with s = (x − p)·a3 (x_ξξ = x_ηη = 0), whose
+/// determinant is |x_ξ × x_η|² − 2 (x_ξ·x_η) s − s². With |ξ|, |η|, |ξη| ≤ 1 on the square,
+/// x_ξ × x_η = a1 × a2 + ξ a1 × a3 + η a3 × a2 is at least N = |a1 × a2| − |a1 × a3| − |a2 × a3|
+/// long, |x_ξ·x_η| ≤ C = |a1·a2| + |a1·a3| + |a2·a3| + a3·a3 and |s| ≤ σ = |(a0 − p)·a3| +
+/// |a1·a3| + |a2·a3| + a3·a3; so N > 0 and N² > 2 C σ + σ² make the determinant positive
+/// everywhere (and x_ξ·x_ξ > 0 with it). CONVEX_MARGIN leaves room for rounding.
+bool convex_on_square(const Bilinear& q, const Vec3& p) {
+  const Real n_min = length(q.a1.cross(q.a2)) - length(q.a1.cross(q.a3)) - length(q.a2.cross(q.a3));
+  if (!(n_min > 0.0)) return false;
+  const Real twist = std::abs(q.a1.dot(q.a3)) + std::abs(q.a2.dot(q.a3)) + q.a3.dot(q.a3);
+  const Real sigma = std::abs((q.a0 - p).dot(q.a3)) + twist;
+  const Real c = std::abs(q.a1.dot(q.a2)) + twist;
+  return n_min * n_min > CONVEX_MARGIN * (2.0 * c * sigma + sigma * sigma);
+}
+
 /// Closest point of segment a → b to p: parameter t ∈ [0, 1].
 Real segment_parameter(const Vec3& a, const Vec3& b, const Vec3& p) {
   const Vec3 ab = b - a;
   const Real len_sq = ab.dot(ab);
   if (len_sq <= 0.0) return 0.0;
   return std::clamp((p - a).dot(ab) / len_sq, 0.0, 1.0);
+}
+
+/// The closest point of the face's four edges (segments, corners included) to p: the first
+/// nearest of them in edge order, in `out` (region Edge or Corner), with its squared distance.
+Real nearest_edge_point(const Vec3 corner[4], const Vec3& p, ClosestPoint& out) {
+  Real best_sq = std::numeric_limits<Real>::infinity();
+  // Edge e runs from corner e to corner e + 1; it is a straight segment of the bilinear face.
+  for (int e = 0; e < 4; ++e) {
+    const int b = (e + 1) % 4;
+    const Real t = segment_parameter(corner[e], corner[b], p);
+    const Vec3 c = (1.0 - t) * corner[e] + t * corner[b];
+    const Real sq = (p - c).dot(p - c);
+    // Strictly closer only: the lower edge number wins ties.
+    if (!(sq < best_sq)) continue;
+    best_sq = sq;
+    out.xi = (1.0 - t) * CORNER_XI[e] + t * CORNER_XI[b];
+    out.eta = (1.0 - t) * CORNER_ETA[e] + t * CORNER_ETA[b];
+    out.point = c;
+    if (t <= 0.0 || t >= 1.0) {
+      out.region = QuadRegion::Corner;
+      out.feature = t <= 0.0 ? e : b;
+    } else {
+      out.region = QuadRegion::Edge;
+      out.feature = e;
+    }
+  }
+  return best_sq;
+}
+
+/// Whether the edge point `e` (nearest_edge_point) is certainly the closest point of the whole
+/// face to p, so that no stationary point lies inside it: the squared distance is convex on
+/// the square (convex_on_square) and e satisfies the optimality conditions of its minimum over
+/// the square with a margin, its gradient pointing out of the square across the edge (both
+/// edges at a corner); along its edge it is the minimum already. A strictly convex function
+/// whose minimum over the square lies on its boundary has no stationary point inside, and its
+/// gradient stays away from zero there, so Newton could not have stopped inside either.
+bool edge_point_is_minimum(const Bilinear& q, const Vec3& p, const ClosestPoint& e) {
+  if (e.region == QuadRegion::Interior) return false;  // no edge point (not finite)
+  // The coordinates held at ±1 (the edge's, or both at a corner) and the free one.
+  const int k = e.feature;
+  Real bound_xi = 0.0, bound_eta = 0.0;  // ±1 where held, 0 where free
+  if (e.region == QuadRegion::Corner) {
+    bound_xi = CORNER_XI[k];
+    bound_eta = CORNER_ETA[k];
+  } else if (k == 0 || k == 2) {
+    bound_eta = k == 0 ? -1.0 : 1.0;
+  } else {
+    bound_xi = k == 1 ? 1.0 : -1.0;
+  }
+  const Vec3 r = e.point - p;
+  const Vec3 x_xi = q.a1 + e.eta * q.a3;
+  const Vec3 x_eta = q.a2 + e.xi * q.a3;
+  const Real len_xi = length(x_xi), len_eta = length(x_eta);
+  const Real scale = KKT_MARGIN * (len_xi + len_eta);
+  // Moving into the face (−bound) raises the distance: bound · gradient < −margin.
+  if (bound_xi != 0.0 && !(bound_xi * r.dot(x_xi) < -scale * len_xi)) return false;
+  if (bound_eta != 0.0 && !(bound_eta * r.dot(x_eta) < -scale * len_eta)) return false;
+  return convex_on_square(q, p);
 }
 
 }  // namespace
@@ -102,14 +183,18 @@ ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p) {
   const Bilinear q(corner);
   ClosestPoint best;
   Real best_sq = std::numeric_limits<Real>::infinity();
+  ClosestPoint edge;
+  const Real edge_sq = nearest_edge_point(corner, p, edge);
 
   // A flat or mildly warped face has one stationary point near the face, found from the
   // centre; a strongly warped one can have several, so it is started from the quadrant
-  // centres as well and the nearest stationary point is kept.
+  // centres as well and the nearest stationary point is kept, unless the nearest edge point is
+  // certainly the closest point of the face (edge_point_is_minimum; on a flat face the test
+  // would cost about what the one start costs).
   const Vec3 centre_normal = q.a1.cross(q.a2);
   const Real normal_len = length(centre_normal);
   const Real warp = std::abs(q.a3.dot(centre_normal)) / (normal_len * std::sqrt(normal_len));
-  const int starts = warp > STRONG_WARP ? 5 : 1;
+  const int starts = !(warp > STRONG_WARP) ? 1 : edge_point_is_minimum(q, p, edge) ? 0 : 5;
   for (int s = 0; s < starts; ++s) {
     Real xi = START_XI[s], eta = START_ETA[s];
     if (!newton_interior(q, p, xi, eta)) continue;
@@ -121,25 +206,10 @@ ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p) {
     best.eta = eta;
     best.point = c;
   }
-  // Edge e runs from corner e to corner e + 1; it is a straight segment of the bilinear face.
-  for (int e = 0; e < 4; ++e) {
-    const int b = (e + 1) % 4;
-    const Real t = segment_parameter(corner[e], corner[b], p);
-    const Vec3 c = (1.0 - t) * corner[e] + t * corner[b];
-    const Real sq = (p - c).dot(p - c);
-    // Strictly closer only: the interior point wins ties, and so does the lower edge number.
-    if (!(sq < best_sq)) continue;
-    best_sq = sq;
-    best.xi = (1.0 - t) * CORNER_XI[e] + t * CORNER_XI[b];
-    best.eta = (1.0 - t) * CORNER_ETA[e] + t * CORNER_ETA[b];
-    best.point = c;
-    if (t <= 0.0 || t >= 1.0) {
-      best.region = QuadRegion::Corner;
-      best.feature = t <= 0.0 ? e : b;
-    } else {
-      best.region = QuadRegion::Edge;
-      best.feature = e;
-    }
+  // The nearest edge point only when strictly closer: the interior point wins ties.
+  if (edge_sq < best_sq) {
+    best = edge;
+    best_sq = edge_sq;
   }
 
   best.distance = std::sqrt(best_sq);

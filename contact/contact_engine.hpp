@@ -16,6 +16,7 @@
 /// slot; assembly and every sum run over slots in order, so results do not depend on the
 /// number of threads.
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -162,6 +163,15 @@ class ContactEngine {
     bool acts = false;
     Real fn = 0.0;
   };
+  /// The springs' memory and stiffness, both sides of every slot (after the search; parallel
+  /// over slots): which constraint follows which touch, the interference ramp's offset, and
+  /// prepare_spring of each side.
+  void prepare_springs(const NodalVectors& position, const NodalVectors& velocity_half, Real dt,
+                       Real dt_penalty, std::span<const Real> mass,
+                       std::span<const Real> inverse_mass);
+  /// The force of every slot's springs (spring_force, parallel over slots) into the per-slot
+  /// forces, normal forces, energies and statuses, with the interference ramp's work.
+  void spring_forces(Real dt, Real dt_penalty);
   /// The onset offset, memory (gap, normal) and stiffness of the spring of slot s on touch
   /// `t` (none: the constraint becomes inactive), into `spring`.
   void prepare_spring(Index s, ContactConstraint& c, const SlaveTouch& t, Spring& spring,
@@ -178,8 +188,12 @@ class ContactEngine {
                     Real dt_penalty, OutputStatus& status);
   /// Whether face f is admissible for the slave node `v` at `position` (file comment); if so,
   /// the touch is written to `out` and its distance to the closest point to `distance`.
+  /// A face that is certainly farther than `nearer_than` (m) and cannot be penetrated
+  /// admissibly is rejected without its closest point (what the search does with such a face
+  /// is nothing: it is neither the nearest nor a penetrated one).
   bool admissible(const SlaveView& v, Index f, const NodalVectors& position,
-                  std::span<const Real> node_thickness, SlaveTouch& out, Real& distance) const;
+                  std::span<const Real> node_thickness, SlaveTouch& out, Real& distance,
+                  Real nearer_than = std::numeric_limits<Real>::infinity()) const;
 
   ContactDomain m_domain;
   std::vector<InteractionLaw> m_laws;
@@ -229,6 +243,10 @@ class ContactEngine {
   // ones its search reads; probe() refreshes all. Scratch masks for the force-carrying corners
   // outside them.
   std::vector<char> m_active_slot, m_active_face;
+  // Whether some face's depth is below the search margin at the last broad-phase build: only
+  // then can admissible() skip a closest point by its box (penetration reach), and only then
+  // does the search evaluate last increment's face first.
+  bool m_try_skip = false;
   std::vector<char> m_extra_slot, m_extra_face;
   PenaltyStiffnessSum m_penalty_sum;
   PenaltyLimit m_penalty_limit;

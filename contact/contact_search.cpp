@@ -1,0 +1,350 @@
+// The search half of ContactEngine (contact_engine.hpp): the broad-phase refresh, the
+// admissible faces of a slave node and the nearest of them (with the touch on its other side),
+// and the probes of the start-of-step passes.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/parallel_error.hpp"
+#include "contact/closest_point.hpp"
+#include "contact/contact_engine.hpp"
+
+namespace xpl::contact {
+
+namespace {
+
+/// Keeps the `kept.size()` nearest of the touches offered (distance `distance`, m) in
+/// `kept`, nearest first; `count` is how many it holds.
+template <std::size_t N>
+void keep_nearest(std::array<SlaveTouch, N>& kept, std::array<Real, N>& kept_distance, int& count,
+                  const SlaveTouch& touch, Real distance) {
+  int at = count;
+  while (at > 0 && distance < kept_distance[at - 1]) --at;
+  if (at >= static_cast<int>(N)) return;
+  const int last = std::min(count, static_cast<int>(N) - 1);
+  for (int k = last; k > at; --k) {
+    kept[k] = kept[k - 1];
+    kept_distance[k] = kept_distance[k - 1];
+  }
+  kept[at] = touch;
+  kept_distance[at] = distance;
+  count = std::min(count + 1, static_cast<int>(N));
+}
+
+/// The nearest of the penetrated touches `penetrated` (nearest first) on the other side of
+/// the node from `best`: normals more than 120° apart (PINCH_COSINE); none when no such face.
+template <std::size_t N>
+SlaveTouch opposite_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>& penetrated,
+                          int count) {
+  for (int k = 0; k < count; ++k)
+    if (penetrated[k].face != best.face && penetrated[k].normal.dot(best.normal) < PINCH_COSINE)
+      return penetrated[k];
+  return SlaveTouch{};
+}
+
+/// How far (m, squared) from the node an admissible penetration can lie: a touch admissible()
+/// keeps with gap < 0 and −gap ≤ `limit` (depth + half thickness + allowance, m; `half_t` the
+/// node's half thickness, m) is at most max(half_t, √(limit² + (limit − half_t)²)) away.
+/// Inside the face region, or beside it on the outside, the distance is |gap + half_t| ≤
+/// max(half_t, limit − half_t); beside it below the face plane the lateral test bounds the
+/// offset beyond the edge by |gap|.
+Real penetration_reach_sq(Real limit, Real half_t) {
+  return std::max(half_t * half_t, limit * limit + (limit - half_t) * (limit - half_t));
+}
+
+/// Whether the face with these corners (m) is certainly irrelevant to a node at `p` (m): all
+/// of it farther than `nearer_than` (m) and than √`reach_sq` (penetration_reach_sq). The face
+/// lies in the box of its corners, so the distance to that box bounds the distance to its
+/// closest point from below. A relative slack of 1e-9 covers the rounding of the closest
+/// point, so skipping such a face changes no bit of the search.
+bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real reach_sq) {
+  Real out_sq = 0.0, extent = 0.0, scale = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const Real lo = std::min({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
+    const Real hi = std::max({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
+    const Real out = std::max({lo - p[d], p[d] - hi, 0.0});
+    out_sq += out * out;
+    extent = std::max(extent, hi - lo);
+    scale = std::max(scale, std::abs(p[d]));
+  }
+  const Real bound = std::sqrt(out_sq);
+  const Real below = bound - 1e-9 * (bound + extent) - 1e-12 * scale;
+  return below > nearer_than && below * below > reach_sq;
+}
+
+}  // namespace
+
+ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
+                                                   std::span<const Real> node_thickness) const {
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  SlaveView v;
+  v.slot = s;
+  const Index node = m_domain.slaves().nodes()[s];
+  v.node = node;
+  v.point = node_point(position, node);
+  v.normal = m_domain.slaves().normal(s);
+  v.double_sided = m_domain.slave_double_sided(s);
+  v.free_edge = m_domain.slave_on_free_edge(s);
+  v.point_node = m_domain.slave_point(s);
+  v.half_t = v.double_sided ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
+  if (v.double_sided) {
+    // The nodes of its own elements, once per node rather than once per candidate face.
+    for (Index g : m_domain.slaves().faces_of(s))
+      for (Index a : faces[g].nodes) {
+        if (v.own_count < 0) break;
+        bool seen = false;
+        for (int k = 0; k < v.own_count; ++k) seen = seen || v.own[k] == a;
+        if (seen) continue;
+        if (v.own_count == static_cast<int>(v.own.size()))
+          v.own_count = -1;  // more than fit: admissible() walks the faces instead
+        else
+          v.own[v.own_count++] = a;
+      }
+  }
+  const ContactConstraint& before = m_constraints[s];
+  if (before.offset_permanent) v.allowance = std::max(before.offset, 0.0);
+  // Side memory: a node pressed onto one side of a shell last increment may not be taken by
+  // the other side of that shell, however deep it has gone (no pass-through).
+  if (before.status == ContactStatus::Closed && before.master_face >= 0 &&
+      faces[before.master_face].shell)
+    v.held = &faces[before.master_face];
+  if (m_updated && before.status == ContactStatus::Closed && before.master_face >= 0 &&
+      !faces[before.master_face].shell)
+    v.continuing = before.master_face;
+  return v;
+}
+
+bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& position,
+                               std::span<const Real> node_thickness, SlaveTouch& out,
+                               Real& distance, Real nearer_than) const {
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  const Index s = v.slot;
+  const ContactFace* held = v.held;
+  const bool double_sided = v.double_sided;
+  if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
+      faces[f].face != held->face)
+    return false;
+  // A face of the node's own hex (file comment).
+  if (faces[f].behind(v.node)) return false;
+  // A shell face next to the shell node's own elements continues its own shell (file comment).
+  if (double_sided && faces[f].shell) {
+    bool own = false;
+    if (v.own_count >= 0) {
+      for (Index b : faces[f].nodes)
+        for (int k = 0; k < v.own_count; ++k) own = own || v.own[k] == b;
+    } else {
+      for (Index g : m_domain.slaves().faces_of(s))
+        for (Index a : faces[g].nodes)
+          for (Index b : faces[f].nodes) own = own || a == b;
+    }
+    if (own) return false;
+  }
+  Index pair = NO_INDEX;
+  const Real w = m_domain.weight(s, f, pair);
+  if (w == 0.0) return false;
+  Vec3 corner[4];
+  face_corners(faces[f], position, node_thickness, corner);
+  const Vec3 n_f = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+  const Real n_len = std::sqrt(n_f.dot(n_f));
+  if (!(n_len > 0.0)) return false;
+  // A shell node is double sided (either orientation), and one on a free edge may touch a
+  // face edge-on (a tube end on a plate). A point node has no orientation: any face.
+  const Real cosine = v.normal.dot(n_f) / n_len;
+  if (!v.point_node && (double_sided ? !v.free_edge && std::abs(cosine) < OPPOSING_COSINE
+                                     : cosine > -OPPOSING_COSINE))
+    return false;
+  const Real half_t = v.half_t;
+  Real depth = m_domain.face_depth(f);
+  if (faces[f].shell) {
+    Real t = 0.0;
+    for (Index c : faces[f].nodes) t += node_thickness_of(node_thickness, c);
+    depth = DEPTH_LIMIT_FRACTION * 0.25 * t;  // of the mean thickness
+  }
+  const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
+  if (f == v.continuing) depth *= 2.0;  // contact at speed (file comment)
+  // A face within the search margin of the node can be skipped only when the penetration
+  // reach is shorter than that margin (shells: about a thickness against a margin of a third
+  // of a face; a solid face's depth reaches beyond it, and the test would only cost).
+  if (!kept_side && m_try_skip) {
+    const Real reach_sq = penetration_reach_sq(depth + half_t + v.allowance, half_t);
+    if (reach_sq < m_broad.margin() * m_broad.margin() &&
+        beyond_face_box(corner, v.point, nearer_than, reach_sq))
+      return false;
+  }
+  const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+  const Real gap = cp.gap - half_t;
+  // Behind the face's plane but beside its edge or corner, the node penetrates the face only
+  // while its offset beyond the edge is smaller than its penetration (it is nearer to the
+  // face than to clearing it sideways). Farther out the gap "along the face normal" measures
+  // nothing real: at a fold it makes a node touch the face of the element next to its own
+  // (suddenly, a shell thickness deep), and its force, not the gradient of that gap, turns
+  // with the face and does work (energy injection). A node pushed into a concave corner is
+  // still caught: for one of the two faces its offset is below its penetration.
+  if (cp.region != QuadRegion::Interior && gap < 0.0) {
+    const Real lateral_sq = cp.distance * cp.distance - cp.gap * cp.gap;
+    if (lateral_sq > gap * gap) return false;
+  }
+  if (!kept_side && -gap > depth + half_t + v.allowance) return false;
+  out = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
+  distance = cp.distance;
+  return true;
+}
+
+void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
+  const Index n_slave = m_domain.slaves().size();
+  ParallelErrors errors;
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Index s = 0; s < n_slave; ++s)
+    errors.guard(ParallelSite::ContactSearch, s, [&] {
+      SlaveTouch best;
+      SlaveTouch second;
+      m_lost_depth[s] = 0.0;
+      if (!m_broad.candidates(s).empty() ||
+          (m_updated && m_constraints[s].status == ContactStatus::Closed)) {
+        Real best_distance = std::numeric_limits<Real>::max();
+        SlaveTouch candidate;
+        Real distance = 0.0;
+        // The nearest penetrated faces, for the touch on the other side (file comment).
+        std::array<SlaveTouch, PENETRATED_KEPT> penetrated;
+        std::array<Real, PENETRATED_KEPT> penetrated_distance{};
+        int n_penetrated = 0;
+        int n_seen = 0;
+        const SlaveView view = slave_view(s, position, node_thickness);
+        const std::span<const Index> listed = m_broad.candidates(s);
+        // The face of last increment's touch first, when the loop below considers it: its
+        // distance bounds that of the nearest face from the start, so that admissible() skips
+        // the closest points of the faces beyond it (same result, the loop still takes the
+        // faces in order; the touch found here is reused when the loop reaches its face).
+        const Index previous = m_constraints[s].master_face;
+        SlaveTouch previous_touch;
+        Real previous_distance = 0.0;
+        bool previous_known = false, previous_admissible = false;
+        if (m_try_skip && previous != NO_INDEX &&
+            (previous == view.continuing ||
+             std::binary_search(listed.begin(), listed.end(), previous))) {
+          previous_known = true;
+          previous_admissible = admissible(view, previous, position, node_thickness, previous_touch,
+                                           previous_distance);
+        }
+        const Real bound =
+            previous_admissible ? previous_distance : std::numeric_limits<Real>::max();
+        const auto consider = [&](Index f) {
+          if (previous_known && f == previous) {
+            if (!previous_admissible) return;
+            candidate = previous_touch;
+            distance = previous_distance;
+          } else if (!admissible(view, f, position, node_thickness, candidate, distance,
+                                 std::min(best_distance, bound))) {
+            return;
+          }
+          if (distance < best_distance) {
+            best_distance = distance;
+            best = candidate;
+          }
+          if (candidate.gap < 0.0) {
+            keep_nearest(penetrated, penetrated_distance, n_penetrated, candidate, distance);
+            ++n_seen;
+          }
+        };
+        for (Index f : listed) consider(f);
+        // The face pressed last increment, deeper than the broad phase's slab (contact at speed).
+        if (view.continuing != NO_INDEX &&
+            !std::binary_search(listed.begin(), listed.end(), view.continuing))
+          consider(view.continuing);
+        m_lost_depth[s] = best.face == NO_INDEX ? released_depth(view, position) : 0.0;
+        // Pinched: penetrating its nearest face and one on its other side. A node outside its
+        // nearest face is not pinched, however deep it lies behind a face across its own body
+        // (a corner node of a squashed block behind the block's far side).
+        const bool pinched = best.face != NO_INDEX && best.gap < 0.0;
+        if (pinched) second = opposite_touch(best, penetrated, n_penetrated);
+        if (pinched && second.face == NO_INDEX && n_seen > PENETRATED_KEPT) {
+          // More penetrated faces than kept (a node under the shared corner of many faces on
+          // both sides): look for the other side among all of them.
+          Real second_distance = std::numeric_limits<Real>::max();
+          for (Index f : m_broad.candidates(s))
+            if (admissible(view, f, position, node_thickness, candidate, distance) &&
+                candidate.gap < 0.0 && candidate.face != best.face &&
+                candidate.normal.dot(best.normal) < PINCH_COSINE && distance < second_distance) {
+              second_distance = distance;
+              second = candidate;
+            }
+        }
+      }
+      m_touch[s] = best;
+      m_second_touch[s] = second;
+    });
+  errors.rethrow_if_any();
+}
+
+Real ContactEngine::released_depth(const SlaveView& v, const NodalVectors& position) const {
+  if (v.continuing == NO_INDEX) return 0.0;
+  const ContactFace& face = m_domain.faces()[v.continuing];
+  Vec3 corner[4];
+  face_corners(face, position, {}, corner);
+  const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+  // Beside the face (its edge or corner), the node has slid off it rather than gone through.
+  if (cp.region != QuadRegion::Interior) return 0.0;
+  const Real depth = -cp.gap;
+  return depth > 2.0 * m_domain.face_depth(v.continuing) + v.allowance ? depth : 0.0;
+}
+
+void ContactEngine::widen_search(Real extra) {
+  if (!(extra > 0.0)) return;
+  m_broad = BroadPhase(m_broad.margin() + extra, m_broad.rebuild_motion());
+}
+
+bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
+                                        std::span<const Real> node_thickness) {
+  SlaveNodes& slaves = m_domain.slaves();
+  if (!m_broad.needs_rebuild(position)) return false;
+  m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness, m_domain.face_depths());
+  const Index n_slave = slaves.size();
+  m_active_slot.assign(static_cast<std::size_t>(n_slave), 0);
+  m_active_face.assign(m_domain.faces().size(), 0);
+  m_try_skip = false;
+  for (Index f = 0; f < static_cast<Index>(m_domain.faces().size()) && !m_try_skip; ++f) {
+    const ContactFace& face = m_domain.faces()[f];
+    Real depth = m_domain.face_depth(f);
+    if (face.shell) {
+      Real t = 0.0;
+      for (Index c : face.nodes) t += node_thickness_of(node_thickness, c);
+      depth = DEPTH_LIMIT_FRACTION * 0.25 * t;
+    }
+    m_try_skip = depth < m_broad.margin();
+  }
+  for (Index s = 0; s < n_slave; ++s) {
+    if (m_broad.candidates(s).empty()) continue;
+    m_active_slot[s] = 1;
+    for (Index f : slaves.faces_of(s)) m_active_face[f] = 1;
+  }
+  return true;
+}
+
+bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {
+  const bool rebuild = refresh_broad_phase(position, node_thickness);
+  m_domain.slaves().update_areas(m_domain.faces(), position);
+  search(position, node_thickness);
+  return rebuild;
+}
+
+std::vector<SlaveTouch> ContactEngine::penetrated_faces(Index s, const NodalVectors& position,
+                                                        std::span<const Real> node_thickness,
+                                                        Real tolerance) const {
+  std::vector<std::pair<Real, SlaveTouch>> found;
+  {
+    SlaveTouch candidate;
+    Real distance = 0.0;
+    const SlaveView view = slave_view(s, position, node_thickness);
+    for (Index f : m_broad.candidates(s))
+      if (admissible(view, f, position, node_thickness, candidate, distance) &&
+          candidate.gap < -tolerance)
+        found.emplace_back(distance, candidate);
+  }
+  std::stable_sort(found.begin(), found.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<SlaveTouch> out;
+  for (const auto& [d, t] : found) out.push_back(t);
+  return out;
+}
+
+}  // namespace xpl::contact
