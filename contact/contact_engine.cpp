@@ -184,29 +184,55 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
     return false;
   const ClosestPoint cp = closest_point_on_quad(corner, v.point);
   const Real half_t = v.half_t;
-  const Real gap = cp.gap - half_t;
+  Real gap = cp.gap - half_t;
+  Vec3 normal = cp.normal;
+  Real reach_distance = cp.distance;
   Real depth = m_domain.face_depth(f);
   if (faces[f].shell) {
     Real t = 0.0;
     for (Index c : faces[f].nodes) t += node_thickness_of(node_thickness, c);
     depth = DEPTH_LIMIT_FRACTION * 0.25 * t;  // of the mean thickness
   }
-  // Behind the face's plane but beside its edge or corner, the node penetrates the face only
-  // while its offset beyond the edge is smaller than its penetration (it is nearer to the
-  // face than to clearing it sideways). Farther out the gap "along the face normal" measures
-  // nothing real: at a fold it makes a node touch the face of the element next to its own
-  // (suddenly, a shell thickness deep), and its force, not the gradient of that gap, turns
-  // with the face and does work (energy injection). A node pushed into a concave corner is
-  // still caught: for one of the two faces its offset is below its penetration.
-  if (cp.region != QuadRegion::Interior && gap < 0.0) {
+  // Beside a shell face's edge or corner, a shell node touches the wall's round edge (file
+  // comment): the points within half the thickness of the mid-surface's edge, each side of
+  // the wall owning the half of the round on its side. The gap is the distance to the
+  // mid-surface edge less both half thicknesses and the normal points from the edge to the
+  // node, so a node coming at the edge side-on (layers crumpled flat on a plate sliding into
+  // each other) is pushed back from its first touch, where the gap along the face normal took
+  // it in up to a thickness deep at once. Not in an engine's first update, which seeds the
+  // overclosures by the rule below (C2-C7).
+  if (cp.region != QuadRegion::Interior && double_sided && faces[f].shell && m_updated) {
+    Vec3 mid = Vec3::Zero();
+    Real radius = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      mid += cp.weights[a] * node_point(position, faces[f].nodes[a]);
+      radius += cp.weights[a] * 0.5 * node_thickness_of(node_thickness, faces[f].nodes[a]);
+    }
+    const Vec3 d = v.point - mid;
+    const Real reach = std::sqrt(d.dot(d));
+    if (!(reach > 0.0)) return false;
+    normal = d / reach;
+    // The other side's half: this side would follow the node round the edge to the back of
+    // the wall, where its gap is a thickness deep at once (energy from nowhere).
+    if (normal.dot(n_f) < 0.0) return false;
+    gap = reach - radius - half_t;
+    reach_distance = std::abs(reach - radius);
+  } else if (cp.region != QuadRegion::Interior && gap < 0.0) {
+    // Behind the face's plane but beside its edge or corner, the node penetrates the face only
+    // while its offset beyond the edge is smaller than its penetration (it is nearer to the
+    // face than to clearing it sideways). Farther out the gap "along the face normal" measures
+    // nothing real: at a fold it makes a node touch the face of the element next to its own
+    // (suddenly, a shell thickness deep), and its force, not the gradient of that gap, turns
+    // with the face and does work (energy injection). A node pushed into a concave corner is
+    // still caught: for one of the two faces its offset is below its penetration.
     const Real lateral_sq = cp.distance * cp.distance - cp.gap * cp.gap;
     if (lateral_sq > gap * gap) return false;
   }
   const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
   if (f == v.continuing) depth *= 2.0;  // contact at speed (file comment)
   if (!kept_side && -gap > depth + half_t + v.allowance) return false;
-  out = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
-  distance = cp.distance;
+  out = {f, pair, w, gap, normal, cp.weights, cp.xi, cp.eta};
+  distance = reach_distance;
   return true;
 }
 
