@@ -70,6 +70,19 @@ SlaveTouch opposite_touch(const SlaveTouch& best, const std::array<SlaveTouch, N
   return SlaveTouch{};
 }
 
+/// The nearest of the penetrated touches `penetrated` (nearest first) on a face of another
+/// element than `best`'s whose normal is more than 60° from best's (CORNER_COSINE): the other
+/// face of a corner a shell node is pressed into; none when no such face.
+template <std::size_t N>
+SlaveTouch corner_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>& penetrated,
+                        int count, const std::vector<ContactFace>& faces) {
+  for (int k = 0; k < count; ++k)
+    if (faces[penetrated[k].face].element != faces[best.face].element &&
+        penetrated[k].normal.dot(best.normal) < CORNER_COSINE)
+      return penetrated[k];
+  return SlaveTouch{};
+}
+
 }  // namespace
 
 ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> laws,
@@ -150,9 +163,11 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   const Index s = v.slot;
   const ContactFace* held = v.held;
   const bool double_sided = v.double_sided;
-  if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
-      faces[f].face != held->face)
-    return false;
+  // The other side of the shell it is held on: only round the edge (below).
+  const bool round_edges = double_sided && m_updated;
+  const bool other_side = held != nullptr && faces[f].shell && faces[f].element == held->element &&
+                          faces[f].face != held->face;
+  if (other_side && !round_edges) return false;
   // A face of the node's own hex (file comment).
   if (faces[f].behind(v.node)) return false;
   // A shell face next to the shell node's own elements continues its own shell (file comment).
@@ -183,6 +198,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
                                      : cosine > -OPPOSING_COSINE))
     return false;
   const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+  if (other_side && cp.region == QuadRegion::Interior) return false;
   const Real half_t = v.half_t;
   Real gap = cp.gap - half_t;
   Vec3 normal = cp.normal;
@@ -201,7 +217,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   // each other) is pushed back from its first touch, where the gap along the face normal took
   // it in up to a thickness deep at once. Not in an engine's first update, which seeds the
   // overclosures by the rule below (C2-C7).
-  if (cp.region != QuadRegion::Interior && double_sided && faces[f].shell && m_updated) {
+  if (cp.region != QuadRegion::Interior && round_edges && faces[f].shell) {
     Vec3 mid = Vec3::Zero();
     Real radius = 0.0;
     for (int a = 0; a < 4; ++a) {
@@ -291,6 +307,8 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
               second = candidate;
             }
         }
+        if (pinched && second.face == NO_INDEX && view.double_sided && m_updated)
+          second = corner_touch(best, penetrated, n_penetrated, m_domain.faces());
       }
       m_touch[s] = best;
       m_second_touch[s] = second;

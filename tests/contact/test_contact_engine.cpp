@@ -336,6 +336,67 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "a shell node pressed into the corner of a plate and a wall's round edge holds a spring on "
+    "each",
+    "[contact][engine][onset]") {
+  // Plate: a 2×1×1 hex block, top at z = 0. Wall W: a shell lying flat over it (x, y in
+  // [0, 1], mid-surface z = 0.12, t = 0.2). Strip S (t = 0.2) comes in one increment from
+  // (1.3, 0.2) to its node q0 at x = 1.15, z = 0.09: 0.01 into the plate (own half thickness)
+  // and 0.047 into W's round edge side-on (normals 101° apart: not opposite, no pinch), both
+  // depths within the increment's approach. With one spring the other depth would grow
+  // unresisted and turn into offset at the next flip of the nearest face.
+  const Real t = 0.2, dt = 1e-3, zw = 0.12;
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 2, 1, 1, 1.0, Vec3(0, 0, -1));
+  const Index first_wall = static_cast<Index>(mesh.kinds.size());
+  const Index w0 = mesh.add_node(0, 0, zw), w1 = mesh.add_node(1, 0, zw),
+              w2 = mesh.add_node(1, 1, zw), w3 = mesh.add_node(0, 1, zw);
+  mesh.add_element(contact::ElementKind::Shell, {w0, w1, w2, w3});
+  const Index first_strip = mesh.node_count();
+  const Index q0 = mesh.add_node(1.3, 0.4, 0.2), q1 = mesh.add_node(2.3, 0.4, 0.2),
+              q2 = mesh.add_node(2.3, 0.6, 0.2), q3 = mesh.add_node(1.3, 0.6, 0.2);
+  mesh.add_element(contact::ElementKind::Shell, {q0, q1, q2, q3});
+  const Index n = mesh.node_count();
+  const std::vector<Real> thickness(static_cast<std::size_t>(n), t), mass(n, 1.0),
+      inverse_mass(n, 1.0);
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  PhaseTimers timers;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), mesh.coordinates),
+                                {}, options, mesh.coordinates, thickness);
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  engine.update(mesh.coordinates, NodalVectors::Zero(n, 3), 0.0, dt, thickness, mass, inverse_mass,
+                force, timers);
+  const Index s = engine.domain().slaves().slot(q0);
+  REQUIRE(engine.normal_force(s) == 0.0);
+  const Vec3 step(-0.15, 0, -0.11);
+  NodalVectors x1 = mesh.coordinates;
+  NodalVectors v1 = NodalVectors::Zero(n, 3);
+  for (Index i = first_strip; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      x1(i, d) += step[d];
+      v1(i, d) = step[d] / dt;
+    }
+  engine.update(x1, v1, dt, dt, thickness, mass, inverse_mass, force, timers);
+  const contact::SlaveTouch& first = engine.touch(s);
+  const contact::SlaveTouch& second = engine.second_touch(s);
+  REQUIRE(first.face != NO_INDEX);
+  REQUIRE(second.face != NO_INDEX);
+  const auto on_wall = [&](const contact::SlaveTouch& touch) {
+    return engine.domain().faces()[touch.face].element == first_wall;
+  };
+  CHECK(on_wall(first) != on_wall(second));
+  const contact::SlaveTouch& wall = on_wall(first) ? first : second;
+  const contact::SlaveTouch& plate = on_wall(first) ? second : first;
+  CHECK(wall.gap == Approx(std::hypot(0.15, zw - 0.09) - t).margin(1e-12));
+  CHECK(plate.gap == Approx(-0.01).margin(1e-12));
+  CHECK(plate.normal.dot(Vec3(0, 0, 1)) == Approx(1.0).epsilon(1e-12));
+  CHECK(engine.constraints()[s].offset == 0.0);
+  CHECK(engine.normal_force(s) > 0.0);
+  CHECK(engine.second_normal_force(s) > 0.0);
+}
+
 TEST_CASE("a node never touches a face of its own hex, however squashed the hex is",
           "[contact][engine]") {
   // One hex squashed to a fifth of its height: its top nodes lie 0.2 above its bottom face,
