@@ -116,6 +116,12 @@ inline constexpr Real CROSSED_FOLD_COSINE = 0.5;
 /// node: leaving one means entering the other, so it keeps an offset instead of moving.
 inline constexpr Real PINCH_COSINE = -0.5;
 
+/// A shell node pressed by two penetrated faces of different elements whose normals are more
+/// than 60° apart (cosine below ½) sits in a corner (a wall's round edge met side-on while the
+/// node lies on a plate, a fold): it holds a spring on each, so that neither face's depth
+/// grows unresisted while the other holds it (ContactEngine, from an engine's second update).
+inline constexpr Real CORNER_COSINE = 0.5;
+
 /// A move is refused when an element corner keeps less than this share of its volume (hex) or
 /// area (shell) as read: half, well before an inversion, so the adjusted mesh stays usable.
 inline constexpr Real MIN_CORNER_RATIO = 0.5;

@@ -53,11 +53,14 @@ Real penetration_reach_sq(Real limit, Real half_t) {
 }
 
 /// Whether the face with these corners (m) is certainly irrelevant to a node at `p` (m): all
-/// of it farther than `nearer_than` (m) and than √`reach_sq` (penetration_reach_sq). The face
-/// lies in the box of its corners, so the distance to that box bounds the distance to its
-/// closest point from below. A relative slack of 1e-9 covers the rounding of the closest
-/// point, so skipping such a face changes no bit of the search.
-bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real reach_sq) {
+/// of it farther than `nearer_than` (m) and than √`reach_sq` (penetration_reach_sq), after
+/// `round` (m: a shell face's largest half thickness where admissible() rounds its edges,
+/// which brings a node beside them nearer by at most that much; else 0). The face lies in the
+/// box of its corners, so the distance to that box bounds the distance to its closest point
+/// from below. A relative slack of 1e-9 covers the rounding of the closest point, so skipping
+/// such a face changes no bit of the search.
+bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real reach_sq,
+                     Real round) {
   Real out_sq = 0.0, extent = 0.0, scale = 0.0;
   for (int d = 0; d < 3; ++d) {
     const Real lo = std::min({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
@@ -68,8 +71,21 @@ bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real
     scale = std::max(scale, std::abs(p[d]));
   }
   const Real bound = std::sqrt(out_sq);
-  const Real below = bound - 1e-9 * (bound + extent) - 1e-12 * scale;
+  const Real below = bound - 1e-9 * (bound + extent) - 1e-12 * scale - round;
   return below > nearer_than && below * below > reach_sq;
+}
+
+/// The nearest of the penetrated touches `penetrated` (nearest first) on a face of another
+/// element than `best`'s whose normal is more than 60° from best's (CORNER_COSINE): the other
+/// face of a corner a shell node is pressed into; none when no such face.
+template <std::size_t N>
+SlaveTouch corner_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>& penetrated,
+                        int count, const std::vector<ContactFace>& faces) {
+  for (int k = 0; k < count; ++k)
+    if (faces[penetrated[k].face].element != faces[best.face].element &&
+        penetrated[k].normal.dot(best.normal) < CORNER_COSINE)
+      return penetrated[k];
+  return SlaveTouch{};
 }
 
 }  // namespace
@@ -121,9 +137,11 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   const Index s = v.slot;
   const ContactFace* held = v.held;
   const bool double_sided = v.double_sided;
-  if (held != nullptr && faces[f].shell && faces[f].element == held->element &&
-      faces[f].face != held->face)
-    return false;
+  // The other side of the shell it is held on: only round the edge (below).
+  const bool round_edges = double_sided && m_updated;
+  const bool other_side = held != nullptr && faces[f].shell && faces[f].element == held->element &&
+                          faces[f].face != held->face;
+  if (other_side && !round_edges) return false;
   // A face of the node's own hex (file comment).
   if (faces[f].behind(v.node)) return false;
   // A shell face next to the shell node's own elements continues its own shell (file comment).
@@ -162,31 +180,65 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   }
   const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
   if (f == v.continuing) depth *= 2.0;  // contact at speed (file comment)
+  // Beside its edges a shell face is round (below): a node there is nearer to it, and touches
+  // it sooner, by at most the largest half thickness of its corners.
+  const bool round_face = round_edges && faces[f].shell;
   // A face within the search margin of the node can be skipped only when the penetration
   // reach is shorter than that margin (shells: about a thickness against a margin of a third
   // of a face; a solid face's depth reaches beyond it, and the test would only cost).
   if (!kept_side && m_try_skip) {
+    Real round = 0.0;
+    if (round_face)
+      for (Index c : faces[f].nodes)
+        round = std::max(round, 0.5 * node_thickness_of(node_thickness, c));
     const Real reach_sq = penetration_reach_sq(depth + half_t + v.allowance, half_t);
     if (reach_sq < m_broad.margin() * m_broad.margin() &&
-        beyond_face_box(corner, v.point, nearer_than, reach_sq))
+        beyond_face_box(corner, v.point, nearer_than, reach_sq, round))
       return false;
   }
   const ClosestPoint cp = closest_point_on_quad(corner, v.point);
-  const Real gap = cp.gap - half_t;
-  // Behind the face's plane but beside its edge or corner, the node penetrates the face only
-  // while its offset beyond the edge is smaller than its penetration (it is nearer to the
-  // face than to clearing it sideways). Farther out the gap "along the face normal" measures
-  // nothing real: at a fold it makes a node touch the face of the element next to its own
-  // (suddenly, a shell thickness deep), and its force, not the gradient of that gap, turns
-  // with the face and does work (energy injection). A node pushed into a concave corner is
-  // still caught: for one of the two faces its offset is below its penetration.
-  if (cp.region != QuadRegion::Interior && gap < 0.0) {
+  if (other_side && cp.region == QuadRegion::Interior) return false;
+  Real gap = cp.gap - half_t;
+  Vec3 normal = cp.normal;
+  Real reach_distance = cp.distance;
+  // Beside a shell face's edge or corner, a shell node touches the wall's round edge (file
+  // comment): the points within half the thickness of the mid-surface's edge, each side of
+  // the wall owning the half of the round on its side. The gap is the distance to the
+  // mid-surface edge less both half thicknesses and the normal points from the edge to the
+  // node, so a node coming at the edge side-on (layers crumpled flat on a plate sliding into
+  // each other) is pushed back from its first touch, where the gap along the face normal took
+  // it in up to a thickness deep at once. Not in an engine's first update, which seeds the
+  // overclosures by the rule below (C2-C7).
+  if (cp.region != QuadRegion::Interior && round_face) {
+    Vec3 mid = Vec3::Zero();
+    Real radius = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      mid += cp.weights[a] * node_point(position, faces[f].nodes[a]);
+      radius += cp.weights[a] * 0.5 * node_thickness_of(node_thickness, faces[f].nodes[a]);
+    }
+    const Vec3 d = v.point - mid;
+    const Real reach = std::sqrt(d.dot(d));
+    if (!(reach > 0.0)) return false;
+    normal = d / reach;
+    // The other side's half: this side would follow the node round the edge to the back of
+    // the wall, where its gap is a thickness deep at once (energy from nowhere).
+    if (normal.dot(n_f) < 0.0) return false;
+    gap = reach - radius - half_t;
+    reach_distance = std::abs(reach - radius);
+  } else if (cp.region != QuadRegion::Interior && gap < 0.0) {
+    // Behind the face's plane but beside its edge or corner, the node penetrates the face only
+    // while its offset beyond the edge is smaller than its penetration (it is nearer to the
+    // face than to clearing it sideways). Farther out the gap "along the face normal" measures
+    // nothing real: at a fold it makes a node touch the face of the element next to its own
+    // (suddenly, a shell thickness deep), and its force, not the gradient of that gap, turns
+    // with the face and does work (energy injection). A node pushed into a concave corner is
+    // still caught: for one of the two faces its offset is below its penetration.
     const Real lateral_sq = cp.distance * cp.distance - cp.gap * cp.gap;
     if (lateral_sq > gap * gap) return false;
   }
   if (!kept_side && -gap > depth + half_t + v.allowance) return false;
-  out = {f, pair, w, gap, cp.normal, cp.weights, cp.xi, cp.eta};
-  distance = cp.distance;
+  out = {f, pair, w, gap, normal, cp.weights, cp.xi, cp.eta};
+  distance = reach_distance;
   return true;
 }
 
@@ -269,6 +321,8 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
               second = candidate;
             }
         }
+        if (pinched && second.face == NO_INDEX && view.double_sided && m_updated)
+          second = corner_touch(best, penetrated, n_penetrated, m_domain.faces());
       }
       m_touch[s] = best;
       m_second_touch[s] = second;

@@ -213,29 +213,30 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "a shell face that turns admissible for a node already a thickness behind its plane "
-    "starts without force; one met in the first update is pushed as before",
+    "a shell node met side-on by a shell face's round edge starts without force; one that "
+    "approaches the edge is pushed from the first touch; one met in the first update is pushed "
+    "as the lateral rule finds it",
     "[contact][engine][onset]") {
   // Face F: a shell in z = 0 (x, y in [0, 1]), t = 0.2, its SNEG surface at z = −0.1. Strip S
-  // (y in [0.4, 0.6], z = −0.05) beside F's edge x = 1 by L: its nodes q0, q3 are 0.05 behind
-  // F's SNEG plane, gap −0.15 with their own half thickness, and the lateral rule admits them
-  // once L < 0.15. S moves from L = 0.2 to L = 0.1 in one increment, along x: the approach
-  // along F's normal is zero, so the whole 0.15 was there before F turned admissible (the
-  // crash tube's 2715 J at 5.4 ms were four such nodes beside the corner edge of a folding
-  // wall). Then S sinks 0.01 deeper: that part acts.
+  // (y in [0.4, 0.6] + dy, z = −0.05) beside F's edge x = 1 by L: its nodes q0, q3 are 0.05
+  // behind F's SNEG plane. Beside a shell's edge a shell node touches the wall's round edge:
+  // gap = distance to the mid-surface edge − t/2 − own t/2, normal from the edge to the node.
+  // At L = 0.1 that is sqrt(0.1² + 0.05²) − 0.2 = −0.0882 (the lateral rule of a solid node
+  // and of an engine's first update: −0.15 along F's normal, the crash tube's 2715 J at 5.4 ms
+  // were four such nodes beside the corner edge of a folding wall).
   const Real t = 0.2, dt = 1e-3;
-  auto build = [&](Real lateral) {
+  auto build = [&](Real lateral, Real dy) {
     test::ContactMesh mesh;
     const Index f0 = mesh.add_node(0, 0, 0), f1 = mesh.add_node(1, 0, 0),
                 f2 = mesh.add_node(1, 1, 0), f3 = mesh.add_node(0, 1, 0);
     mesh.add_element(contact::ElementKind::Shell, {f0, f1, f2, f3});
     const Real x0 = 1.0 + lateral, z = -0.05;
-    const Index q0 = mesh.add_node(x0, 0.4, z), q1 = mesh.add_node(x0 + 1, 0.4, z),
-                q2 = mesh.add_node(x0 + 1, 0.6, z), q3 = mesh.add_node(x0, 0.6, z);
+    const Index q0 = mesh.add_node(x0, 0.4 + dy, z), q1 = mesh.add_node(x0 + 1, 0.4 + dy, z),
+                q2 = mesh.add_node(x0 + 1, 0.6 + dy, z), q3 = mesh.add_node(x0, 0.6 + dy, z);
     mesh.add_element(contact::ElementKind::Shell, {q0, q1, q2, q3});
     return mesh;
   };
-  const test::ContactMesh start = build(0.2);
+  const test::ContactMesh start = build(0.2, 0.0);
   const Index n = start.node_count();
   const std::vector<Real> thickness(static_cast<std::size_t>(n), t), mass(n, 1.0),
       inverse_mass(n, 1.0);
@@ -255,9 +256,49 @@ TEST_CASE(
     return v;
   };
   const Real k = contact::default_penalty_stiffness(1.0, 1.0, dt);
+  const Real round_gap = std::hypot(0.1, 0.05) - t;  // −0.0882
   PhaseTimers timers;
 
-  SECTION("turned admissible between two updates: no force, no stored energy") {
+  SECTION("met side-on, moving along the edge: no force, no stored energy; sinking is resisted") {
+    // S slides along y (along F's edge) from beyond F's corner, where it is clear of F, to
+    // beside the edge in one increment: the approach along the edge's normal is zero, so all
+    // of the depth was there before the face turned admissible.
+    const test::ContactMesh beyond = build(0.1, 0.9);
+    contact::ContactEngine engine(
+        ContactDomain(all_exterior(), beyond.topology(), beyond.coordinates), {}, options,
+        beyond.coordinates, thickness);
+    NodalVectors force = NodalVectors::Zero(n, 3);
+    engine.update(beyond.coordinates, NodalVectors::Zero(n, 3), 0.0, dt, thickness, mass,
+                  inverse_mass, force, timers);
+    const Index s = engine.domain().slaves().slot(q0);
+    REQUIRE(engine.touch(s).face == NO_INDEX);
+    const Vec3 slide(0, -0.9, 0);
+    const NodalVectors x1 = moved(beyond.coordinates, slide);
+    const contact::ContactTotals in =
+        engine.update(x1, velocity(slide), dt, dt, thickness, mass, inverse_mass, force, timers);
+    const contact::SlaveTouch& touch = engine.touch(s);
+    REQUIRE(touch.face != NO_INDEX);
+    CHECK(engine.domain().faces()[touch.face].element == 0);
+    // The half of the round on F's SNEG side belongs to the SNEG face: SPOS would take the node
+    // round the edge to its interior a thickness deep.
+    CHECK(test::face_normal(engine.domain().faces()[touch.face], x1).dot(Vec3(0, 0, -1)) > 0.99);
+    CHECK(touch.gap == Approx(round_gap).margin(1e-12));
+    CHECK(touch.normal.dot(Vec3(0.1, 0, -0.05).normalized()) == Approx(1.0).epsilon(1e-12));
+    CHECK(engine.normal_force(s) == 0.0);
+    CHECK(engine.constraints()[s].offset == Approx(-round_gap).margin(1e-12));
+    CHECK(in.stored_energy == 0.0);
+    // 0.01 closer to the edge along x: the depth beyond the offset acts.
+    const Vec3 sink(-0.01, 0, 0);
+    const NodalVectors x2 = moved(x1, sink);
+    engine.update(x2, velocity(sink), dt, dt, thickness, mass, inverse_mass, force, timers);
+    CHECK(engine.touch(s).face == touch.face);
+    const Real deeper = t - std::hypot(0.09, 0.05) + round_gap;
+    CHECK(engine.normal_force(s) == Approx(touch.weight * k * deeper).epsilon(1e-9));
+  }
+  SECTION(
+      "approaching the edge: pushed from the first touch, with the energy the approach put in") {
+    // S moves from L = 0.2 (clear: sqrt(0.2² + 0.05²) > 0.2) to L = 0.1 in one increment,
+    // along x: 0.0894 of that is approach along the edge's normal, more than the 0.0882 depth.
     contact::ContactEngine engine(
         ContactDomain(all_exterior(), start.topology(), start.coordinates), {}, options,
         start.coordinates, thickness);
@@ -273,19 +314,17 @@ TEST_CASE(
     const contact::SlaveTouch& touch = engine.touch(s);
     REQUIRE(touch.face != NO_INDEX);
     CHECK(engine.domain().faces()[touch.face].element == 0);
-    CHECK(touch.gap == Approx(-0.15).margin(1e-12));
-    CHECK(engine.normal_force(s) == 0.0);
-    CHECK(engine.constraints()[s].offset == Approx(0.15).margin(1e-12));
-    CHECK(in.stored_energy == 0.0);
-    // Sinking 0.01 deeper along F's normal (−z for SNEG, so +z here) is resisted.
-    const Vec3 sink(0, 0, 0.01);
-    const NodalVectors x2 = moved(x1, sink);
-    engine.update(x2, velocity(sink), dt, dt, thickness, mass, inverse_mass, force, timers);
-    CHECK(engine.touch(s).face == touch.face);
-    CHECK(engine.normal_force(s) == Approx(touch.weight * k * 0.01).epsilon(1e-9));
+    CHECK(touch.gap == Approx(round_gap).margin(1e-12));
+    CHECK(engine.constraints()[s].offset == 0.0);
+    CHECK(engine.normal_force(s) == Approx(touch.weight * k * -round_gap).epsilon(1e-9));
+    // The springs hold no more than the work the contact forces took from the motion
+    // (trapezoidal, as ALLPW books it): nothing created.
+    CHECK(in.stored_energy > 0.0);
+    CHECK(-in.work >= in.stored_energy);
+    CHECK(-in.work == Approx(in.stored_energy).epsilon(0.02));
   }
   SECTION("the first update of an engine takes the touch as it is (C4)") {
-    const test::ContactMesh near = build(0.1);
+    const test::ContactMesh near = build(0.1, 0.0);
     contact::ContactEngine engine(ContactDomain(all_exterior(), near.topology(), near.coordinates),
                                   {}, options, near.coordinates, thickness);
     NodalVectors force = NodalVectors::Zero(n, 3);
@@ -295,6 +334,67 @@ TEST_CASE(
     REQUIRE(engine.touch(s).face != NO_INDEX);
     CHECK(engine.normal_force(s) == Approx(engine.touch(s).weight * k * 0.15).epsilon(1e-9));
   }
+}
+
+TEST_CASE(
+    "a shell node pressed into the corner of a plate and a wall's round edge holds a spring on "
+    "each",
+    "[contact][engine][onset]") {
+  // Plate: a 2×1×1 hex block, top at z = 0. Wall W: a shell lying flat over it (x, y in
+  // [0, 1], mid-surface z = 0.12, t = 0.2). Strip S (t = 0.2) comes in one increment from
+  // (1.3, 0.2) to its node q0 at x = 1.15, z = 0.09: 0.01 into the plate (own half thickness)
+  // and 0.047 into W's round edge side-on (normals 101° apart: not opposite, no pinch), both
+  // depths within the increment's approach. With one spring the other depth would grow
+  // unresisted and turn into offset at the next flip of the nearest face.
+  const Real t = 0.2, dt = 1e-3, zw = 0.12;
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 2, 1, 1, 1.0, Vec3(0, 0, -1));
+  const Index first_wall = static_cast<Index>(mesh.kinds.size());
+  const Index w0 = mesh.add_node(0, 0, zw), w1 = mesh.add_node(1, 0, zw),
+              w2 = mesh.add_node(1, 1, zw), w3 = mesh.add_node(0, 1, zw);
+  mesh.add_element(contact::ElementKind::Shell, {w0, w1, w2, w3});
+  const Index first_strip = mesh.node_count();
+  const Index q0 = mesh.add_node(1.3, 0.4, 0.2), q1 = mesh.add_node(2.3, 0.4, 0.2),
+              q2 = mesh.add_node(2.3, 0.6, 0.2), q3 = mesh.add_node(1.3, 0.6, 0.2);
+  mesh.add_element(contact::ElementKind::Shell, {q0, q1, q2, q3});
+  const Index n = mesh.node_count();
+  const std::vector<Real> thickness(static_cast<std::size_t>(n), t), mass(n, 1.0),
+      inverse_mass(n, 1.0);
+  contact::ContactOptions options;
+  options.margin = 0.5;
+  PhaseTimers timers;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), mesh.coordinates),
+                                {}, options, mesh.coordinates, thickness);
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  engine.update(mesh.coordinates, NodalVectors::Zero(n, 3), 0.0, dt, thickness, mass, inverse_mass,
+                force, timers);
+  const Index s = engine.domain().slaves().slot(q0);
+  REQUIRE(engine.normal_force(s) == 0.0);
+  const Vec3 step(-0.15, 0, -0.11);
+  NodalVectors x1 = mesh.coordinates;
+  NodalVectors v1 = NodalVectors::Zero(n, 3);
+  for (Index i = first_strip; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      x1(i, d) += step[d];
+      v1(i, d) = step[d] / dt;
+    }
+  engine.update(x1, v1, dt, dt, thickness, mass, inverse_mass, force, timers);
+  const contact::SlaveTouch& first = engine.touch(s);
+  const contact::SlaveTouch& second = engine.second_touch(s);
+  REQUIRE(first.face != NO_INDEX);
+  REQUIRE(second.face != NO_INDEX);
+  const auto on_wall = [&](const contact::SlaveTouch& touch) {
+    return engine.domain().faces()[touch.face].element == first_wall;
+  };
+  CHECK(on_wall(first) != on_wall(second));
+  const contact::SlaveTouch& wall = on_wall(first) ? first : second;
+  const contact::SlaveTouch& plate = on_wall(first) ? second : first;
+  CHECK(wall.gap == Approx(std::hypot(0.15, zw - 0.09) - t).margin(1e-12));
+  CHECK(plate.gap == Approx(-0.01).margin(1e-12));
+  CHECK(plate.normal.dot(Vec3(0, 0, 1)) == Approx(1.0).epsilon(1e-12));
+  CHECK(engine.constraints()[s].offset == 0.0);
+  CHECK(engine.normal_force(s) > 0.0);
+  CHECK(engine.second_normal_force(s) > 0.0);
 }
 
 TEST_CASE("a node never touches a face of its own hex, however squashed the hex is",
