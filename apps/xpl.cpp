@@ -286,9 +286,17 @@ int main(int argc, char** argv) {
   }
   // mpirun -np N (XPL_MPI=ON): rank 0 runs the job, the others wait for its exit code
   // (mpi_session.hpp); one rank runs exactly as without MPI.
+  // `xpl run` under mpirun -np N > 1 runs distributed on every rank (job.hpp); `xpl check`
+  // runs on rank 0 while the others wait.
   const xpl::apps::MpiSession mpi(&argc, &argv);
-  if (mpi.rank() != 0) return mpi.share_exit_code(0);
-  if (mpi.size() > 1) {
+  args.distributed = mpi.size() > 1 && command == "run";
+  args.rank = mpi.rank();
+  if (args.distributed && mpi.rank() != 0) {
+    args.quiet = true;
+    std::cerr.setstate(std::ios::failbit);  // rank 0 reports; the others would repeat it
+  }
+  if (!args.distributed && mpi.rank() != 0) return mpi.share_exit_code(0);
+  if (mpi.size() > 1 && !args.distributed) {
     if (args.partition == 0) args.partition = mpi.size();
     args.partition_note = mpi.note();
   }

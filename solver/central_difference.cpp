@@ -177,13 +177,18 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
       force_external ? force_external->data() : elements.force_internal().data(),
       force_external ? 1.0 : 0.0,
       elements.inverse_mass().data(),
-      state.mass.data()};
+      m_sum_mass.empty() ? state.mass.data() : m_sum_mass.data()};
   // Rotations carry no external moments.
   NodalField rotation{};
   if (m_shells)
-    rotation = {state.angular_velocity_half.data(), state.angular_velocity.data(),     nullptr,
-                elements.moment_internal().data(),  elements.moment_internal().data(), 0.0,
-                elements.inverse_inertia().data(),  state.rotary_inertia.data()};
+    rotation = {state.angular_velocity_half.data(),
+                state.angular_velocity.data(),
+                nullptr,
+                elements.moment_internal().data(),
+                elements.moment_internal().data(),
+                0.0,
+                elements.inverse_inertia().data(),
+                m_sum_inertia.empty() ? state.rotary_inertia.data() : m_sum_inertia.data()};
 
   // Prescribed and loaded DOFs keep their velocity at n-1/2 for the work and reaction terms.
   m_motion.keep_old_velocities(translation, rotation, n);
@@ -218,6 +223,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   }
   m_motion.update(state, translation, rotation, inc, bodies.jumps, m_previous_force, sums);
   if (tied) m_ties->follow(state);  // slaves after their masters (prescribed and rigid too)
+  if (m_reduce) m_reduce(sums, m_largest_speed);
   m_loads.add_work(sums.work);
   book_energies(state, inc, sums);
 }

@@ -5,6 +5,7 @@
 /// the external loads (loads/external_loads.hpp); the rigid bodies (rigid_bodies.hpp) and the
 /// finite rotations of shell nodes (node_rotations.hpp).
 
+#include <functional>
 #include <vector>
 
 #include "common/timer.hpp"
@@ -67,6 +68,17 @@ class CentralDifference {
   void set_ties(const Ties* ties) { m_ties = ties; }
   /// Brings state.rotation up to date with the tracked rotations (before output).
   void sync_rotation(State& state);
+  /// Distributed runs (distributed_run.hpp): the masses and rotary inertias the sums count
+  /// (those of the nodes this rank owns, 0 elsewhere), the nodes whose work it counts, and
+  /// `reduce`, which turns the rank's sums and largest speed into the run's (collective).
+  using SumReduction = std::function<void(NodalSums& sums, Real& largest_speed)>;
+  void set_distribution(std::vector<Real> sum_mass, std::vector<Real> sum_inertia,
+                        std::vector<unsigned char> counted, SumReduction reduce) {
+    m_sum_mass = std::move(sum_mass);
+    m_sum_inertia = std::move(sum_inertia);
+    m_motion.set_counted(std::move(counted));
+    m_reduce = std::move(reduce);
+  }
   /// The largest |v(n+½)| component of the free translational DOFs at the last
   /// update_nodes(), m/s (for the health check; NaN shows in ALLKE instead).
   Real largest_speed() const { return m_largest_speed; }
@@ -103,6 +115,8 @@ class CentralDifference {
   /// N), for the trapezoidal work of the loads and the prescribed DOFs alike (a DOF may be
   /// prescribed in one step and loaded in the next); allocated when a step has either.
   NodalVectors m_previous_force;
+  std::vector<Real> m_sum_mass, m_sum_inertia;  ///< set_distribution(); empty: the state's
+  SumReduction m_reduce;
 };
 
 }  // namespace xpl

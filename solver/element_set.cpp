@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "solver/distributed_run.hpp"
 #include "solver/loads/gravity_loads.hpp"
 #include "solver/mass_scaling.hpp"
 #include "solver/message_text.hpp"
@@ -256,6 +257,9 @@ void ElementSet::use_partition(int parts) {
   // contributions keep their order (ForcePassOrder) too.
   std::vector<Index> node_part(static_cast<std::size_t>(m_model.node_count()), elements::UNTOUCHED);
   for_each_block(ForcePassOrder{}, [&](auto& block) { block.mark_nodes(parts, node_part); });
+  // Distributed runs: the interface nodes' corners go to slots too, for the exchange.
+  if (m_run != nullptr)
+    for (const Index n : m_run->plan().interface_nodes) node_part[n] = elements::SHARED;
   const elements::BoundaryNodes boundary = elements::boundary_nodes(node_part);
   for_each_block(ForcePassOrder{}, [&](auto& block) { block.set_partition(parts, boundary); });
   m_boundary_nodes = boundary.nodes;
@@ -268,6 +272,7 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
   // One parallel region for every block and colour (thread_partition.hpp).
   const int parts = std::max(1, omp_get_max_threads());
   use_partition(parts);
+  if (m_run != nullptr) m_run->post_receives(m_rotations ? 6 : 3);
   const elements::ForcePass pass{state.position,
                                  state.velocity_half,
                                  state.angular_velocity_half,
@@ -286,6 +291,11 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
         for_each_block(ForcePassOrder{},
                        [&](auto& block) { block.add_boundary_forces(k, node, pass); });
       });
+  if (m_run != nullptr) {
+    exchange_interface_forces();
+    reduce_totals(totals);
+    return;
+  }
   for_each_block([&](const auto& block) {
     typename std::remove_cvref_t<decltype(block)>::Totals t;
     block.add_totals(t);
@@ -301,16 +311,24 @@ ElementEstimate ElementSet::increment_estimate(const State& state, const Element
   // The kinds with a stiffness product (the hexes) take the global estimate; shell-only
   // models pass their own stress test.
   bool stiffness = false;
-  for_each_block([&](const auto& block) {
+  for_each_whole_block([&](const auto& block) {
     if constexpr (requires(NodalVectors & y) { block.add_stiffness_product(y, y, y); })
       stiffness = true;
   });
   if (stiffness && !s.increment.fixed) {
     ScopedTimer timer(m_timers, Phase::InternalForce);
-    const auto product = [this, &state](const NodalVectors& u, NodalVectors& y) {
-      for_each_block([&](const auto& block) {
-        if constexpr (requires { block.add_stiffness_product(state.position, u, y); })
-          block.add_stiffness_product(state.position, u, y);
+    // Distributed runs: every rank estimates on the whole mesh, with the positions of every
+    // node gathered from their owners (when the estimate is due, on every rank alike).
+    bool gathered = false;
+    const auto product = [this, &state, &gathered](const NodalVectors& u, NodalVectors& y) {
+      if (m_run != nullptr && !gathered) {
+        m_run->allgather_rows(state.position, m_whole_position);
+        gathered = true;
+      }
+      const NodalVectors& x = m_run != nullptr ? m_whole_position : state.position;
+      for_each_whole_block([&](const auto& block) {
+        if constexpr (requires { block.add_stiffness_product(x, u, y); })
+          block.add_stiffness_product(x, u, y);
       });
     };
     e.global_ratio =
@@ -342,6 +360,24 @@ void ElementSet::report_increment_limit(OutputSink& sink) {
 
 void ElementSet::gather_output(const State& state, const FrameRequest& what,
                                FrameFields& frame) const {
+  gather_local_output(state, what, frame);
+  if (m_run == nullptr) return;
+  // Every element's row from its rank to rank 0, which writes.
+  if (what.plastic_strain)
+    for (std::vector<Real>* rows :
+         {&frame.peeq, &frame.peeq_bottom, &frame.peeq_middle, &frame.peeq_top})
+      m_run->gather_elements_to_root(*rows, 1);
+  if (!what.stress && !what.volume && !what.thickness) return;
+  m_run->gather_elements_to_root(frame.stress, 6);
+  m_run->gather_elements_to_root(frame.volume, 1);
+  m_run->gather_elements_to_root(frame.hourglass_state, elements::HOURGLASS_STATE_WIDTH);
+  m_run->gather_elements_to_root(frame.stress_bottom, 6);
+  m_run->gather_elements_to_root(frame.stress_top, 6);
+  m_run->gather_elements_to_root(frame.thickness, 1);
+}
+
+void ElementSet::gather_local_output(const State& state, const FrameRequest& what,
+                                     FrameFields& frame) const {
   if (what.plastic_strain) {
     // PEEQ of every element (0 where elastic); each block writes the rows of its elements.
     frame.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);
@@ -389,6 +425,248 @@ void ElementSet::gather_output(const State& state, const FrameRequest& what,
 void ElementSet::clear_forces() {
   m_force_internal.setZero();
   if (m_rotations) m_moment_internal.setZero();
+}
+
+template <class F>
+void ElementSet::for_each_whole_block(F&& f) const {
+  if (m_run == nullptr) {
+    for_each_block(f);
+    return;
+  }
+  std::apply([&](const auto&... block) { ((block ? f(*block) : void()), ...); }, m_whole);
+}
+
+namespace {
+
+/// Tuple index of each kind (ElementKinds order) and its position in ForcePassOrder.
+constexpr int KIND_HEX8R = 0, KIND_HEX8 = 1, KIND_SHELL = 2;
+constexpr Index pass_position(int kind) {
+  return kind == KIND_HEX8R ? 0 : kind == KIND_SHELL ? 1 : 2;
+}
+/// Slot sources: kind × 2^29 + the corner slot of its block.
+constexpr int SOURCE_SHIFT = 29;
+
+}  // namespace
+
+std::vector<int> ElementSet::batch_partition(const std::vector<int>& element_part) const {
+  std::vector<int> part = element_part;
+  const int parts =
+      element_part.empty() ? 1 : *std::max_element(element_part.begin(), element_part.end()) + 1;
+  std::vector<int> count(static_cast<std::size_t>(parts));
+  for_each_block([&](const auto& block) {
+    constexpr int W = simd::W;
+    const std::vector<Index>& owners = block.lane_owners();
+    for (Index b = 0; b < block.batch_count(); ++b) {
+      std::fill(count.begin(), count.end(), 0);
+      for (int l = 0; l < W; ++l)
+        if (owners[b * W + l] != NO_INDEX)
+          ++count[element_part[block.element_index(owners[b * W + l])]];
+      const int best =
+          static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
+      for (int l = 0; l < W; ++l)
+        if (owners[b * W + l] != NO_INDEX) part[block.element_index(owners[b * W + l])] = best;
+    }
+  });
+  return part;
+}
+
+std::vector<Index> ElementSet::element_order() const {
+  std::vector<Index> order(static_cast<std::size_t>(m_model.element_count()), NO_INDEX);
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (
+        [&] {
+          const auto& block = std::get<I>(m_blocks);
+          if (!block) return;
+          constexpr int W = simd::W;
+          const std::vector<Index>& owners = block->lane_owners();
+          for (Index k = 0; k < block->batch_count() * W; ++k)
+            if (owners[k] != NO_INDEX)
+              order[block->element_index(owners[k])] = (pass_position(I) << 28) + k;
+        }(),
+        ...);
+  }
+  (std::make_index_sequence<3>{});
+  // Elements of no block (rigid ones) after all others, in element order.
+  Index next = Index{3} << 28;
+  for (Index& o : order)
+    if (o == NO_INDEX) o = next++;
+  return order;
+}
+
+template <class K>
+void ElementSet::distribute_block(std::unique_ptr<K>& block, std::unique_ptr<K>& whole) {
+  whole = std::move(block);
+  if (!whole) return;
+  constexpr int W = simd::W;
+  constexpr int kind = std::is_same_v<K, elements::Hex8rBlock>  ? KIND_HEX8R
+                       : std::is_same_v<K, elements::Hex8Block> ? KIND_HEX8
+                                                                : KIND_SHELL;
+  const K& w = *whole;
+  const std::vector<Index>& owners = w.lane_owners();
+  const std::vector<Index>& colors = w.color_batches();
+  std::vector<std::vector<Index>>& rank_batches = m_rank_batches[kind];
+  rank_batches.assign(static_cast<std::size_t>(m_run->size()), {});
+  std::vector<Index> elements, connectivity;
+  std::vector<typename K::Properties> properties;
+  elements::BatchLayout layout;
+  for (std::size_t c = 0; c + 1 < colors.size(); ++c) {
+    for (Index b = colors[c]; b < colors[c + 1]; ++b) {
+      const int part = m_run->element_part()[w.element_index(owners[b * W])];
+      rank_batches[part].push_back(b);
+      if (part != m_run->rank()) continue;
+      for (int l = 0; l < W; ++l) {
+        const Index owner = owners[b * W + l];
+        if (owner == NO_INDEX) {
+          layout.lane_owner.push_back(NO_INDEX);
+          continue;
+        }
+        const Index e = w.element_index(owner);
+        layout.lane_owner.push_back(static_cast<Index>(elements.size()));
+        elements.push_back(e);
+        connectivity.insert(connectivity.end(), m_model.nodes_of(e),
+                            m_model.nodes_of(e) + K::NODES);
+        properties.push_back(KindBinding<K>::properties(m_model, e, mass_factor(e)));
+      }
+    }
+    layout.color_batches.push_back(static_cast<Index>(layout.lane_owner.size() / W));
+  }
+  if (elements.empty()) return;
+  block = std::make_unique<K>(elements, connectivity, properties, m_model.node_count(), &layout);
+  if constexpr (requires { block->note_reference_corners(m_model.coordinates); })
+    block->note_reference_corners(m_model.coordinates);
+}
+
+template <std::size_t... I>
+void ElementSet::distribute_blocks(std::index_sequence<I...>) {
+  (distribute_block(std::get<I>(m_blocks), std::get<I>(m_whole)), ...);
+}
+
+void ElementSet::distribute(DistributedRun& run) {
+  m_run = &run;
+  distribute_blocks(std::make_index_sequence<3>{});
+  m_parts = 0;  // the force pass partitions the rank's blocks anew
+  m_slot_parts = 0;
+}
+
+void ElementSet::exchange_interface_forces() {
+  constexpr int W = simd::W;
+  const partition::PartPlan& plan = m_run->plan();
+  const int width = m_rotations ? 6 : 3;
+  if (m_slot_parts != m_parts) {
+    // Where each corner of this rank at a boundary node has its value (the corner slots
+    // change with the thread partition).
+    m_slot_source.assign(m_model.element_nodes.size(), NO_INDEX);
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+      (
+          [&] {
+            const auto& block = std::get<I>(m_blocks);
+            if (!block) return;
+            const std::vector<Index>& owners = block->lane_owners();
+            for (Index b = 0; b < block->batch_count(); ++b) {
+              const Index* slots = block->corner_exchange().batch_slots(b);
+              if (slots == nullptr) continue;
+              using K = std::remove_cvref_t<decltype(*block)>;
+              for (int l = 0; l < W; ++l) {
+                if (owners[b * W + l] == NO_INDEX) continue;
+                const Index e = block->element_index(owners[b * W + l]);
+                for (int a = 0; a < K::NODES; ++a)
+                  if (slots[a * W + l] != NO_INDEX)
+                    m_slot_source[m_model.element_offsets[e] + a] =
+                        (Index{I} << SOURCE_SHIFT) + slots[a * W + l];
+              }
+            }
+          }(),
+          ...);
+    }
+    (std::make_index_sequence<3>{});
+    m_slot_parts = m_parts;
+  }
+  const auto value = [&](Index source, int c) -> Real {
+    const Index slot = source & ((Index{1} << SOURCE_SHIFT) - 1);
+    switch (source >> SOURCE_SHIFT) {
+      case KIND_HEX8R:
+        return c < 3 ? std::get<KIND_HEX8R>(m_blocks)->exchange_values()[3 * slot + c] : 0.0;
+      case KIND_HEX8:
+        return c < 3 ? std::get<KIND_HEX8>(m_blocks)->exchange_values()[3 * slot + c] : 0.0;
+      default:
+        return std::get<KIND_SHELL>(m_blocks)->exchange_values()[6 * slot + c];
+    }
+  };
+  std::vector<std::vector<Real>>& send = m_run->send_buffers();
+  for (std::size_t j = 0; j < plan.neighbours.size(); ++j) {
+    Real* out = send[j].data();
+    for (const Index s : plan.neighbours[j].send)
+      for (int c = 0; c < width; ++c) *out++ = value(m_slot_source[s], c);
+  }
+  const std::vector<std::vector<Real>>& received = m_run->exchange();
+  // Each interface node: every contribution, own or received, folded from +0 in the one-rank
+  // order (partition::PartPlan::combine), replacing the sum of the rank's own corners.
+  for (std::size_t k = 0; k < plan.interface_nodes.size(); ++k) {
+    const Index n = plan.interface_nodes[k];
+    for (int c = 0; c < width; ++c) {
+      Real sum = 0.0;
+      for (Index i = plan.combine_start[k]; i < plan.combine_start[k + 1]; ++i) {
+        const partition::SlotSource& src = plan.combine[i];
+        sum += src.neighbour < 0
+                   ? value(m_slot_source[src.index], c)
+                   : received[src.neighbour][static_cast<std::size_t>(src.index) * width + c];
+      }
+      if (c < 3)
+        m_force_internal(n, c) = sum;
+      else
+        m_moment_internal(n, c - 3) = sum;
+    }
+  }
+}
+
+void ElementSet::reduce_totals(ElementTotals& totals) {
+  // This rank's batch totals, kind after kind, batch after batch.
+  std::vector<Real> mine;
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (
+        [&] {
+          const auto& block = std::get<I>(m_blocks);
+          if (!block) return;
+          using K = std::remove_cvref_t<decltype(*block)>;
+          Real values[K::BATCH_TOTALS];
+          for (Index b = 0; b < block->batch_count(); ++b) {
+            block->pack_batch_totals(b, values);
+            mine.insert(mine.end(), values, values + K::BATCH_TOTALS);
+          }
+        }(),
+        ...);
+  }
+  (std::make_index_sequence<3>{});
+  std::vector<int> counts;
+  const std::vector<Real> all = m_run->allgather(mine, counts);
+  // Into the whole blocks at their batches, then the one-rank reduction of each.
+  std::size_t at = 0;
+  for (int r = 0; r < m_run->size(); ++r) [&]<std::size_t... I>(std::index_sequence<I...>) {
+      (
+          [&] {
+            auto& whole = std::get<I>(m_whole);
+            if (!whole) return;
+            using K = std::remove_cvref_t<decltype(*whole)>;
+            for (const Index b : m_rank_batches[I][r]) {
+              whole->unpack_batch_totals(b, &all[at]);
+              at += K::BATCH_TOTALS;
+            }
+          }(),
+          ...);
+    }
+  (std::make_index_sequence<3>{});
+  std::apply(
+      [&](const auto&... whole) {
+        (
+            [&] {
+              if (!whole) return;
+              typename std::remove_cvref_t<decltype(*whole)>::Totals t;
+              whole->add_totals(t);
+              totals.add(t);
+            }(),
+            ...);
+      },
+      m_whole);
 }
 
 }  // namespace xpl

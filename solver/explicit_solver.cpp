@@ -159,7 +159,10 @@ void ExplicitSolver::Impl::run_step(int step) {
 }
 
 int ExplicitSolver::Impl::stop_requested() const {
-  return m_options.stop_signal != nullptr ? static_cast<int>(*m_options.stop_signal) : 0;
+  const int signal =
+      m_options.stop_signal != nullptr ? static_cast<int>(*m_options.stop_signal) : 0;
+  // Distributed runs stop at the same increment on every rank.
+  return m_run ? m_run->max(signal) : signal;
 }
 
 void ExplicitSolver::Impl::write_interrupted(bool frame_written, bool history_written) {
@@ -191,10 +194,12 @@ void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
 }
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
+  gather_state();
   m_output.write_frame(m_state, what, m_elements, m_contact, m_nodes);
 }
 
 void ExplicitSolver::Impl::write_history() {
+  gather_state();
   m_output.write_history(m_state, m_contact, m_nodes);
 }
 

@@ -156,7 +156,8 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     }
     const Real v_new = velocity_half(d, current, inc);
     Real& f_before = (turn ? m_previous_moment : previous_force)(i, c);
-    if (m_first_update && v_new != v_old && is_jump(d, inc, v_old, v_new))
+    const bool count = m_counted.empty() || m_counted[i] != 0;
+    if (m_first_update && count && v_new != v_old && is_jump(d, inc, v_old, v_new))
       m_jumps.push_back({k, f_before});
     const Real m = field.mass[i];
     // ALLKE: what the free update counted for the DOF, replaced by the prescribed motion's.
@@ -179,7 +180,7 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     field.velocity_half[at] = v_new;
     field.velocity[at] = v_whole;
     const Real f_now = f_ext + r;
-    sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
+    if (count) sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
     f_before = f_now;
   }
   kinetic -= counted;

@@ -42,6 +42,9 @@ class PrescribedMotion {
   void begin_step(RigidBodies& rigid, const State& state);
   /// Notes on the BCs that begin_step() dropped, to the sink.
   void report_step(int step, OutputSink& sink) const;
+  /// Distributed runs (distributed_run.hpp): the nodes whose work and jumps this rank counts
+  /// in the sums (1; the nodes it owns); the field masses of the others are 0 there.
+  void set_counted(std::vector<unsigned char> counted) { m_counted = std::move(counted); }
   /// The prescribed DOFs of the step (those the nodal update drives).
   const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
 
@@ -97,9 +100,12 @@ class PrescribedMotion {
   const BoundaryState& m_boundary;
   bool m_shells;
   std::vector<PrescribedDof> m_prescribed;  ///< the step's prescribed DOFs that exist
-  std::vector<Real> m_prescribed_value;     ///< current value of each prescribed DOF
-  std::vector<Real> m_v_old_prescribed;     ///< v(n−½) at each prescribed DOF
-  NodalVectors m_previous_moment;           ///< moment at prescribed rotations, previous inc.
+  /// Distributed runs: 1 for the nodes whose work and jumps this rank counts (set_counted()),
+  /// empty: every node.
+  std::vector<unsigned char> m_counted;
+  std::vector<Real> m_prescribed_value;  ///< current value of each prescribed DOF
+  std::vector<Real> m_v_old_prescribed;  ///< v(n−½) at each prescribed DOF
+  NodalVectors m_previous_moment;        ///< moment at prescribed rotations, previous inc.
   /// The jumps of the prescribed motion met by the last update (BCs jump where they take
   /// effect: at the first update of a step).
   struct Jump {

@@ -1,11 +1,14 @@
 // The set-up of a run (ExplicitSolver::Impl, explicit_solver_impl.hpp): the parts of the time
 // loop built in order, the initial or imported state, and the set-up report.
+#include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "solver/explicit_solver_impl.hpp"
 #include "solver/message_text.hpp"
+#include "solver/model_partition.hpp"
 
 namespace xpl {
 
@@ -32,6 +35,102 @@ ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions o
   const std::vector<std::string> rigid_messages = set_up_rigid_bodies();
   if (m_options.initial_state != nullptr) apply_initial_state(*m_options.initial_state);
   report_setup(rigid_messages);
+  if (m_options.distributed && DistributedRun::world_size() > 1) set_up_distribution();
+}
+
+void ExplicitSolver::Impl::set_up_distribution() {
+  if (const std::vector<std::string> refused =
+          DistributedRun::refusals(m_model, m_options.initial_state != nullptr);
+      !refused.empty())
+    throw std::invalid_argument("distributed run: " + refused.front());
+  const auto start = std::chrono::steady_clock::now();
+  m_run = std::make_unique<DistributedRun>();
+  DistributedRun& run = *m_run;
+  // METIS on rank 0 (deterministic anyway), rounded to whole SIMD batches of the one-rank
+  // layout so that every batch, and its per-batch totals, belongs to one rank.
+  std::vector<int> element_part;
+  partition::MeshPartition metis;
+  if (run.rank() == 0) {
+    metis =
+        partition_model(m_model, m_rigid, m_ties, nullptr, run.size(), m_options.partition_method);
+    element_part = metis.element_part;
+  }
+  run.broadcast(element_part);
+  run.set_partition(m_model, m_elements.batch_partition(element_part), m_elements.element_order());
+  m_elements.distribute(run);
+
+  // Nodes this rank does not use stay at rest (no element of the rank moves them; a node of
+  // no element moves on rank 0, its owner); the sums count the nodes the rank owns.
+  const Index n = m_model.node_count();
+  const bool rotations = !m_state.rotary_inertia.empty();
+  std::vector<Real> sum_mass(static_cast<std::size_t>(n), 0.0);
+  std::vector<Real> sum_inertia(rotations ? static_cast<std::size_t>(n) : 0, 0.0);
+  std::vector<unsigned char> counted(static_cast<std::size_t>(n), 0);
+  for (Index i = 0; i < n; ++i) {
+    if (run.owns(i)) {
+      sum_mass[i] = m_state.mass[i];
+      if (rotations) sum_inertia[i] = m_state.rotary_inertia[i];
+      counted[i] = 1;
+    } else if (!run.in_part(i)) {
+      m_state.velocity.row(i).setZero();
+      m_state.velocity_half.row(i).setZero();
+      if (rotations) {
+        m_state.angular_velocity.row(i).setZero();
+        m_state.angular_velocity_half.row(i).setZero();
+      }
+    }
+  }
+  // The ranks' sums added in rank order (not the one-rank association: distributed_run.hpp).
+  m_nodes.set_distribution(std::move(sum_mass), std::move(sum_inertia), std::move(counted),
+                           [&run](NodalSums& sums, Real& largest_speed) {
+                             const std::vector<Real> mine = {sums.kinetic.centred,
+                                                             sums.kinetic.spread, sums.work,
+                                                             sums.jump_spread, largest_speed};
+                             std::vector<int> counts;
+                             const std::vector<Real> all = run.allgather(mine, counts);
+                             sums = NodalSums{};
+                             largest_speed = 0.0;
+                             for (std::size_t k = 0; k < all.size(); k += 5) {
+                               sums.kinetic.centred += all[k];
+                               sums.kinetic.spread += all[k + 1];
+                               sums.work += all[k + 2];
+                               sums.jump_spread += all[k + 3];
+                               largest_speed = std::max(largest_speed, all[k + 4]);
+                             }
+                           });
+
+  // The report (rank 0's sink writes it).
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m_sink.message(Severity::Info,
+                 "mpi: " + std::to_string(run.size()) +
+                     " ranks, distributed time loop (issue 37 item 3): each rank computes the "
+                     "forces of its elements, interface forces go to the neighbours as "
+                     "per-corner contributions summed in the one-rank order; rank 0 writes "
+                     "the results");
+  if (run.rank() == 0)
+    for (const std::string& line : partition::partition_report(metis, seconds))
+      m_sink.message(Severity::Info, line);
+  const partition::ExchangePlan& plan = run.exchange_plan();
+  for (int r = 0; r < run.size(); ++r) {
+    const partition::PartPlan& p = plan.part[r];
+    m_sink.message(Severity::Info,
+                   "mpi: rank " + std::to_string(r) + ": " + std::to_string(p.elements.size()) +
+                       " elements (METIS parts rounded to whole SIMD batches), " +
+                       std::to_string(p.owned.size()) + " owned nodes, " +
+                       std::to_string(p.interface_nodes.size()) + " interface nodes, " +
+                       std::to_string(p.neighbours.size()) + " neighbour(s), " +
+                       std::to_string(p.send_slots()) + " corner contributions sent per increment");
+  }
+}
+
+void ExplicitSolver::Impl::gather_state() {
+  if (!m_run) return;
+  m_nodes.sync_rotation(m_state);
+  for (NodalVectors* rows :
+       {&m_state.position, &m_state.velocity, &m_state.acceleration, &m_state.reaction,
+        &m_state.rotation, &m_state.angular_velocity, &m_state.reaction_moment})
+    m_run->gather_to_root(*rows);
 }
 
 State ExplicitSolver::Impl::initial_state(const Model& model) {
