@@ -5,14 +5,6 @@
 
 namespace xpl {
 
-namespace {
-
-/// Nodes per chunk of the nodal loops; partial sums per chunk are added in chunk order so
-/// that energies do not depend on the thread count.
-constexpr Index NODE_CHUNK = 2048;
-
-}  // namespace
-
 CentralDifference::CentralDifference(const Model& model, PhaseTimers& timers, bool shells)
     : m_model(model), m_timers(timers), m_shells(shells), m_motion(model, m_boundary, shells) {
   const Index n = model.node_count();
@@ -177,18 +169,13 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
       force_external ? force_external->data() : elements.force_internal().data(),
       force_external ? 1.0 : 0.0,
       elements.inverse_mass().data(),
-      m_sum_mass.empty() ? state.mass.data() : m_sum_mass.data()};
+      state.mass.data()};
   // Rotations carry no external moments.
   NodalField rotation{};
   if (m_shells)
-    rotation = {state.angular_velocity_half.data(),
-                state.angular_velocity.data(),
-                nullptr,
-                elements.moment_internal().data(),
-                elements.moment_internal().data(),
-                0.0,
-                elements.inverse_inertia().data(),
-                m_sum_inertia.empty() ? state.rotary_inertia.data() : m_sum_inertia.data()};
+    rotation = {state.angular_velocity_half.data(), state.angular_velocity.data(),     nullptr,
+                elements.moment_internal().data(),  elements.moment_internal().data(), 0.0,
+                elements.inverse_inertia().data(),  state.rotary_inertia.data()};
 
   // Prescribed and loaded DOFs keep their velocity at n-1/2 for the work and reaction terms.
   m_motion.keep_old_velocities(translation, rotation, n);
@@ -213,6 +200,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
   for (Index chunk = 0; chunk < n_chunks; ++chunk)
     update_chunk(state, translation, rotation, inc, chunk);
+  if (m_share_chunks) m_share_chunks(m_chunk_sums, m_chunk_speed);
   NodalSums sums;
   sums.kinetic = sum_chunks(n_chunks);
   RigidUpdate bodies;
@@ -223,7 +211,6 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   }
   m_motion.update(state, translation, rotation, inc, bodies.jumps, m_previous_force, sums);
   if (tied) m_ties->follow(state);  // slaves after their masters (prescribed and rigid too)
-  if (m_reduce) m_reduce(sums, m_largest_speed);
   m_loads.add_work(sums.work);
   book_energies(state, inc, sums);
 }

@@ -68,16 +68,20 @@ class CentralDifference {
   void set_ties(const Ties* ties) { m_ties = ties; }
   /// Brings state.rotation up to date with the tracked rotations (before output).
   void sync_rotation(State& state);
-  /// Distributed runs (distributed_run.hpp): the masses and rotary inertias the sums count
-  /// (those of the nodes this rank owns, 0 elsewhere), the nodes whose work it counts, and
-  /// `reduce`, which turns the rank's sums and largest speed into the run's (collective).
-  using SumReduction = std::function<void(NodalSums& sums, Real& largest_speed)>;
-  void set_distribution(std::vector<Real> sum_mass, std::vector<Real> sum_inertia,
-                        std::vector<unsigned char> counted, SumReduction reduce) {
-    m_sum_mass = std::move(sum_mass);
-    m_sum_inertia = std::move(sum_inertia);
-    m_motion.set_counted(std::move(counted));
-    m_reduce = std::move(reduce);
+  /// Nodes per chunk of the nodal loops; partial sums per chunk are added in chunk order so
+  /// that energies do not depend on the thread count (nor, in a distributed run, on the rank
+  /// count: each chunk's sums are those of the rank that integrates all its nodes).
+  static constexpr Index NODE_CHUNK = 2048;
+
+  /// Distributed runs (distributed_run.hpp): `share` replaces the kinetic sums and largest
+  /// speeds of the chunks this rank does not count ([translations, rotations] per chunk,
+  /// speeds per chunk) by those of the ranks that do (collective); the prescribed DOFs'
+  /// sums go through `fold` (PrescribedMotion::set_distribution).
+  using ChunkShare = std::function<void(std::vector<KineticSums>& sums, std::vector<Real>& speed)>;
+  void set_distribution(ChunkShare share, std::vector<unsigned char> counted,
+                        PrescribedMotion::Fold fold) {
+    m_share_chunks = std::move(share);
+    m_motion.set_distribution(std::move(counted), std::move(fold));
   }
   /// The largest |v(n+½)| component of the free translational DOFs at the last
   /// update_nodes(), m/s (for the health check; NaN shows in ALLKE instead).
@@ -115,8 +119,7 @@ class CentralDifference {
   /// N), for the trapezoidal work of the loads and the prescribed DOFs alike (a DOF may be
   /// prescribed in one step and loaded in the next); allocated when a step has either.
   NodalVectors m_previous_force;
-  std::vector<Real> m_sum_mass, m_sum_inertia;  ///< set_distribution(); empty: the state's
-  SumReduction m_reduce;
+  ChunkShare m_share_chunks;  ///< set_distribution(); empty: one rank
 };
 
 }  // namespace xpl

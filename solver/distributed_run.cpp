@@ -101,7 +101,7 @@ DistributedRun::DistributedRun()
 DistributedRun::~DistributedRun() = default;
 
 void DistributedRun::set_partition(const Model& model, std::vector<int> element_part,
-                                   std::vector<Index> element_order) {
+                                   std::vector<Index> element_order, Index chunk) {
   m_element_part = std::move(element_part);
   const Index n_nodes = model.node_count();
   partition::MeshPartition p;
@@ -123,6 +123,32 @@ void DistributedRun::set_partition(const Model& model, std::vector<int> element_
   m_plan = partition::make_exchange_plan(input, p, element_order);
   m_in_part.assign(static_cast<std::size_t>(n_nodes), 0);
   for (const Index n : plan().nodes) m_in_part[n] = 1;
+
+  // Each nodal chunk is counted by the rank owning most of its nodes (ties: the lowest); the
+  // nodes of its chunks that no element of it uses come from their owners.
+  m_chunk = chunk;
+  const Index n_chunks = (n_nodes + chunk - 1) / chunk;
+  m_chunk_owner.assign(static_cast<std::size_t>(n_chunks), 0);
+  std::vector<Index> owned(static_cast<std::size_t>(m_size));
+  for (Index c = 0; c < n_chunks; ++c) {
+    std::fill(owned.begin(), owned.end(), 0);
+    for (Index i = c * chunk; i < std::min(n_nodes, (c + 1) * chunk); ++i) ++owned[m_node_owner[i]];
+    m_chunk_owner[c] =
+        static_cast<int>(std::max_element(owned.begin(), owned.end()) - owned.begin());
+  }
+  std::vector<unsigned char> uses(static_cast<std::size_t>(n_nodes));
+  m_ship_send.assign(static_cast<std::size_t>(m_size), {});
+  m_ship_receive.assign(static_cast<std::size_t>(m_size), {});
+  for (int r = 0; r < m_size; ++r) {
+    std::fill(uses.begin(), uses.end(), 0);
+    for (const Index n : m_plan.part[r].nodes) uses[n] = 1;
+    for (Index i = 0; i < n_nodes; ++i) {
+      if (m_chunk_owner[i / chunk] != r || uses[i] != 0) continue;
+      const int from = m_node_owner[i];
+      if (from == m_rank) m_ship_send[r].push_back(i);
+      if (r == m_rank) m_ship_receive[from].push_back(i);
+    }
+  }
 }
 
 #if XPL_HAVE_MPI
@@ -250,6 +276,63 @@ void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width)
       for (std::size_t c = 0; c < w; ++c) rows[e * w + c] = all[k++];
 }
 
+void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
+  ExchangeTimer timer(m_seconds);
+  const int width = moment != nullptr ? 6 : 3;
+  constexpr int SHIP_TAG = 38;
+  m_ship_send_buffer.resize(static_cast<std::size_t>(m_size));
+  m_ship_receive_buffer.resize(static_cast<std::size_t>(m_size));
+  std::vector<MPI_Request> requests;
+  for (int r = 0; r < m_size; ++r) {
+    if (m_ship_receive[r].empty()) continue;
+    m_ship_receive_buffer[r].resize(m_ship_receive[r].size() * width);
+    requests.emplace_back();
+    MPI_Irecv(m_ship_receive_buffer[r].data(), static_cast<int>(m_ship_receive_buffer[r].size()),
+              MPI_DOUBLE, r, SHIP_TAG, MPI_COMM_WORLD, &requests.back());
+  }
+  for (int r = 0; r < m_size; ++r) {
+    if (m_ship_send[r].empty()) continue;
+    std::vector<Real>& buffer = m_ship_send_buffer[r];
+    buffer.clear();
+    for (const Index n : m_ship_send[r]) {
+      for (int c = 0; c < 3; ++c) buffer.push_back(force(n, c));
+      if (moment != nullptr)
+        for (int c = 0; c < 3; ++c) buffer.push_back((*moment)(n, c));
+    }
+    requests.emplace_back();
+    MPI_Isend(buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, r, SHIP_TAG,
+              MPI_COMM_WORLD, &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  for (int r = 0; r < m_size; ++r) {
+    const Real* in = m_ship_receive_buffer[r].data();
+    for (const Index n : m_ship_receive[r]) {
+      for (int c = 0; c < 3; ++c) force(n, c) = *in++;
+      if (moment != nullptr)
+        for (int c = 0; c < 3; ++c) (*moment)(n, c) = *in++;
+    }
+  }
+}
+
+void DistributedRun::share_chunks(std::vector<Real>& values, int width, int blocks) const {
+  const auto n_chunks = m_chunk_owner.size();
+  std::vector<Real> mine;
+  for (int b = 0; b < blocks; ++b)
+    for (std::size_t c = 0; c < n_chunks; ++c)
+      if (m_chunk_owner[c] == m_rank)
+        mine.insert(mine.end(),
+                    values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c) * width),
+                    values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c + 1) * width));
+  std::vector<int> counts;
+  const std::vector<Real> all = allgather(mine, counts);
+  std::size_t at = 0;
+  for (int r = 0; r < m_size; ++r)
+    for (int b = 0; b < blocks; ++b)
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        if (m_chunk_owner[c] == r)
+          for (int k = 0; k < width; ++k) values[(b * n_chunks + c) * width + k] = all[at++];
+}
+
 int DistributedRun::max(int value) const {
   ExchangeTimer timer(m_seconds);
   int result = value;
@@ -275,6 +358,8 @@ void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out)
   out = rows;
 }
 void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
+void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
+void DistributedRun::share_chunks(std::vector<Real>&, int, int) const {}
 int DistributedRun::max(int value) const {
   return value;
 }

@@ -19,9 +19,13 @@
 /// - Global stable-increment estimate (Lanczos, at the start of a step and when the element
 ///   estimate moves): the positions are gathered on every rank from their owners and every
 ///   rank runs the one-rank estimate on the whole mesh.
-/// - Nodal sums (ALLKE, ALLKD, ALLWK): each rank sums the nodes it owns; the ranks' sums are
-///   added in rank order. Not bitwise equal to the one-rank sums (a different association):
-///   within a few ulps, see docs/dev/mpi.md.
+/// - Nodal sums (ALLKE, ALLKD, ALLWK): the one-rank code sums the nodes in chunks of
+///   CentralDifference::NODE_CHUNK and adds the chunks in order. Each chunk is counted by one
+///   rank (the one owning most of its nodes), which integrates every node of the chunk: the
+///   nodes of the chunk its elements do not use get their finished force from their owner
+///   each increment (ship_forces(), point to point), so its chunk sums are the one-rank
+///   ones; the chunk sums are then gathered and added in chunk order. The prescribed DOFs'
+///   terms are gathered and folded in DOF order.
 /// Output: rank 0 writes; before a frame or history row it gathers the owners' rows.
 
 #include <memory>
@@ -61,14 +65,26 @@ class DistributedRun {
   void broadcast(std::vector<int>& values) const;
   /// Takes the partition of the run: the part of each element (n_elements) and the position
   /// of each element in the one-rank summation order (distinct). Builds the exchange plan.
+  /// Nodal chunks of `chunk` nodes are each counted by one rank.
   void set_partition(const Model& model, std::vector<int> element_part,
-                     std::vector<Index> element_order);
+                     std::vector<Index> element_order, Index chunk);
   const partition::ExchangePlan& exchange_plan() const { return m_plan; }
   const partition::PartPlan& plan() const { return m_plan.part[m_rank]; }
   const std::vector<int>& element_part() const { return m_element_part; }
   /// Whether an element of this rank uses `node`; whether this rank owns it.
   bool in_part(Index node) const { return m_in_part[node] != 0; }
   bool owns(Index node) const { return m_node_owner[node] == m_rank; }
+  /// Whether this rank counts (and so integrates) the nodal chunk of `node`, or chunk `c`.
+  bool counts(Index node) const { return m_chunk_owner[node / m_chunk] == m_rank; }
+  bool counts_chunk(Index c) const { return m_chunk_owner[c] == m_rank; }
+
+  /// The finished forces (and moments, if not null; n_nodes × 3) of the nodes of this rank's
+  /// chunks that its elements do not use, from their owners (Isend/Irecv).
+  void ship_forces(NodalVectors& force, NodalVectors* moment);
+  /// The chunk values `per_chunk` (values per chunk: `width`, chunk after chunk; `blocks`
+  /// such arrays back to back, e.g. translations then rotations) of every chunk from the
+  /// rank that counts it (MPI_Allgatherv).
+  void share_chunks(std::vector<Real>& values, int width, int blocks) const;
 
   /// \name The force exchange of an increment: post_receives() before the element pass,
   /// then the send buffers filled (width values per slot, NeighbourExchange::send order),
@@ -99,6 +115,11 @@ class DistributedRun {
   std::vector<int> m_element_part;
   std::vector<int> m_node_owner;
   std::vector<unsigned char> m_in_part;
+  Index m_chunk = 1;
+  std::vector<int> m_chunk_owner;
+  /// ship_forces(): per rank, the nodes this rank sends it and the nodes it receives from it.
+  std::vector<std::vector<Index>> m_ship_send, m_ship_receive;
+  std::vector<std::vector<Real>> m_ship_send_buffer, m_ship_receive_buffer;
   std::vector<std::vector<Real>> m_send, m_receive;
   struct Requests;
   std::unique_ptr<Requests> m_requests;

@@ -11,6 +11,7 @@
 #include "solver/loads/gravity_loads.hpp"
 #include "solver/mass_scaling.hpp"
 #include "solver/message_text.hpp"
+#include "solver/model_partition.hpp"
 
 namespace xpl {
 
@@ -293,6 +294,7 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
       });
   if (m_run != nullptr) {
     exchange_interface_forces();
+    m_run->ship_forces(m_force_internal, m_rotations ? &m_moment_internal : nullptr);
     reduce_totals(totals);
     return;
   }
@@ -448,26 +450,42 @@ constexpr int SOURCE_SHIFT = 29;
 
 }  // namespace
 
-std::vector<int> ElementSet::batch_partition(const std::vector<int>& element_part) const {
-  std::vector<int> part = element_part;
-  const int parts =
-      element_part.empty() ? 1 : *std::max_element(element_part.begin(), element_part.end()) + 1;
-  std::vector<int> count(static_cast<std::size_t>(parts));
+partition::MeshPartition ElementSet::partition_batches(int parts, partition::Method method,
+                                                       std::vector<int>& element_part) const {
+  // Every batch of every block as one "element" of the partition: its lanes' nodes, cost.
+  constexpr int W = simd::W;
+  std::vector<Index> offsets{0}, nodes, lane_elements{0}, elements;
+  std::vector<Real> weight;
   for_each_block([&](const auto& block) {
-    constexpr int W = simd::W;
     const std::vector<Index>& owners = block.lane_owners();
     for (Index b = 0; b < block.batch_count(); ++b) {
-      std::fill(count.begin(), count.end(), 0);
-      for (int l = 0; l < W; ++l)
-        if (owners[b * W + l] != NO_INDEX)
-          ++count[element_part[block.element_index(owners[b * W + l])]];
-      const int best =
-          static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
-      for (int l = 0; l < W; ++l)
-        if (owners[b * W + l] != NO_INDEX) part[block.element_index(owners[b * W + l])] = best;
+      Real cost = 0.0;
+      for (int l = 0; l < W; ++l) {
+        const Index owner = owners[b * W + l];
+        if (owner == NO_INDEX) continue;
+        const Index e = block.element_index(owner);
+        elements.push_back(e);
+        cost += element_cost(m_model, e, false);
+        nodes.insert(nodes.end(), m_model.nodes_of(e),
+                     m_model.nodes_of(e) + nodes_per_element(m_model.element_types[e]));
+      }
+      offsets.push_back(static_cast<Index>(nodes.size()));
+      lane_elements.push_back(static_cast<Index>(elements.size()));
+      weight.push_back(cost);
     }
   });
-  return part;
+  partition::PartitionInput input;
+  input.node_count = m_model.node_count();
+  input.element_offsets = offsets;
+  input.element_nodes = nodes;
+  input.element_weight = weight;
+  input.coordinates = &m_model.coordinates;
+  partition::MeshPartition p = partition::partition_mesh(input, parts, method);
+  element_part.assign(static_cast<std::size_t>(m_model.element_count()), 0);
+  for (std::size_t b = 0; b + 1 < lane_elements.size(); ++b)
+    for (Index k = lane_elements[b]; k < lane_elements[b + 1]; ++k)
+      element_part[elements[k]] = p.element_part[b];
+  return p;
 }
 
 std::vector<Index> ElementSet::element_order() const {

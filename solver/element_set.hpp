@@ -13,6 +13,7 @@
 #include "common/timer.hpp"
 #include "contact/contact_faces.hpp"
 #include "elements/increment_limit.hpp"
+#include "partition/mesh_partition.hpp"
 #include "solver/element_kinds.hpp"
 #include "solver/global_increment.hpp"
 #include "solver/increment_control.hpp"
@@ -131,9 +132,13 @@ class ElementSet {
   /// Shell thickness at each node for contact (n_nodes, m), or empty without shells.
   const std::vector<Real>& node_thickness() const { return m_node_thickness; }
   /// \name Distributed runs (distributed_run.hpp).
-  /// The part of each element when every batch of the layout goes whole to the part of
-  /// `element_part` (n_elements) that holds most of its lanes (ties: the lowest part).
-  std::vector<int> batch_partition(const std::vector<int>& element_part) const;
+  /// The partition of the SIMD batches of the layout into `parts` with `method` (each batch
+  /// a vertex of the graph, with the nodes and the cost of its lanes: a batch's lanes are
+  /// one colour, spread along the mesh, so that an element partition rounded to batches
+  /// would be badly balanced), and the part of each element (that of its batch) in
+  /// `element_part` (n_elements; elements of no block: part 0).
+  partition::MeshPartition partition_batches(int parts, partition::Method method,
+                                             std::vector<int>& element_part) const;
   /// The position of each element in the one-rank order of the nodal sums (block in force
   /// pass order, batch, lane); elements of no block NO_INDEX.
   std::vector<Index> element_order() const;

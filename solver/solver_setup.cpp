@@ -46,30 +46,24 @@ void ExplicitSolver::Impl::set_up_distribution() {
   const auto start = std::chrono::steady_clock::now();
   m_run = std::make_unique<DistributedRun>();
   DistributedRun& run = *m_run;
-  // METIS on rank 0 (deterministic anyway), rounded to whole SIMD batches of the one-rank
-  // layout so that every batch, and its per-batch totals, belongs to one rank.
+  // METIS on rank 0 (deterministic anyway) on the graph of the SIMD batches of the one-rank
+  // layout, so that every batch, and its per-batch totals, belongs to one rank.
   std::vector<int> element_part;
   partition::MeshPartition metis;
-  if (run.rank() == 0) {
-    metis =
-        partition_model(m_model, m_rigid, m_ties, nullptr, run.size(), m_options.partition_method);
-    element_part = metis.element_part;
-  }
+  if (run.rank() == 0)
+    metis = m_elements.partition_batches(run.size(), m_options.partition_method, element_part);
   run.broadcast(element_part);
-  run.set_partition(m_model, m_elements.batch_partition(element_part), m_elements.element_order());
+  run.set_partition(m_model, element_part, m_elements.element_order(),
+                    CentralDifference::NODE_CHUNK);
   m_elements.distribute(run);
 
-  // Nodes this rank does not use stay at rest (no element of the rank moves them; a node of
-  // no element moves on rank 0, its owner); the sums count the nodes the rank owns.
+  // Nodes this rank neither uses nor counts stay at rest (a node of no element moves on the
+  // rank counting its chunk); each nodal chunk is counted by one rank (distributed_run.hpp).
   const Index n = m_model.node_count();
   const bool rotations = !m_state.rotary_inertia.empty();
-  std::vector<Real> sum_mass(static_cast<std::size_t>(n), 0.0);
-  std::vector<Real> sum_inertia(rotations ? static_cast<std::size_t>(n) : 0, 0.0);
   std::vector<unsigned char> counted(static_cast<std::size_t>(n), 0);
   for (Index i = 0; i < n; ++i) {
-    if (run.owns(i)) {
-      sum_mass[i] = m_state.mass[i];
-      if (rotations) sum_inertia[i] = m_state.rotary_inertia[i];
+    if (run.counts(i)) {
       counted[i] = 1;
     } else if (!run.in_part(i)) {
       m_state.velocity.row(i).setZero();
@@ -80,24 +74,19 @@ void ExplicitSolver::Impl::set_up_distribution() {
       }
     }
   }
-  // The ranks' sums added in rank order (not the one-rank association: distributed_run.hpp).
-  m_nodes.set_distribution(std::move(sum_mass), std::move(sum_inertia), std::move(counted),
-                           [&run](NodalSums& sums, Real& largest_speed) {
-                             const std::vector<Real> mine = {sums.kinetic.centred,
-                                                             sums.kinetic.spread, sums.work,
-                                                             sums.jump_spread, largest_speed};
-                             std::vector<int> counts;
-                             const std::vector<Real> all = run.allgather(mine, counts);
-                             sums = NodalSums{};
-                             largest_speed = 0.0;
-                             for (std::size_t k = 0; k < all.size(); k += 5) {
-                               sums.kinetic.centred += all[k];
-                               sums.kinetic.spread += all[k + 1];
-                               sums.work += all[k + 2];
-                               sums.jump_spread += all[k + 3];
-                               largest_speed = std::max(largest_speed, all[k + 4]);
-                             }
-                           });
+  const auto share = [&run](std::vector<KineticSums>& sums, std::vector<Real>& speed) {
+    std::vector<Real> values;
+    values.reserve(sums.size() * 2);
+    for (const KineticSums& s : sums) values.insert(values.end(), {s.centred, s.spread});
+    run.share_chunks(values, 2, 2);  // translations, then rotations
+    for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = {values[2 * k], values[2 * k + 1]};
+    run.share_chunks(speed, 1, 1);
+  };
+  const auto fold = [&run](const std::vector<Real>& mine) {
+    std::vector<int> counts;
+    return run.allgather(mine, counts);
+  };
+  m_nodes.set_distribution(share, std::move(counted), fold);
 
   // The report (rank 0's sink writes it).
   const double seconds =
@@ -108,19 +97,23 @@ void ExplicitSolver::Impl::set_up_distribution() {
                      "forces of its elements, interface forces go to the neighbours as "
                      "per-corner contributions summed in the one-rank order; rank 0 writes "
                      "the results");
-  if (run.rank() == 0)
+  if (run.rank() == 0) {
+    m_sink.message(Severity::Info,
+                   "mpi: the partition below is of the SIMD batches (each up to 8 elements of one "
+                   "colour, spread along the mesh: its vertices are batches, not elements)");
     for (const std::string& line : partition::partition_report(metis, seconds))
       m_sink.message(Severity::Info, line);
+  }
   const partition::ExchangePlan& plan = run.exchange_plan();
   for (int r = 0; r < run.size(); ++r) {
     const partition::PartPlan& p = plan.part[r];
     m_sink.message(Severity::Info,
                    "mpi: rank " + std::to_string(r) + ": " + std::to_string(p.elements.size()) +
-                       " elements (METIS parts rounded to whole SIMD batches), " +
-                       std::to_string(p.owned.size()) + " owned nodes, " +
-                       std::to_string(p.interface_nodes.size()) + " interface nodes, " +
-                       std::to_string(p.neighbours.size()) + " neighbour(s), " +
-                       std::to_string(p.send_slots()) + " corner contributions sent per increment");
+                       " elements (whole SIMD batches), " + std::to_string(p.owned.size()) +
+                       " owned nodes, " + std::to_string(p.interface_nodes.size()) +
+                       " interface nodes, " + std::to_string(p.neighbours.size()) +
+                       " neighbour(s), " + std::to_string(p.send_slots()) +
+                       " corner contributions sent per increment");
   }
 }
 
