@@ -230,6 +230,7 @@ RunSummary ExplicitSolver::Impl::run() {
     throw;
   }
   report_drift();
+  report_exchange();
   RunSummary s = summary();
   if (m_stopped_by != 0) {
     s.stop_signal = m_stopped_by;
@@ -239,6 +240,22 @@ RunSummary ExplicitSolver::Impl::run() {
   }
   m_sink.end_run(RunStatus::Completed, "", s.timers, s.element_cycles_per_second);
   return s;
+}
+
+void ExplicitSolver::Impl::report_exchange() {
+  if (!m_run) return;
+  // Every rank's time in exchanges and collectives (waits included) against the time loop.
+  std::vector<int> counts;
+  const std::vector<Real> all =
+      m_run->allgather({m_run->exchange_seconds(), m_loop_seconds}, counts);
+  for (int r = 0; r < m_run->size(); ++r)
+    m_sink.message(
+        Severity::Info,
+        "mpi: rank " + std::to_string(r) + ": exchanges and collectives " +
+            format_real(all[2 * r]) + " s of " + format_real(all[2 * r + 1]) +
+            " s in the time loop (" +
+            format_real(all[2 * r + 1] > 0.0 ? 100.0 * all[2 * r] / all[2 * r + 1] : 0.0) +
+            " %, waits for slower ranks included)");
 }
 
 std::string ExplicitSolver::Impl::interrupted_text() const {

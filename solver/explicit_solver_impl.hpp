@@ -82,6 +82,8 @@ struct ExplicitSolver::Impl {
   void end_failed(const std::string& cause) noexcept;
   /// The largest ETOTAL drift of the run in the .msg and .sta files (before end_run).
   void report_drift();
+  /// Distributed runs: each rank's exchange time in the .msg (collective).
+  void report_exchange();
   /// The end message of an interrupted run: the signal and the time reached.
   std::string interrupted_text() const;
   /// Output through the driver, with the parts that fill the state for it.
