@@ -6,6 +6,8 @@
 
 #if XPL_HAVE_MPI
 #include <mpi.h>
+
+#include <thread>
 #endif
 
 namespace xpl {
@@ -138,6 +140,7 @@ void DistributedRun::set_partition(const Model& model, std::vector<int> element_
   }
   std::vector<unsigned char> uses(static_cast<std::size_t>(n_nodes));
   m_ship_send.assign(static_cast<std::size_t>(m_size), {});
+  m_ship_count.assign(static_cast<std::size_t>(m_size), 0);
   m_ship_receive.assign(static_cast<std::size_t>(m_size), {});
   for (int r = 0; r < m_size; ++r) {
     std::fill(uses.begin(), uses.end(), 0);
@@ -145,6 +148,7 @@ void DistributedRun::set_partition(const Model& model, std::vector<int> element_
     for (Index i = 0; i < n_nodes; ++i) {
       if (m_chunk_owner[i / chunk] != r || uses[i] != 0) continue;
       const int from = m_node_owner[i];
+      ++m_ship_count[r];
       if (from == m_rank) m_ship_send[r].push_back(i);
       if (r == m_rank) m_ship_receive[from].push_back(i);
     }
@@ -154,8 +158,31 @@ void DistributedRun::set_partition(const Model& model, std::vector<int> element_
 #if XPL_HAVE_MPI
 
 namespace {
+
 constexpr int FORCE_TAG = 37;
+
+/// Waits for `n` requests. Not MPI_Waitall: OpenMPI spins in it, and on an oversubscribed or
+/// shared machine the spinning rank takes the core from the rank it waits for (2 ranks on 2
+/// loaded cores spent 70-85 % of the loop waiting). Tests for 50 us, then sleeps between
+/// tests, 10 us at first, doubling up to 200 us.
+void wait_all(int n, MPI_Request* requests) {
+  using namespace std::chrono_literals;
+  const auto start = std::chrono::steady_clock::now();
+  auto pause = 10us;
+  for (int done = 0;;) {
+    MPI_Testall(n, requests, &done, MPI_STATUSES_IGNORE);
+    if (done != 0) return;
+    if (std::chrono::steady_clock::now() - start < 50us) continue;
+    std::this_thread::sleep_for(pause);
+    pause = std::min<std::chrono::microseconds>(2 * pause, 200us);
+  }
 }
+
+void wait(MPI_Request& request) {
+  wait_all(1, &request);
+}
+
+}  // namespace
 
 void DistributedRun::broadcast(std::vector<int>& values) const {
   int n = static_cast<int>(values.size());
@@ -165,7 +192,7 @@ void DistributedRun::broadcast(std::vector<int>& values) const {
 }
 
 void DistributedRun::post_receives(int width) {
-  ExchangeTimer timer(m_seconds);
+  ExchangeTimer timer(m_seconds[NEIGHBOURS]);
   const auto& neighbours = plan().neighbours;
   m_receive.resize(neighbours.size());
   m_send.resize(neighbours.size());
@@ -179,30 +206,34 @@ void DistributedRun::post_receives(int width) {
 }
 
 const std::vector<std::vector<Real>>& DistributedRun::exchange() {
-  ExchangeTimer timer(m_seconds);
+  ExchangeTimer timer(m_seconds[NEIGHBOURS]);
   const auto& neighbours = plan().neighbours;
   m_requests->send.assign(neighbours.size(), MPI_REQUEST_NULL);
   for (std::size_t j = 0; j < neighbours.size(); ++j)
     MPI_Isend(m_send[j].data(), static_cast<int>(m_send[j].size()), MPI_DOUBLE, neighbours[j].part,
               FORCE_TAG, MPI_COMM_WORLD, &m_requests->send[j]);
-  MPI_Waitall(static_cast<int>(m_requests->receive.size()), m_requests->receive.data(),
-              MPI_STATUSES_IGNORE);
-  MPI_Waitall(static_cast<int>(m_requests->send.size()), m_requests->send.data(),
-              MPI_STATUSES_IGNORE);
+  wait_all(static_cast<int>(m_requests->receive.size()), m_requests->receive.data());
+  wait_all(static_cast<int>(m_requests->send.size()), m_requests->send.data());
   return m_receive;
 }
 
-std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine,
-                                            std::vector<int>& counts) const {
-  ExchangeTimer timer(m_seconds);
-  counts.assign(static_cast<std::size_t>(m_size), 0);
+std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::vector<int>& counts,
+                                            bool counts_known) const {
+  ExchangeTimer timer(m_seconds[GATHERS]);
   const int n = static_cast<int>(mine.size());
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  if (!counts_known) {
+    counts.assign(static_cast<std::size_t>(m_size), 0);
+    MPI_Request request = MPI_REQUEST_NULL;
+    MPI_Iallgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+    wait(request);
+  }
   std::vector<int> displacement(static_cast<std::size_t>(m_size), 0);
   for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
   std::vector<Real> all(static_cast<std::size_t>(displacement.back() + counts.back()));
-  MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displacement.data(),
-                 MPI_DOUBLE, MPI_COMM_WORLD);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Iallgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displacement.data(),
+                  MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
   return all;
 }
 
@@ -221,15 +252,17 @@ std::vector<Real> pack_rows(const NodalVectors& rows, const std::vector<Index>& 
 
 void DistributedRun::gather_to_root(NodalVectors& rows) const {
   if (rows.rows() == 0) return;
-  ExchangeTimer timer(m_seconds);
+  ExchangeTimer timer(m_seconds[GATHERS]);
   const std::vector<Real> mine = pack_rows(rows, plan().owned);
   std::vector<int> counts(static_cast<std::size_t>(m_size)), displacement(counts.size(), 0);
   for (int r = 0; r < m_size; ++r) counts[r] = static_cast<int>(m_plan.part[r].owned.size() * 3);
   for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
   std::vector<Real> all(m_rank == 0 ? static_cast<std::size_t>(displacement.back() + counts.back())
                                     : 0);
-  MPI_Gatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
-              displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
+               displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
   if (m_rank != 0) return;
   std::size_t k = 0;
   for (int r = 0; r < m_size; ++r)
@@ -238,14 +271,16 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
 }
 
 void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
-  ExchangeTimer timer(m_seconds);
+  ExchangeTimer timer(m_seconds[GATHERS]);
   const std::vector<Real> mine = pack_rows(rows, plan().owned);
   std::vector<int> counts(static_cast<std::size_t>(m_size)), displacement(counts.size(), 0);
   for (int r = 0; r < m_size; ++r) counts[r] = static_cast<int>(m_plan.part[r].owned.size() * 3);
   for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
   std::vector<Real> all(static_cast<std::size_t>(displacement.back() + counts.back()));
-  MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
-                 displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
+                  displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
   out.resize(rows.rows(), 3);
   std::size_t k = 0;
   for (int r = 0; r < m_size; ++r)
@@ -255,7 +290,7 @@ void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out)
 
 void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
   if (rows.empty()) return;
-  ExchangeTimer timer(m_seconds);
+  ExchangeTimer timer(m_seconds[GATHERS]);
   const auto w = static_cast<std::size_t>(width);
   std::vector<Real> mine;
   mine.reserve(plan().elements.size() * w);
@@ -267,8 +302,10 @@ void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width)
   for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
   std::vector<Real> all(m_rank == 0 ? static_cast<std::size_t>(displacement.back() + counts.back())
                                     : 0);
-  MPI_Gatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
-              displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
+               displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
   if (m_rank != 0) return;
   std::size_t k = 0;
   for (int r = 0; r < m_size; ++r)
@@ -277,7 +314,7 @@ void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width)
 }
 
 void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
-  ExchangeTimer timer(m_seconds);
+  ExchangeTimer timer(m_seconds[SHIP]);
   const int width = moment != nullptr ? 6 : 3;
   constexpr int SHIP_TAG = 38;
   m_ship_send_buffer.resize(static_cast<std::size_t>(m_size));
@@ -303,7 +340,7 @@ void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
     MPI_Isend(buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, r, SHIP_TAG,
               MPI_COMM_WORLD, &requests.back());
   }
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  wait_all(static_cast<int>(requests.size()), requests.data());
   for (int r = 0; r < m_size; ++r) {
     const Real* in = m_ship_receive_buffer[r].data();
     for (const Index n : m_ship_receive[r]) {
@@ -323,8 +360,10 @@ void DistributedRun::share_chunks(std::vector<Real>& values, int width, int bloc
         mine.insert(mine.end(),
                     values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c) * width),
                     values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c + 1) * width));
-  std::vector<int> counts;
-  const std::vector<Real> all = allgather(mine, counts);
+  std::vector<int> counts(static_cast<std::size_t>(m_size), 0);
+  for (int b = 0; b < blocks; ++b)
+    for (std::size_t c = 0; c < n_chunks; ++c) counts[m_chunk_owner[c]] += width;
+  const std::vector<Real> all = allgather(mine, counts, true);
   std::size_t at = 0;
   for (int r = 0; r < m_size; ++r)
     for (int b = 0; b < blocks; ++b)
@@ -334,9 +373,11 @@ void DistributedRun::share_chunks(std::vector<Real>& values, int width, int bloc
 }
 
 int DistributedRun::max(int value) const {
-  ExchangeTimer timer(m_seconds);
+  ExchangeTimer timer(m_seconds[GATHERS]);
   int result = value;
-  MPI_Allreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &request);
+  wait(request);
   return result;
 }
 
@@ -348,8 +389,8 @@ void DistributedRun::post_receives(int) {}
 const std::vector<std::vector<Real>>& DistributedRun::exchange() {
   return m_receive;
 }
-std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine,
-                                            std::vector<int>& counts) const {
+std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::vector<int>& counts,
+                                            bool) const {
   counts.assign(1, static_cast<int>(mine.size()));
   return mine;
 }

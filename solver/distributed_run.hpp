@@ -94,8 +94,9 @@ class DistributedRun {
   const std::vector<std::vector<Real>>& exchange();
 
   /// Every rank's `mine` concatenated in rank order (MPI_Allgatherv); `counts` (size()) the
-  /// number of values of each rank.
-  std::vector<Real> allgather(const std::vector<Real>& mine, std::vector<int>& counts) const;
+  /// number of values of each rank: found, or with `counts_known` given (one collective less).
+  std::vector<Real> allgather(const std::vector<Real>& mine, std::vector<int>& counts,
+                              bool counts_known = false) const;
   /// The rows (n_nodes × 3) of the nodes each rank owns, from their owners to rank 0.
   void gather_to_root(NodalVectors& rows) const;
   /// The same, onto every rank, from `rows` into `out`.
@@ -105,8 +106,13 @@ class DistributedRun {
   /// The largest of the ranks' values.
   int max(int value) const;
 
-  /// Wall time spent in this rank's exchanges and collectives, s.
-  double exchange_seconds() const { return m_seconds; }
+  /// Wall time spent in this rank's exchanges and collectives, s: with the neighbours (the
+  /// interface forces), shipping the chunks' forces, and gathers and reductions.
+  enum Timing { NEIGHBOURS, SHIP, GATHERS, TIMINGS };
+  double exchange_seconds(Timing t) const { return m_seconds[t]; }
+  double exchange_seconds() const { return m_seconds[0] + m_seconds[1] + m_seconds[2]; }
+  /// Nodes rank r receives forces of each increment for the chunks it counts.
+  Index ship_count(int r) const { return m_ship_count[r]; }
 
  private:
   int m_rank = 0;
@@ -123,7 +129,8 @@ class DistributedRun {
   std::vector<std::vector<Real>> m_send, m_receive;
   struct Requests;
   std::unique_ptr<Requests> m_requests;
-  mutable double m_seconds = 0.0;
+  mutable double m_seconds[TIMINGS] = {};
+  std::vector<Index> m_ship_count;
 };
 
 }  // namespace xpl

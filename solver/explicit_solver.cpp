@@ -199,7 +199,7 @@ void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
 }
 
 void ExplicitSolver::Impl::write_history() {
-  gather_state();
+  if (m_output.history_reads_nodes()) gather_state();  // energies alone are everyone's
   m_output.write_history(m_state, m_contact, m_nodes);
 }
 
@@ -246,16 +246,22 @@ void ExplicitSolver::Impl::report_exchange() {
   if (!m_run) return;
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
   std::vector<int> counts;
+  const DistributedRun& run = *m_run;
   const std::vector<Real> all =
-      m_run->allgather({m_run->exchange_seconds(), m_loop_seconds}, counts);
-  for (int r = 0; r < m_run->size(); ++r)
-    m_sink.message(
-        Severity::Info,
-        "mpi: rank " + std::to_string(r) + ": exchanges and collectives " +
-            format_real(all[2 * r]) + " s of " + format_real(all[2 * r + 1]) +
-            " s in the time loop (" +
-            format_real(all[2 * r + 1] > 0.0 ? 100.0 * all[2 * r] / all[2 * r + 1] : 0.0) +
-            " %, waits for slower ranks included)");
+      m_run->allgather({run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
+                        run.exchange_seconds(DistributedRun::SHIP),
+                        run.exchange_seconds(DistributedRun::GATHERS), m_loop_seconds},
+                       counts);
+  for (int r = 0; r < m_run->size(); ++r) {
+    const Real* t = &all[5 * static_cast<std::size_t>(r)];
+    m_sink.message(Severity::Info,
+                   "mpi: rank " + std::to_string(r) + ": exchanges and collectives " +
+                       format_real(t[0]) + " s of " + format_real(t[4]) + " s in the time loop (" +
+                       format_real(t[4] > 0.0 ? 100.0 * t[0] / t[4] : 0.0) +
+                       " %, waits for slower ranks and setup included): neighbours " +
+                       format_real(t[1]) + " s, chunk forces " + format_real(t[2]) +
+                       " s, gathers and reductions " + format_real(t[3]) + " s");
+  }
 }
 
 std::string ExplicitSolver::Impl::interrupted_text() const {

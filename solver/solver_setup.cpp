@@ -75,12 +75,14 @@ void ExplicitSolver::Impl::set_up_distribution() {
     }
   }
   const auto share = [&run](std::vector<KineticSums>& sums, std::vector<Real>& speed) {
+    // Translations, rotations, speeds (and a 0): three blocks of two values per chunk.
     std::vector<Real> values;
-    values.reserve(sums.size() * 2);
+    values.reserve(sums.size() * 2 + speed.size() * 2);
     for (const KineticSums& s : sums) values.insert(values.end(), {s.centred, s.spread});
-    run.share_chunks(values, 2, 2);  // translations, then rotations
+    for (const Real v : speed) values.insert(values.end(), {v, 0.0});
+    run.share_chunks(values, 2, 3);
     for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = {values[2 * k], values[2 * k + 1]};
-    run.share_chunks(speed, 1, 1);
+    for (std::size_t k = 0; k < speed.size(); ++k) speed[k] = values[2 * (sums.size() + k)];
   };
   const auto fold = [&run](const std::vector<Real>& mine) {
     std::vector<int> counts;
@@ -113,7 +115,8 @@ void ExplicitSolver::Impl::set_up_distribution() {
                        " owned nodes, " + std::to_string(p.interface_nodes.size()) +
                        " interface nodes, " + std::to_string(p.neighbours.size()) +
                        " neighbour(s), " + std::to_string(p.send_slots()) +
-                       " corner contributions sent per increment");
+                       " corner contributions sent per increment, the forces of " +
+                       std::to_string(run.ship_count(r)) + " nodes received for its nodal chunks");
   }
 }
 
