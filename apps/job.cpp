@@ -18,6 +18,7 @@
 #include "io/result_tools/import_state.hpp"
 #include "io/results/job_lock.hpp"
 #include "io/results/result_files.hpp"
+#include "solver/distributed_run.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/output_schedule.hpp"
 #include "solver/thread_team.hpp"
@@ -25,6 +26,19 @@
 namespace xpl::apps {
 
 namespace {
+
+/// The sink of the ranks other than 0 in a distributed run: rank 0 writes everything.
+class NullSink final : public OutputSink {
+ public:
+  void begin_run(const Model&) override {}
+  void begin_step(const Model&, int) override {}
+  void declare_history(const std::vector<HistorySeries>&) override {}
+  void write_frame(const Model&, const State&, const FrameFields&, const FrameRequest&) override {}
+  void append_history(Real, std::span<const Real>) override {}
+  void status(const StatusLine&) override {}
+  void message(Severity, const std::string&) override {}
+  void end_run(RunStatus, const std::string&, const PhaseTimers&, double) override {}
+};
 
 /// Peak resident memory of this process in MB (VmHWM), or 0 if unknown.
 double peak_memory_mb() {
@@ -109,6 +123,20 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     return EXIT_INPUT;
   }
 
+  // Distributed runs: the features not distributed yet are refused, on every rank alike.
+  if (args.distributed) {
+    const std::vector<std::string> refused = DistributedRun::refusals(model, !args.import.empty());
+    if (!refused.empty()) {
+      if (args.rank == 0) {
+        for (const std::string& m : refused)
+          std::cerr << args.deck.string() << ": mpirun with more than one rank: " << m << "\n";
+        std::cerr << "xpl: " << refused.size() << " error(s) in " << args.deck.string()
+                  << "; nothing was written\n";
+      }
+      return EXIT_INPUT;
+    }
+  }
+
   // --import: read and check the earlier result before anything is written.
   InitialState initial;
   if (!args.import.empty() && !read_import(args, model, initial)) return EXIT_INPUT;
@@ -131,23 +159,40 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     io::ResultOptions ropts;
     ropts.progress = !args.quiet;
     ropts.threads = threads;
-    files.emplace(args.out_dir, model.job_name, ropts);
+    // Distributed runs: rank 0 writes; the others go on only when it could open its files.
+    NullSink discard;
+    if (!args.distributed || args.rank == 0) {
+      int opened = EXIT_INTERNAL;
+      try {
+        files.emplace(args.out_dir, model.job_name, ropts);
+        opened = EXIT_DONE;
+      } catch (...) {
+        if (args.distributed) DistributedRun::world_max(opened);
+        throw;
+      }
+      if (args.distributed) DistributedRun::world_max(opened);
+    } else if (const int opened = DistributedRun::world_max(EXIT_DONE); opened != EXIT_DONE) {
+      return opened;
+    }
+    OutputSink& sink = files ? static_cast<OutputSink&>(*files) : discard;
     SolverOptions sopts;
     sopts.threads = args.threads;
     sopts.energy_limit = args.energy_limit / 100.0;
     sopts.stop_signal = stop_signal;
     sopts.partition_parts = args.partition;
     sopts.partition_note = args.partition_note;
+    sopts.distributed = args.distributed;
     if (!args.import.empty()) sopts.initial_state = &initial;
-    ExplicitSolver solver(model, *files, sopts);
+    ExplicitSolver solver(model, sink, sopts);
     if (args.check) {
       solver.check();
-      if (!args.quiet)
+      if (!args.quiet && files)
         std::printf("xpl: data check of %s completed; results in %s\n", model.job_name.c_str(),
                     files->h5_path().string().c_str());
       return EXIT_DONE;
     }
     const RunSummary summary = solver.run();
+    if (!files) return summary.stop_signal != 0 ? 128 + summary.stop_signal : EXIT_DONE;
     if (summary.stop_signal != 0) {
       std::fprintf(stderr, "xpl: %s interrupted by signal %d at t = %.6g %s; results in %s\n",
                    model.job_name.c_str(), summary.stop_signal, summary.final_time,

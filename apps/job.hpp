@@ -32,6 +32,10 @@ struct JobArguments {
   int partition = 0;
   /// A note for the .msg before the partition report (how the MPI ranks share the run).
   std::string partition_note;
+  /// `xpl run` on every MPI rank, the model distributed (SolverOptions::distributed): rank 0
+  /// writes the result files, the other ranks write nothing.
+  bool distributed = false;
+  int rank = 0;
 };
 
 /// Runs one job; messages go to std::cerr, the progress and summary to stdout. Never throws:

@@ -48,8 +48,10 @@ constexpr const char* RUN_USAGE =
     "               of once in JOB.msg and JOB.sta)\n"
     "  --partition N  report in JOB.msg how the model would be split into N parts for a\n"
     "               distributed run (elements, owned and interface nodes, imbalance per\n"
-    "               part); the run itself is unchanged. Under mpirun -np N (a build with\n"
-    "               XPL_MPI=ON) N is the number of ranks\n"
+    "               part); the run itself is unchanged\n"
+    "Under mpirun -np N > 1 (a build with XPL_MPI=ON) the run is distributed over the N\n"
+    "ranks, its results bitwise those of one rank; decks with contact, rigid bodies, ties\n"
+    "or loads are refused there (docs/dev/mpi.md).\n"
     "A run holds DIR/JOB.lck; a second run of the job in DIR is refused. SIGINT/SIGTERM end\n"
     "the run after the current increment with its last frame written (status interrupted).\n"
     "OpenMP threads wait passively (OMP_WAIT_POLICY=PASSIVE: they sleep instead of\n"
@@ -286,9 +288,17 @@ int main(int argc, char** argv) {
   }
   // mpirun -np N (XPL_MPI=ON): rank 0 runs the job, the others wait for its exit code
   // (mpi_session.hpp); one rank runs exactly as without MPI.
+  // `xpl run` under mpirun -np N > 1 runs distributed on every rank (job.hpp); `xpl check`
+  // runs on rank 0 while the others wait.
   const xpl::apps::MpiSession mpi(&argc, &argv);
-  if (mpi.rank() != 0) return mpi.share_exit_code(0);
-  if (mpi.size() > 1) {
+  args.distributed = mpi.size() > 1 && command == "run";
+  args.rank = mpi.rank();
+  if (args.distributed && mpi.rank() != 0) {
+    args.quiet = true;
+    std::cerr.setstate(std::ios::failbit);  // rank 0 reports; the others would repeat it
+  }
+  if (!args.distributed && mpi.rank() != 0) return mpi.share_exit_code(0);
+  if (mpi.size() > 1 && !args.distributed) {
     if (args.partition == 0) args.partition = mpi.size();
     args.partition_note = mpi.note();
   }

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Smoke test of the MPI build (issue 37, docs/dev/mpi.md): builds xpl with XPL_MPI=ON and the
 # default build, runs an example deck on 1, 2 and 3 ranks and compares every result with the
-# default build's at tolerance 0 (bitwise: rank 0 runs the whole model for now). Not a CI job
-# yet (CI time budget); as root on 2 cores it passes --allow-run-as-root --oversubscribe.
+# default build's at tolerance 0 (bitwise: the distributed time loop sums in the one-rank
+# order). Not a CI job yet (CI time budget); as root on 2 cores it passes
+# --allow-run-as-root --oversubscribe. Decks with contact, rigid bodies, ties or loads are
+# refused on more than one rank (docs/dev/mpi.md).
 #
-# Usage: scripts/mpi_smoke.sh [DECK.inp]   (default examples/contact/bar_bar/bar_bar.inp)
+# Usage: scripts/mpi_smoke.sh [DECK.inp]   (default examples/bar_impact/bar_impact.inp)
 #   XPL_MPI_BUILD   MPI build directory (default build/mpi)
 #   XPL_BUILD       default build directory (default build/release)
 #   RANKS           rank counts (default "1 2 3")
@@ -13,7 +15,7 @@ set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
-deck="${1:-examples/contact/bar_bar/bar_bar.inp}"
+deck="${1:-examples/bar_impact/bar_impact.inp}"
 mpi_build="${XPL_MPI_BUILD:-build/mpi}"
 serial_build="${XPL_BUILD:-build/release}"
 ranks="${RANKS:-1 2 3}"

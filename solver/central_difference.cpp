@@ -5,14 +5,6 @@
 
 namespace xpl {
 
-namespace {
-
-/// Nodes per chunk of the nodal loops; partial sums per chunk are added in chunk order so
-/// that energies do not depend on the thread count.
-constexpr Index NODE_CHUNK = 2048;
-
-}  // namespace
-
 CentralDifference::CentralDifference(const Model& model, PhaseTimers& timers, bool shells)
     : m_model(model), m_timers(timers), m_shells(shells), m_motion(model, m_boundary, shells) {
   const Index n = model.node_count();
@@ -208,6 +200,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
   for (Index chunk = 0; chunk < n_chunks; ++chunk)
     update_chunk(state, translation, rotation, inc, chunk);
+  if (m_share_chunks) m_share_chunks(m_chunk_sums, m_chunk_speed);
   NodalSums sums;
   sums.kinetic = sum_chunks(n_chunks);
   RigidUpdate bodies;

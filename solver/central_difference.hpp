@@ -5,6 +5,7 @@
 /// the external loads (loads/external_loads.hpp); the rigid bodies (rigid_bodies.hpp) and the
 /// finite rotations of shell nodes (node_rotations.hpp).
 
+#include <functional>
 #include <vector>
 
 #include "common/timer.hpp"
@@ -67,6 +68,21 @@ class CentralDifference {
   void set_ties(const Ties* ties) { m_ties = ties; }
   /// Brings state.rotation up to date with the tracked rotations (before output).
   void sync_rotation(State& state);
+  /// Nodes per chunk of the nodal loops; partial sums per chunk are added in chunk order so
+  /// that energies do not depend on the thread count (nor, in a distributed run, on the rank
+  /// count: each chunk's sums are those of the rank that integrates all its nodes).
+  static constexpr Index NODE_CHUNK = 2048;
+
+  /// Distributed runs (distributed_run.hpp): `share` replaces the kinetic sums and largest
+  /// speeds of the chunks this rank does not count ([translations, rotations] per chunk,
+  /// speeds per chunk) by those of the ranks that do (collective); the prescribed DOFs'
+  /// sums go through `fold` (PrescribedMotion::set_distribution).
+  using ChunkShare = std::function<void(std::vector<KineticSums>& sums, std::vector<Real>& speed)>;
+  void set_distribution(ChunkShare share, std::vector<unsigned char> counted,
+                        PrescribedMotion::Fold fold) {
+    m_share_chunks = std::move(share);
+    m_motion.set_distribution(std::move(counted), std::move(fold));
+  }
   /// The largest |v(n+½)| component of the free translational DOFs at the last
   /// update_nodes(), m/s (for the health check; NaN shows in ALLKE instead).
   Real largest_speed() const { return m_largest_speed; }
@@ -103,6 +119,7 @@ class CentralDifference {
   /// N), for the trapezoidal work of the loads and the prescribed DOFs alike (a DOF may be
   /// prescribed in one step and loaded in the next); allocated when a step has either.
   NodalVectors m_previous_force;
+  ChunkShare m_share_chunks;  ///< set_distribution(); empty: one rank
 };
 
 }  // namespace xpl

@@ -1,5 +1,7 @@
 #include "solver/element_set.hpp"
 
+#include "solver/element_set_blocks.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -7,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "solver/distributed_run.hpp"
 #include "solver/loads/gravity_loads.hpp"
 #include "solver/mass_scaling.hpp"
 #include "solver/message_text.hpp"
@@ -20,21 +23,6 @@ bool deformable(const RigidBodies& rigid, Index e) {
 }
 
 }  // namespace
-
-template <class F>
-void ElementSet::for_each_block(F&& f) const {
-  std::apply([&](const auto&... block) { ((block ? f(*block) : void()), ...); }, m_blocks);
-}
-
-template <class F>
-void ElementSet::for_each_block(F&& f) {
-  std::apply([&](auto&... block) { ((block ? f(*block) : void()), ...); }, m_blocks);
-}
-
-template <std::size_t... I, class F>
-void ElementSet::for_each_block(std::index_sequence<I...>, F&& f) {
-  ((std::get<I>(m_blocks) ? f(*std::get<I>(m_blocks)) : void()), ...);
-}
 
 ElementSet::ElementSet(const Model& model, const RigidBodies& rigid, State& state,
                        PhaseTimers& timers)
@@ -256,6 +244,9 @@ void ElementSet::use_partition(int parts) {
   // contributions keep their order (ForcePassOrder) too.
   std::vector<Index> node_part(static_cast<std::size_t>(m_model.node_count()), elements::UNTOUCHED);
   for_each_block(ForcePassOrder{}, [&](auto& block) { block.mark_nodes(parts, node_part); });
+  // Distributed runs: the interface nodes' corners go to slots too, for the exchange.
+  if (m_run != nullptr)
+    for (const Index n : m_run->plan().interface_nodes) node_part[n] = elements::SHARED;
   const elements::BoundaryNodes boundary = elements::boundary_nodes(node_part);
   for_each_block(ForcePassOrder{}, [&](auto& block) { block.set_partition(parts, boundary); });
   m_boundary_nodes = boundary.nodes;
@@ -268,6 +259,7 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
   // One parallel region for every block and colour (thread_partition.hpp).
   const int parts = std::max(1, omp_get_max_threads());
   use_partition(parts);
+  if (m_run != nullptr) m_run->post_receives(m_rotations ? 6 : 3);
   const elements::ForcePass pass{state.position,
                                  state.velocity_half,
                                  state.angular_velocity_half,
@@ -286,6 +278,12 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
         for_each_block(ForcePassOrder{},
                        [&](auto& block) { block.add_boundary_forces(k, node, pass); });
       });
+  if (m_run != nullptr) {
+    exchange_interface_forces();
+    m_run->ship_forces(m_force_internal, m_rotations ? &m_moment_internal : nullptr);
+    reduce_totals(totals);
+    return;
+  }
   for_each_block([&](const auto& block) {
     typename std::remove_cvref_t<decltype(block)>::Totals t;
     block.add_totals(t);
@@ -301,16 +299,24 @@ ElementEstimate ElementSet::increment_estimate(const State& state, const Element
   // The kinds with a stiffness product (the hexes) take the global estimate; shell-only
   // models pass their own stress test.
   bool stiffness = false;
-  for_each_block([&](const auto& block) {
+  for_each_whole_block([&](const auto& block) {
     if constexpr (requires(NodalVectors & y) { block.add_stiffness_product(y, y, y); })
       stiffness = true;
   });
   if (stiffness && !s.increment.fixed) {
     ScopedTimer timer(m_timers, Phase::InternalForce);
-    const auto product = [this, &state](const NodalVectors& u, NodalVectors& y) {
-      for_each_block([&](const auto& block) {
-        if constexpr (requires { block.add_stiffness_product(state.position, u, y); })
-          block.add_stiffness_product(state.position, u, y);
+    // Distributed runs: every rank estimates on the whole mesh, with the positions of every
+    // node gathered from their owners (when the estimate is due, on every rank alike).
+    bool gathered = false;
+    const auto product = [this, &state, &gathered](const NodalVectors& u, NodalVectors& y) {
+      if (m_run != nullptr && !gathered) {
+        m_run->allgather_rows(state.position, m_whole_position);
+        gathered = true;
+      }
+      const NodalVectors& x = m_run != nullptr ? m_whole_position : state.position;
+      for_each_whole_block([&](const auto& block) {
+        if constexpr (requires { block.add_stiffness_product(x, u, y); })
+          block.add_stiffness_product(x, u, y);
       });
     };
     e.global_ratio =
@@ -342,6 +348,24 @@ void ElementSet::report_increment_limit(OutputSink& sink) {
 
 void ElementSet::gather_output(const State& state, const FrameRequest& what,
                                FrameFields& frame) const {
+  gather_local_output(state, what, frame);
+  if (m_run == nullptr) return;
+  // Every element's row from its rank to rank 0, which writes.
+  if (what.plastic_strain)
+    for (std::vector<Real>* rows :
+         {&frame.peeq, &frame.peeq_bottom, &frame.peeq_middle, &frame.peeq_top})
+      m_run->gather_elements_to_root(*rows, 1);
+  if (!what.stress && !what.volume && !what.thickness) return;
+  m_run->gather_elements_to_root(frame.stress, 6);
+  m_run->gather_elements_to_root(frame.volume, 1);
+  m_run->gather_elements_to_root(frame.hourglass_state, elements::HOURGLASS_STATE_WIDTH);
+  m_run->gather_elements_to_root(frame.stress_bottom, 6);
+  m_run->gather_elements_to_root(frame.stress_top, 6);
+  m_run->gather_elements_to_root(frame.thickness, 1);
+}
+
+void ElementSet::gather_local_output(const State& state, const FrameRequest& what,
+                                     FrameFields& frame) const {
   if (what.plastic_strain) {
     // PEEQ of every element (0 where elastic); each block writes the rows of its elements.
     frame.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);

@@ -13,6 +13,7 @@
 #include "common/timer.hpp"
 #include "contact/contact_faces.hpp"
 #include "elements/increment_limit.hpp"
+#include "partition/mesh_partition.hpp"
 #include "solver/element_kinds.hpp"
 #include "solver/global_increment.hpp"
 #include "solver/increment_control.hpp"
@@ -23,6 +24,8 @@
 #include "solver/state.hpp"
 
 namespace xpl {
+
+class DistributedRun;
 
 /// Element totals of one internal-force pass over all blocks (energy increments in J, the
 /// stable increment and the critical and failed elements).
@@ -128,6 +131,24 @@ class ElementSet {
                            const RigidBodies& rigid);
   /// Shell thickness at each node for contact (n_nodes, m), or empty without shells.
   const std::vector<Real>& node_thickness() const { return m_node_thickness; }
+  /// \name Distributed runs (distributed_run.hpp).
+  /// The partition of the SIMD batches of the layout into `parts` with `method` (each batch
+  /// a vertex of the graph, with the nodes and the cost of its lanes: a batch's lanes are
+  /// one colour, spread along the mesh, so that an element partition rounded to batches
+  /// would be badly balanced), and the part of each element (that of its batch) in
+  /// `element_part` (n_elements; elements of no block: part 0).
+  partition::MeshPartition partition_batches(int parts, partition::Method method,
+                                             std::vector<int>& element_part) const;
+  /// The position of each element in the one-rank order of the nodal sums (block in force
+  /// pass order, batch, lane); elements of no block NO_INDEX.
+  std::vector<Index> element_order() const;
+  /// Keeps the elements of this rank's batches (run.element_part(), from batch_partition())
+  /// for the force pass; the whole blocks stay for the global increment estimate and the
+  /// reductions. From here on compute_forces() exchanges the interface forces and reduces
+  /// the totals over the ranks of `run` (which must outlive the set).
+  void distribute(DistributedRun& run);
+
+  /// \name
   /// Kind of each element for the contact domain (n_elements).
   const std::vector<contact::ElementKind>& element_kinds() const { return m_element_kinds; }
 
@@ -137,6 +158,8 @@ class ElementSet {
   void build_block(const RigidBodies& rigid, State& state);
   /// Allocates the rotational fields of `state` at zero (models with rotational DOFs, P2).
   void add_rotations(State& state);
+  /// gather_output() of this rank's elements.
+  void gather_local_output(const State& state, const FrameRequest& what, FrameFields& frame) const;
   /// The `*FIXED MASS SCALING` factor of element e (1 without scaling).
   Real mass_factor(Index e) const;
   /// Calls `f(block)` for the block of every kind present, in ElementKinds order or in the
@@ -158,6 +181,19 @@ class ElementSet {
   void report_warped_shells(const NodalVectors& reference, OutputSink& sink) const;
   /// Splits the blocks into `parts` per-thread parts for the force pass, unless they are.
   void use_partition(int parts);
+  /// Distributed runs: the values of the corner slots of the rank's interface nodes after
+  /// a pass to the neighbours, and the interface nodes' forces folded in the one-rank order.
+  void exchange_interface_forces();
+  /// Distributed runs: the totals of every batch of every rank into the whole blocks and
+  /// their one-rank reduction into `totals`.
+  void reduce_totals(ElementTotals& totals);
+  template <std::size_t... I>
+  void distribute_blocks(std::index_sequence<I...>);
+  template <class K>
+  void distribute_block(std::unique_ptr<K>& block, std::unique_ptr<K>& whole);
+  /// Calls `f(block)` for the whole blocks of a distributed run (for_each_block otherwise).
+  template <class F>
+  void for_each_whole_block(F&& f) const;
 
   const Model& m_model;
   PhaseTimers& m_timers;
@@ -177,6 +213,17 @@ class ElementSet {
   std::vector<Index> m_boundary_nodes;  ///< nodes two parts share (thread_partition.hpp)
   bool m_rotations = false;             ///< nodes have rotational DOFs (a kind with ROTATIONS)
   MassScalingReport m_mass_scaling;     ///< `*FIXED MASS SCALING` done in the constructor
+  /// Distributed runs: the whole blocks (m_blocks then holds this rank's batches), the run,
+  /// the global batch of each local batch per kind, and where each model slot (corner) of
+  /// this rank at an interface node has its value: kind × 2^29 + corner slot of its block.
+  std::tuple<std::unique_ptr<elements::Hex8rBlock>, std::unique_ptr<elements::Hex8Block>,
+             std::unique_ptr<elements::Shell4rBlock>>
+      m_whole;
+  DistributedRun* m_run = nullptr;
+  std::vector<std::vector<Index>> m_rank_batches[3];  ///< [kind][rank]: its batches
+  std::vector<Index> m_slot_source;
+  int m_slot_parts = 0;           ///< m_parts when m_slot_source was made
+  NodalVectors m_whole_position;  ///< positions of every node for the global estimate
 };
 
 }  // namespace xpl

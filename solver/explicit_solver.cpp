@@ -159,7 +159,10 @@ void ExplicitSolver::Impl::run_step(int step) {
 }
 
 int ExplicitSolver::Impl::stop_requested() const {
-  return m_options.stop_signal != nullptr ? static_cast<int>(*m_options.stop_signal) : 0;
+  const int signal =
+      m_options.stop_signal != nullptr ? static_cast<int>(*m_options.stop_signal) : 0;
+  // Distributed runs stop at the same increment on every rank.
+  return m_run ? m_run->max(signal) : signal;
 }
 
 void ExplicitSolver::Impl::write_interrupted(bool frame_written, bool history_written) {
@@ -191,10 +194,12 @@ void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
 }
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
+  gather_state();
   m_output.write_frame(m_state, what, m_elements, m_contact, m_nodes);
 }
 
 void ExplicitSolver::Impl::write_history() {
+  if (m_output.history_reads_nodes()) gather_state();  // energies alone are everyone's
   m_output.write_history(m_state, m_contact, m_nodes);
 }
 
@@ -225,6 +230,7 @@ RunSummary ExplicitSolver::Impl::run() {
     throw;
   }
   report_drift();
+  report_exchange();
   RunSummary s = summary();
   if (m_stopped_by != 0) {
     s.stop_signal = m_stopped_by;
@@ -234,6 +240,28 @@ RunSummary ExplicitSolver::Impl::run() {
   }
   m_sink.end_run(RunStatus::Completed, "", s.timers, s.element_cycles_per_second);
   return s;
+}
+
+void ExplicitSolver::Impl::report_exchange() {
+  if (!m_run) return;
+  // Every rank's time in exchanges and collectives (waits included) against the time loop.
+  std::vector<int> counts;
+  const DistributedRun& run = *m_run;
+  const std::vector<Real> all =
+      m_run->allgather({run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
+                        run.exchange_seconds(DistributedRun::SHIP),
+                        run.exchange_seconds(DistributedRun::GATHERS), m_loop_seconds},
+                       counts);
+  for (int r = 0; r < m_run->size(); ++r) {
+    const Real* t = &all[5 * static_cast<std::size_t>(r)];
+    m_sink.message(Severity::Info,
+                   "mpi: rank " + std::to_string(r) + ": exchanges and collectives " +
+                       format_real(t[0]) + " s of " + format_real(t[4]) + " s in the time loop (" +
+                       format_real(t[4] > 0.0 ? 100.0 * t[0] / t[4] : 0.0) +
+                       " %, waits for slower ranks and setup included): neighbours " +
+                       format_real(t[1]) + " s, chunk forces " + format_real(t[2]) +
+                       " s, gathers and reductions " + format_real(t[3]) + " s");
+  }
 }
 
 std::string ExplicitSolver::Impl::interrupted_text() const {

@@ -67,6 +67,10 @@ struct SolverOptions {
   partition::Method partition_method = partition::Method::Automatic;
   /// A line for the .msg before the partition report (how MPI ranks share the run), or empty.
   std::string partition_note;
+  /// Run distributed over the MPI ranks (issue 37 item 3, solver/distributed_run.hpp): each
+  /// rank computes the forces of its part of the model; every rank must run the solver, rank
+  /// 0's sink writes. The model must have no feature DistributedRun::refusals() names.
+  bool distributed = false;
 };
 
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.

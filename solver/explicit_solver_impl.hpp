@@ -3,6 +3,7 @@
 /// time loop. Private to solver/: the loop is in explicit_solver.cpp, the set-up (the parts,
 /// the initial or imported state, the set-up report) in solver_setup.cpp.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "solver/central_difference.hpp"
 #include "solver/contact_energy_check.hpp"
 #include "solver/contact_stage.hpp"
+#include "solver/distributed_run.hpp"
 #include "solver/element_set.hpp"
 #include "solver/energy_check.hpp"
 #include "solver/explicit_solver.hpp"
@@ -40,6 +42,11 @@ struct ExplicitSolver::Impl {
   /// Rotational fields of a model whose rigid bodies carry rotations without shells, and the
   /// bodies' mass properties; returns their messages.
   std::vector<std::string> set_up_rigid_bodies();
+  /// Distributed runs: the partition, this rank's elements, the masks of the nodal sums and
+  /// the partition report.
+  void set_up_distribution();
+  /// Distributed runs: every node's state from its owner to rank 0 before output.
+  void gather_state();
   /// Puts an imported state (positions, velocities, rotations, stresses) into place.
   void apply_initial_state(const InitialState& imported);
   /// The setup messages after begin_run, in their fixed order.
@@ -75,6 +82,8 @@ struct ExplicitSolver::Impl {
   void end_failed(const std::string& cause) noexcept;
   /// The largest ETOTAL drift of the run in the .msg and .sta files (before end_run).
   void report_drift();
+  /// Distributed runs: each rank's exchange time in the .msg (collective).
+  void report_exchange();
   /// The end message of an interrupted run: the signal and the time reached.
   std::string interrupted_text() const;
   /// Output through the driver, with the parts that fill the state for it.
@@ -97,11 +106,12 @@ struct ExplicitSolver::Impl {
   ContactStage m_contact;
   ContactEnergyCheck m_contact_energy;  ///< energy created by the contact springs
   OutputDriver m_output;
-  IncrementDecision m_next;      ///< dt_{n+1/2}: the increment about to be taken, and why
-  ExternalId m_critical_id = 0;  ///< deck id of the element that limits it
-  double m_loop_seconds = 0.0;   ///< wall time of the time loops
-  bool m_started = false;        ///< t = 0 has been taken
-  int m_stopped_by = 0;          ///< the signal that stopped the run, 0 while it runs
+  std::unique_ptr<DistributedRun> m_run;  ///< distributed runs only
+  IncrementDecision m_next;               ///< dt_{n+1/2}: the increment about to be taken, and why
+  ExternalId m_critical_id = 0;           ///< deck id of the element that limits it
+  double m_loop_seconds = 0.0;            ///< wall time of the time loops
+  bool m_started = false;                 ///< t = 0 has been taken
+  int m_stopped_by = 0;                   ///< the signal that stopped the run, 0 while it runs
 };
 
 }  // namespace xpl

@@ -65,6 +65,12 @@ class OutputSchedule {
   /// Whether any field/history output exists in the step (P2: nothing to do otherwise).
   bool has_field() const { return !m_field.empty(); }
   bool has_history() const { return !m_history.empty(); }
+  /// Whether a history row reads nodal values of the state (not only the energies).
+  bool history_reads_nodes() const {
+    for (const Column& c : m_columns)
+      if (c.energy < 0) return true;
+    return false;
+  }
 
   /// Field variables due at `step_time` (any flag set means a frame is due); advances the
   /// due times of the requests that fire. `last` forces every request to fire.

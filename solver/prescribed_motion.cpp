@@ -140,6 +140,7 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     m_jump.time = inc.time;
   }
   KineticSums counted, kinetic;
+  std::vector<Real> rows;  // distributed runs: this rank's DOFs, folded after the loop
   for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
     const PrescribedDof& d = m_prescribed[k];
     const bool turn = d.component >= 3;
@@ -156,13 +157,18 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     }
     const Real v_new = velocity_half(d, current, inc);
     Real& f_before = (turn ? m_previous_moment : previous_force)(i, c);
-    if (m_first_update && v_new != v_old && is_jump(d, inc, v_old, v_new))
+    const bool count = m_counted.empty() || m_counted[i] != 0;
+    if (m_first_update && count && v_new != v_old && is_jump(d, inc, v_old, v_new))
       m_jumps.push_back({k, f_before});
     const Real m = field.mass[i];
     // ALLKE: what the free update counted for the DOF, replaced by the prescribed motion's.
     const Real v_free = field.velocity_half[at];
-    counted.add(m, v_old + inc.w_before * (v_free - v_old), v_free);
-    kinetic.add(m, v_old + inc.w_before * (v_new - v_old), v_new);
+    const Real free_before = v_old + inc.w_before * (v_free - v_old);
+    const Real new_before = v_old + inc.w_before * (v_new - v_old);
+    if (!m_fold) {
+      counted.add(m, free_before, v_free);
+      kinetic.add(m, new_before, v_new);
+    }
     // V at t_n: a prescribed velocity is known there, and the mean of the half-step velocities
     // is not it where the BC's amplitude has a corner. A body stopped by a velocity ramp that
     // ends with the step kept v(n-1/2) ≈ slope·Δt/2 in that mean, so the last frame showed it
@@ -179,8 +185,29 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     field.velocity_half[at] = v_new;
     field.velocity[at] = v_whole;
     const Real f_now = f_ext + r;
-    sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
+    if (m_fold) {
+      if (count)
+        rows.insert(rows.end(), {static_cast<Real>(k), m, free_before, v_free, new_before, v_new,
+                                 f_before, f_now, v_old});
+    } else {
+      sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
+    }
     f_before = f_now;
+  }
+  if (m_fold) {
+    // Every rank's DOFs, folded in DOF order as the loop above does on one rank.
+    const std::vector<Real> all = m_fold(rows);
+    std::vector<const Real*> by_dof(m_prescribed.size(), nullptr);
+    for (std::size_t r = 0; r + FOLD_WIDTH <= all.size(); r += FOLD_WIDTH)
+      by_dof[static_cast<std::size_t>(all[r])] = &all[r + 1];
+    for (const Real* d : by_dof) {
+      if (d == nullptr) continue;
+      const Real m = d[0], free_before = d[1], v_free = d[2], new_before = d[3], v_new = d[4];
+      const Real f_before = d[5], f_now = d[6], v_old = d[7];
+      counted.add(m, free_before, v_free);
+      kinetic.add(m, new_before, v_new);
+      sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
+    }
   }
   kinetic -= counted;
   sums.kinetic += kinetic;

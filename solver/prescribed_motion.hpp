@@ -4,6 +4,7 @@
 /// jumps of the prescribed velocity at the start of a step, counted as impulses.
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "common/types.hpp"
@@ -42,6 +43,17 @@ class PrescribedMotion {
   void begin_step(RigidBodies& rigid, const State& state);
   /// Notes on the BCs that begin_step() dropped, to the sink.
   void report_step(int step, OutputSink& sink) const;
+  /// Distributed runs (distributed_run.hpp): what one prescribed DOF adds to the sums, as
+  /// FOLD_WIDTH values (its index, mass, the velocities before and after of the counted and
+  /// of the prescribed motion, f_before, f_now, v_old), and `fold`, which gets the rank's
+  /// rows and returns every rank's (collective), in any order.
+  static constexpr int FOLD_WIDTH = 9;
+  using Fold = std::function<std::vector<Real>(const std::vector<Real>& mine)>;
+  /// `counted`: 1 for the nodes whose DOFs this rank counts (exactly one rank counts each).
+  void set_distribution(std::vector<unsigned char> counted, Fold fold) {
+    m_counted = std::move(counted);
+    m_fold = std::move(fold);
+  }
   /// The prescribed DOFs of the step (those the nodal update drives).
   const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
 
@@ -97,9 +109,13 @@ class PrescribedMotion {
   const BoundaryState& m_boundary;
   bool m_shells;
   std::vector<PrescribedDof> m_prescribed;  ///< the step's prescribed DOFs that exist
-  std::vector<Real> m_prescribed_value;     ///< current value of each prescribed DOF
-  std::vector<Real> m_v_old_prescribed;     ///< v(n−½) at each prescribed DOF
-  NodalVectors m_previous_moment;           ///< moment at prescribed rotations, previous inc.
+  /// Distributed runs: 1 for the nodes whose work and jumps this rank counts (set_counted()),
+  /// empty: every node.
+  std::vector<unsigned char> m_counted;
+  Fold m_fold;
+  std::vector<Real> m_prescribed_value;  ///< current value of each prescribed DOF
+  std::vector<Real> m_v_old_prescribed;  ///< v(n−½) at each prescribed DOF
+  NodalVectors m_previous_moment;        ///< moment at prescribed rotations, previous inc.
   /// The jumps of the prescribed motion met by the last update (BCs jump where they take
   /// effect: at the first update of a step).
   struct Jump {

@@ -1,11 +1,14 @@
 // The set-up of a run (ExplicitSolver::Impl, explicit_solver_impl.hpp): the parts of the time
 // loop built in order, the initial or imported state, and the set-up report.
+#include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "solver/explicit_solver_impl.hpp"
 #include "solver/message_text.hpp"
+#include "solver/model_partition.hpp"
 
 namespace xpl {
 
@@ -32,6 +35,98 @@ ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions o
   const std::vector<std::string> rigid_messages = set_up_rigid_bodies();
   if (m_options.initial_state != nullptr) apply_initial_state(*m_options.initial_state);
   report_setup(rigid_messages);
+  if (m_options.distributed && DistributedRun::world_size() > 1) set_up_distribution();
+}
+
+void ExplicitSolver::Impl::set_up_distribution() {
+  if (const std::vector<std::string> refused =
+          DistributedRun::refusals(m_model, m_options.initial_state != nullptr);
+      !refused.empty())
+    throw std::invalid_argument("distributed run: " + refused.front());
+  const auto start = std::chrono::steady_clock::now();
+  m_run = std::make_unique<DistributedRun>();
+  DistributedRun& run = *m_run;
+  // METIS on rank 0 (deterministic anyway) on the graph of the SIMD batches of the one-rank
+  // layout, so that every batch, and its per-batch totals, belongs to one rank.
+  std::vector<int> element_part;
+  partition::MeshPartition metis;
+  if (run.rank() == 0)
+    metis = m_elements.partition_batches(run.size(), m_options.partition_method, element_part);
+  run.broadcast(element_part);
+  run.set_partition(m_model, element_part, m_elements.element_order(),
+                    CentralDifference::NODE_CHUNK);
+  m_elements.distribute(run);
+
+  // Nodes this rank neither uses nor counts stay at rest (a node of no element moves on the
+  // rank counting its chunk); each nodal chunk is counted by one rank (distributed_run.hpp).
+  const Index n = m_model.node_count();
+  const bool rotations = !m_state.rotary_inertia.empty();
+  std::vector<unsigned char> counted(static_cast<std::size_t>(n), 0);
+  for (Index i = 0; i < n; ++i) {
+    if (run.counts(i)) {
+      counted[i] = 1;
+    } else if (!run.in_part(i)) {
+      m_state.velocity.row(i).setZero();
+      m_state.velocity_half.row(i).setZero();
+      if (rotations) {
+        m_state.angular_velocity.row(i).setZero();
+        m_state.angular_velocity_half.row(i).setZero();
+      }
+    }
+  }
+  const auto share = [&run](std::vector<KineticSums>& sums, std::vector<Real>& speed) {
+    // Translations, rotations, speeds (and a 0): three blocks of two values per chunk.
+    std::vector<Real> values;
+    values.reserve(sums.size() * 2 + speed.size() * 2);
+    for (const KineticSums& s : sums) values.insert(values.end(), {s.centred, s.spread});
+    for (const Real v : speed) values.insert(values.end(), {v, 0.0});
+    run.share_chunks(values, 2, 3);
+    for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = {values[2 * k], values[2 * k + 1]};
+    for (std::size_t k = 0; k < speed.size(); ++k) speed[k] = values[2 * (sums.size() + k)];
+  };
+  const auto fold = [&run](const std::vector<Real>& mine) {
+    std::vector<int> counts;
+    return run.allgather(mine, counts);
+  };
+  m_nodes.set_distribution(share, std::move(counted), fold);
+
+  // The report (rank 0's sink writes it).
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m_sink.message(Severity::Info,
+                 "mpi: " + std::to_string(run.size()) +
+                     " ranks, distributed time loop (issue 37 item 3): each rank computes the "
+                     "forces of its elements, interface forces go to the neighbours as "
+                     "per-corner contributions summed in the one-rank order; rank 0 writes "
+                     "the results");
+  if (run.rank() == 0) {
+    m_sink.message(Severity::Info,
+                   "mpi: the partition below is of the SIMD batches (each up to 8 elements of one "
+                   "colour, spread along the mesh: its vertices are batches, not elements)");
+    for (const std::string& line : partition::partition_report(metis, seconds))
+      m_sink.message(Severity::Info, line);
+  }
+  const partition::ExchangePlan& plan = run.exchange_plan();
+  for (int r = 0; r < run.size(); ++r) {
+    const partition::PartPlan& p = plan.part[r];
+    m_sink.message(Severity::Info,
+                   "mpi: rank " + std::to_string(r) + ": " + std::to_string(p.elements.size()) +
+                       " elements (whole SIMD batches), " + std::to_string(p.owned.size()) +
+                       " owned nodes, " + std::to_string(p.interface_nodes.size()) +
+                       " interface nodes, " + std::to_string(p.neighbours.size()) +
+                       " neighbour(s), " + std::to_string(p.send_slots()) +
+                       " corner contributions sent per increment, the forces of " +
+                       std::to_string(run.ship_count(r)) + " nodes received for its nodal chunks");
+  }
+}
+
+void ExplicitSolver::Impl::gather_state() {
+  if (!m_run) return;
+  m_nodes.sync_rotation(m_state);
+  for (NodalVectors* rows :
+       {&m_state.position, &m_state.velocity, &m_state.acceleration, &m_state.reaction,
+        &m_state.rotation, &m_state.angular_velocity, &m_state.reaction_moment})
+    m_run->gather_to_root(*rows);
 }
 
 State ExplicitSolver::Impl::initial_state(const Model& model) {

@@ -15,8 +15,9 @@ namespace xpl::elements {
 using simd::Vec;
 
 Hex8Block::Hex8Block(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-                     const std::vector<HexMaterial>& materials, Index node_count)
-    : HexBlock(std::move(element_index), connectivity, materials, node_count, N_CONST) {
+                     const std::vector<HexMaterial>& materials, Index node_count,
+                     const BatchLayout* layout)
+    : HexBlock(std::move(element_index), connectivity, materials, node_count, N_CONST, layout) {
   const auto nb = static_cast<std::size_t>(m_batches.batch_count());
   m_stress.assign(nb * HEX8_POINTS * 6 * W, 0.0);
   m_point_volume.assign(nb * HEX8_POINTS * W, 0.0);

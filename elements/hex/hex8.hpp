@@ -37,8 +37,10 @@ class Hex8Block : public HexBlock {
       "; 2x2x2 points, mean dilatation (selectively reduced), no hourglass control";
   /// `element_index`: model index of each element; `connectivity`: 8 node indices per element
   /// (Abaqus order); `materials`: one per element (the hourglass fields are not used).
+  /// `layout`: as HexBatches' (null: coloured and packed here).
   Hex8Block(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-            const std::vector<HexMaterial>& materials, Index node_count);
+            const std::vector<HexMaterial>& materials, Index node_count,
+            const BatchLayout* layout = nullptr);
 
   /// One internal-force evaluation, as Hex8rBlock::internal_forces: `position` x_{n+1} and
   /// `velocity_half` v_{n+1/2} (n_nodes × 3), `dt` (0 at the start); strain rates on the
@@ -58,6 +60,17 @@ class Hex8Block : public HexBlock {
   }
   /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
   void add_totals(HexStepTotals& totals) const;
+  /// \name Distributed runs (solver/distributed_run.hpp): the totals of batch b as
+  /// BATCH_TOTALS values (its energies, then its limit), and back.
+  static constexpr int BATCH_TOTALS = 3 + 3;
+  void pack_batch_totals(Index b, Real* out) const {
+    for (int k = 0; k < 3; ++k) out[k] = m_batch_energy[b * 3 + k];
+    m_batches.pack_limit(b, out + 3);
+  }
+  void unpack_batch_totals(Index b, const Real* in) {
+    for (int k = 0; k < 3; ++k) m_batch_energy[b * 3 + k] = in[k];
+    m_batches.unpack_limit(b, in + 3);
+  }
 
   /// Writes the element stress (row e·6.., S11 S22 S33 S12 S13 S23: the volume average of the
   /// integration points) and current volume of every element at its model index.

@@ -21,8 +21,9 @@ using simd::Vec;
 static_assert(ENHANCED_STATE == 12 && ENHANCED_STATE <= HOURGLASS_STATE_WIDTH);
 
 Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-                       const std::vector<HexMaterial>& materials, Index node_count)
-    : HexBlock(std::move(element_index), connectivity, materials, node_count, N_CONST) {
+                       const std::vector<HexMaterial>& materials, Index node_count,
+                       const BatchLayout* layout)
+    : HexBlock(std::move(element_index), connectivity, materials, node_count, N_CONST, layout) {
   const auto nb = static_cast<std::size_t>(m_batches.batch_count());
   m_stress.assign(nb * 6 * W, 0.0);
   m_hourglass.assign(nb * 12 * W, 0.0);

@@ -65,8 +65,10 @@ class Hex8rBlock : public HexBlock {
   static constexpr const char* SETUP_NOTE = " (race-free parallel assembly)";
   /// `element_index`: model index of each element; `connectivity`: 8 node indices per
   /// element (Abaqus order, same order as element_index); `materials`: one per element.
+  /// `layout`: as HexBatches' (null: coloured and packed here).
   Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-             const std::vector<HexMaterial>& materials, Index node_count);
+             const std::vector<HexMaterial>& materials, Index node_count,
+             const BatchLayout* layout = nullptr);
 
   /// One internal-force evaluation at the end of an increment.
   /// `position` x_{n+1} and `velocity_half` v_{n+1/2} (n_nodes × 3); `dt` = t_{n+1} − t_n
@@ -90,6 +92,17 @@ class Hex8rBlock : public HexBlock {
   }
   /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
   void add_totals(HexStepTotals& totals) const;
+  /// \name Distributed runs (solver/distributed_run.hpp): the totals of batch b as
+  /// BATCH_TOTALS values (its energies, then its limit), and back.
+  static constexpr int BATCH_TOTALS = 4 + 3;
+  void pack_batch_totals(Index b, Real* out) const {
+    for (int k = 0; k < 4; ++k) out[k] = m_batch_energy[b * 4 + k];
+    m_batches.pack_limit(b, out + 4);
+  }
+  void unpack_batch_totals(Index b, const Real* in) {
+    for (int k = 0; k < 4; ++k) m_batch_energy[b * 4 + k] = in[k];
+    m_batches.unpack_limit(b, in + 4);
+  }
 
   /// Writes stress (row e·6.., S11 S22 S33 S12 S13 S23) and current volume of every element
   /// of the block at its model index into model-sized arrays.

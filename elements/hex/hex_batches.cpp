@@ -11,9 +11,10 @@
 namespace xpl::elements {
 
 HexBatches::HexBatches(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-                       const std::vector<HexMaterial>& materials, Index node_count, int n_constants)
+                       const std::vector<HexMaterial>& materials, Index node_count, int n_constants,
+                       const BatchLayout* given)
     : m_element_index(std::move(element_index)), m_n_const(n_constants) {
-  BatchLayout layout = make_batches(connectivity, 8, node_count, W);
+  BatchLayout layout = given != nullptr ? *given : make_batches(connectivity, 8, node_count, W);
   m_color_batches = std::move(layout.color_batches);
   m_lane_owner = std::move(layout.lane_owner);
   const auto nb = static_cast<std::size_t>(batch_count());

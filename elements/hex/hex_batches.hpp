@@ -19,6 +19,7 @@
 #include "common/types.hpp"
 #include "elements/increment_limit.hpp"
 #include "elements/material/plasticity.hpp"
+#include "elements/parallel/element_coloring.hpp"
 #include "elements/parallel/simd.hpp"
 #include "elements/parallel/thread_partition.hpp"
 
@@ -68,8 +69,11 @@ class HexBatches {
   /// `element_index`: model index of each element; `connectivity`: 8 node indices per element
   /// (Abaqus order); `materials`: one per element, whose elastic constants fill the shared
   /// constants; `n_constants` ≥ N_SHARED constants per lane. Padding lanes copy lane 0.
+  /// `layout`: the batches to use (a distributed run's share of a whole model's layout, its
+  /// lane owners numbered in `element_index`), or null: coloured and packed here.
   HexBatches(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-             const std::vector<HexMaterial>& materials, Index node_count, int n_constants);
+             const std::vector<HexMaterial>& materials, Index node_count, int n_constants,
+             const BatchLayout* layout = nullptr);
 
   /// Number of elements.
   Index size() const { return static_cast<Index>(m_element_index.size()); }
@@ -188,6 +192,22 @@ class HexBatches {
   void record_limit(Index b, const simd::Vec& dt_e, const bool ok[W]);
   /// Merges the limits of every batch into `limit`, in batch order.
   void merge_limits(IncrementLimit& limit) const;
+  /// The limit of batch b as 3 values (dt, critical, failed; indices exact in doubles), and
+  /// back (distributed runs: solver/distributed_run.hpp).
+  void pack_limit(Index b, Real* out) const {
+    out[0] = m_batch_dt[b];
+    out[1] = static_cast<Real>(m_batch_critical[b]);
+    out[2] = static_cast<Real>(m_batch_failed[b]);
+  }
+  void unpack_limit(Index b, const Real* in) {
+    m_batch_dt[b] = in[0];
+    m_batch_critical[b] = static_cast<Index>(in[1]);
+    m_batch_failed[b] = static_cast<Index>(in[2]);
+  }
+  /// The corner slots of the boundary nodes of the partition held, and their values
+  /// ([slot][3], N) after a force pass.
+  const CornerExchange& corner_exchange() const { return m_exchange; }
+  const std::vector<Real>& exchange_values() const { return m_exchange_force; }
 
  private:
   std::vector<Index> m_element_index;  ///< model index per block element

@@ -74,6 +74,15 @@ class HexBlock {
     m_batches.add_boundary_forces(k, node, pass.force);
   }
 
+  /// \name Distributed runs (solver/distributed_run.hpp): the layout, the corner slots of the
+  /// boundary nodes and their values ([slot][EXCHANGE_WIDTH]).
+  static constexpr int EXCHANGE_WIDTH = 3;
+  Index batch_count() const { return m_batches.batch_count(); }
+  const std::vector<Index>& lane_owners() const { return m_batches.lane_owners(); }
+  const std::vector<Index>& color_batches() const { return m_batches.color_batches(); }
+  const CornerExchange& corner_exchange() const { return m_batches.corner_exchange(); }
+  const std::vector<Real>& exchange_values() const { return m_batches.exchange_values(); }
+
   /// Mass share per node ρV₀/8 of one element of material `m` with corners `corners` (8, m).
   static Real node_mass(const HexMaterial& m, const V3<Real>* corners) {
     Real x[8], y[8], z[8];
@@ -98,8 +107,10 @@ class HexBlock {
 
  protected:
   HexBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-           const std::vector<HexMaterial>& materials, Index node_count, int n_constants)
-      : m_batches(std::move(element_index), connectivity, materials, node_count, n_constants) {}
+           const std::vector<HexMaterial>& materials, Index node_count, int n_constants,
+           const BatchLayout* layout)
+      : m_batches(std::move(element_index), connectivity, materials, node_count, n_constants,
+                  layout) {}
 
   HexBatches m_batches;  ///< layout, constants, increment limits and partition
 

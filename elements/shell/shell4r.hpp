@@ -41,6 +41,7 @@
 #include "elements/increment_limit.hpp"
 #include "elements/lane_state.hpp"
 #include "elements/material/shell_plasticity.hpp"
+#include "elements/parallel/element_coloring.hpp"
 #include "elements/parallel/simd.hpp"
 #include "elements/parallel/thread_partition.hpp"
 
@@ -150,7 +151,8 @@ class Shell4rBlock {
   /// `element_index`: model index per element; `connectivity`: 4 node indices per element;
   /// `properties`: one per element.
   Shell4rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-               const std::vector<ShellProperties>& properties, Index node_count);
+               const std::vector<ShellProperties>& properties, Index node_count,
+               const BatchLayout* layout = nullptr);
 
   Index size() const { return static_cast<Index>(m_element_index.size()); }
   int color_count() const { return static_cast<int>(m_color_batches.size()) - 1; }
@@ -222,6 +224,29 @@ class Shell4rBlock {
     add_boundary_forces(k, node, p.force, p.moment);
   }
   void add_totals(ShellStepTotals& totals) const;
+  /// \name Distributed runs (solver/distributed_run.hpp): the totals of batch b as
+  /// BATCH_TOTALS values (its energies, then its limit), and back.
+  static constexpr int BATCH_TOTALS = 6;
+  void pack_batch_totals(Index b, Real* out) const {
+    for (int k = 0; k < 3; ++k) out[k] = m_batch_energy[b * 3 + k];
+    out[3] = m_batch_dt[b];
+    out[4] = static_cast<Real>(m_batch_critical[b]);
+    out[5] = static_cast<Real>(m_batch_failed[b]);
+  }
+  void unpack_batch_totals(Index b, const Real* in) {
+    for (int k = 0; k < 3; ++k) m_batch_energy[b * 3 + k] = in[k];
+    m_batch_dt[b] = in[3];
+    m_batch_critical[b] = static_cast<Index>(in[4]);
+    m_batch_failed[b] = static_cast<Index>(in[5]);
+  }
+  /// The layout, the corner slots of the boundary nodes and their values ([slot][6]: force,
+  /// moment).
+  static constexpr int EXCHANGE_WIDTH = 6;
+  Index batch_count() const { return m_color_batches.back(); }
+  const std::vector<Index>& lane_owners() const { return m_lane_owner; }
+  const std::vector<Index>& color_batches() const { return m_color_batches; }
+  const CornerExchange& corner_exchange() const { return m_exchange; }
+  const std::vector<Real>& exchange_values() const { return m_exchange_force; }
 
   /// Section output of block element i in the configuration `position`.
   ShellSectionOutput section_output(const NodalVectors& position, Index i) const;

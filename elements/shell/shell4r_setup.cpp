@@ -43,12 +43,13 @@ Real shell_rotary_radius2(Real thickness, Real length, Real poisson, bool exact)
 }
 
 Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
-                           const std::vector<ShellProperties>& properties, Index node_count)
+                           const std::vector<ShellProperties>& properties, Index node_count,
+                           const BatchLayout* given)
     : m_element_index(std::move(element_index)) {
   const Index n = size();
   for (const ShellProperties& p : properties)
     m_points = std::max(m_points, std::min(p.integration_points, SHELL_MAX_POINTS));
-  BatchLayout layout = make_batches(connectivity, 4, node_count, W);
+  BatchLayout layout = given != nullptr ? *given : make_batches(connectivity, 4, node_count, W);
   m_color_batches = std::move(layout.color_batches);
   m_lane_owner = std::move(layout.lane_owner);
   const auto n_batches = static_cast<std::size_t>(m_color_batches.back());

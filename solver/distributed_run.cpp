@@ -1,0 +1,410 @@
+#include "solver/distributed_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#if XPL_HAVE_MPI
+#include <mpi.h>
+
+#include <thread>
+#endif
+
+namespace xpl {
+
+namespace {
+
+/// Times one exchange or collective into `seconds`.
+class ExchangeTimer {
+ public:
+  explicit ExchangeTimer(double& seconds)
+      : m_seconds(seconds), m_start(std::chrono::steady_clock::now()) {}
+  ~ExchangeTimer() {
+    m_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+  }
+  ExchangeTimer(const ExchangeTimer&) = delete;
+  ExchangeTimer& operator=(const ExchangeTimer&) = delete;
+
+ private:
+  double& m_seconds;
+  std::chrono::steady_clock::time_point m_start;
+};
+
+}  // namespace
+
+#if XPL_HAVE_MPI
+struct DistributedRun::Requests {
+  std::vector<MPI_Request> receive, send;
+};
+
+int DistributedRun::world_rank() {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (initialized == 0) return 0;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+int DistributedRun::world_size() {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (initialized == 0) return 1;
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+int DistributedRun::world_max(int value) {
+  if (world_size() == 1) return value;
+  int result = value;
+  MPI_Allreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return result;
+}
+#else
+struct DistributedRun::Requests {};
+
+int DistributedRun::world_rank() {
+  return 0;
+}
+
+int DistributedRun::world_size() {
+  return 1;
+}
+
+int DistributedRun::world_max(int value) {
+  return value;
+}
+#endif
+
+std::vector<std::string> DistributedRun::refusals(const Model& model, bool imported) {
+  std::vector<std::string> r;
+  const std::string not_yet = ": not distributed yet (issue 37); expected a run on one rank";
+  bool contact = !model.contact_pairs.empty(), loads = false, pressure = false, gravity = false;
+  for (const Step& s : model.steps) {
+    contact = contact || s.contact.has_value() || !s.contact_pairs.empty();
+    loads = loads || !s.loads.empty();
+    pressure = pressure || !s.pressures.empty();
+    gravity = gravity || !s.gravity.empty();
+  }
+  if (contact) r.push_back("contact (*CONTACT, *CONTACT PAIR)" + not_yet);
+  if (!model.rigid_bodies.empty()) r.push_back("*RIGID BODY" + not_yet);
+  if (!model.ties.empty()) r.push_back("*TIE" + not_yet);
+  if (loads) r.push_back("*CLOAD" + not_yet);
+  if (pressure) r.push_back("pressure loads (*DLOAD, *DSLOAD)" + not_yet);
+  if (gravity) r.push_back("gravity (*DLOAD, GRAV)" + not_yet);
+  if (imported) r.push_back("--import" + not_yet);
+  return r;
+}
+
+DistributedRun::DistributedRun()
+    : m_rank(world_rank()), m_size(world_size()), m_requests(std::make_unique<Requests>()) {}
+
+DistributedRun::~DistributedRun() = default;
+
+void DistributedRun::set_partition(const Model& model, std::vector<int> element_part,
+                                   std::vector<Index> element_order, Index chunk) {
+  m_element_part = std::move(element_part);
+  const Index n_nodes = model.node_count();
+  partition::MeshPartition p;
+  p.parts = m_size;
+  p.element_part = m_element_part;
+  p.node_owner.assign(static_cast<std::size_t>(n_nodes), m_size);
+  for (Index e = 0; e < model.element_count(); ++e)
+    for (Index k = model.element_offsets[e]; k < model.element_offsets[e + 1]; ++k) {
+      int& owner = p.node_owner[model.element_nodes[k]];
+      owner = std::min(owner, m_element_part[e]);
+    }
+  for (int& owner : p.node_owner)
+    if (owner == m_size) owner = 0;  // a node of no element: rank 0's
+  m_node_owner = p.node_owner;
+  partition::PartitionInput input;
+  input.node_count = n_nodes;
+  input.element_offsets = model.element_offsets;
+  input.element_nodes = model.element_nodes;
+  m_plan = partition::make_exchange_plan(input, p, element_order);
+  m_in_part.assign(static_cast<std::size_t>(n_nodes), 0);
+  for (const Index n : plan().nodes) m_in_part[n] = 1;
+
+  // Each nodal chunk is counted by the rank owning most of its nodes (ties: the lowest); the
+  // nodes of its chunks that no element of it uses come from their owners.
+  m_chunk = chunk;
+  const Index n_chunks = (n_nodes + chunk - 1) / chunk;
+  m_chunk_owner.assign(static_cast<std::size_t>(n_chunks), 0);
+  std::vector<Index> owned(static_cast<std::size_t>(m_size));
+  for (Index c = 0; c < n_chunks; ++c) {
+    std::fill(owned.begin(), owned.end(), 0);
+    for (Index i = c * chunk; i < std::min(n_nodes, (c + 1) * chunk); ++i) ++owned[m_node_owner[i]];
+    m_chunk_owner[c] =
+        static_cast<int>(std::max_element(owned.begin(), owned.end()) - owned.begin());
+  }
+  std::vector<unsigned char> uses(static_cast<std::size_t>(n_nodes));
+  m_ship_send.assign(static_cast<std::size_t>(m_size), {});
+  m_ship_count.assign(static_cast<std::size_t>(m_size), 0);
+  m_ship_receive.assign(static_cast<std::size_t>(m_size), {});
+  for (int r = 0; r < m_size; ++r) {
+    std::fill(uses.begin(), uses.end(), 0);
+    for (const Index n : m_plan.part[r].nodes) uses[n] = 1;
+    for (Index i = 0; i < n_nodes; ++i) {
+      if (m_chunk_owner[i / chunk] != r || uses[i] != 0) continue;
+      const int from = m_node_owner[i];
+      ++m_ship_count[r];
+      if (from == m_rank) m_ship_send[r].push_back(i);
+      if (r == m_rank) m_ship_receive[from].push_back(i);
+    }
+  }
+}
+
+#if XPL_HAVE_MPI
+
+namespace {
+
+constexpr int FORCE_TAG = 37;
+
+/// Waits for `n` requests. Not MPI_Waitall: OpenMPI spins in it, and on an oversubscribed or
+/// shared machine the spinning rank takes the core from the rank it waits for (2 ranks on 2
+/// loaded cores spent 70-85 % of the loop waiting). Tests for 50 us, then sleeps between
+/// tests, 10 us at first, doubling up to 200 us.
+void wait_all(int n, MPI_Request* requests) {
+  using namespace std::chrono_literals;
+  const auto start = std::chrono::steady_clock::now();
+  auto pause = 10us;
+  for (int done = 0;;) {
+    MPI_Testall(n, requests, &done, MPI_STATUSES_IGNORE);
+    if (done != 0) return;
+    if (std::chrono::steady_clock::now() - start < 50us) continue;
+    std::this_thread::sleep_for(pause);
+    pause = std::min<std::chrono::microseconds>(2 * pause, 200us);
+  }
+}
+
+void wait(MPI_Request& request) {
+  wait_all(1, &request);
+}
+
+}  // namespace
+
+void DistributedRun::broadcast(std::vector<int>& values) const {
+  int n = static_cast<int>(values.size());
+  MPI_Bcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  values.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(values.data(), n, MPI_INT, 0, MPI_COMM_WORLD);
+}
+
+void DistributedRun::post_receives(int width) {
+  ExchangeTimer timer(m_seconds[NEIGHBOURS]);
+  const auto& neighbours = plan().neighbours;
+  m_receive.resize(neighbours.size());
+  m_send.resize(neighbours.size());
+  m_requests->receive.assign(neighbours.size(), MPI_REQUEST_NULL);
+  for (std::size_t j = 0; j < neighbours.size(); ++j) {
+    m_receive[j].resize(static_cast<std::size_t>(neighbours[j].receive_count) * width);
+    m_send[j].resize(neighbours[j].send.size() * static_cast<std::size_t>(width));
+    MPI_Irecv(m_receive[j].data(), static_cast<int>(m_receive[j].size()), MPI_DOUBLE,
+              neighbours[j].part, FORCE_TAG, MPI_COMM_WORLD, &m_requests->receive[j]);
+  }
+}
+
+const std::vector<std::vector<Real>>& DistributedRun::exchange() {
+  ExchangeTimer timer(m_seconds[NEIGHBOURS]);
+  const auto& neighbours = plan().neighbours;
+  m_requests->send.assign(neighbours.size(), MPI_REQUEST_NULL);
+  for (std::size_t j = 0; j < neighbours.size(); ++j)
+    MPI_Isend(m_send[j].data(), static_cast<int>(m_send[j].size()), MPI_DOUBLE, neighbours[j].part,
+              FORCE_TAG, MPI_COMM_WORLD, &m_requests->send[j]);
+  wait_all(static_cast<int>(m_requests->receive.size()), m_requests->receive.data());
+  wait_all(static_cast<int>(m_requests->send.size()), m_requests->send.data());
+  return m_receive;
+}
+
+std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::vector<int>& counts,
+                                            bool counts_known) const {
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  const int n = static_cast<int>(mine.size());
+  if (!counts_known) {
+    counts.assign(static_cast<std::size_t>(m_size), 0);
+    MPI_Request request = MPI_REQUEST_NULL;
+    MPI_Iallgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+    wait(request);
+  }
+  std::vector<int> displacement(static_cast<std::size_t>(m_size), 0);
+  for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
+  std::vector<Real> all(static_cast<std::size_t>(displacement.back() + counts.back()));
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Iallgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displacement.data(),
+                  MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  return all;
+}
+
+namespace {
+
+/// The owned rows of `rows` packed node by node (3 values each).
+std::vector<Real> pack_rows(const NodalVectors& rows, const std::vector<Index>& nodes) {
+  std::vector<Real> packed;
+  packed.reserve(nodes.size() * 3);
+  for (const Index n : nodes)
+    for (int c = 0; c < 3; ++c) packed.push_back(rows(n, c));
+  return packed;
+}
+
+}  // namespace
+
+void DistributedRun::gather_to_root(NodalVectors& rows) const {
+  if (rows.rows() == 0) return;
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  const std::vector<Real> mine = pack_rows(rows, plan().owned);
+  std::vector<int> counts(static_cast<std::size_t>(m_size)), displacement(counts.size(), 0);
+  for (int r = 0; r < m_size; ++r) counts[r] = static_cast<int>(m_plan.part[r].owned.size() * 3);
+  for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
+  std::vector<Real> all(m_rank == 0 ? static_cast<std::size_t>(displacement.back() + counts.back())
+                                    : 0);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
+               displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  if (m_rank != 0) return;
+  std::size_t k = 0;
+  for (int r = 0; r < m_size; ++r)
+    for (const Index n : m_plan.part[r].owned)
+      for (int c = 0; c < 3; ++c) rows(n, c) = all[k++];
+}
+
+void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  const std::vector<Real> mine = pack_rows(rows, plan().owned);
+  std::vector<int> counts(static_cast<std::size_t>(m_size)), displacement(counts.size(), 0);
+  for (int r = 0; r < m_size; ++r) counts[r] = static_cast<int>(m_plan.part[r].owned.size() * 3);
+  for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
+  std::vector<Real> all(static_cast<std::size_t>(displacement.back() + counts.back()));
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
+                  displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  out.resize(rows.rows(), 3);
+  std::size_t k = 0;
+  for (int r = 0; r < m_size; ++r)
+    for (const Index n : m_plan.part[r].owned)
+      for (int c = 0; c < 3; ++c) out(n, c) = all[k++];
+}
+
+void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
+  if (rows.empty()) return;
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  const auto w = static_cast<std::size_t>(width);
+  std::vector<Real> mine;
+  mine.reserve(plan().elements.size() * w);
+  for (const Index e : plan().elements)
+    mine.insert(mine.end(), rows.begin() + static_cast<std::ptrdiff_t>(e * w),
+                rows.begin() + static_cast<std::ptrdiff_t>((e + 1) * w));
+  std::vector<int> counts(static_cast<std::size_t>(m_size)), displacement(counts.size(), 0);
+  for (int r = 0; r < m_size; ++r) counts[r] = static_cast<int>(m_plan.part[r].elements.size() * w);
+  for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
+  std::vector<Real> all(m_rank == 0 ? static_cast<std::size_t>(displacement.back() + counts.back())
+                                    : 0);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
+               displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  if (m_rank != 0) return;
+  std::size_t k = 0;
+  for (int r = 0; r < m_size; ++r)
+    for (const Index e : m_plan.part[r].elements)
+      for (std::size_t c = 0; c < w; ++c) rows[e * w + c] = all[k++];
+}
+
+void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
+  ExchangeTimer timer(m_seconds[SHIP]);
+  const int width = moment != nullptr ? 6 : 3;
+  constexpr int SHIP_TAG = 38;
+  m_ship_send_buffer.resize(static_cast<std::size_t>(m_size));
+  m_ship_receive_buffer.resize(static_cast<std::size_t>(m_size));
+  std::vector<MPI_Request> requests;
+  for (int r = 0; r < m_size; ++r) {
+    if (m_ship_receive[r].empty()) continue;
+    m_ship_receive_buffer[r].resize(m_ship_receive[r].size() * width);
+    requests.emplace_back();
+    MPI_Irecv(m_ship_receive_buffer[r].data(), static_cast<int>(m_ship_receive_buffer[r].size()),
+              MPI_DOUBLE, r, SHIP_TAG, MPI_COMM_WORLD, &requests.back());
+  }
+  for (int r = 0; r < m_size; ++r) {
+    if (m_ship_send[r].empty()) continue;
+    std::vector<Real>& buffer = m_ship_send_buffer[r];
+    buffer.clear();
+    for (const Index n : m_ship_send[r]) {
+      for (int c = 0; c < 3; ++c) buffer.push_back(force(n, c));
+      if (moment != nullptr)
+        for (int c = 0; c < 3; ++c) buffer.push_back((*moment)(n, c));
+    }
+    requests.emplace_back();
+    MPI_Isend(buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, r, SHIP_TAG,
+              MPI_COMM_WORLD, &requests.back());
+  }
+  wait_all(static_cast<int>(requests.size()), requests.data());
+  for (int r = 0; r < m_size; ++r) {
+    const Real* in = m_ship_receive_buffer[r].data();
+    for (const Index n : m_ship_receive[r]) {
+      for (int c = 0; c < 3; ++c) force(n, c) = *in++;
+      if (moment != nullptr)
+        for (int c = 0; c < 3; ++c) (*moment)(n, c) = *in++;
+    }
+  }
+}
+
+void DistributedRun::share_chunks(std::vector<Real>& values, int width, int blocks) const {
+  const auto n_chunks = m_chunk_owner.size();
+  std::vector<Real> mine;
+  for (int b = 0; b < blocks; ++b)
+    for (std::size_t c = 0; c < n_chunks; ++c)
+      if (m_chunk_owner[c] == m_rank)
+        mine.insert(mine.end(),
+                    values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c) * width),
+                    values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c + 1) * width));
+  std::vector<int> counts(static_cast<std::size_t>(m_size), 0);
+  for (int b = 0; b < blocks; ++b)
+    for (std::size_t c = 0; c < n_chunks; ++c) counts[m_chunk_owner[c]] += width;
+  const std::vector<Real> all = allgather(mine, counts, true);
+  std::size_t at = 0;
+  for (int r = 0; r < m_size; ++r)
+    for (int b = 0; b < blocks; ++b)
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        if (m_chunk_owner[c] == r)
+          for (int k = 0; k < width; ++k) values[(b * n_chunks + c) * width + k] = all[at++];
+}
+
+int DistributedRun::max(int value) const {
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  int result = value;
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &request);
+  wait(request);
+  return result;
+}
+
+#else
+
+// One rank: nothing to exchange (a distributed run needs XPL_MPI=ON).
+void DistributedRun::broadcast(std::vector<int>&) const {}
+void DistributedRun::post_receives(int) {}
+const std::vector<std::vector<Real>>& DistributedRun::exchange() {
+  return m_receive;
+}
+std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::vector<int>& counts,
+                                            bool) const {
+  counts.assign(1, static_cast<int>(mine.size()));
+  return mine;
+}
+void DistributedRun::gather_to_root(NodalVectors&) const {}
+void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
+  out = rows;
+}
+void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
+void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
+void DistributedRun::share_chunks(std::vector<Real>&, int, int) const {}
+int DistributedRun::max(int value) const {
+  return value;
+}
+
+#endif
+
+}  // namespace xpl

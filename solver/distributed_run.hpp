@@ -1,0 +1,136 @@
+#pragma once
+/// \file A run distributed over MPI ranks (issue 37 item 3, docs/dev/mpi.md): what one rank
+/// owns and what the ranks exchange each increment. Every rank reads the whole model and
+/// builds its whole setup (masses, colours, the whole element layout); the elements are then
+/// split by SIMD batches (each batch of the one-rank layout goes to the part that holds most
+/// of its lanes), and each rank computes the forces of its batches only.
+///
+/// Bitwise independence of the rank count:
+/// - Nodal forces: a node used by one rank only receives its contributions in the one-rank
+///   order (the rank's batches are the one-rank batches, in the one-rank order). An interface
+///   node (used by two or more ranks) is summed by every rank using it from per-contribution
+///   slots (partition/exchange_plan.hpp): its own corners' values and those its neighbours
+///   send (MPI_Isend/MPI_Irecv, one message per neighbour and increment), folded from +0 in
+///   the one-rank order (block, batch, lane). Every rank using a node integrates it with the
+///   same force and mass, so no positions are exchanged.
+/// - Element totals (energy increments, stable increment, critical and failed element): each
+///   rank's per-batch values are gathered (MPI_Allgatherv) into the whole layout on every
+///   rank and reduced there by the one-rank code, in batch order.
+/// - Global stable-increment estimate (Lanczos, at the start of a step and when the element
+///   estimate moves): the positions are gathered on every rank from their owners and every
+///   rank runs the one-rank estimate on the whole mesh.
+/// - Nodal sums (ALLKE, ALLKD, ALLWK): the one-rank code sums the nodes in chunks of
+///   CentralDifference::NODE_CHUNK and adds the chunks in order. Each chunk is counted by one
+///   rank (the one owning most of its nodes), which integrates every node of the chunk: the
+///   nodes of the chunk its elements do not use get their finished force from their owner
+///   each increment (ship_forces(), point to point), so its chunk sums are the one-rank
+///   ones; the chunk sums are then gathered and added in chunk order. The prescribed DOFs'
+///   terms are gathered and folded in DOF order.
+/// Output: rank 0 writes; before a frame or history row it gathers the owners' rows.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "partition/exchange_plan.hpp"
+#include "solver/model.hpp"
+#include "solver/state.hpp"
+
+namespace xpl {
+
+/// One rank's view of a distributed run and its MPI operations (every operation that is
+/// collective must be called by every rank in the same order).
+class DistributedRun {
+ public:
+  /// MPI's rank and size in MPI_COMM_WORLD (0 and 1 without MPI or before MPI_Init).
+  static int world_rank();
+  static int world_size();
+  /// What keeps `model` from running distributed today (one message per feature), empty if
+  /// nothing: contact, rigid bodies, ties, loads (*CLOAD, *DLOAD, *DSLOAD, gravity), an
+  /// imported state.
+  static std::vector<std::string> refusals(const Model& model, bool imported);
+
+  /// The largest `value` of the ranks of MPI_COMM_WORLD (collective; `value` without MPI).
+  static int world_max(int value);
+
+  DistributedRun();
+  ~DistributedRun();
+  DistributedRun(const DistributedRun&) = delete;
+  DistributedRun& operator=(const DistributedRun&) = delete;
+
+  int rank() const { return m_rank; }
+  int size() const { return m_size; }
+
+  /// Rank 0's `values` on every rank.
+  void broadcast(std::vector<int>& values) const;
+  /// Takes the partition of the run: the part of each element (n_elements) and the position
+  /// of each element in the one-rank summation order (distinct). Builds the exchange plan.
+  /// Nodal chunks of `chunk` nodes are each counted by one rank.
+  void set_partition(const Model& model, std::vector<int> element_part,
+                     std::vector<Index> element_order, Index chunk);
+  const partition::ExchangePlan& exchange_plan() const { return m_plan; }
+  const partition::PartPlan& plan() const { return m_plan.part[m_rank]; }
+  const std::vector<int>& element_part() const { return m_element_part; }
+  /// Whether an element of this rank uses `node`; whether this rank owns it.
+  bool in_part(Index node) const { return m_in_part[node] != 0; }
+  bool owns(Index node) const { return m_node_owner[node] == m_rank; }
+  /// Whether this rank counts (and so integrates) the nodal chunk of `node`, or chunk `c`.
+  bool counts(Index node) const { return m_chunk_owner[node / m_chunk] == m_rank; }
+  bool counts_chunk(Index c) const { return m_chunk_owner[c] == m_rank; }
+
+  /// The finished forces (and moments, if not null; n_nodes × 3) of the nodes of this rank's
+  /// chunks that its elements do not use, from their owners (Isend/Irecv).
+  void ship_forces(NodalVectors& force, NodalVectors* moment);
+  /// The chunk values `per_chunk` (values per chunk: `width`, chunk after chunk; `blocks`
+  /// such arrays back to back, e.g. translations then rotations) of every chunk from the
+  /// rank that counts it (MPI_Allgatherv).
+  void share_chunks(std::vector<Real>& values, int width, int blocks) const;
+
+  /// \name The force exchange of an increment: post_receives() before the element pass,
+  /// then the send buffers filled (width values per slot, NeighbourExchange::send order),
+  /// then exchange(): sends, waits; returns the received buffers (one per neighbour).
+  void post_receives(int width);
+  std::vector<std::vector<Real>>& send_buffers() { return m_send; }
+  const std::vector<std::vector<Real>>& exchange();
+
+  /// Every rank's `mine` concatenated in rank order (MPI_Allgatherv); `counts` (size()) the
+  /// number of values of each rank: found, or with `counts_known` given (one collective less).
+  std::vector<Real> allgather(const std::vector<Real>& mine, std::vector<int>& counts,
+                              bool counts_known = false) const;
+  /// The rows (n_nodes × 3) of the nodes each rank owns, from their owners to rank 0.
+  void gather_to_root(NodalVectors& rows) const;
+  /// The same, onto every rank, from `rows` into `out`.
+  void allgather_rows(const NodalVectors& rows, NodalVectors& out) const;
+  /// Element rows (`width` values per element) from each element's rank to rank 0.
+  void gather_elements_to_root(std::vector<Real>& rows, int width) const;
+  /// The largest of the ranks' values.
+  int max(int value) const;
+
+  /// Wall time spent in this rank's exchanges and collectives, s: with the neighbours (the
+  /// interface forces), shipping the chunks' forces, and gathers and reductions.
+  enum Timing { NEIGHBOURS, SHIP, GATHERS, TIMINGS };
+  double exchange_seconds(Timing t) const { return m_seconds[t]; }
+  double exchange_seconds() const { return m_seconds[0] + m_seconds[1] + m_seconds[2]; }
+  /// Nodes rank r receives forces of each increment for the chunks it counts.
+  Index ship_count(int r) const { return m_ship_count[r]; }
+
+ private:
+  int m_rank = 0;
+  int m_size = 1;
+  partition::ExchangePlan m_plan;
+  std::vector<int> m_element_part;
+  std::vector<int> m_node_owner;
+  std::vector<unsigned char> m_in_part;
+  Index m_chunk = 1;
+  std::vector<int> m_chunk_owner;
+  /// ship_forces(): per rank, the nodes this rank sends it and the nodes it receives from it.
+  std::vector<std::vector<Index>> m_ship_send, m_ship_receive;
+  std::vector<std::vector<Real>> m_ship_send_buffer, m_ship_receive_buffer;
+  std::vector<std::vector<Real>> m_send, m_receive;
+  struct Requests;
+  std::unique_ptr<Requests> m_requests;
+  mutable double m_seconds[TIMINGS] = {};
+  std::vector<Index> m_ship_count;
+};
+
+}  // namespace xpl
