@@ -23,8 +23,15 @@ show() { # REV OUT
 show "$old_rev" "$work/old.cpp"
 if [[ -n $new_rev ]]; then show "$new_rev" "$work/new.cpp"
 else cat elements/material/shell_plasticity.cpp elements/material/shell_plastic_state.cpp >"$work/new.cpp"; fi
+# Each revision with its own headers of elements/material (the state's members change).
+rm -rf "$work/old_inc" "$work/new_inc"
+mkdir -p "$work/old_inc" "$work/new_inc/elements"
+git archive "$old_rev" elements/material 2>/dev/null | tar -x -C "$work/old_inc" || true
+if [[ -n $new_rev ]]; then git archive "$new_rev" elements/material | tar -x -C "$work/new_inc"
+else cp -r elements/material "$work/new_inc/elements/"; fi
 for v in old new; do
-  g++ -O3 -march="${MARCH:-native}" -std=c++20 -w -DNDEBUG -I. -isystem /usr/include/eigen3 \
+  g++ -O3 -march="${MARCH:-native}" -std=c++20 -w -DNDEBUG -I"$work/${v}_inc" -I. \
+    -isystem /usr/include/eigen3 \
     benchmarks/shell_return_micro.cpp "$work/$v.cpp" elements/material/plasticity.cpp -o "$work/$v"
 done
 for case in "0 0" "1 50"; do

@@ -41,19 +41,20 @@ int main(int argc, char** argv) {
   for (int n = 0; n < N; ++n)
     for (std::size_t b = 0; b < B; ++b)
       for (int k = 0; k < P; ++k) {
-        simd::Vec sxx, syy, sxy, th = simd::splat(0.0);
+        simd::Vec sxx, syy, sxy, th = simd::splat(0.0), start[3];
         for (int l = 0; l < simd::W; ++l) {
           const std::size_t i = ((b * P + k) * simd::W + l) * 3;
           // Unloading lanes reverse after 200 increments (elastic for a while).
           const Real sign = unload[b * simd::W + l] && n >= N / 2 ? -1.0 : 1.0;
           const Real ex = sign * rate * dir[i], ey = sign * rate * dir[i + 1],
                      gxy = sign * rate * dir[i + 2];
+          for (int c = 0; c < 3; ++c) start[c][l] = s[i + static_cast<std::size_t>(c)];
           sxx[l] = s[i] + q11 * ex + q12 * ey;
           syy[l] = s[i + 1] + q12 * ex + q11 * ey;
           sxy[l] = s[i + 2] + G * gxy;
         }
         const simd::Vec d =
-            st.point_return(b, k, vq11, vq12, vg, 1e-7, simd::splat(0.2), sxx, syy, sxy, th);
+            st.point_return(b, k, vq11, vq12, vg, 1e-7, simd::splat(0.2), start, sxx, syy, sxy, th);
         for (int l = 0; l < simd::W; ++l) {
           const std::size_t i = ((b * P + k) * simd::W + l) * 3;
           s[i] = sxx[l];

@@ -32,34 +32,45 @@ ShellPlasticState::ShellPlasticState(std::span<const Plasticity* const> lane_law
     m_batch_plastic.clear();
     return;
   }
+  m_segment_slope.assign(1, 0.0);
+  m_segment_end.assign(1, std::numeric_limits<Real>::infinity());
   for (const Plasticity& law : m_laws) {
-    std::vector<Real> slopes;
-    if (law.hardening == Hardening::Tabular)
-      for (std::size_t i = 0; i + 1 < law.yield_stress.size(); ++i)
-        slopes.push_back((law.yield_stress[i + 1] - law.yield_stress[i]) /
-                         (law.plastic_strain[i + 1] - law.plastic_strain[i]));
-    m_slopes.push_back(std::move(slopes));
+    if (law.hardening != Hardening::Tabular) {
+      m_law_segment.push_back(0);
+      continue;
+    }
+    m_law_segment.push_back(static_cast<Index>(m_segment_slope.size()));
+    const std::vector<Real>& eps = law.plastic_strain;
+    const std::vector<Real>& sig = law.yield_stress;
+    for (std::size_t i = 0; i + 1 < sig.size(); ++i) {
+      m_segment_slope.push_back((sig[i + 1] - sig[i]) / (eps[i + 1] - eps[i]));
+      m_segment_end.push_back(eps[i + 1]);
+    }
+    m_segment_slope.push_back(0.0);
+    m_segment_end.push_back(std::numeric_limits<Real>::infinity());
   }
+  m_lane_linear.assign(lane_law.size(), 0);
   const std::size_t n = n_batches * static_cast<std::size_t>(points) * W;
   m_segment.assign(n, 0);
   m_peeq.assign(n, 0.0);
-  m_rate.assign(n, 0.0);
   m_yield.assign(n, std::numeric_limits<Real>::infinity());
   for (std::size_t b = 0; b < n_batches; ++b)
     for (std::size_t l = 0; l < W; ++l) {
       const int law = m_lane_law[b * W + l];
       if (law < 0) continue;
-      const Real y = m_laws[static_cast<std::size_t>(law)].initial_yield();
-      for (int k = 0; k < points; ++k) m_yield[row(b, k) + l] = y;
+      const Plasticity& p = m_laws[static_cast<std::size_t>(law)];
+      if (p.hardening == Hardening::Tabular && p.rate == RateDependence::None)
+        m_lane_linear[b * W + l] = -1;
+      const Real y = p.initial_yield();
+      for (int k = 0; k < points; ++k) {
+        m_yield[row(b, k) + l] = y;
+        m_segment[row(b, k) + l] = m_law_segment[static_cast<std::size_t>(law)];
+      }
     }
 }
 
 Real ShellPlasticState::peeq(std::size_t b, int k, std::size_t l) const {
   return empty() ? 0.0 : m_peeq[row(b, k) + l];
-}
-
-Real ShellPlasticState::peeq_rate(std::size_t b, int k, std::size_t l) const {
-  return empty() ? 0.0 : m_rate[row(b, k) + l];
 }
 
 }  // namespace xpl::elements

@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "elements/material/plane_stress_polynomial.hpp"
 #include "elements/material/plasticity_root.hpp"
 
 namespace xpl::elements {
@@ -12,11 +13,6 @@ namespace xpl::elements {
 using simd::Vec;
 
 namespace {
-
-/// A trial this little outside the yield surface (relative, on σ²) counts as inside: the
-/// stress of a point returned in the last increment lies on the surface to round-off, and a
-/// zero-strain pass (dt = 0) must not send it through the return again.
-constexpr Real YIELD_TOLERANCE = 1e-12;
 
 /// |g| / σ_y at which a return has converged.
 constexpr Real NEWTON_TOLERANCE = 1e-12;
@@ -250,60 +246,38 @@ int segment_index(const Plasticity& law, Real peeq) {
   return upper == eps.begin() ? 0 : static_cast<int>(upper - eps.begin()) - 1;
 }
 
-/// segment_at from a known segment index i and the segments' slopes: the same numbers
-/// without the search (the flow_stress of a rate-free table, term for term).
-Segment segment_from(const Plasticity& law, const std::vector<Real>& slopes, int i, Real peeq) {
-  const std::vector<Real>& eps = law.plastic_strain;
-  const std::vector<Real>& sig = law.yield_stress;
-  const auto last = static_cast<int>(sig.size()) - 1;
-  if (i >= last)
-    return {sig[static_cast<std::size_t>(last)], 0.0, std::numeric_limits<Real>::infinity()};
-  const auto k = static_cast<std::size_t>(i);
-  const Real slope = slopes[k];
-  return {sig[k] + slope * (std::max(peeq, eps[0]) - eps[k]), slope, eps[k + 1]};
-}
-
-/// The return of the lanes in `active`: rate-free tables on the segment of ε̄ᵖ_n in SIMD
-/// arithmetic, and again through flow_stress in the lanes whose ε̄ᵖ passed the segment's
-/// end (a table break crossed within the increment); other laws through flow_stress.
-/// `segment_of(l)` gives lane l's segment (piecewise-linear lanes only).
-template <class SegmentOf>
-LaneReturn solve_lanes(const Plasticity* const* laws, simd::Mask active, Vec q11, Vec q12,
-                       Vec shear, Vec sxx, Vec syy, Vec sxy, Vec peeq, Real dt,
-                       SegmentOf segment_of) {
-  simd::Mask linear = active & (active == 0);  // all clear
-  Vec seg_stress = simd::splat(0.0), seg_slope = seg_stress;
-  Vec seg_end = simd::splat(std::numeric_limits<Real>::infinity());
-  for (int l = 0; l < simd::W; ++l) {
-    if (!active[l] || !piecewise_linear(*laws[l])) continue;
-    const Segment segment = segment_of(l);
-    linear[l] = -1;
-    seg_stress[l] = segment.stress;
-    seg_slope[l] = segment.slope;
-    seg_end[l] = segment.end;
-  }
-  LaneReturn r = return_lanes(laws, active, linear, seg_stress, seg_slope, q11, q12, shear, sxx,
-                              syy, sxy, peeq, dt);
-  if (any_lane(r.unconverged)) [[unlikely]]
-    finish_unconverged(r, laws, linear, seg_stress, seg_slope, q11, q12, shear, sxx, syy, sxy, peeq,
-                       dt);
-  const simd::Mask crossed = linear & (peeq + r.dpeeq > seg_end);
-  if (!any_lane(crossed)) return r;
-  LaneReturn again = return_lanes(laws, crossed, crossed & (crossed == 0), seg_stress, seg_slope,
-                                  q11, q12, shear, sxx, syy, sxy, peeq, dt);
-  if (any_lane(again.unconverged)) [[unlikely]]
-    finish_unconverged(again, laws, crossed & (crossed == 0), seg_stress, seg_slope, q11, q12,
-                       shear, sxx, syy, sxy, peeq, dt);
-  r.sxx = simd::select(crossed, again.sxx, r.sxx);
-  r.syy = simd::select(crossed, again.syy, r.syy);
-  r.sxy = simd::select(crossed, again.sxy, r.sxy);
-  r.dpeeq = simd::select(crossed, again.dpeeq, r.dpeeq);
-  r.yield = simd::select(crossed, again.yield, r.yield);
-  r.dgamma = simd::select(crossed, again.dgamma, r.dgamma);
-  return r;
-}
-
 }  // namespace
+
+void newton_return_lanes(const Plasticity* const* laws, simd::Mask rest, simd::Mask linear,
+                         Vec seg_stress, Vec seg_slope, Vec seg_end, Vec q11, Vec q12, Vec shear,
+                         Vec sxx, Vec syy, Vec sxy, Vec peeq, Real dt, PlaneStressLanes& r) {
+  LaneReturn n = return_lanes(laws, rest, linear, seg_stress, seg_slope, q11, q12, shear, sxx, syy,
+                              sxy, peeq, dt);
+  if (any_lane(n.unconverged)) [[unlikely]]
+    finish_unconverged(n, laws, linear, seg_stress, seg_slope, q11, q12, shear, sxx, syy, sxy, peeq,
+                       dt);
+  const simd::Mask crossed = linear & (peeq + n.dpeeq > seg_end);
+  if (any_lane(crossed)) {
+    const simd::Mask none = crossed & (crossed == 0);
+    LaneReturn again = return_lanes(laws, crossed, none, seg_stress, seg_slope, q11, q12, shear,
+                                    sxx, syy, sxy, peeq, dt);
+    if (any_lane(again.unconverged)) [[unlikely]]
+      finish_unconverged(again, laws, none, seg_stress, seg_slope, q11, q12, shear, sxx, syy, sxy,
+                         peeq, dt);
+    n.sxx = simd::select(crossed, again.sxx, n.sxx);
+    n.syy = simd::select(crossed, again.syy, n.syy);
+    n.sxy = simd::select(crossed, again.sxy, n.sxy);
+    n.dpeeq = simd::select(crossed, again.dpeeq, n.dpeeq);
+    n.yield = simd::select(crossed, again.yield, n.yield);
+    n.dgamma = simd::select(crossed, again.dgamma, n.dgamma);
+  }
+  r.sxx = simd::select(rest, n.sxx, r.sxx);
+  r.syy = simd::select(rest, n.syy, r.syy);
+  r.sxy = simd::select(rest, n.sxy, r.sxy);
+  r.dpeeq = simd::select(rest, n.dpeeq, r.dpeeq);
+  r.yield = simd::select(rest, n.yield, r.yield);
+  r.dgamma = simd::select(rest, n.dgamma, r.dgamma);
+}
 
 PlaneStressReturn plane_stress_return(const Plasticity& law, Real q11, Real q12, Real shear,
                                       Real sxx, Real syy, Real sxy, Real peeq, Real dt) {
@@ -314,16 +288,25 @@ PlaneStressReturn plane_stress_return(const Plasticity& law, Real q11, Real q12,
   const FlowStress start = flow_stress(law, peeq, 0.0);
   r.yield_stress = r.static_yield = start.stress;
   const Real vm2_trial = sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy;
-  if (vm2_trial <= start.stress * start.stress * (1.0 + YIELD_TOLERANCE)) return r;
+  if (vm2_trial <= start.stress * start.stress * (1.0 + SHELL_YIELD_TOLERANCE)) return r;
   // The batch return with lane 0 alone: one implementation for the kernel and this.
   const Plasticity* laws[simd::W];
   for (const Plasticity*& l : laws) l = &law;
-  simd::Mask active = simd::splat(0.0) != 0.0;
+  const simd::Mask none = simd::splat(0.0) != 0.0;
+  simd::Mask active = none, linear = none;
   active[0] = -1;
-  const LaneReturn lanes =
-      solve_lanes(laws, active, simd::splat(q11), simd::splat(q12), simd::splat(shear),
-                  simd::splat(sxx), simd::splat(syy), simd::splat(sxy), simd::splat(peeq), dt,
-                  [&](int) { return segment_at(law, peeq); });
+  Vec seg_stress = simd::splat(0.0), seg_slope = seg_stress, seg_end = seg_stress;
+  if (piecewise_linear(law)) {
+    const Segment segment = segment_at(law, peeq);
+    linear[0] = -1;
+    seg_stress[0] = segment.stress;
+    seg_slope[0] = segment.slope;
+    seg_end[0] = segment.end;
+  }
+  const PlaneStressLanes lanes =
+      plane_stress_lanes([&] { return laws; }, active, linear, seg_stress, seg_slope, seg_end,
+                         simd::splat(q11), simd::splat(q12), simd::splat(shear), simd::splat(sxx),
+                         simd::splat(syy), simd::splat(sxy), simd::splat(peeq), dt);
   r.sxx = lanes.sxx[0];
   r.syy = lanes.syy[0];
   r.sxy = lanes.sxy[0];
@@ -336,59 +319,20 @@ PlaneStressReturn plane_stress_return(const Plasticity& law, Real q11, Real q12,
   return r;
 }
 
-Vec ShellPlasticState::point_return(std::size_t b, int k, Vec q11, Vec q12, Vec shear, Real dt,
-                                    Vec weight, const Vec start[3], Vec& sxx, Vec& syy, Vec& sxy,
-                                    Vec& thickness_strain) {
-  const std::size_t r = row(b, k);
-  const Vec y = simd::load(&m_yield[r]);
-  const Vec vm2 = sxx * sxx - sxx * syy + syy * syy + 3.0 * (sxy * sxy);
-  const simd::Mask yielding = vm2 > (y * y) * (1.0 + YIELD_TOLERANCE);
-  Vec dissipation = simd::splat(0.0);
-  if (!any_lane(yielding)) {
-    simd::store(&m_rate[r], dissipation);
-    return dissipation;
-  }
-  // Laws of the lanes (elastic lanes never yield: their σ_y is +inf).
-  const Plasticity* laws[W];
+void ShellPlasticState::finish_point(std::size_t b, std::size_t r, simd::Mask other,
+                                     simd::Mask passed, Vec peeq_end) {
   for (std::size_t l = 0; l < W; ++l) {
-    const int law = m_lane_law[b * W + l];
-    laws[l] = &m_laws[static_cast<std::size_t>(law < 0 ? 0 : law)];
+    if (other[l]) {
+      const Plasticity& law = m_laws[static_cast<std::size_t>(m_lane_law[b * W + l])];
+      if (law.rate != RateDependence::None)
+        m_yield[r + l] = flow_stress(law, peeq_end[l], 0.0).stress;
+    }
+    // ε̄ᵖ only grows: the segment index moves up past the table points it passed (the last
+    // segment of a law ends at +inf).
+    if (passed[l])
+      while (peeq_end[l] >= m_segment_end[static_cast<std::size_t>(m_segment[r + l])])
+        ++m_segment[r + l];
   }
-  const Vec peeq = simd::load(&m_peeq[r]);
-  int* segment = &m_segment[r];
-  const LaneReturn ret =
-      solve_lanes(laws, yielding, q11, q12, shear, sxx, syy, sxy, peeq, dt, [&](int l) {
-        const int law = m_lane_law[b * W + static_cast<std::size_t>(l)];
-        return segment_from(*laws[l], m_slopes[static_cast<std::size_t>(law)], segment[l], peeq[l]);
-      });
-  sxx = ret.sxx;
-  syy = ret.syy;
-  sxy = ret.sxy;
-  simd::store(&m_peeq[r], peeq + ret.dpeeq);
-  simd::store(&m_rate[r], dt > 0.0 ? ret.dpeeq * (1.0 / dt) : dissipation);
-  // Δεᵖ = Δγ P σ: Δε11ᵖ + Δε22ᵖ = Δγ (σxx + σyy)/3, so Δε33ᵖ = −Δγ (σxx + σyy)/3.
-  thickness_strain -= weight * ret.dgamma * (sxx + syy) * (1.0 / 3.0);
-  // The plastic work ½(σ_n + σ_{n+1}) : Δεᵖ with Δεᵖ = Δγ P σ_{n+1} (engineering shear):
-  // with the trapezoidal stress work, ALLSE is the elastic energy of the stress state
-  // (return_work() of the hex points, radial_return_lanes.hpp, says why).
-  const Vec work = (0.5 / 3.0) * ret.dgamma *
-                   ((start[0] + sxx) * (2.0 * sxx - syy) + (start[1] + syy) * (2.0 * syy - sxx) +
-                    6.0 * (start[2] + sxy) * sxy);
-  dissipation = simd::select(yielding, work, dissipation);
-  // The next trial's test: σ_y(ε̄ᵖ_{n+1}, 0), the end yield stress itself without a rate law.
-  for (std::size_t l = 0; l < W; ++l) {
-    if (!yielding[l]) continue;
-    const Plasticity& law = *laws[l];
-    const Real peeq_end = peeq[l] + ret.dpeeq[l];
-    m_yield[r + l] =
-        law.rate == RateDependence::None ? ret.yield[l] : flow_stress(law, peeq_end, 0.0).stress;
-    // ε̄ᵖ only grows: the segment index moves up past the table points it passed.
-    const std::vector<Real>& eps = law.plastic_strain;
-    int& i = segment[l];
-    while (i + 1 < static_cast<int>(eps.size()) && peeq_end >= eps[static_cast<std::size_t>(i) + 1])
-      ++i;
-  }
-  return dissipation;
 }
 
 void ShellPlasticState::set_peeq(std::size_t b, int k, std::size_t l, Real value) {
@@ -396,7 +340,9 @@ void ShellPlasticState::set_peeq(std::size_t b, int k, std::size_t l, Real value
   const Plasticity& law = m_laws[static_cast<std::size_t>(m_lane_law[b * W + l])];
   m_peeq[row(b, k) + l] = value;
   m_yield[row(b, k) + l] = flow_stress(law, value, 0.0).stress;
-  if (law.hardening == Hardening::Tabular) m_segment[row(b, k) + l] = segment_index(law, value);
+  if (law.hardening == Hardening::Tabular)
+    m_segment[row(b, k) + l] =
+        m_law_segment[static_cast<std::size_t>(m_lane_law[b * W + l])] + segment_index(law, value);
 }
 
 }  // namespace xpl::elements

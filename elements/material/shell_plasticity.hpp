@@ -16,14 +16,22 @@
 /// The transverse shear stresses stay elastic (as in Belytschko–Tsay codes): they are not
 /// part of the yield condition.
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
 #include "common/types.hpp"
+#include "elements/material/plane_stress_polynomial.hpp"
 #include "elements/material/plasticity.hpp"
+#include "elements/parallel/kernel_inline.hpp"
 #include "elements/parallel/simd.hpp"
 
 namespace xpl::elements {
+
+/// A trial this little outside the yield surface (relative, on σ²) counts as inside: the
+/// stress of a point returned in the last increment lies on the surface to round-off, and a
+/// zero-strain pass (dt = 0) must not send it through the return again.
+inline constexpr Real SHELL_YIELD_TOLERANCE = 1e-12;
 
 /// Result of the plane-stress return of one section point.
 struct PlaneStressReturn {
@@ -44,8 +52,58 @@ struct PlaneStressReturn {
 PlaneStressReturn plane_stress_return(const Plasticity& law, Real q11, Real q12, Real shear,
                                       Real sxx, Real syy, Real sxy, Real peeq, Real dt);
 
+/// The end of the return of a batch's lanes.
+struct PlaneStressLanes {
+  simd::Vec sxx, syy, sxy;  ///< returned stress (the trial in lanes not returned), Pa
+  simd::Vec dpeeq;          ///< Δε̄ᵖ (0 in lanes not returned), -
+  simd::Vec yield;          ///< σ_y at the end (with the rate factor), Pa
+  simd::Vec dgamma;         ///< Δγ (0 in lanes not returned)
+};
+
+/// The safeguarded Newton return of the lanes in `rest`, finished by bisection where it does
+/// not converge (plasticity_root.hpp), written into those lanes of `r`: the lanes in `linear`
+/// (a subset) on their segment σ_y = seg_stress + seg_slope Δε̄ᵖ, again through flow_stress
+/// where ε̄ᵖ passes the segment's end `seg_end`, the others through flow_stress (laws[l],
+/// ε̄ᵖ_n = peeq[l]). Out of line: the kernels' common case never calls it.
+void newton_return_lanes(const Plasticity* const* laws, simd::Mask rest, simd::Mask linear,
+                         simd::Vec seg_stress, simd::Vec seg_slope, simd::Vec seg_end,
+                         simd::Vec q11, simd::Vec q12, simd::Vec shear, simd::Vec sxx,
+                         simd::Vec syy, simd::Vec sxy, simd::Vec peeq, Real dt,
+                         PlaneStressLanes& r);
+
+/// The plane-stress return of the lanes in `active` from the trial (sxx, syy, sxy): those in
+/// `linear` (rate-free tables; σ_y = seg_stress + seg_slope Δε̄ᵖ up to ε̄ᵖ = seg_end) by the
+/// polynomial return (plane_stress_polynomial.hpp), inline; the rest by newton_return_lanes:
+/// the other laws, the linear lanes the polynomial return leaves (`failed`), and through
+/// flow_stress those whose ε̄ᵖ passed the segment's end (a table break crossed within the
+/// increment). `laws()` gives the lanes' laws, asked for only when the Newton return runs.
+template <class Laws>
+XPL_KERNEL_INLINE PlaneStressLanes plane_stress_lanes(Laws laws, simd::Mask active,
+                                                      simd::Mask linear, simd::Vec seg_stress,
+                                                      simd::Vec seg_slope, simd::Vec seg_end,
+                                                      simd::Vec q11, simd::Vec q12, simd::Vec shear,
+                                                      simd::Vec sxx, simd::Vec syy, simd::Vec sxy,
+                                                      simd::Vec peeq, Real dt) {
+  const PolynomialReturn p =
+      polynomial_return(linear, seg_stress, seg_slope, q11, q12, shear, sxx, syy, sxy);
+  const simd::Vec sum = sxx + syy, diff = sxx - syy;
+  PlaneStressLanes r;
+  r.sxx = simd::select(linear, 0.5 * (sum * p.f1 + diff * p.f2), sxx);
+  r.syy = simd::select(linear, 0.5 * (sum * p.f1 - diff * p.f2), syy);
+  r.sxy = simd::select(linear, sxy * p.f2, sxy);
+  r.dpeeq = p.dpeeq;
+  r.yield = p.yield;
+  r.dgamma = p.dgamma;
+  const simd::Mask crossed = linear & ~p.failed & (peeq + p.dpeeq > seg_end);
+  const simd::Mask rest = (active & ~linear) | p.failed | crossed;
+  if (simd::any(rest)) [[unlikely]]
+    newton_return_lanes(laws(), rest, p.failed, seg_stress, seg_slope, seg_end, q11, q12, shear,
+                        sxx, syy, sxy, peeq, dt, r);
+  return r;
+}
+
 /// Plastic state of the section points of a batched shell block: equivalent plastic strain,
-/// its rate and the static yield stress per point, and the laws of the plastic lanes.
+/// the static yield stress per point, and the laws of the plastic lanes.
 /// Empty (no arrays, no work) when no element of the block is plastic.
 class ShellPlasticState {
  public:
@@ -64,20 +122,31 @@ class ShellPlasticState {
   /// (Pa) of the increment from the stresses `start` (σxx, σyy, σxy at t_n, Pa): one SIMD
   /// yield test, then the scalar return only in the lanes that yield. Returns the plastic
   /// work ½(σ_n + σ_{n+1}) : Δεᵖ (J/m^3) and adds Δε33ᵖ to `thickness_strain` weighted by
-  /// `weight`, both zero in the lanes that stay elastic.
-  simd::Vec point_return(std::size_t b, int k, simd::Vec q11, simd::Vec q12, simd::Vec shear,
-                         Real dt, simd::Vec weight, const simd::Vec start[3], simd::Vec& sxx,
-                         simd::Vec& syy, simd::Vec& sxy, simd::Vec& thickness_strain);
+  /// `weight`, both zero in the lanes that stay elastic. Inline (below): the S4R kernel's
+  /// common case, all lanes on a table segment, runs without a call.
+  XPL_KERNEL_INLINE simd::Vec point_return(std::size_t b, int k, simd::Vec q11, simd::Vec q12,
+                                           simd::Vec shear, Real dt, simd::Vec weight,
+                                           const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy,
+                                           simd::Vec& sxy, simd::Vec& thickness_strain);
 
   /// ε̄ᵖ (-) of section point k of batch b, lane l; 0 where elastic.
   Real peeq(std::size_t b, int k, std::size_t l) const;
-  /// Δε̄ᵖ/dt (1/s) of the last increment of section point k of batch b, lane l.
-  Real peeq_rate(std::size_t b, int k, std::size_t l) const;
   /// Sets ε̄ᵖ (≥ 0) of section point k of batch b, lane l (an imported state); the static
   /// yield stress follows. Elastic lanes are left alone.
   void set_peeq(std::size_t b, int k, std::size_t l, Real value);
 
  private:
+  /// The rare end of point_return: σ_y of the `other` lanes with a rate law, the segments of
+  /// the lanes that `passed` their segment's end.
+  [[gnu::noinline]] void finish_point(std::size_t b, std::size_t r, simd::Mask other,
+                                      simd::Mask passed, simd::Vec peeq_end);
+  /// The laws of the lanes of batch b (elastic lanes: law 0, never asked for).
+  void lane_laws(std::size_t b, const Plasticity* laws[W]) const {
+    for (std::size_t l = 0; l < W; ++l) {
+      const int law = m_lane_law[b * W + l];
+      laws[l] = &m_laws[static_cast<std::size_t>(law < 0 ? 0 : law)];
+    }
+  }
   std::size_t row(std::size_t b, int k) const {
     return (b * static_cast<std::size_t>(m_points) + static_cast<std::size_t>(k)) * W;
   }
@@ -87,12 +156,69 @@ class ShellPlasticState {
   std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, −1 elastic
   std::vector<unsigned char> m_batch_plastic;  ///< [b] any lane plastic
   std::vector<Real> m_peeq;                    ///< [b][points][W] ε̄ᵖ, -
-  std::vector<Real> m_rate;                    ///< [b][points][W] Δε̄ᵖ/dt, 1/s
   std::vector<Real> m_yield;  ///< [b][points][W] σ_y(ε̄ᵖ, 0), Pa; +inf elastic
-  /// [b][points][W] tabular laws: the table segment holding ε̄ᵖ (the last point ε_i ≤ ε̄ᵖ),
-  /// kept up as ε̄ᵖ grows so that a return does not search the table.
-  std::vector<int> m_segment;
-  std::vector<std::vector<Real>> m_slopes;  ///< per law (tabular): slope of each segment, Pa
+  /// [b][W] −1 where the lane's law is a rate-free table (its flow stress piecewise linear in
+  /// ε̄ᵖ: the polynomial return), else 0.
+  std::vector<std::int64_t> m_lane_linear;
+  /// [b][points][W] tabular laws: index into the segment table of the segment holding ε̄ᵖ
+  /// (the last point ε_i ≤ ε̄ᵖ), kept up as ε̄ᵖ grows so that a return does not search the
+  /// table; 0 (a segment of slope 0 that never ends) for the other laws.
+  std::vector<Index> m_segment;
+  /// The segments of the tabular laws one after the other, after the entry 0 above: slope
+  /// (Pa) and the ε̄ᵖ where it ends (the next table point; +inf on a law's last, constant part).
+  std::vector<Real> m_segment_slope, m_segment_end;
+  std::vector<Index> m_law_segment;  ///< per law: index of its first segment (0 untabulated)
 };
+
+XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
+    std::size_t b, int k, simd::Vec q11, simd::Vec q12, simd::Vec shear, Real dt, simd::Vec weight,
+    const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy, simd::Vec& sxy,
+    simd::Vec& thickness_strain) {
+  using simd::Vec;
+  const std::size_t r = row(b, k);
+  const Vec y = simd::load(&m_yield[r]);
+  const Vec vm2 = sxx * sxx - sxx * syy + syy * syy + 3.0 * (sxy * sxy);
+  const simd::Mask yielding = vm2 > (y * y) * (1.0 + SHELL_YIELD_TOLERANCE);
+  Vec dissipation = simd::splat(0.0);
+  if (!simd::any(yielding)) return dissipation;
+  // Rate-free tables on the segment of ε̄ᵖ_n: σ_y = y + slope Δε̄ᵖ (y = σ_y(ε̄ᵖ_n), kept up
+  // by the returns) up to ε̄ᵖ = end, slope and end from the segment table.
+  simd::Mask linear;
+  for (std::size_t l = 0; l < W; ++l) linear[l] = m_lane_linear[b * W + l];
+  linear &= yielding;
+  const Index* segment = &m_segment[r];
+  const Vec slope = simd::gather(m_segment_slope.data(), segment);
+  const Vec end = simd::gather(m_segment_end.data(), segment);
+  const Vec peeq = simd::load(&m_peeq[r]);
+  const Plasticity* laws[W];
+  const PlaneStressLanes ret = plane_stress_lanes(
+      [&] {
+        lane_laws(b, laws);
+        return laws;
+      },
+      yielding, linear, y, slope, end, q11, q12, shear, sxx, syy, sxy, peeq, dt);
+  sxx = ret.sxx;
+  syy = ret.syy;
+  sxy = ret.sxy;
+  const Vec peeq_end = peeq + ret.dpeeq;
+  simd::store(&m_peeq[r], peeq_end);
+  // Δεᵖ = Δγ P σ: Δε11ᵖ + Δε22ᵖ = Δγ (σxx + σyy)/3, so Δε33ᵖ = −Δγ (σxx + σyy)/3.
+  thickness_strain -= weight * ret.dgamma * (sxx + syy) * (1.0 / 3.0);
+  // The plastic work ½(σ_n + σ_{n+1}) : Δεᵖ with Δεᵖ = Δγ P σ_{n+1} (engineering shear):
+  // with the trapezoidal stress work, ALLSE is the elastic energy of the stress state
+  // (return_work() of the hex points, radial_return_lanes.hpp, says why).
+  const Vec work = (0.5 / 3.0) * ret.dgamma *
+                   ((start[0] + sxx) * (2.0 * sxx - syy) + (start[1] + syy) * (2.0 * syy - sxx) +
+                    6.0 * (start[2] + sxy) * sxy);
+  dissipation = simd::select(yielding, work, dissipation);
+  // The next trial's test: σ_y(ε̄ᵖ_{n+1}, 0), the end yield stress itself without a rate law
+  // (finish_point takes the rate factor out where there is one).
+  simd::store(&m_yield[r], simd::select(yielding, ret.yield, y));
+  const simd::Mask other = yielding & ~linear;
+  const simd::Mask passed = linear & (peeq_end >= end);
+  if (simd::any(other | passed)) [[unlikely]]
+    finish_point(b, r, other, passed, peeq_end);
+  return dissipation;
+}
 
 }  // namespace xpl::elements

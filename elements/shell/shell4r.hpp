@@ -316,7 +316,6 @@ class Shell4rBlock {
   /// PEEQ (-) and its rate over the last increment (1/s) of section point k (0 = bottom) of
   /// block element i, for tests.
   Real plastic_strain(Index i, int k) const;
-  Real plastic_strain_rate(Index i, int k) const;
 
  private:
   static constexpr int W = simd::W;

@@ -68,9 +68,4 @@ Real Shell4rBlock::plastic_strain(Index i, int k) const {
   return m_plastic.peeq(s / W, k, s % W);
 }
 
-Real Shell4rBlock::plastic_strain_rate(Index i, int k) const {
-  const std::size_t s = slot_of(i);
-  return m_plastic.peeq_rate(s / W, k, s % W);
-}
-
 }  // namespace xpl::elements

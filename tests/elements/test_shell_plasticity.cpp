@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "elements/material/shell_plasticity.hpp"
@@ -165,7 +167,6 @@ TEST_CASE("shell plastic state: one SIMD test, the return only in yielding plast
       CHECK(sxx[l] == r.sxx);
       CHECK(syy[l] == r.syy);
       CHECK(state.peeq(0, 0, l) == r.peeq_increment);
-      CHECK(state.peeq_rate(0, 0, l) == Approx(r.peeq_increment / 1e-6).epsilon(1e-14));
       CHECK(d[l] == Approx(0.5 * r.dissipation).epsilon(1e-12));
       CHECK(thick[l] == Approx(0.5 * r.thickness_strain).epsilon(1e-14));
     } else {
@@ -182,4 +183,112 @@ TEST_CASE("shell plastic state: one SIMD test, the return only in yielding plast
     CHECK_FALSE(empty.batch_plastic(0));
     CHECK(empty.peeq(0, 0, 0) == 0.0);
   }
+}
+
+TEST_CASE(
+    "plane-stress return: the yield condition holds to 1e-8 over random strain increments on "
+    "linear and multi-segment tables",
+    "[elements][plasticity][shell]") {
+  // Issue 38: the polynomial return of rate-free tables (plane_stress_polynomial.hpp), its
+  // Newton fallback (large overshoots, table breaks crossed within an increment) and the
+  // segment bookkeeping of ShellPlasticState, over random strain paths: every returned stress
+  // lies on σ_y(ε̄ᵖ_{n+1}) to 1e-8 relative (the issue's bound; the return stops at 1e-12),
+  // every other stress inside it.
+  Plasticity multi;  // four segments, the last one steep, then constant
+  multi.yield_stress = {SY, 300e6, 340e6, 360e6, 500e6};
+  multi.plastic_strain = {0.0, 0.002, 0.01, 0.05, 0.06};
+  Plasticity soft_start;  // a small first segment crossed by most increments
+  soft_start.yield_stress = {SY, 260e6, 400e6};
+  soft_start.plastic_strain = {0.0, 1e-5, 0.3};
+  const Plasticity laws[] = {perfectly_plastic(), linear_hardening(), multi, soft_start};
+  constexpr int POINTS = 3;
+  // Lanes 0–3 one law each, lanes 4–7 the same again (a mixed batch), then batches of one law.
+  std::vector<const Plasticity*> lanes;
+  for (int l = 0; l < simd::W; ++l) lanes.push_back(&laws[l % 4]);
+  for (const Plasticity& law : laws)
+    for (int l = 0; l < simd::W; ++l) lanes.push_back(&law);
+  const std::size_t batches = lanes.size() / simd::W;
+  ShellPlasticState state(lanes, POINTS);
+  std::vector<Real> stress(lanes.size() * POINTS * 3, 0.0);
+  std::mt19937 rng(38);
+  std::normal_distribution<Real> normal(0.0, 1.0);
+  std::uniform_real_distribution<Real> uniform(0.0, 1.0);
+  int returned = 0;
+  Real worst = 0.0;
+  for (int increment = 0; increment < 400; ++increment) {
+    for (std::size_t b = 0; b < batches; ++b)
+      for (int k = 0; k < POINTS; ++k) {
+        simd::Vec sxx, syy, sxy, start[3], thick = simd::splat(0.0);
+        for (std::size_t l = 0; l < simd::W; ++l) {
+          const std::size_t i = ((b * POINTS + static_cast<std::size_t>(k)) * simd::W + l) * 3;
+          // Strain increments from 1e-7 to 1e-2 (overshoots from round-off to ~10 × σ_y),
+          // random directions: loading, unloading and reloading.
+          const Real size = std::pow(10.0, -7.0 + 5.0 * uniform(rng));
+          const Real ex = size * normal(rng), ey = size * normal(rng), gxy = size * normal(rng);
+          for (std::size_t c = 0; c < 3; ++c) start[c][l] = stress[i + c];
+          sxx[l] = stress[i] + Q11 * ex + Q12 * ey;
+          syy[l] = stress[i + 1] + Q12 * ex + Q11 * ey;
+          sxy[l] = stress[i + 2] + G * gxy;
+        }
+        const simd::Vec peeq_before = [&] {
+          simd::Vec p;
+          for (std::size_t l = 0; l < simd::W; ++l) p[l] = state.peeq(b, k, l);
+          return p;
+        }();
+        state.point_return(b, k, simd::splat(Q11), simd::splat(Q12), simd::splat(G), 1e-6,
+                           simd::splat(1.0 / POINTS), start, sxx, syy, sxy, thick);
+        for (std::size_t l = 0; l < simd::W; ++l) {
+          const std::size_t i = ((b * POINTS + static_cast<std::size_t>(k)) * simd::W + l) * 3;
+          stress[i] = sxx[l];
+          stress[i + 1] = syy[l];
+          stress[i + 2] = sxy[l];
+          const Real peeq = state.peeq(b, k, l);
+          const Real sy = flow_stress(*lanes[b * simd::W + l], peeq, 0.0).stress;
+          const Real vm = std::sqrt(mises2(sxx[l], syy[l], sxy[l]));
+          INFO("increment " << increment << " batch " << b << " point " << k << " lane " << l);
+          REQUIRE(peeq >= peeq_before[l]);
+          if (peeq > peeq_before[l]) {
+            ++returned;
+            worst = std::max(worst, std::abs(vm / sy - 1.0));
+            REQUIRE(std::abs(vm / sy - 1.0) <= 1e-8);
+          } else {
+            REQUIRE(vm <= sy * (1.0 + 1e-12));
+          }
+        }
+      }
+  }
+  INFO("worst |vm/sy - 1| " << worst);
+  CHECK(returned > 10000);  // most increments yield: the test exercises the returns
+  CHECK(worst <= 1e-10);
+}
+
+TEST_CASE(
+    "plane-stress return: random trials on linear and multi-segment tables satisfy the "
+    "backward-Euler equations",
+    "[elements][plasticity][shell]") {
+  Plasticity multi;
+  multi.yield_stress = {SY, 300e6, 340e6, 360e6};
+  multi.plastic_strain = {0.0, 0.01, 0.05, 0.2};
+  const Plasticity laws[] = {perfectly_plastic(), linear_hardening(), multi};
+  std::mt19937 rng(14);
+  std::normal_distribution<Real> normal(0.0, 1.0);
+  std::uniform_real_distribution<Real> uniform(0.0, 1.0);
+  for (const Plasticity& law : laws)
+    for (int trial = 0; trial < 3000; ++trial) {
+      const Real peeq = trial % 3 == 0 ? 0.0 : 0.3 * uniform(rng) * uniform(rng);
+      const Real sy0 = flow_stress(law, peeq, 0.0).stress;
+      Real t[3] = {normal(rng), normal(rng), normal(rng)};
+      // Overshoots from 1e-9 to 4 × σ_y.
+      const Real scale = sy0 * (1.0 + std::pow(10.0, -9.0 + 9.6 * uniform(rng))) /
+                         std::sqrt(mises2(t[0], t[1], t[2]));
+      for (Real& x : t) x *= scale;
+      const PlaneStressReturn r =
+          plane_stress_return(law, Q11, Q12, G, t[0], t[1], t[2], peeq, 1e-6);
+      INFO("law " << &law - laws << " trial " << trial);
+      REQUIRE(r.peeq_increment > 0.0);
+      const Real sy = flow_stress(law, peeq + r.peeq_increment, 0.0).stress;
+      REQUIRE(std::abs(std::sqrt(mises2(r.sxx, r.syy, r.sxy)) / sy - 1.0) <= 1e-8);
+      CHECK(r.yield_stress == Approx(sy).epsilon(1e-12));
+      CHECK(return_residual(r, t[0], t[1], t[2]) < 1e-10);
+    }
 }
