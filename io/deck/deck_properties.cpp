@@ -136,7 +136,7 @@ void read_section_controls(DeckState& deck, const DeckBlock& block) {
     error(deck, keyword.where, keyword,
           "plastic hourglass control " + plastic + " is not supported",
           "expected PLASTIC HOURGLASS=TANGENT or ELASTIC");
-    return;
+    // Kept with the default, so that its sections do not report them undefined as well.
   }
   // Abaqus/Explicit puts several scale factors on the data line. The first scales the
   // hourglass resistance of the displacement dofs, whichever form (stiffness or viscous) is

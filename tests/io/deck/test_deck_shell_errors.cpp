@@ -255,6 +255,8 @@ TEST_CASE("*SECTION CONTROLS, PLASTIC HOURGLASS: TANGENT (the default) or ELASTI
     CHECK(m.section_controls[0].plastic_hourglass_elastic == elastic);
   }
   const auto errors = deck_errors(with_controls(", PLASTIC HOURGLASS=SOFT"));
+  INFO(errors.size() << " errors; first: " << (errors.empty() ? "" : errors[0])
+                     << "; second: " << (errors.size() > 1 ? errors[1] : ""));
   REQUIRE(errors.size() == 1);
   CHECK(errors[0] ==
         "t.inp:16: *SECTION CONTROLS: plastic hourglass control SOFT is not supported; expected "
