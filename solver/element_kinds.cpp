@@ -49,6 +49,7 @@ elements::ShellProperties KindBinding<elements::Shell4rBlock>::properties(const 
     // HOURGLASS=STIFFNESS, VISCOUS, RELAX STIFFNESS: the older stiffness form.
     if (c.hourglass_given && c.hourglass != HourglassType::Enhanced)
       p.hourglass = elements::ShellHourglass::Stiffness;
+    p.plastic_hourglass = !c.plastic_hourglass_elastic;
   }
   return p;
 }

@@ -96,6 +96,9 @@ struct SectionControls {
   bool hourglass_given = false;
   Real stiffness_scale = 1.0;  ///< multiplies the default hourglass stiffness coefficient
   Real viscous_scale = 1.0;    ///< multiplies the default hourglass viscosity coefficient
+  /// `PLASTIC HOURGLASS=ELASTIC`: S4R's physical form keeps its hourglass resultants elastic
+  /// in yielding sections (issue 21's form) instead of following the section's plastic state.
+  bool plastic_hourglass_elastic = false;
   SourceLocation where;
 };
 

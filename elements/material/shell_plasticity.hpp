@@ -129,6 +129,9 @@ class ShellPlasticState {
                                            const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy,
                                            simd::Vec& sxy, simd::Vec& thickness_strain);
 
+  /// σ_y(ε̄ᵖ, 0) (Pa) of section point k of batch b per lane after its last return (the next
+  /// trial's yield test); +inf in elastic lanes.
+  simd::Vec static_yield(std::size_t b, int k) const { return simd::load(&m_yield[row(b, k)]); }
   /// ε̄ᵖ (-) of section point k of batch b, lane l; 0 where elastic.
   Real peeq(std::size_t b, int k, std::size_t l) const;
   /// Sets ε̄ᵖ (≥ 0) of section point k of batch b, lane l (an imported state); the static

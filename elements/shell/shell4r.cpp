@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "elements/shell/quad_shell_geometry.hpp"
 #include "elements/shell/shell4r_hourglass.hpp"
@@ -159,8 +160,38 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     hg_work += (0.5 * dt) * (old + hq[h]) * rate;
   };
   auto advance = [&](int h, Vec stiffness, Vec rate) { store(h, (stiffness * dt) * rate, rate); };
-  advance(0, c_plane, hourglass_rate(fm, ux));
-  advance(1, c_plane, hourglass_rate(fm, uy));
+  // Plastic batches, physical form: the hourglass follows the section's plastic state on the
+  // lanes with HG_PLASTIC (shell4r_hourglass.hpp); other lanes get factors of exactly 1.
+  [[maybe_unused]] const Vec plastic_on = PLASTIC ? constant(HG_PLASTIC) : simd::splat(0.0);
+  if constexpr (PLASTIC) {
+    const Vec one = simd::splat(1.0);
+    const Vec r0 = hourglass_rate(fm, ux), r1 = hourglass_rate(fm, uy);
+    const Vec k = c_plane * (one + plastic_on * (sr.tangent_membrane - one));
+    const Vec relax = one + plastic_on * (sr.membrane_return - one);
+    const Vec o0 = simd::load(hstore), o1 = simd::load(hstore + W);
+    Vec n0 = relax * (o0 + (k * dt) * r0), n1 = relax * (o1 + (k * dt) * r1);
+    // The bound: the pattern's Gauss-point resultant norm (4 × the generalised resultant's)
+    // within SHELL_HOURGLASS_PLASTIC_BOUND σ_f t (+inf on other lanes and in elastic ones).
+    const Vec limit = simd::select(plastic_on > 0.0, (SHELL_HOURGLASS_PLASTIC_BOUND * t) * sr.flow,
+                                   simd::splat(std::numeric_limits<Real>::infinity()));
+    const Vec norm =
+        4.0 * hourglass_field_norm(quad_natural(fm), constant(POISSON), fm.area, n0, n1);
+    const simd::Mask over = norm > limit;
+    if (simd::any(over)) {
+      const Vec f = simd::select(over, limit / simd::max(norm, limit), one);
+      n0 = f * n0;
+      n1 = f * n1;
+    }
+    hq[0] = n0;
+    hq[1] = n1;
+    simd::store(hstore, n0);
+    simd::store(hstore + W, n1);
+    hg_work += (0.5 * dt) * (o0 + n0) * r0;
+    hg_work += (0.5 * dt) * (o1 + n1) * r1;
+  } else {
+    advance(0, c_plane, hourglass_rate(fm, ux));
+    advance(1, c_plane, hourglass_rate(fm, uy));
+  }
   const Vec rate_tx = hourglass_rate(fm, tx), rate_ty = hourglass_rate(fm, ty);
   if (forms & FORM_OLD) {
     const Vec bend = constant(HG_OLD) * t * t * t * (1.0 / 12.0);
@@ -185,7 +216,12 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     const Vec q1 = 0.25 * rate_ty, q2 = -0.25 * rate_tx;
     Vec k1, k2;
     bending_hourglass_apply(nat, constant(POISSON), q1, q2, k1, k2);
-    const Vec bend_k = (scale * q11) * t * t * t * (1.0 / 36.0) * fm.area;
+    Vec bend_k = (scale * q11) * t * t * t * (1.0 / 36.0) * fm.area;
+    if constexpr (PLASTIC) {
+      const Vec one = simd::splat(1.0);
+      const Vec tangent = simd::max(sr.tangent_bending, simd::splat(SHELL_HOURGLASS_TANGENT_FLOOR));
+      bend_k = bend_k * (one + plastic_on * (tangent - one));
+    }
     store(7, (bend_k * dt) * k1, q1);
     store(8, (bend_k * dt) * k2, q2);
     Vec qx_edge = qx, qy_edge = qy;

@@ -61,6 +61,17 @@ inline constexpr Real SHELL_ROTARY_MARGIN = 1.25;
 /// reach 2.3 % above it in ω (tests/elements/test_shell4r_hourglass.cpp).
 inline constexpr Real SHELL_EXACT_ROTARY_MARGIN = 1.1;
 
+/// Plastic sections of the physical form (issue 32 item 5): the hourglass resultants advance
+/// with the section's current tangent, measured at its section points, instead of the elastic
+/// moduli. Bending increments keep at least this fraction of the elastic stiffness: with 0.1
+/// or less the corner elements of the crash tube's first fold fold over
+/// (benchmarks/RESULTS.md, "S4R, fourth round").
+inline constexpr Real SHELL_HOURGLASS_TANGENT_FLOOR = 0.2;
+/// Plastic sections of the physical form: the in-plane hourglass resultants relax with the
+/// membrane return and their linear resultant field stays within this multiple of the
+/// section's flow resultant σ_f t (hourglass_field_norm(), shell4r_hourglass.hpp).
+inline constexpr Real SHELL_HOURGLASS_PLASTIC_BOUND = 1.5;
+
 /// Hourglass control of the S4R bending and transverse-shear patterns.
 enum class ShellHourglass {
   /// Physical stabilisation (default): the exactly integrated energy of the linear
@@ -100,6 +111,10 @@ struct ShellProperties {
   const Plasticity* plastic = nullptr;
   /// Form of the bending and transverse-shear hourglass control.
   ShellHourglass hourglass = ShellHourglass::Physical;
+  /// Physical form on a plastic material: the hourglass resultants follow the section's
+  /// plastic state (SHELL_HOURGLASS_TANGENT_FLOOR, SHELL_HOURGLASS_PLASTIC_BOUND; the default);
+  /// false keeps them elastic (issue 21's form, `*SECTION CONTROLS, PLASTIC HOURGLASS=ELASTIC`).
+  bool plastic_hourglass = true;
   /// Rotary inertia t²/12 per unit mass (ROTARY INERTIA=EXACT), with the stable increment
   /// of the element's fastest transverse-shear mode, instead of the scaled default.
   bool rotary_exact = false;
@@ -336,6 +351,7 @@ class Shell4rBlock {
     THICKNESS0,  ///< initial thickness
     ROT_SPEED2,  ///< κ_s G / ρ on ROTARY INERTIA=EXACT lanes, else 0 (no rotational limit)
     ROT_EXACT,   ///< 1 on ROTARY INERTIA=EXACT lanes, else 0
+    HG_PLASTIC,  ///< 1 on physical-form lanes whose hourglass follows the plastic state, else 0
     N_CONST
   };
   /// Hourglass resultants: in-plane x, y; stiffness form: transverse, rotational x, y;

@@ -31,6 +31,13 @@
 /// Both are kept as resultants in the corotational frame and advanced in rate form like the
 /// stresses (stiffness form, elastic moduli). In-plane hourglass patterns keep the
 /// Flanagan–Belytschko stiffness form of the older control in both forms.
+/// Plastic sections (physical form, unless PLASTIC HOURGLASS=ELASTIC): the in-plane increments
+/// are scaled by the section's membrane tangent ratio, the stored in-plane resultants relax with
+/// the membrane return ratio and stay within SHELL_HOURGLASS_PLASTIC_BOUND σ_f t (Gauss-point
+/// norm, hourglass_field_norm()), and the bending increments are scaled by the bending tangent
+/// ratio, at least SHELL_HOURGLASS_TANGENT_FLOOR (shell4r.hpp). Everything the resultants take
+/// or give back is hourglass energy (ALLAE), the part removed by a relaxation or the bound
+/// included: the work is taken over the increment against the end resultants.
 /// All functions are templates over the lane type (`Real` or `simd::Vec`).
 
 #include "elements/shell/quad_shell_geometry.hpp"
@@ -144,6 +151,31 @@ inline void bending_hourglass_apply(const QuadNatural<T>& n, T nu, T q1, T q2, T
   const T half = 0.5 * (1.0 + nu);
   k1 = iso * q1 + half * (n.ax * qa + n.cx * qc);
   k2 = iso * q2 + half * (n.ay * qa + n.cy * qc);
+}
+
+/// Largest von Mises norm, per unit width (N/m for forces, N for moments), of the linear
+/// resultant field of a pattern at the four 2 × 2 Gauss points, from the generalised resultant
+/// (r1, r2) conjugate to the pattern's amplitude h (q of the bending form): the field the fully
+/// integrated element carries for the same energy, r = (k A/3) B h with B of
+/// bending_hourglass_apply(), so k h = (3/A) B⁻¹ r, and the resultant amplitudes along ξ and η
+/// are m_a = P sym(k h ⊗ a), m_c = P sym(k h ⊗ c), P the plane-stress law over its modulus
+/// ([1 ν 0; ν 1 0; 0 0 1−ν] on xx, yy, xy). A Gauss point (±1/√3, ±1/√3) holds (±m_a ± m_c)/√3.
+template <class T>
+inline T hourglass_field_norm(const QuadNatural<T>& n, T nu, T area, T r1, T r2) {
+  const T iso = 0.5 * (1.0 - nu) * (n.aa + n.cc), half = 0.5 * (1.0 + nu);
+  const T b11 = iso + half * (n.ax * n.ax + n.cx * n.cx);
+  const T b12 = half * (n.ax * n.ay + n.cx * n.cy);
+  const T b22 = iso + half * (n.ay * n.ay + n.cy * n.cy);
+  const T s = 3.0 / (area * (b11 * b22 - b12 * b12));
+  const T g1 = s * (b22 * r1 - b12 * r2), g2 = s * (b11 * r2 - b12 * r1);
+  // m_a ± m_c = P sym(g ⊗ (a ± c)).
+  auto norm2 = [&](T dx, T dy) {
+    const T kxx = g1 * dx, kyy = g2 * dy, kxy = 0.5 * (g1 * dy + g2 * dx);
+    const T mxx = kxx + nu * kyy, myy = kyy + nu * kxx, mxy = (1.0 - nu) * kxy;
+    return mxx * mxx - mxx * myy + myy * myy + 3.0 * (mxy * mxy);
+  };
+  const T plus = norm2(n.ax + n.cx, n.ay + n.cy), minus = norm2(n.ax - n.cx, n.ay - n.cy);
+  return simd::sqrt(simd::max(plus, minus) * (1.0 / 3.0));
 }
 
 }  // namespace xpl::elements

@@ -28,6 +28,12 @@ struct ShellPlaneRates {
 /// resultants per unit length (N/m, N), the strain and plastic work per unit area (J/m²).
 struct ShellSectionResultants {
   Vec t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work;
+  /// Plastic batches, the state the physical hourglass follows: the section's tangent ratios
+  /// over the increment, membrane (weights w) and bending (weights w ζ²), each in [0, 1]; the
+  /// membrane return ratio |N| / |N_trial| (von Mises norms); the flow stress Σ w max(σ_y, σ_vM)
+  /// (Pa). Elastic batches: 1, 1, 1 and +inf.
+  Vec tangent_membrane = simd::splat(1.0), tangent_bending = simd::splat(1.0),
+      membrane_return = simd::splat(1.0), flow = simd::splat(std::numeric_limits<Real>::infinity());
 };
 
 namespace shell4r_kernel {
@@ -83,6 +89,12 @@ XPL_KERNEL_INLINE void corner_forces(const QuadFrame<Vec>& fe, const ShellResult
   }
 }
 
+/// The von Mises product of two plane stresses a, b (Pa²): a·b = a_xx b_xx − ½(a_xx b_yy +
+/// a_yy b_xx) + a_yy b_yy + 3 a_xy b_xy, so a·a = σ_vM(a)².
+XPL_KERNEL_INLINE Vec von_mises_product(Vec axx, Vec ayy, Vec axy, Vec bxx, Vec byy, Vec bxy) {
+  return axx * bxx - 0.5 * (axx * byy + ayy * bxx) + ayy * byy + 3.0 * (axy * bxy);
+}
+
 /// Positions `x`, velocities `vel` and angular velocities `om` of the 4 corners of a batch
 /// (component arrays p, v, w; corner node indices `conn`, [corner 4][W]).
 XPL_KERNEL_INLINE void gather_nodes(const Index* conn, const Real* const p[3],
@@ -124,6 +136,10 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   Vec work = simd::splat(0.0);  // strain energy increment per unit area
   // Plastic batches: dissipation per unit area and Σ weight · Δε33ᵖ over the section points.
   Vec plastic_work = simd::splat(0.0), thinning = simd::splat(0.0);
+  // Plastic batches: Σ w r and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², the trial and
+  // returned membrane stresses Σ w σ, and the flow stress.
+  [[maybe_unused]] Vec tan_m = simd::splat(0.0), tan_b = tan_m, weight_b = tan_m, flow = tan_m;
+  [[maybe_unused]] Vec trial_n[3] = {tan_m, tan_m, tan_m}, returned_n[3] = {tan_m, tan_m, tan_m};
   for (int k = 0; k < m_points; ++k) {
     const Vec zeta = 0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset;
     const Vec weight = simd::load(&m_weight[(b * m_points + k) * W]);
@@ -138,8 +154,34 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
     Vec sxy_n = sxy + g * exy;
     if constexpr (PLASTIC) {
       const Vec start[3] = {sxx, syy, sxy};
+      const Vec trial[3] = {sxx_n - sxx, syy_n - syy, sxy_n - sxy};
+      trial_n[0] += weight * sxx_n;
+      trial_n[1] += weight * syy_n;
+      trial_n[2] += weight * sxy_n;
       plastic_work += tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n,
                                                   syy_n, sxy_n, thinning);
+      returned_n[0] += weight * sxx_n;
+      returned_n[1] += weight * syy_n;
+      returned_n[2] += weight * sxy_n;
+      // Tangent ratio of the point: the returned stress increment along the elastic one, in
+      // the von Mises product; 1 where the point stays elastic, about 0 where it flows.
+      const Vec along = shell4r_kernel::von_mises_product(sxx_n - sxx, syy_n - syy, sxy_n - sxy,
+                                                          trial[0], trial[1], trial[2]);
+      const Vec trial2 = shell4r_kernel::von_mises_product(trial[0], trial[1], trial[2], trial[0],
+                                                           trial[1], trial[2]);
+      const Vec ratio = simd::select(
+          trial2 > 0.0,
+          simd::min(simd::max(along / simd::max(trial2, simd::splat(1e-300)), simd::splat(0.0)),
+                    simd::splat(1.0)),
+          simd::splat(1.0));
+      const Vec wz2 = weight * zeta * zeta;
+      tan_m += weight * ratio;
+      tan_b += wz2 * ratio;
+      weight_b += wz2;
+      const Vec vm =
+          simd::sqrt(shell4r_kernel::von_mises_product(sxx_n, syy_n, sxy_n, sxx_n, syy_n, sxy_n));
+      flow += simd::select(weight > 0.0, weight * simd::max(m_plastic.static_yield(b, k), vm),
+                           simd::splat(0.0));
     }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
@@ -176,7 +218,21 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   simd::store(shear + W, tyz_n);
   work += (0.5 * dt) * t_mid * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
   const Vec qx = t * txz_n, qy = t * tyz_n;
-  return {t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work};
+  ShellSectionResultants out{t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work};
+  if constexpr (PLASTIC) {
+    // The weights of a batch's points sum to 1 (Simpson, shell4r_setup.cpp).
+    const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
+    out.tangent_membrane = simd::min(tan_m, one);
+    out.tangent_bending = simd::select(weight_b > 0.0, tan_b / simd::max(weight_b, tiny), one);
+    const Vec n_trial = shell4r_kernel::von_mises_product(trial_n[0], trial_n[1], trial_n[2],
+                                                          trial_n[0], trial_n[1], trial_n[2]);
+    const Vec n_returned = shell4r_kernel::von_mises_product(
+        returned_n[0], returned_n[1], returned_n[2], returned_n[0], returned_n[1], returned_n[2]);
+    out.membrane_return = simd::select(
+        n_trial > 0.0, simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
+    out.flow = flow;
+  }
+  return out;
 }
 
 template <bool PLASTIC>

@@ -92,6 +92,7 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
       c[HG_OLD * W] = physical ? 0.0 : c[HG_MODULUS * W];
       c[HG_PHYS * W] = physical ? p.hourglass_scale : 0.0;
       c[PHYS_ON * W] = physical ? 1.0 : 0.0;
+      c[HG_PLASTIC * W] = physical && p.plastic_hourglass ? 1.0 : 0.0;
       c[POISSON * W] = nu;
       m_batch_forms[b] |= physical ? FORM_PHYS : FORM_OLD;
       m_rotary_exact = m_rotary_exact || p.rotary_exact;

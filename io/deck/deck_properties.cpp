@@ -109,7 +109,7 @@ void read_elastic(DeckState& deck, const DeckBlock& block) {
 
 void read_section_controls(DeckState& deck, const DeckBlock& block) {
   const DeckKeyword& keyword = block.keyword;
-  check_parameters(deck, keyword, {{"NAME"}, {"HOURGLASS"}});
+  check_parameters(deck, keyword, {{"NAME"}, {"HOURGLASS"}, {"PLASTIC HOURGLASS"}});
   const std::optional<std::string> name = required_name(deck, keyword, "NAME");
   SectionControls controls;
   const std::string hourglass = optional_name(keyword, "HOURGLASS");
@@ -128,6 +128,16 @@ void read_section_controls(DeckState& deck, const DeckBlock& block) {
     return;
   }
   controls.hourglass_given = !hourglass.empty();
+  // S4R's physical form on a plastic material: TANGENT (the default) or ELASTIC.
+  const std::string plastic = optional_name(keyword, "PLASTIC HOURGLASS");
+  if (plastic == "ELASTIC") {
+    controls.plastic_hourglass_elastic = true;
+  } else if (!plastic.empty() && plastic != "TANGENT") {
+    error(deck, keyword.where, keyword,
+          "plastic hourglass control " + plastic + " is not supported",
+          "expected PLASTIC HOURGLASS=TANGENT or ELASTIC");
+    // Kept with the default, so that its sections do not report them undefined as well.
+  }
   // Abaqus/Explicit puts several scale factors on the data line. The first scales the
   // hourglass resistance of the displacement dofs, whichever form (stiffness or viscous) is
   // active, so it goes to both scales. The others (rotational and out-of-plane hourglass,

@@ -14,6 +14,7 @@ self contact ALL EXTERIOR), runs it with 2 threads and checks (crash_tube_result
   took; the solver's own check stops a run at 10 % of the largest energy; measured -0.18 %;
   the folding self contact once reached -534 J = -20 %);
 - progressive folding: at least 2 outward lobes on every wall;
+- hourglass energy: ALLAE at most 10 % of ALLIE at the end (issue 32 item 5);
 - the mean crush force over 22.5-67.5 mm of crush against Abramowicz-Jones
   13.06 sigma0 t^(5/3) C^(1/3) = 23.64 kN: between 0.75 and 1.40 of it. The issue's 25 % is
   the accuracy of the finer mesh (benchmarks/RESULTS.md); this mesh has 3 elements per half
@@ -53,7 +54,7 @@ def main():
     check(written.read_text() == deck.read_text(),
           "make_crash_tube.py does not write examples/plasticity/crash_tube.inp any more")
     result = subprocess.run([xpl, "run", str(deck), "-o", str(out), "--quiet", "--threads", "2"],
-                            capture_output=True, text=True, timeout=600)
+                            capture_output=True, text=True, timeout=1200)
     check(result.returncode == 0,
           f"xpl run exited {result.returncode}:\n{result.stdout}{result.stderr}")
     h5 = out / "crash_tube.h5"
@@ -77,6 +78,9 @@ def main():
           f"ALLPW fell to {r['ALLPW_min']} J of ALLWK {r['ALLWK']} J: contact created energy")
     check(min(r["lobes"]) >= 2, f"lobes per wall {r['lobes']}: no progressive folding")
     check(0.75 < ratio < 1.40, f"mean crush force {ratio:.3f} x Abramowicz-Jones")
+    # Issue 32 item 5: hourglass energy at most 10 % of ALLIE (8.5 % measured at the end since
+    # the plastic sections' hourglass follows their tangent; 30 % before).
+    check(r["ALLAE"] <= 0.10 * r["ALLIE"], f"ALLAE {r['ALLAE']} J of ALLIE {r['ALLIE']} J")
 
 
 if __name__ == "__main__":

@@ -103,7 +103,7 @@ def run(xpl, name, work):
             run(xpl, IMPORTS[name], work)
         extra += ["--import", str(source)]
     result = subprocess.run([xpl, "run", str(deck_path(name)), "-o", str(out), "--threads", "1",
-                             "--quiet", *extra], capture_output=True, text=True, timeout=300)
+                             "--quiet", *extra], capture_output=True, text=True, timeout=900)
     if result.returncode != 0:
         sys.exit(f"regress.py: {name}: xpl run exited {result.returncode}:\n{result.stderr}")
     check_completed(name, out / f"{name}.summary.json")

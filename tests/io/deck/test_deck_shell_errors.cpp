@@ -238,3 +238,27 @@ TEST_CASE("faces that do not fit the element type", "[io][deck][shell][errors]")
                                 "face S3 does not fit S4R element 12; expected SPOS or SNEG on "
                                 "S4R shell elements"));
 }
+
+TEST_CASE("*SECTION CONTROLS, PLASTIC HOURGLASS: TANGENT (the default) or ELASTIC",
+          "[io][deck][shell][errors]") {
+  auto with_controls = [](const std::string& parameters) {
+    return plate_with_section(
+        "*SECTION CONTROLS, NAME=HG" + parameters + "\n" + SECTION_LINE + ", CONTROLS=HG",
+        "0.002\n");
+  };
+  const std::pair<std::string, bool> reads[] = {
+      {"", false}, {", PLASTIC HOURGLASS=TANGENT", false}, {", PLASTIC HOURGLASS=ELASTIC", true}};
+  for (const auto& [parameters, elastic] : reads) {
+    INFO("parameters: " << parameters);
+    const Model m = io::read_deck_text(with_controls(parameters), "t.inp");
+    REQUIRE(m.section_controls.size() == 1);
+    CHECK(m.section_controls[0].plastic_hourglass_elastic == elastic);
+  }
+  const auto errors = deck_errors(with_controls(", PLASTIC HOURGLASS=SOFT"));
+  INFO(errors.size() << " errors; first: " << (errors.empty() ? "" : errors[0])
+                     << "; second: " << (errors.size() > 1 ? errors[1] : ""));
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0] ==
+        "t.inp:16: *SECTION CONTROLS: plastic hourglass control SOFT is not supported; expected "
+        "PLASTIC HOURGLASS=TANGENT or ELASTIC");
+}
