@@ -13,7 +13,7 @@
 
 #include "io/result_tools/h5_handles.hpp"
 #include "io/result_tools/h5_reader.hpp"
-#include "solver/frame_fields.hpp"
+#include "solver/output/frame_fields.hpp"
 
 namespace xpl::io {
 
