@@ -94,6 +94,12 @@ class Ties {
     std::array<Real, 4> weight{};
     bool rotations = false;  ///< shell slave on a shell master: rotations tied too
   };
+  /// Binds the slave nodes of one tie (`shell_node`: 1 for the nodes of shells), with its
+  /// message and warnings.
+  void bind(const Model& model, const Tie& tie, const std::vector<char>& shell_node, State& state);
+  /// Builds the per-master-node entries (m_master, m_entry_offsets, m_entries) of the
+  /// bindings, over the model's n nodes.
+  void index_masters(Index n);
   std::vector<Binding> m_bindings;  ///< in tie order, then slave node order
   /// Per master node (m_master, in node order): its (binding, corner) entries in binding
   /// order, CSR in m_entry_offsets.
