@@ -20,7 +20,7 @@
 #include "io/results/result_files.hpp"
 #include "solver/distributed_run.hpp"
 #include "solver/explicit_solver.hpp"
-#include "solver/output_schedule.hpp"
+#include "solver/output/output_schedule.hpp"
 #include "solver/thread_team.hpp"
 
 namespace xpl::apps {

@@ -1,5 +1,5 @@
 # Build-enforced layering. Sources include project headers relative to the project root
-# ("solver/model.hpp"), but no target has the project root on its include path: each library
+# ("solver/model/model.hpp"), but no target has the project root on its include path: each library
 # gets an include root of its own in the build tree holding symlinks to only the source folders
 # it may include from, as its PUBLIC include directory. An upward include ("solver/..." from
 # contact/) then fails to compile with "No such file or directory".
@@ -28,7 +28,7 @@
 # A library's consumers see its root through PUBLIC propagation: that is safe because every
 # root is a subset of the roots of the layers above it (solver links contact PUBLIC, and
 # contact's root holds only common/ and contact/). The one path around the roots is a quoted
-# include relative to the including file ("../solver/model.hpp"), which the layering_sources
+# include relative to the including file ("../solver/model/model.hpp"), which the layering_sources
 # test forbids (tests/layering/check_sources.cmake).
 
 set(XPL_INCLUDE_ROOTS_DIR ${PROJECT_BINARY_DIR}/include_roots)

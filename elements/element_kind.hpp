@@ -1,14 +1,14 @@
 #pragma once
 /// \file What every element kind provides: a block of the elements of one type (the C3D8R and
 /// C3D8 blocks in hex/, the S4R block in shell/) behind one C++20 concept, so that the solver
-/// (solver/element_set.*) folds over the kinds at compile time, with no branch per type and no
-/// virtual call: each kind's force pass stays its own SIMD kernel.
+/// (solver/forces/element_set.*) folds over the kinds at compile time, with no branch per type and
+/// no virtual call: each kind's force pass stays its own SIMD kernel.
 ///
 /// A kind is a class K with
 ///   - K::NAME (the Abaqus type, "C3D8R"), K::NODES (nodes per element), K::Properties (the
-///     material and section constants of one element, from the model: solver/element_kinds.*)
-///     and K::Totals (what a force pass reports: ΔALLSE, ΔALLAE and the increment limit, and
-///     ΔALLVD, ΔALLPD where the kind has them);
+///     material and section constants of one element, from the model:
+///     solver/forces/element_kinds.*) and K::Totals (what a force pass reports: ΔALLSE,
+///     ΔALLAE and the increment limit, and ΔALLVD, ΔALLPD where the kind has them);
 ///   - a constructor K(model indices, connectivity (NODES per element), properties, node count);
 ///   - the force pass in parts (thread_partition.hpp): mark_nodes, set_partition,
 ///     forces_of_part(part, ForcePass), add_boundary_forces(k, node, ForcePass), add_totals;
@@ -17,7 +17,7 @@
 ///   - the lumped mass of the block (add_lumped_mass) and, per element in the reference
 ///     configuration, its mass share per node (K::node_mass) and its stable increment at rest
 ///     (K::stable_increment): the one formula of the kind that *FIXED MASS SCALING and
-///     *DLOAD GRAV (solver/mass_scaling.*, solver/loads/gravity_loads.*) use too.
+///     *DLOAD GRAV (solver/increment/mass_scaling.*, solver/loads/gravity_loads.*) use too.
 /// Optional members, found by `requires` where they are used: rotational DOFs
 /// (K::ROTATIONS), hourglass state (gather_hourglass_state / set_hourglass_state), the
 /// linear stiffness product of the global estimate (add_stiffness_product), section output

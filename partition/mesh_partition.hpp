@@ -32,7 +32,8 @@ struct PartitionInput {
   Index node_count = 0;
   std::span<const Index> element_offsets;  ///< (n_elements + 1) into element_nodes
   std::span<const Index> element_nodes;    ///< node indices of every element, CSR
-  /// Relative cost of each element (n_elements, ≥ 0; solver/model_partition.hpp); empty: all 1.
+  /// Relative cost of each element (n_elements, ≥ 0; solver/model_partition.hpp); empty:
+  /// all 1.
   std::span<const Real> element_weight;
   /// Reference coordinates (n_nodes × 3), m: the bisection cuts along them.
   const NodalVectors* coordinates = nullptr;

@@ -24,7 +24,7 @@ repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
 # Not yet on in CI: the build uses -march=native, and on a CPU with AVX2 but no AVX-512 GCC 12
-# warns "may be used uninitialized" inside Eigen in solver/rigid_bodies.cpp (GCC bug 105593),
+# warns "may be used uninitialized" inside Eigen in solver/motion/rigid_bodies.cpp (GCC bug 105593),
 # which an AVX-512 machine never compiles; a CI machine of the other kind would fail on it.
 # Turn it on here (export XPL_WERROR=ON when CI=true) once every -march the CI may get builds
 # clean (docs/dev/testing.md).

@@ -33,8 +33,8 @@
 #include <vector>
 
 #include "partition/exchange_plan.hpp"
-#include "solver/model.hpp"
-#include "solver/state.hpp"
+#include "solver/model/model.hpp"
+#include "solver/model/state.hpp"
 
 namespace xpl {
 

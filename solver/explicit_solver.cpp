@@ -10,7 +10,7 @@
 
 #include "common/error.hpp"
 #include "solver/explicit_solver_impl.hpp"
-#include "solver/increment_control.hpp"
+#include "solver/increment/increment_control.hpp"
 #include "solver/message_text.hpp"
 #include "solver/model_partition.hpp"
 #include "solver/thread_team.hpp"
@@ -76,7 +76,8 @@ IncrementDecision ExplicitSolver::Impl::evaluate_forces(Pass pass, Real dt_taken
   // on the end of a step: a short last increment must not stiffen the springs.
   m_contact.apply(m_state, m_elements, dt_taken,
                   elements.penalty_dt(pass == Pass::Start ? remaining : dt_taken));
-  // A deck's own penalty stiffness may shorten the increment (penalty_increment_limit.hpp).
+  // A deck's own penalty stiffness may shorten the increment
+  // (solver/increment/penalty_increment_limit.hpp).
   const ContactIncrement springs = m_contact.penalty_increment(elements, step, m_state);
   return choose_increment(elements, springs, remaining);
 }

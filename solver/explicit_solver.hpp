@@ -9,10 +9,10 @@
 
 #include "common/timer.hpp"
 #include "partition/mesh_partition.hpp"
-#include "solver/model.hpp"
-#include "solver/output_sink.hpp"
-#include "solver/run_summary.hpp"
-#include "solver/state.hpp"
+#include "solver/model/model.hpp"
+#include "solver/model/state.hpp"
+#include "solver/output/output_sink.hpp"
+#include "solver/output/run_summary.hpp"
 
 namespace xpl {
 

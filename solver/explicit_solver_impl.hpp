@@ -8,17 +8,17 @@
 #include <vector>
 
 #include "common/timer.hpp"
-#include "solver/central_difference.hpp"
-#include "solver/contact_energy_check.hpp"
-#include "solver/contact_stage.hpp"
 #include "solver/distributed_run.hpp"
-#include "solver/element_set.hpp"
-#include "solver/energy_check.hpp"
+#include "solver/energy/contact_energy_check.hpp"
+#include "solver/energy/energy_check.hpp"
 #include "solver/explicit_solver.hpp"
-#include "solver/increment_control.hpp"
-#include "solver/output_driver.hpp"
-#include "solver/rigid_bodies.hpp"
-#include "solver/ties.hpp"
+#include "solver/forces/contact_stage.hpp"
+#include "solver/forces/element_set.hpp"
+#include "solver/increment/increment_control.hpp"
+#include "solver/motion/central_difference.hpp"
+#include "solver/motion/rigid_bodies.hpp"
+#include "solver/motion/ties.hpp"
+#include "solver/output/output_driver.hpp"
 
 namespace xpl {
 

@@ -8,10 +8,10 @@
 
 #include "contact/contact_engine.hpp"
 #include "partition/mesh_partition.hpp"
-#include "solver/model.hpp"
-#include "solver/output_sink.hpp"
-#include "solver/rigid_bodies.hpp"
-#include "solver/ties.hpp"
+#include "solver/model/model.hpp"
+#include "solver/motion/rigid_bodies.hpp"
+#include "solver/motion/ties.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl {
 

@@ -4,7 +4,7 @@
 /// otherwise. Results do not depend on the choice (the element pass sums every node in
 /// colour order, the nodal and contact loops in fixed chunks), only the wall time does.
 
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl {
 

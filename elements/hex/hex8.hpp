@@ -105,8 +105,8 @@ class Hex8Block : public HexBlock {
   /// Linear stiffness product y += K u at `position` (n_nodes × 3, m) from a stress-free state
   /// (the selectively reduced K of the element: mean dilatation times the bulk modulus, the
   /// deviatoric part at the Gauss points), for the model's highest frequency
-  /// (solver/global_increment.*). `u` (m) and `y` (N) are n_nodes × 3. Race-free, independent
-  /// of the thread count.
+  /// (solver/increment/global_increment.*). `u` (m) and `y` (N) are n_nodes × 3. Race-free,
+  /// independent of the thread count.
   void add_stiffness_product(const NodalVectors& position, const NodalVectors& u,
                              NodalVectors& y) const;
 

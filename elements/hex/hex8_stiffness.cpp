@@ -1,5 +1,5 @@
 // The linear stiffness product of the C3D8 block (Hex8Block::add_stiffness_product), for the
-// global estimate of the highest frequency (solver/global_increment.*).
+// global estimate of the highest frequency (solver/increment/global_increment.*).
 #include "elements/hex/hex8.hpp"
 #include "elements/hex/hex8_geometry.hpp"
 #include "elements/hex/hex8_point.hpp"

@@ -1,5 +1,5 @@
 // The linear stiffness product of the C3D8R block (Hex8rBlock::add_stiffness_product): what
-// the global estimate of the highest frequency needs (solver/global_increment.*).
+// the global estimate of the highest frequency needs (solver/increment/global_increment.*).
 #include "elements/hex/hex8_geometry.hpp"
 #include "elements/hex/hex8r.hpp"
 #include "elements/hex/hex8r_gather.hpp"

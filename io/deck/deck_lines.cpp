@@ -8,7 +8,7 @@
 
 #include "io/deck/deck_file.hpp"
 #include "io/deck/deck_keywords.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl::io {
 

@@ -8,12 +8,12 @@
 #include <string_view>
 #include <vector>
 
-#include "solver/output_variables.hpp"
+#include "solver/output/output_variables.hpp"
 
 namespace xpl::io {
 
-/// Field node variables (solver/output_variables.hpp). UR, VR, RM: rotation, angular velocity
-/// and reaction moment of shell nodes.
+/// Field node variables (solver/output/output_variables.hpp). UR, VR, RM: rotation, angular
+/// velocity and reaction moment of shell nodes.
 inline constexpr auto FIELD_NODE_VARIABLES = request_names<OutputKeyword::Node>();
 /// What VARIABLE=PRESELECT writes (on shell models the writer adds UR, VR, RM to U, V, RF).
 inline constexpr auto PRESELECT_NODE_VARIABLES = request_names<OutputKeyword::Node, true>();

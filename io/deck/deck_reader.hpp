@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl::io {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "io/deck/deck_lines.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl::io {
 

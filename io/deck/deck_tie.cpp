@@ -1,6 +1,6 @@
 /// \file *TIE, NAME=, POSITION TOLERANCE=, ADJUST=YES|NO (SPEC S6): read as model data, the
 /// surfaces resolved and the nodes checked once the whole deck is read. Which slave nodes lie
-/// within the tolerance is geometry: the solver finds them (solver/ties.hpp).
+/// within the tolerance is geometry: the solver finds them (solver/motion/ties.hpp).
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 
 #include "common/error.hpp"
 #include "io/deck/deck_lines.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl::io {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl::io {
 

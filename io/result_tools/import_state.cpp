@@ -13,7 +13,7 @@
 
 #include "io/result_tools/h5_handles.hpp"
 #include "io/result_tools/h5_reader.hpp"
-#include "solver/frame_fields.hpp"
+#include "solver/output/frame_fields.hpp"
 
 namespace xpl::io {
 
@@ -258,6 +258,139 @@ std::vector<Real> read_cells(hid_t file, const std::string& path,
   return field;
 }
 
+/// The last frame of a file: its path and which datasets it holds.
+struct Frame {
+  hid_t file;
+  std::string path;
+  bool has(const char* name) const { return has_link(file, path + "/" + name); }
+};
+
+/// U (as a displacement from the model's reference coordinates), V, UR and VR of the frame.
+void read_nodal_state(const Frame& frame, const std::vector<Index>& node_of_row,
+                      const std::vector<Real>& file_xyz, const Model& model, ImportedState& state) {
+  for (const char* name : {"U", "V"}) {
+    if (frame.has(name)) continue;
+    char when[48];
+    std::snprintf(when, sizeof when, "%.9g s", state.time);
+    refuse("the last frame (" + frame.path + ", t = " + when + ") has no " + name,
+           "expected a last frame with U and V (*NODE OUTPUT U, V in the earlier run's field "
+           "output)");
+  }
+  const hid_t file = frame.file;
+  state.displacement = read_nodal(file, frame.path, "U", node_of_row, model);
+  // Current positions of the file, relative to the model's (equal within the tolerance)
+  // reference coordinates: x = X_file + U_file = X_model + U.
+  for (std::size_t r = 0; r < node_of_row.size(); ++r) {
+    const Index n = node_of_row[r];
+    for (int c = 0; c < 3; ++c) {
+      state.displacement(n, c) += file_xyz[r * 3 + c] - model.coordinates(n, c);
+    }
+  }
+  state.velocity = read_nodal(file, frame.path, "V", node_of_row, model);
+  if (frame.has("UR")) state.rotation = read_nodal(file, frame.path, "UR", node_of_row, model);
+  if (frame.has("VR")) {
+    state.angular_velocity = read_nodal(file, frame.path, "VR", node_of_row, model);
+  }
+  const bool shells = model.has_shells();
+  if (shells && !frame.has("UR")) {
+    state.notes.push_back("no UR in the last frame: rotations start at 0");
+  }
+  if (shells && !frame.has("VR")) {
+    state.notes.push_back("no VR in the last frame: angular velocities start at 0");
+  }
+}
+
+/// S, and the shells' S_SNEG and S_SPOS, of the frame.
+void read_stresses(const Frame& frame, const std::vector<Index>& element_of_row, const Model& model,
+                   ImportedState& state) {
+  const auto all_rows = [](std::size_t) { return true; };
+  const auto shell_rows = [&](std::size_t e) { return is_shell(model.element_types[e]); };
+  if (frame.has("S")) {
+    state.stress = read_cells(frame.file, frame.path + "/S", element_of_row, model, all_rows);
+  } else if (model.element_count() > 0) {
+    state.notes.push_back("no S in the last frame: the elements start unstressed");
+  }
+  if (frame.has("S_SNEG") && frame.has("S_SPOS")) {
+    state.stress_bottom =
+        read_cells(frame.file, frame.path + "/S_SNEG", element_of_row, model, shell_rows);
+    state.stress_top =
+        read_cells(frame.file, frame.path + "/S_SPOS", element_of_row, model, shell_rows);
+  } else if (model.has_shells() && frame.has("S")) {
+    state.notes.push_back(
+        "no S_SNEG/S_SPOS in the last frame: the shells take the middle stress S through the "
+        "whole thickness (no bending stress)");
+  }
+}
+
+/// PEEQ of the frame and the shells' PEEQ per section point (or, from another writer, the
+/// largest PEEQ through the whole thickness).
+void read_plastic_strains(const Frame& frame, const std::vector<Index>& element_of_row,
+                          const Model& model, ImportedState& state) {
+  const auto all_rows = [](std::size_t) { return true; };
+  const auto shell_rows = [&](std::size_t e) { return is_shell(model.element_types[e]); };
+  if (model.has_plasticity()) {
+    if (frame.has("PEEQ")) {
+      state.peeq = read_cells(frame.file, frame.path + "/PEEQ", element_of_row, model, all_rows, 1);
+      for (std::size_t e = 0; e < state.peeq.size(); ++e)
+        if (state.peeq[e] < 0.0)
+          refuse(
+              frame.path + "/PEEQ is negative at element " + std::to_string(model.element_ids[e]),
+              "expected equivalent plastic strains >= 0");
+    } else {
+      state.notes.push_back("no PEEQ in the last frame: the plastic strains start at 0");
+    }
+  }
+  if (!model.has_plastic_shells()) return;
+  const char* names[3] = {"PEEQ_SMID", "PEEQ_SNEG", "PEEQ_SPOS"};
+  std::vector<Real>* fields[3] = {&state.peeq_middle, &state.peeq_bottom, &state.peeq_top};
+  if (frame.has(names[0]) && frame.has(names[1]) && frame.has(names[2])) {
+    for (int k = 0; k < 3; ++k) {
+      const std::string path = frame.path + "/" + names[k];
+      *fields[k] = read_cells(frame.file, path, element_of_row, model, shell_rows, 1);
+      for (std::size_t e = 0; e < fields[k]->size(); ++e)
+        if (shell_rows(e) && (*fields[k])[e] < 0.0)
+          refuse(path + " is negative at element " + std::to_string(model.element_ids[e]),
+                 "expected equivalent plastic strains >= 0");
+    }
+  } else if (!state.peeq.empty()) {
+    // A frame of another writer: the largest PEEQ through the thickness, everywhere in it.
+    for (std::vector<Real>* field : fields) *field = state.peeq;
+    state.notes.push_back(
+        "no PEEQ_SNEG/PEEQ_SMID/PEEQ_SPOS in the last frame: the shells take their largest "
+        "PEEQ through the whole thickness");
+  }
+}
+
+/// Hourglass resultants (written with S by xpl since issue 14) and the shells' current
+/// thickness: without them a continued run starts with no hourglass resistance and the
+/// section thickness.
+void read_hourglass_and_thickness(const Frame& frame, const std::vector<Index>& element_of_row,
+                                  const Model& model, ImportedState& state) {
+  const auto all_rows = [](std::size_t) { return true; };
+  const auto shell_rows = [&](std::size_t e) { return is_shell(model.element_types[e]); };
+  const bool shells = model.has_shells();
+  const bool hourglass_elements =
+      std::any_of(model.element_types.begin(), model.element_types.end(),
+                  [](ElementType t) { return t == ElementType::C3D8R || t == ElementType::S4R; });
+  if (hourglass_elements && frame.has("HGSTATE")) {
+    state.hourglass_state = read_cells(frame.file, frame.path + "/HGSTATE", element_of_row, model,
+                                       all_rows, FrameFields::HOURGLASS_WIDTH);
+  } else if (hourglass_elements && frame.has("S")) {
+    state.notes.push_back("no HGSTATE in the last frame: the hourglass forces start at zero");
+  }
+  if (shells && frame.has("STH")) {
+    state.shell_thickness =
+        read_cells(frame.file, frame.path + "/STH", element_of_row, model, shell_rows, 1);
+    for (std::size_t e = 0; e < state.shell_thickness.size(); ++e)
+      if (shell_rows(e) && !(state.shell_thickness[e] > 0.0))
+        refuse(
+            frame.path + "/STH is not positive at element " + std::to_string(model.element_ids[e]),
+            "expected shell thicknesses > 0");
+  } else if (shells && frame.has("S")) {
+    state.notes.push_back("no STH in the last frame: the shells start at their section thickness");
+  }
+}
+
 ImportedState read_file(hid_t file, const Model& model) {
   ImportedState state;
   // Mesh: ids, coordinates, element types and connectivity.
@@ -278,103 +411,14 @@ ImportedState read_file(hid_t file, const Model& model) {
   check_element_types(file, model, node_ids, element_of_id);
 
   // The last frame.
-  const std::string frame = "/frames/" + last_frame(file);
-  state.time = numeric_attribute<double>(file, frame, "time");
-  state.increment = static_cast<long>(numeric_attribute<std::int64_t>(file, frame, "increment"));
-  const auto has = [&](const char* name) { return has_link(file, frame + "/" + name); };
-  for (const char* name : {"U", "V"}) {
-    if (has(name)) continue;
-    char when[48];
-    std::snprintf(when, sizeof when, "%.9g s", state.time);
-    refuse("the last frame (" + frame + ", t = " + when + ") has no " + name,
-           "expected a last frame with U and V (*NODE OUTPUT U, V in the earlier run's field "
-           "output)");
-  }
-  state.displacement = read_nodal(file, frame, "U", node_of_row, model);
-  // Current positions of the file, relative to the model's (equal within the tolerance)
-  // reference coordinates: x = X_file + U_file = X_model + U.
-  for (std::size_t r = 0; r < node_of_row.size(); ++r) {
-    const Index n = node_of_row[r];
-    for (int c = 0; c < 3; ++c) {
-      state.displacement(n, c) += file_xyz[r * 3 + c] - model.coordinates(n, c);
-    }
-  }
-  state.velocity = read_nodal(file, frame, "V", node_of_row, model);
-  if (has("UR")) state.rotation = read_nodal(file, frame, "UR", node_of_row, model);
-  if (has("VR")) state.angular_velocity = read_nodal(file, frame, "VR", node_of_row, model);
-  const bool shells = model.has_shells();
-  if (shells && !has("UR")) state.notes.push_back("no UR in the last frame: rotations start at 0");
-  if (shells && !has("VR")) {
-    state.notes.push_back("no VR in the last frame: angular velocities start at 0");
-  }
-
-  const auto all_rows = [](std::size_t) { return true; };
-  const auto shell_rows = [&](std::size_t e) { return is_shell(model.element_types[e]); };
-  if (has("S")) {
-    state.stress = read_cells(file, frame + "/S", element_of_row, model, all_rows);
-  } else if (model.element_count() > 0) {
-    state.notes.push_back("no S in the last frame: the elements start unstressed");
-  }
-  if (has("S_SNEG") && has("S_SPOS")) {
-    state.stress_bottom = read_cells(file, frame + "/S_SNEG", element_of_row, model, shell_rows);
-    state.stress_top = read_cells(file, frame + "/S_SPOS", element_of_row, model, shell_rows);
-  } else if (shells && has("S")) {
-    state.notes.push_back(
-        "no S_SNEG/S_SPOS in the last frame: the shells take the middle stress S through the "
-        "whole thickness (no bending stress)");
-  }
-  if (model.has_plasticity()) {
-    if (has("PEEQ")) {
-      state.peeq = read_cells(file, frame + "/PEEQ", element_of_row, model, all_rows, 1);
-      for (std::size_t e = 0; e < state.peeq.size(); ++e)
-        if (state.peeq[e] < 0.0)
-          refuse(frame + "/PEEQ is negative at element " + std::to_string(model.element_ids[e]),
-                 "expected equivalent plastic strains >= 0");
-    } else {
-      state.notes.push_back("no PEEQ in the last frame: the plastic strains start at 0");
-    }
-  }
-  if (model.has_plastic_shells()) {
-    const char* names[3] = {"PEEQ_SMID", "PEEQ_SNEG", "PEEQ_SPOS"};
-    std::vector<Real>* fields[3] = {&state.peeq_middle, &state.peeq_bottom, &state.peeq_top};
-    if (has(names[0]) && has(names[1]) && has(names[2])) {
-      for (int k = 0; k < 3; ++k) {
-        const std::string path = frame + "/" + names[k];
-        *fields[k] = read_cells(file, path, element_of_row, model, shell_rows, 1);
-        for (std::size_t e = 0; e < fields[k]->size(); ++e)
-          if (shell_rows(e) && (*fields[k])[e] < 0.0)
-            refuse(path + " is negative at element " + std::to_string(model.element_ids[e]),
-                   "expected equivalent plastic strains >= 0");
-      }
-    } else if (!state.peeq.empty()) {
-      // A frame of another writer: the largest PEEQ through the thickness, everywhere in it.
-      for (std::vector<Real>* field : fields) *field = state.peeq;
-      state.notes.push_back(
-          "no PEEQ_SNEG/PEEQ_SMID/PEEQ_SPOS in the last frame: the shells take their largest "
-          "PEEQ through the whole thickness");
-    }
-  }
-  // Hourglass resultants (written with S by xpl since issue 14) and the shells' current
-  // thickness: without them a continued run starts with no hourglass resistance and the
-  // section thickness.
-  const bool hourglass_elements =
-      std::any_of(model.element_types.begin(), model.element_types.end(),
-                  [](ElementType t) { return t == ElementType::C3D8R || t == ElementType::S4R; });
-  if (hourglass_elements && has("HGSTATE")) {
-    state.hourglass_state = read_cells(file, frame + "/HGSTATE", element_of_row, model, all_rows,
-                                       FrameFields::HOURGLASS_WIDTH);
-  } else if (hourglass_elements && has("S")) {
-    state.notes.push_back("no HGSTATE in the last frame: the hourglass forces start at zero");
-  }
-  if (shells && has("STH")) {
-    state.shell_thickness = read_cells(file, frame + "/STH", element_of_row, model, shell_rows, 1);
-    for (std::size_t e = 0; e < state.shell_thickness.size(); ++e)
-      if (shell_rows(e) && !(state.shell_thickness[e] > 0.0))
-        refuse(frame + "/STH is not positive at element " + std::to_string(model.element_ids[e]),
-               "expected shell thicknesses > 0");
-  } else if (shells && has("S")) {
-    state.notes.push_back("no STH in the last frame: the shells start at their section thickness");
-  }
+  const Frame frame{file, "/frames/" + last_frame(file)};
+  state.time = numeric_attribute<double>(file, frame.path, "time");
+  state.increment =
+      static_cast<long>(numeric_attribute<std::int64_t>(file, frame.path, "increment"));
+  read_nodal_state(frame, node_of_row, file_xyz, model, state);
+  read_stresses(frame, element_of_row, model, state);
+  read_plastic_strains(frame, element_of_row, model, state);
+  read_hourglass_and_thickness(frame, element_of_row, model, state);
   const std::string status = h5::string_attribute(file, "/", "status").value_or("");
   if (!status.empty() && status != "completed" && status != "checked") {
     state.notes.push_back("the earlier run's status is '" + status +

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "solver/explicit_solver.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl::io {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "common/types.hpp"
-#include "solver/output_sink.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::io {
 

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "solver/output_sink.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::io {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "io/results/results_mesh.hpp"
-#include "solver/output_variables.hpp"
+#include "solver/output/output_variables.hpp"
 
 namespace xpl::io {
 

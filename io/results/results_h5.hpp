@@ -13,7 +13,7 @@
 #include "io/results/results_frame.hpp"
 #include "io/results/results_history.hpp"
 #include "io/results/xdmf_writer.hpp"
-#include "solver/output_sink.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::io {
 

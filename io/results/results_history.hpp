@@ -9,7 +9,7 @@
 
 #include "common/units.hpp"
 #include "io/result_tools/h5_handles.hpp"
-#include "solver/output_sink.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::io {
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "solver/output_sink.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::io {
 

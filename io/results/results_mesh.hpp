@@ -14,7 +14,7 @@
 
 #include "io/result_tools/h5_handles.hpp"
 #include "io/results/xdmf_writer.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl::io {
 

@@ -9,7 +9,7 @@
 #include <system_error>
 #include <utility>
 
-#include "solver/output_variables.hpp"
+#include "solver/output/output_variables.hpp"
 
 // Build description, set for this file by io/results/CMakeLists.txt.
 #ifndef XPL_BUILD_TYPE
@@ -40,7 +40,7 @@ std::string key_of(std::string_view name) {
 }
 
 JsonValue energies_json(const Energies& e) {
-  // The one list of energies (solver/output_variables.hpp), every term present for every
+  // The one list of energies (solver/output/output_variables.hpp), every term present for every
   // model so that the summary's layout does not depend on the model.
   JsonValue out = JsonValue::object();
   for (const EnergyVariable& v : ENERGIES) out.set(std::string(v.name), v.value(e));

@@ -11,8 +11,8 @@
 #include "common/types.hpp"
 #include "common/units.hpp"
 #include "io/result_tools/json_value.hpp"
-#include "solver/output_sink.hpp"
-#include "solver/state.hpp"
+#include "solver/model/state.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::io {
 

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/output_variables.hpp"
+#include "solver/output/output_variables.hpp"
 
 namespace xpl::io {
 

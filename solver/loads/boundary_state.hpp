@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl {
 

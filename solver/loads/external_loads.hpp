@@ -11,7 +11,7 @@
 #include "solver/loads/gravity_loads.hpp"
 #include "solver/loads/nodal_loads.hpp"
 #include "solver/loads/pressure_loads.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "solver/element_kinds.hpp"
+#include "solver/forces/element_kinds.hpp"
 
 namespace xpl {
 

@@ -7,7 +7,7 @@
 
 #include "common/types.hpp"
 #include "solver/loads/boundary_state.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace xpl {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "solver/model.hpp"
-#include "solver/output_sink.hpp"
+#include "solver/model/model.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::test {
 

@@ -1,10 +1,10 @@
 #include <catch2/catch.hpp>
 
 #include "common/timer.hpp"
-#include "solver/central_difference.hpp"
-#include "solver/element_set.hpp"
-#include "solver/nodal_increment.hpp"
-#include "solver/rigid_bodies.hpp"
+#include "solver/forces/element_set.hpp"
+#include "solver/motion/central_difference.hpp"
+#include "solver/motion/nodal_increment.hpp"
+#include "solver/motion/rigid_bodies.hpp"
 #include "solver_fixtures.hpp"
 
 using namespace xpl;

@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "common/error.hpp"
-#include "solver/contact_energy_check.hpp"
+#include "solver/energy/contact_energy_check.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "common/error.hpp"
 #include "shell_fixtures.hpp"
-#include "solver/energy_check.hpp"
+#include "solver/energy/energy_check.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver_fixtures.hpp"
 

@@ -12,7 +12,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "elements/hex/hex8r.hpp"
-#include "solver/global_increment.hpp"
+#include "solver/increment/global_increment.hpp"
 
 using namespace xpl;
 

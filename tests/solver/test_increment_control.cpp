@@ -1,6 +1,6 @@
-// The increment control (solver/increment_control.hpp): which cause governs the increment,
-// how ties are broken (the earlier cause of the sequence keeps it), the floor, and that a run
-// reports the cause on every status line.
+// The increment control (solver/increment/increment_control.hpp): which cause governs the
+// increment, how ties are broken (the earlier cause of the sequence keeps it), the floor, and that
+// a run reports the cause on every status line.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "common/error.hpp"
 #include "solver/explicit_solver.hpp"
-#include "solver/increment_control.hpp"
+#include "solver/increment/increment_control.hpp"
 #include "solver_fixtures.hpp"
 
 using namespace xpl;

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "solver/node_rotations.hpp"
+#include "solver/motion/node_rotations.hpp"
 
 using namespace xpl;
 

@@ -1,12 +1,12 @@
-// contact_increment (solver/increment_control.hpp): the increment with a deck's own penalty
-// stiffness (the rule in solver/penalty_increment_limit.hpp).
+// contact_increment (solver/increment/increment_control.hpp): the increment with a deck's own
+// penalty stiffness (the rule in solver/increment/penalty_increment_limit.hpp).
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
 #include "contact/contact_options.hpp"
-#include "solver/increment_control.hpp"
+#include "solver/increment/increment_control.hpp"
 
 using namespace xpl;
 

@@ -1,9 +1,9 @@
 #include <catch2/catch.hpp>
 
 #include "solver/loads/boundary_state.hpp"
-#include "solver/nodal_increment.hpp"
-#include "solver/prescribed_motion.hpp"
-#include "solver/rigid_bodies.hpp"
+#include "solver/motion/nodal_increment.hpp"
+#include "solver/motion/prescribed_motion.hpp"
+#include "solver/motion/rigid_bodies.hpp"
 #include "solver_fixtures.hpp"
 
 using namespace xpl;

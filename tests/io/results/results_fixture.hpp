@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "io/result_tools/h5_handles.hpp"
-#include "solver/frame_fields.hpp"
-#include "solver/model.hpp"
-#include "solver/output_sink.hpp"
-#include "solver/state.hpp"
+#include "solver/model/model.hpp"
+#include "solver/model/state.hpp"
+#include "solver/output/frame_fields.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::test {
 

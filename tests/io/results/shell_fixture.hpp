@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "results/results_fixture.hpp"
-#include "solver/output_sink.hpp"
+#include "solver/output/output_sink.hpp"
 
 namespace xpl::test {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "results/results_fixture.hpp"
-#include "solver/output_schedule.hpp"
+#include "solver/output/output_schedule.hpp"
 
 using namespace xpl;
 using namespace xpl::test;

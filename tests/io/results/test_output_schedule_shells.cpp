@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "results/shell_fixture.hpp"
-#include "solver/output_schedule.hpp"
+#include "solver/output/output_schedule.hpp"
 
 using namespace xpl;
 using namespace xpl::test;

@@ -1,4 +1,4 @@
-// The table of output variables (solver/output_variables.hpp): the names the deck reader
+// The table of output variables (solver/output/output_variables.hpp): the names the deck reader
 // accepts, the order of the datasets in a frame and of the energies in the history. These
 // orders are those of the files written before the table existed; a change here changes the
 // result files or the deck messages.
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/output_variables.hpp"
+#include "solver/output/output_variables.hpp"
 
 using namespace xpl;
 

@@ -1,0 +1,398 @@
+#include "solver/forces/contact_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "contact/initial_overclosure.hpp"
+#include "solver/message_text.hpp"
+#include "solver/output/output_variables.hpp"
+
+namespace xpl {
+
+ContactStage::ContactStage(const Model& model, OutputSink& sink, PhaseTimers& timers,
+                           const IncrementControl& control, bool imported_start)
+    : m_model(model),
+      m_sink(sink),
+      m_timers(timers),
+      m_control(control),
+      m_imported_start(imported_start),
+      m_penalty(model, sink, control) {}
+
+void ContactStage::begin_step(int step, State& state, ElementSet& elements,
+                              const RigidBodies& rigid,
+                              const std::vector<PrescribedDof>& prescribed) {
+  // The definition in force: the latest *CONTACT up to this step, and every *CONTACT PAIR.
+  const Step& s = m_model.steps[step];
+  const bool changed = step == 0 || s.contact || !s.contact_pairs.empty();
+  if (!changed) {
+    set_rigid_bodies(rigid);
+    return;
+  }
+  const GeneralContact* general = nullptr;
+  for (int k = step; k >= 0 && general == nullptr; --k)
+    if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
+  std::vector<ContactPair> pairs = m_model.contact_pairs;
+  for (int k = 0; k <= step; ++k)
+    pairs.insert(pairs.end(), m_model.steps[k].contact_pairs.begin(),
+                 m_model.steps[k].contact_pairs.end());
+  std::unique_ptr<contact::ContactEngine> previous = std::move(m_engine);
+  m_pair_names.clear();
+  const bool has_general =
+      general != nullptr && (general->all_exterior || !general->inclusions.empty());
+  if (!has_general && pairs.empty()) return;
+
+  contact::DomainSpec spec = domain_spec(has_general ? general : nullptr, pairs);
+  spec.element_body = rigid.element_body();
+  // Rigid nodes of node-based surfaces (point nodes) touch deformable faces only.
+  const bool node_based =
+      std::any_of(spec.surfaces.begin(), spec.surfaces.end(),
+                  [](const contact::DomainSurface& d) { return !d.nodes.empty(); });
+  if (node_based && !spec.element_body.empty()) {
+    spec.rigid_node.assign(static_cast<std::size_t>(m_model.node_count()), 0);
+    for (Index i = 0; i < m_model.node_count(); ++i) spec.rigid_node[i] = rigid.is_rigid_node(i);
+  }
+  std::vector<contact::InteractionLaw> laws;
+  for (const SurfaceInteraction& i : m_model.surface_interactions)
+    laws.push_back({i.friction, i.linear ? i.linear_slope : 0.0});
+  contact::ContactOptions options;
+  if (has_general) options.penalty_scale = general->penalty_scale;
+  const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes,
+                                          elements.element_kinds()};
+  contact::ContactDomain domain(spec, topology, state.position);
+  const std::size_t n_faces = domain.faces().size();
+  const Index n_slaves = domain.slaves().size();
+  m_engine = std::make_unique<contact::ContactEngine>(std::move(domain), std::move(laws), options,
+                                                      state.position, elements.node_thickness());
+  m_sink.message(Severity::Info, "step " + s.name + ": contact domain of " +
+                                     std::to_string(n_faces) + " faces and " +
+                                     std::to_string(n_slaves) + " slave nodes, search margin " +
+                                     format_real(m_engine->broad_phase().margin()) + " m");
+  set_rigid_bodies(rigid);
+  resolve_overclosures(step, previous.get(), state, elements, rigid, prescribed);
+}
+
+contact::DomainSpec ContactStage::domain_spec(const GeneralContact* general,
+                                              const std::vector<ContactPair>& pairs) {
+  contact::DomainSpec spec;
+  std::vector<Index> domain_surface(m_model.surfaces.size(), NO_INDEX);
+  Index all_exterior = NO_INDEX;
+  auto surface = [&](Index model_surface) -> Index {
+    if (model_surface == NO_INDEX) {
+      if (all_exterior == NO_INDEX) {
+        all_exterior = static_cast<Index>(spec.surfaces.size());
+        spec.surfaces.push_back({"ALL_EXTERIOR", true, {}});
+      }
+      return all_exterior;
+    }
+    Index& k = domain_surface[model_surface];
+    if (k == NO_INDEX) {
+      k = static_cast<Index>(spec.surfaces.size());
+      const Surface& from = m_model.surfaces[model_surface];
+      contact::DomainSurface d;
+      d.name = from.name;
+      for (const ElementFace& f : from.faces) d.faces.push_back({f.element, f.face});
+      d.nodes = from.nodes;
+      d.node_areas = from.node_areas;
+      spec.surfaces.push_back(std::move(d));
+    }
+    return k;
+  };
+  // A node-based surface is slave only (SPEC C13; the deck reader refuses it as a master): a
+  // pair with one is one-sided, the node-based surface first, whatever the deck's order.
+  auto node_based = [&](Index model_surface) {
+    return model_surface != NO_INDEX && m_model.surfaces[model_surface].type == Surface::Type::Node;
+  };
+  auto name_of = [&](Index a, Index b) {
+    return spec.surfaces[a].name + (a == b ? "" : "-" + spec.surfaces[b].name);
+  };
+  if (general != nullptr) {
+    if (general->all_exterior) {
+      const Index k = surface(NO_INDEX);
+      spec.inclusions.push_back({k, k, false});
+      m_pair_names.push_back(name_of(k, k));
+    }
+    for (const SurfacePair& p : general->inclusions) {
+      const Index a = surface(p.first), b = surface(p.second);
+      if (node_based(p.first))
+        spec.inclusions.push_back({a, b, true});
+      else if (node_based(p.second))
+        spec.inclusions.push_back({b, a, true});
+      else
+        spec.inclusions.push_back({a, b, false});
+      m_pair_names.push_back(name_of(a, b));
+    }
+    for (const SurfacePair& p : general->exclusions)
+      spec.exclusions.push_back({surface(p.first), surface(p.second), false});
+    for (const auto& [p, interaction] : general->properties) {
+      if (p.first == NO_INDEX && p.second == NO_INDEX)
+        spec.default_interaction = interaction;
+      else
+        spec.interactions.push_back({{surface(p.first), surface(p.second), false}, interaction});
+    }
+  }
+  for (const ContactPair& p : pairs) {
+    const Index a = surface(p.slave), b = surface(p.master);
+    spec.inclusions.push_back({a, b, true});
+    spec.interactions.push_back({{a, b, true}, p.interaction});
+    m_pair_names.push_back(name_of(a, b));
+  }
+  return spec;
+}
+
+void ContactStage::resolve_overclosures(int step, const contact::ContactEngine* previous,
+                                        State& state, ElementSet& elements,
+                                        const RigidBodies& rigid,
+                                        const std::vector<PrescribedDof>& prescribed) {
+  const Step& s = m_model.steps[step];
+  if (previous != nullptr) {
+    contact::carry_offsets(*previous, *m_engine);
+    m_sink.message(Severity::Note,
+                   "step " + s.name +
+                       ": the contact domain changes; slave nodes of the earlier domain keep "
+                       "their contact offsets, new interactions get plain penalty forces from the "
+                       "first increment (no adjustment, no overclosure or crossed-surface "
+                       "diagnostics for them, as Abaqus/Explicit)");
+    return;
+  }
+  const Diagnostics& diagnostics = m_model.diagnostics_of(step);
+  contact::OverclosureSettings settings;
+  settings.adjust = step == 0 && !m_imported_start;
+  settings.offset_reason =
+      step == 0 ? contact::OffsetReason::Import : contact::OffsetReason::LaterStep;
+  settings.detect_crossed = diagnostics.detect_crossed_surfaces;
+  const Index n = m_model.node_count();
+  std::vector<std::uint8_t> lock(static_cast<std::size_t>(n), 0);
+  for (const PrescribedDof& d : prescribed)
+    if (d.component < 3) lock[d.node] |= static_cast<std::uint8_t>(1u << d.component);
+  for (Index i = 0; i < n; ++i)
+    if (rigid.is_rigid_node(i)) lock[i] |= contact::LOCK_RIGID;
+  if (!m_tied.empty())
+    for (Index i = 0; i < n; ++i)
+      if (m_tied[i] != 0) lock[i] |= contact::LOCK_TIE;
+  NodalVectors as_read;
+  if (settings.adjust) as_read = state.position;
+  const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes,
+                                          elements.element_kinds()};
+  // Clearances first (C7–C10); the automatic pass then leaves their nodes alone.
+  std::vector<ClearanceViewNames> view_names;
+  const std::vector<contact::ClearanceView> views = clearance_views(step, view_names);
+  contact::ClearanceReport clearances;
+  contact::OverclosureReport report;
+  {
+    ScopedTimer timer(m_timers, Phase::ContactSearch);
+    if (!views.empty()) {
+      clearances =
+          contact::apply_clearances(*m_engine, topology, state.position, elements.node_thickness(),
+                                    lock, views, settings.adjust);
+      settings.exclude = clearances.handled;
+    }
+    report = contact::resolve_initial_overclosures(*m_engine, topology, state.position,
+                                                   elements.node_thickness(), lock, settings);
+  }
+  const bool clearance_moved =
+      std::any_of(clearances.nodes.begin(), clearances.nodes.end(),
+                  [](const contact::ClearedNode& c) { return c.distance > 0.0; });
+  AdjustmentEffect effect;
+  if (!report.adjusted.empty() || clearance_moved) {
+    effect.dt_after = m_control.elements(step, elements.increment_estimate(state)).dt;
+    state.position.swap(as_read);
+    effect.dt_before = m_control.elements(step, elements.increment_estimate(state)).dt;
+    state.position.swap(as_read);
+  }
+  if (!settings.adjust)
+    m_sink.message(Severity::Info,
+                   "step " + s.name +
+                       (step == 0 ? ": the run starts from an imported state"
+                                  : ": contact is first defined in this step") +
+                       ": initial penetrations become temporary offsets without force; no node "
+                       "moves (C6)");
+  if (!views.empty())
+    report_clearances(clearances, view_names, *m_engine, m_model, step, diagnostics, m_sink);
+  report_overclosures(report, *m_engine, m_model, step, diagnostics, effect, m_sink);
+}
+
+std::vector<contact::ClearanceView> ContactStage::clearance_views(
+    int step, std::vector<ClearanceViewNames>& names) const {
+  std::vector<contact::ClearanceView> views;
+  const Step& s = m_model.steps[step];
+  if (!s.contact) return views;
+  auto faces_of = [&](Index surface) {
+    std::vector<contact::FaceRef> refs;
+    for (const ElementFace& f : m_model.surfaces[surface].faces)
+      refs.push_back({f.element, f.face});
+    return refs;
+  };
+  const std::vector<ClearanceAssignment>& assignments = s.contact->clearances;
+  for (std::size_t a = 0; a < assignments.size(); ++a) {
+    const ClearanceAssignment& assignment = assignments[a];
+    const ContactClearance& definition = m_model.contact_clearances[assignment.clearance];
+    contact::ClearanceView view;
+    view.assignment = static_cast<Index>(a);
+    view.adjust = definition.adjust;
+    view.value = definition.value;
+    if (definition.distribution != NO_INDEX)
+      view.nodal_values = m_model.distributions[definition.distribution].values;
+    if (definition.search_above) view.search_above = *definition.search_above;
+    if (definition.search_below) view.search_below = *definition.search_below;
+    view.interference = definition.interference;
+    if (definition.interference_distance)
+      view.interference_distance = *definition.interference_distance;
+    view.ramp_time = definition.step_fraction * s.time_period;
+    auto add = [&](Index slave, Index master) {
+      // A node-based surface has no faces to be a master (SPEC C13): of its pair only the view
+      // with its nodes as the slaves exists (the deck reader refuses a view word against it).
+      if (m_model.surfaces[master].type == Surface::Type::Node) return;
+      contact::ClearanceView v = view;
+      v.slave_surface = slave;
+      v.master_surface = master;
+      v.slave_faces = faces_of(slave);
+      v.slave_nodes = m_model.surfaces[slave].nodes;
+      v.master_faces = faces_of(master);
+      views.push_back(std::move(v));
+      names.push_back({definition.name, m_model.surfaces[slave].name, m_model.surfaces[master].name,
+                       definition.initialization, definition.interference,
+                       definition.step_fraction});
+    };
+    // MASTER: surf1 is the master (only surf2's nodes move); SLAVE: surf1 is the slave.
+    if (assignment.view != ClearanceAssignment::View::Master)
+      add(assignment.first, assignment.second);
+    if (assignment.view != ClearanceAssignment::View::Slave)
+      add(assignment.second, assignment.first);
+  }
+  return views;
+}
+
+void ContactStage::set_rigid_bodies(const RigidBodies& rigid) {
+  if (m_engine && !rigid.empty())
+    m_engine->set_rigid_bodies(rigid.node_body(), rigid.translation_mass());
+}
+
+void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty) {
+  m_stored_energy = 0.0;
+  if (!m_engine) return;
+  if (m_engine->interference_ramping()) m_engine->set_step_time(state.step_time);
+  const contact::ContactTotals t = m_engine->update(
+      state.position, state.velocity_half, dt_taken, dt_penalty, elements.node_thickness(),
+      state.mass, elements.inverse_mass(), elements.force_internal(), m_timers);
+  state.energies.friction += t.friction_dissipation;
+  // The interference ramp's energy is an input, as the work of a load: in ALLWK, and in
+  // ALLPW, which then holds what the springs hold (ContactEnergyCheck).
+  state.energies.contact += -t.work - t.friction_dissipation + t.interference_work;
+  state.energies.external_work += t.interference_work;
+  m_stored_energy = t.stored_energy;
+  if (t.lost == 0) return;
+  if (m_lost == 0)
+    m_sink.message(
+        Severity::Warning,
+        "increment " + std::to_string(state.increment) + ", t = " + format_real(state.time) +
+            " s: contact lost at speed: node " + std::to_string(m_model.node_ids[t.lost_node]) +
+            " went " + format_real(t.lost_depth) + " m behind the face of element " +
+            std::to_string(m_model.element_ids[t.lost_element]) +
+            ", deeper than the element behind it (" + format_real(t.lost_element_depth) +
+            " m), and was released inside it" +
+            (t.lost > 1 ? " (with " + std::to_string(t.lost - 1) + " more nodes)" : "") +
+            ": the bodies may pass through each other. The penalty stops a node within about "
+            "v*dt of its approach: refine the mesh where it hits, or lower the time scale "
+            "factor" +
+            (m_engine->options().penalty_scale < contact::DEFAULT_PENALTY_SCALE
+                 ? ", or raise the penalty scale factor (" +
+                       format_real(m_engine->options().penalty_scale) + ", below the default " +
+                       format_real(contact::DEFAULT_PENALTY_SCALE) + ")"
+                 : std::string()));
+  m_lost += t.lost;
+  ++m_lost_increments;
+}
+
+void ContactStage::end_step() {
+  m_penalty.end_span();
+  if (m_lost > 1)
+    m_sink.message(Severity::Warning,
+                   "contact lost at speed: " + std::to_string(m_lost) + " releases of nodes " +
+                       "deeper than the element behind their face, in " +
+                       std::to_string(m_lost_increments) + " increments of the step");
+  m_lost = 0;
+  m_lost_increments = 0;
+}
+
+ContactIncrement ContactStage::penalty_increment(const ElementIncrement& elements, int step,
+                                                 const State& state) {
+  const contact::PenaltyLimit none;
+  return m_penalty.apply(m_engine ? m_engine->penalty_limit() : none, elements, step, state.time,
+                         state.increment);
+}
+
+void ContactStage::check_penalty(const ElementIncrement& elements, int step,
+                                 const std::vector<Real>& inverse_mass) const {
+  if (!m_engine) return;
+  const contact::PenaltyLimit limit = m_engine->estimate_penalty_limit(inverse_mass);
+  const Step& s = m_model.steps[step];
+  if (s.increment.fixed || !(limit.omega_sq > 0.0)) return;
+  const Real dt_elements = elements.dt;
+  const Real dt =
+      contact_increment(elements.raw_dt, dt_elements, s.increment.scale_factor, limit.omega_sq);
+  if (!(dt < dt_elements)) return;
+  const SurfaceInteraction& i = m_model.surface_interactions[limit.interaction];
+  // ω_c² grows with the slope; the springs stop governing at ω_c²Δt_e² = B·s².
+  const Real threshold = i.linear_slope * contact::PENALTY_INCREMENT_BUDGET *
+                         s.increment.scale_factor * s.increment.scale_factor /
+                         (limit.omega_sq * dt_elements * dt_elements);
+  m_sink.message(Severity::Warning,
+                 "step " + s.name + ": the penalty of interaction " + i.name +
+                     " (PRESSURE-OVERCLOSURE=LINEAR, slope " + format_real(i.linear_slope) +
+                     " Pa/m) will govern the stable increment while in contact: about " +
+                     format_real(dt) + " s against the elements' " + format_real(dt_elements) +
+                     " s (x" + format_real(dt / dt_elements) + ", stiffest at node " +
+                     std::to_string(m_model.node_ids[limit.node]) + "); a slope up to " +
+                     format_real(threshold) + " Pa/m would not");
+}
+
+void ContactStage::fill_output(FrameFields& frame) const {
+  const Index n = m_model.node_count();
+  frame.contact_pressure.assign(n, 0.0);
+  frame.contact_status.assign(n, 0.0);
+  frame.contact_shear = NodalVectors::Zero(n, 3);
+  frame.contact_normal_force = NodalVectors::Zero(n, 3);
+  frame.contact_shear_force = NodalVectors::Zero(n, 3);
+  if (!m_engine) return;
+  const contact::SlaveNodes& slaves = m_engine->domain().slaves();
+  for (Index s = 0; s < slaves.size(); ++s) {
+    const contact::Vec3 f = m_engine->nodal_force(s);
+    if (f.dot(f) == 0.0) continue;
+    const Index i = slaves.nodes()[s];
+    // A point node (node-based surface) has no normal of its own: the contact normal of its
+    // touch, which points out of the master face (read as for a double-sided node).
+    const bool point = m_engine->domain().slave_point(s);
+    const contact::Vec3 normal = point ? m_engine->constraints()[s].normal : slaves.normal(s);
+    const Real along = f.dot(normal);
+    const contact::Vec3 fn = along * normal, ft = f - fn;
+    const Real area = slaves.areas()[s];
+    const bool shell_node = point || m_engine->domain().slave_double_sided(s);
+    const Real pressure = shell_node ? std::abs(along) : -along;
+    if (area > 0.0) frame.contact_pressure[i] = pressure / area;
+    const auto own = m_engine->output_status(s);
+    frame.contact_status[i] =
+        own == contact::OutputStatus::Open ? 1.0 : static_cast<Real>(static_cast<int>(own));
+    for (int c = 0; c < 3; ++c) {
+      if (area > 0.0) frame.contact_shear(i, c) = ft[c] / area;
+      frame.contact_normal_force(i, c) = fn[c];
+      frame.contact_shear_force(i, c) = ft[c];
+    }
+  }
+}
+
+void ContactStage::add_history_series(std::vector<HistorySeries>& series) const {
+  if (!m_engine) return;
+  // Columns in the table's order (CFN, CFS), as add_history_values appends them.
+  for (const std::string& name : m_pair_names) append_contact_pair_series(series, name);
+}
+
+void ContactStage::add_history_values(std::vector<Real>& row) const {
+  if (!m_engine) return;
+  for (std::size_t k = 0; k < m_pair_names.size(); ++k) {
+    row.push_back(m_engine->pair_normal_force()[k]);
+    row.push_back(m_engine->pair_friction_force()[k]);
+  }
+}
+
+}  // namespace xpl

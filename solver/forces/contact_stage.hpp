@@ -1,0 +1,115 @@
+#pragma once
+/// \file The contact stage of the time loop: builds the contact engine of each step from the
+/// deck's `*CONTACT` / `*CONTACT PAIR` definitions, treats the initial overclosures and
+/// clearances, adds the penalty forces every increment and gathers the contact output.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/timer.hpp"
+#include "contact/contact_clearance.hpp"
+#include "contact/contact_engine.hpp"
+#include "solver/forces/element_set.hpp"
+#include "solver/forces/overclosure_report.hpp"
+#include "solver/increment/penalty_increment_limit.hpp"
+#include "solver/loads/boundary_state.hpp"
+#include "solver/model/model.hpp"
+#include "solver/model/state.hpp"
+#include "solver/motion/rigid_bodies.hpp"
+#include "solver/output/output_sink.hpp"
+
+namespace xpl {
+
+/// General contact and contact pairs of the current step; nothing to do when it has none (P2).
+class ContactStage {
+ public:
+  /// `model`, `sink`, `timers` and `control` (the run's increment control) must outlive the
+  /// stage; `imported_start`: the run starts from an imported state (penetrations of step 1
+  /// then become offsets, C6).
+  ContactStage(const Model& model, OutputSink& sink, PhaseTimers& timers,
+               const IncrementControl& control, bool imported_start);
+
+  /// Builds the engine of `step` when the step changes the contact definition (the latest
+  /// `*CONTACT` up to it and every `*CONTACT PAIR`), else keeps the engine in force. A new
+  /// engine resolves the initial overclosures and clearances on `state` (it may move nodes
+  /// at step 1; `prescribed` DOFs and rigid-body nodes stay), or carries the offsets of the
+  /// engine it replaces; it reports to the sink.
+  void begin_step(int step, State& state, ElementSet& elements, const RigidBodies& rigid,
+                  const std::vector<PrescribedDof>& prescribed);
+  /// Nodes of ties (Ties::tied_nodes, n_nodes): held by the overclosure pass, their
+  /// penetration an offset with reason "tie".
+  void set_tied_nodes(std::vector<char> tied) { m_tied = std::move(tied); }
+  /// Whether contact is active in the current step.
+  bool active() const { return m_engine != nullptr; }
+  /// The engine of the current step (null without contact): its t = 0 candidate pairs feed
+  /// the partition (solver/model_partition.hpp).
+  const contact::ContactEngine* engine() const { return m_engine.get(); }
+
+  /// Contact forces at the state's positions subtracted from elements.force_internal();
+  /// friction and penalty energies into state.energies. `dt_taken` is the increment just
+  /// taken (0 at t = 0), `dt_penalty` the increment the penalty stiffness is tied to, s.
+  void apply(State& state, ElementSet& elements, Real dt_taken, Real dt_penalty);
+  /// Energy held by the contact springs after the last apply() (ContactTotals::stored_energy),
+  /// J, 0 without contact: what ALLPW should be (ContactEnergyCheck).
+  Real stored_energy() const { return m_stored_energy; }
+
+  /// The increment a deck's own penalty stiffness allows after the last apply() (+inf when it
+  /// does not govern: no contact, default penalty, or springs no stiffer than the default)
+  /// against the elements' increment `elements` of `step`; reports the spans where it governs
+  /// (PenaltyIncrementLimit).
+  ContactIncrement penalty_increment(const ElementIncrement& elements, int step,
+                                     const State& state);
+  /// Deck id of the contact node that governs the last penalty_increment(), 0 when none.
+  ExternalId critical_contact_node() const { return m_penalty.critical_node(); }
+  /// Ends the step: the summary of a span in which contact governed the increment.
+  /// Ends the step: the summary of a span in which contact governed the increment, and of
+  /// the nodes released inside another body (contact at speed) beyond the first one warned of.
+  void end_step();
+  /// `xpl check`: a warning when a LINEAR penalty will govern the increment once in contact,
+  /// estimated on the slave nodes' tributary areas (ContactEngine::estimate_penalty_limit)
+  /// with `inverse_mass` (n_nodes, 1/kg) against the elements' increment `elements` of `step`.
+  void check_penalty(const ElementIncrement& elements, int step,
+                     const std::vector<Real>& inverse_mass) const;
+
+  /// Per-node contact pressure, status and forces into `frame` (zero without contact).
+  void fill_output(FrameFields& frame) const;
+  /// Appends the history columns of the contact pairs (CFN, CFS per pair) to `series`.
+  void add_history_series(std::vector<HistorySeries>& series) const;
+  /// Appends the current values of those columns to `row`, N.
+  void add_history_values(std::vector<Real>& row) const;
+
+ private:
+  /// Domain of the general contact `general` (may be null) and the pairs `pairs`; fills
+  /// m_pair_names in the engine's pair order.
+  contact::DomainSpec domain_spec(const GeneralContact* general,
+                                  const std::vector<ContactPair>& pairs);
+  /// The rigid bodies' nodes and masses of the current step to the engine (its bound on the
+  /// springs that push a body).
+  void set_rigid_bodies(const RigidBodies& rigid);
+  /// Initial overclosures of a newly built engine (SPEC C2–C6): adjusts (step 1) or stores
+  /// offsets (later step, import); with an engine of an earlier step, carries its offsets
+  /// over instead.
+  void resolve_overclosures(int step, const contact::ContactEngine* previous, State& state,
+                            ElementSet& elements, const RigidBodies& rigid,
+                            const std::vector<PrescribedDof>& prescribed);
+  /// The clearance views of the assignments given with the step's *CONTACT (and their names
+  /// for the reports); empty when there are none.
+  std::vector<contact::ClearanceView> clearance_views(int step,
+                                                      std::vector<ClearanceViewNames>& names) const;
+
+  const Model& m_model;
+  OutputSink& m_sink;
+  PhaseTimers& m_timers;
+  const IncrementControl& m_control;
+  bool m_imported_start;
+  std::unique_ptr<contact::ContactEngine> m_engine;  ///< null when the step has no contact
+  std::vector<std::string> m_pair_names;  ///< in the engine's pair order (history output)
+  PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
+  Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
+  std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
+  long m_lost = 0;                        ///< releases in the step (ContactTotals::lost)
+  long m_lost_increments = 0;             ///< increments with a release in the step
+};
+
+}  // namespace xpl

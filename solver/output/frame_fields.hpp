@@ -1,0 +1,78 @@
+#pragma once
+/// \file The fields only output needs: element stresses, volumes, thicknesses, PEEQ, the
+/// hourglass state for --import and the contact output per node. The OutputDriver owns them
+/// and fills them before each field frame (ElementSet::gather_output, ContactStage::fill_output,
+/// global_axis_stresses); the time loop never reads them.
+
+#include <vector>
+
+#include "common/types.hpp"
+#include "elements/lane_state.hpp"
+#include "solver/model/model.hpp"
+
+namespace xpl {
+
+/// The output-only fields of a field frame. Element fields: rows in the model's element order;
+/// node fields: rows in the model's node order.
+struct FrameFields {
+  /// Width of a row of `hourglass_state` (values per element).
+  static constexpr int HOURGLASS_WIDTH = elements::HOURGLASS_STATE_WIDTH;
+
+  /// Cauchy stress per element, filled before each field frame (n_elements × 6, row-major,
+  /// Abaqus order S11 S22 S33 S12 S13 S23), Pa. Solids: global axes. Shells: the middle
+  /// section point, in the shell's local axes (Abaqus default: local 1 = projection of the
+  /// global x axis on the shell, local 2 = n × 1), S33 = 0, S13/S23 = transverse shear.
+  std::vector<Real> stress;
+  /// Shell section stresses at the bottom (SNEG) and top (SPOS) section points, same layout
+  /// as `stress`; rows of non-shell elements are NaN. Empty unless the model has shells.
+  std::vector<Real> stress_bottom, stress_top;
+  /// The copies of `stress`, `stress_bottom` and `stress_top` the XDMF file shows: global
+  /// axes (the shells' rows turned out of their local axes), VTK order XX YY ZZ XY YZ XZ
+  /// (n_elements × 6). Filled with `stress` (global_axis_stresses); the bottom and top ones
+  /// on models with shells only, else empty.
+  std::vector<Real> stress_global, stress_bottom_global, stress_top_global;
+  /// Current shell thickness STH (n_elements), m; NaN for non-shell elements. Empty unless
+  /// the model has shells.
+  std::vector<Real> thickness;
+  /// Current element volume, filled with `stress` (n_elements), m^3.
+  std::vector<Real> volume;
+  /// Accumulated hourglass resultants (n_elements × HOURGLASS_WIDTH, each block's own layout:
+  /// Hex8rBlock/Shell4rBlock::gather_hourglass_state; 0 for elements without), filled with
+  /// `stress` on models with C3D8R or S4R elements, else empty: the state --import needs to
+  /// continue a run with the same hourglass forces.
+  std::vector<Real> hourglass_state;
+  /// Equivalent plastic strain PEEQ (n_elements), -: 0 for elastic elements; shells: the
+  /// largest of their section points. Filled before a frame that asks for it (plastic models).
+  std::vector<Real> peeq;
+  /// Shell PEEQ at the bottom (SNEG), middle and top (SPOS) section points (n_elements each),
+  /// -: 0 for elastic shells, NaN for non-shell elements. Filled with `peeq` on models with
+  /// plastic shells only, else empty.
+  std::vector<Real> peeq_bottom, peeq_middle, peeq_top;
+
+  // Contact output per node, filled before a frame that asks for it (zero away from contact).
+  // The node's total contact force F (as slave and as face corner) split along its outward
+  // normal n: CNORMF = (F·n) n, CSHEARF = F − CNORMF; CPRESS = −F·n / A and CSHEAR =
+  // CSHEARF / A with A the tributary area (|F·n| / A on double-sided shell nodes).
+  std::vector<Real> contact_pressure;  ///< CPRESS (n_nodes), Pa
+  NodalVectors contact_shear;          ///< CSHEAR (n_nodes × 3), Pa
+  std::vector<Real> contact_status;    ///< CSTATUS (n_nodes): 0 open, 1 slipping, 2 sticking
+  NodalVectors contact_normal_force;   ///< CNORMF (n_nodes × 3), N
+  NodalVectors contact_shear_force;    ///< CSHEARF (n_nodes × 3), N
+};
+
+/// Fills `stress_global` (and on a model with shells `stress_bottom_global` and
+/// `stress_top_global`) of `frame` from its `stress` (`stress_bottom`, `stress_top`): each
+/// shell's rows turned from its local axes (elements::quad_frame of its corners at
+/// `position`) to global axes, every row in VTK order.
+void global_axis_stresses(const Model& model, const NodalVectors& position, FrameFields& frame);
+
+/// Component order of the XDMF copies of a tensor: VTK's Tensor6 (XX YY ZZ XY YZ XZ), i.e.
+/// the Abaqus rows S11 S22 S33 S12 S23 S13.
+inline constexpr int VTK_ORDER[6] = {0, 1, 2, 3, 5, 4};
+
+/// One stress row (Abaqus order) in VTK order.
+inline void to_vtk(const Real* abaqus, Real* vtk) {
+  for (int c = 0; c < 6; ++c) vtk[c] = abaqus[VTK_ORDER[c]];
+}
+
+}  // namespace xpl
