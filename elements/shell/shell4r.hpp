@@ -44,6 +44,7 @@
 #include "elements/parallel/element_coloring.hpp"
 #include "elements/parallel/simd.hpp"
 #include "elements/parallel/thread_partition.hpp"
+#include "elements/shared_blocks.hpp"
 
 namespace xpl::elements {
 
@@ -385,11 +386,13 @@ class Shell4rBlock {
   int m_points = 1;             ///< integration points of the block (max over elements)
   bool m_rotary_exact = false;  ///< any element with ROTARY INERTIA=EXACT
   // Batched (AoSoA) data, batch b lane l.
-  std::vector<Index> m_conn;                 ///< [b][4][W]
-  std::vector<Index> m_lane_owner;           ///< [b][W]
-  std::vector<Real> m_const;                 ///< [b][N_CONST][W]
-  std::vector<Real> m_zeta;                  ///< [b][m_points][W] point position in [−1, 1]
-  std::vector<Real> m_weight;                ///< [b][m_points][W] weight, Σ = 1 (0: unused point)
+  std::vector<Index> m_conn;        ///< [b][4][W]
+  std::vector<Index> m_lane_owner;  ///< [b][W]
+  // Read-only after construction and alike in most batches: each distinct batch block once
+  // (208 bytes per element on a block of one section, issue 38).
+  SharedBlocks<Real> m_const;                ///< [b][N_CONST][W]
+  SharedBlocks<Real> m_zeta;                 ///< [b][m_points][W] point position in [−1, 1]
+  SharedBlocks<Real> m_weight;               ///< [b][m_points][W] weight, Σ = 1 (0: unused point)
   std::vector<Real> m_thickness;             ///< [b][W] current thickness
   std::vector<Real> m_stress;                ///< [b][m_points][3][W] σxx σyy σxy, local frame
   std::vector<Real> m_shear;                 ///< [b][2][W] τxz τyz

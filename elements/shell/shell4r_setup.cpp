@@ -54,9 +54,10 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
   m_lane_owner = std::move(layout.lane_owner);
   const auto n_batches = static_cast<std::size_t>(m_color_batches.back());
   m_conn.assign(n_batches * 4 * W, 0);
-  m_const.assign(n_batches * N_CONST * W, 0.0);
-  m_zeta.assign(n_batches * m_points * W, 0.0);
-  m_weight.assign(n_batches * m_points * W, 0.0);
+  // Built plain, then stored once per distinct batch block (SharedBlocks).
+  std::vector<Real> constants(n_batches * N_CONST * W, 0.0);
+  std::vector<Real> zetas(n_batches * m_points * W, 0.0);
+  std::vector<Real> weights(n_batches * m_points * W, 0.0);
   m_thickness.assign(n_batches * W, 0.0);
   m_stress.assign(n_batches * m_points * 3 * W, 0.0);
   m_shear.assign(n_batches * 2 * W, 0.0);
@@ -80,7 +81,7 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
       const Real nu = p.poisson;
       const Real q11 = p.young / (1.0 - nu * nu);
       const Real g = p.young / (2.0 * (1.0 + nu));
-      Real* c = &m_const[b * N_CONST * W + l];
+      Real* c = &constants[b * N_CONST * W + l];
       c[Q11 * W] = q11;
       c[Q12 * W] = nu * q11;
       c[SHEAR * W] = g;
@@ -107,10 +108,13 @@ Shell4rBlock::Shell4rBlock(std::vector<Index> element_index, const std::vector<I
       const int points = std::min(p.integration_points, SHELL_MAX_POINTS);
       simpson(points, zeta, weight);
       for (int k = 0; k < points; ++k) {
-        m_zeta[(b * m_points + k) * W + l] = zeta[k];
-        m_weight[(b * m_points + k) * W + l] = weight[k];
+        zetas[(b * m_points + k) * W + l] = zeta[k];
+        weights[(b * m_points + k) * W + l] = weight[k];
       }
     }
+  m_const = SharedBlocks<Real>(constants, N_CONST * W);
+  m_zeta = SharedBlocks<Real>(zetas, static_cast<std::size_t>(m_points) * W);
+  m_weight = SharedBlocks<Real>(weights, static_cast<std::size_t>(m_points) * W);
   std::vector<const Plasticity*> lane_law(n_batches * W, nullptr);
   for (std::size_t s = 0; s < lane_law.size(); ++s) {
     const Index owner = m_lane_owner[s];

@@ -143,6 +143,9 @@ void resolve_pressures(DeckState& deck) {
       }
     }
   }
+  // The model keeps these for the whole run: no growth capacity (a quarter of the array on a
+  // plate with a pressure on every face, issue 38).
+  for (Step& step : deck.model.steps) step.pressures.shrink_to_fit();
 }
 
 void read_gravity(DeckState& deck, const DeckDataLine& line, const DeckKeyword& keyword,

@@ -41,8 +41,10 @@ Model finish(DeckState& deck) {
   for (Index i = 0; i < n_nodes; ++i)
     for (int c = 0; c < 3; ++c)
       deck.model.coordinates(i, c) = deck.coordinates[static_cast<std::size_t>(3 * i + c)];
-  deck.model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
-  deck.model.initial_angular_velocity = NodalVectors::Zero(n_nodes, 3);
+  if (!deck.velocities.empty()) {  // else empty: no two zero arrays kept for the run (issue 38)
+    deck.model.initial_velocity = NodalVectors::Zero(n_nodes, 3);
+    deck.model.initial_angular_velocity = NodalVectors::Zero(n_nodes, 3);
+  }
 
   promote_shell_geometry(deck);  // before anything counts the elements
   resolve_element_nodes(deck);

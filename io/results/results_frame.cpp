@@ -40,7 +40,6 @@ void check_fields(const State& state, const FrameFields& fields, const FrameRequ
   if (what.reaction) check_rows(state.reaction, n_nodes, "RF");
   if (what.stress) {
     check_size(fields.stress, n_elements * 6, "stress");
-    check_size(fields.stress_global, n_elements * 6, "stress_global");
   }
   if (what.volume) check_size(fields.volume, n_elements, "volume");
   if (what.plastic_strain) check_size(fields.peeq, n_elements, "peeq");
@@ -56,8 +55,7 @@ void check_fields(const State& state, const FrameFields& fields, const FrameRequ
   if (what.stress) {
     check_size(fields.stress_bottom, n_elements * 6, "stress_bottom");
     check_size(fields.stress_top, n_elements * 6, "stress_top");
-    check_size(fields.stress_bottom_global, n_elements * 6, "stress_bottom_global");
-    check_size(fields.stress_top_global, n_elements * 6, "stress_top_global");
+    check_rows(state.position, n_nodes, "position");  // the global-axis copies
   }
   if (what.thickness) check_size(fields.thickness, n_elements, "thickness");
 }
@@ -190,36 +188,34 @@ void describe(hid_t group, const std::string& name, const std::string& component
 /// Writes /xdmf/NNNNNN (`path`): the tensors the XDMF file shows, in VTK order, in global axes
 /// (S, S_SNEG, S_SPOS) and, on shell models, the shells' local-axes ones (S_LOCAL, ...; NaN
 /// rows for solids). The datasets of /frames/NNNNNN keep the Abaqus order; the copies live
-/// outside the frame group so that a frame holds datasets only, as before. The global-axis
-/// copies come with the frame (FrameFields::stress_global, ...).
+/// outside the frame group so that a frame holds datasets only, as before. Each copy is made
+/// (global_axis_rows at `position`) and written in turn in one buffer, so that a frame holds
+/// one n_elements × 6 array more than its fields, not six.
 void write_xdmf_tensors(hid_t file, const std::string& path, const Model& model,
-                        const FrameFields& fields) {
+                        const NodalVectors& position, const FrameFields& fields) {
   const h5::Handle group = h5::require_group(file, path);
   const bool shells = model.has_shells();
   const auto n = static_cast<std::size_t>(model.element_count());
   struct Tensor {
     const char* name;
-    const std::vector<Real>* rows;    ///< Abaqus order, local axes on shells
-    const std::vector<Real>* global;  ///< global axes, VTK order
+    const std::vector<Real>* rows;  ///< Abaqus order, local axes on shells
   };
-  const Tensor tensors[] = {{"S", &fields.stress, &fields.stress_global},
-                            {"S_SNEG", &fields.stress_bottom, &fields.stress_bottom_global},
-                            {"S_SPOS", &fields.stress_top, &fields.stress_top_global}};
+  const Tensor tensors[] = {
+      {"S", &fields.stress}, {"S_SNEG", &fields.stress_bottom}, {"S_SPOS", &fields.stress_top}};
   const std::string global_names = "XX,YY,ZZ,XY,YZ,XZ";
+  std::vector<double> copy;
   for (const Tensor& t : tensors) {
     if (!shells && t.rows != &fields.stress) continue;
-    std::vector<double> local;
-    if (shells) {
-      local.assign(n * 6, std::nan(""));
-      for (std::size_t e = 0; e < n; ++e)
-        if (is_shell(model.element_types[e])) to_vtk(&(*t.rows)[e * 6], &local[e * 6]);
-    }
     const std::string name = t.name;
-    h5::write_real(group.get(), name, *t.global, {n, 6});
+    global_axis_rows(model, position, *t.rows, copy);
+    h5::write_real(group.get(), name, copy, {n, 6});
     describe(group.get(), name, global_names, "Pa",
              "copy of " + name + " for the XDMF file: global axes, VTK order");
     if (!shells) continue;
-    h5::write_real(group.get(), name + "_LOCAL", local, {n, 6});
+    copy.assign(n * 6, std::nan(""));
+    for (std::size_t e = 0; e < n; ++e)
+      if (is_shell(model.element_types[e])) to_vtk(&(*t.rows)[e * 6], &copy[e * 6]);
+    h5::write_real(group.get(), name + "_LOCAL", copy, {n, 6});
     describe(group.get(), name + "_LOCAL", "11,22,33,12,23,13", "Pa",
              "copy of " + name +
                  " for the XDMF file: shells only (NaN rows for solids), local shell axes, VTK "
@@ -251,7 +247,7 @@ void write_frame_datasets(hid_t file, hid_t g, const std::string& name, const Mo
     write_variable(g, *v, model, state, fields);
     describe(g, std::string(v->name), component_list(*v), units.label(v->unit), v->description);
   }
-  if (what.stress) write_xdmf_tensors(file, "xdmf/" + name, model, fields);
+  if (what.stress) write_xdmf_tensors(file, "xdmf/" + name, model, state.position, fields);
   if (what.stress && !fields.hourglass_state.empty()) {
     // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
     // --import (io/result_tools/import_state.hpp).

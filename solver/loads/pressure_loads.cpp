@@ -4,8 +4,25 @@
 
 namespace xpl {
 
+namespace {
+
+/// Whether a step after `step` adds pressures to those in force at its end (the first later
+/// step that resets or gives pressures gives some without resetting).
+bool later_step_adds(const Model& model, int step) {
+  for (std::size_t k = static_cast<std::size_t>(step) + 1; k < model.steps.size(); ++k) {
+    const Step& s = model.steps[k];
+    if (s.pressures_reset) return false;
+    if (!s.pressures.empty()) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void PressureLoads::begin_step(const Model& model, int step) {
   const Step& s = model.steps[step];
+  // A step that neither resets nor gives pressures keeps the faces of the one before.
+  if (!s.pressures_reset && s.pressures.empty()) return;
   if (s.pressures_reset) m_active.clear();
   if (!s.pressures.empty()) {
     // The earlier steps' faces, then this step's in deck order; a stable sort by face keeps
@@ -25,7 +42,9 @@ void PressureLoads::begin_step(const Model& model, int step) {
     m_active.shrink_to_fit();
   }
   m_faces.clear();
+  m_faces.reserve(m_active.size());
   m_nodes.clear();
+  m_nodes.reserve(4 * m_active.size());
   for (const auto& [key, p] : m_active) {
     const Index e = p.face.element;
     const Index* en = model.nodes_of(e);
@@ -44,8 +63,16 @@ void PressureLoads::begin_step(const Model& model, int step) {
     m_faces.push_back(f);
     m_nodes.insert(m_nodes.end(), f.nodes, f.nodes + 4);
   }
+  m_faces.shrink_to_fit();
   std::sort(m_nodes.begin(), m_nodes.end());
   m_nodes.erase(std::unique(m_nodes.begin(), m_nodes.end()), m_nodes.end());
+  m_nodes.shrink_to_fit();
+  // The faces are all a step needs; the sorted entries only serve a later step that adds
+  // faces to them (issue 38: 24 bytes per loaded face at the run's peak).
+  if (!later_step_adds(model, step)) {
+    m_active.clear();
+    m_active.shrink_to_fit();
+  }
 }
 
 }  // namespace xpl

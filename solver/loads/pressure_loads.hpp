@@ -15,7 +15,7 @@ namespace xpl {
 class PressureLoads {
  public:
   /// Applies the changes of `step` (a later entry for the same face replaces an earlier one;
-  /// `pressures_reset` clears the earlier steps' pressures).
+  /// `pressures_reset` clears the earlier steps' pressures). Steps are begun in order.
   void begin_step(const Model& model, int step);
 
   bool empty() const { return m_faces.empty(); }
@@ -41,7 +41,8 @@ class PressureLoads {
     Index amplitude;
   };
   /// The faces in force, sorted by (element, face), one entry each: a sorted array rather
-  /// than a map (a map node per loaded face cost ~140 bytes on a 100k-shell plate).
+  /// than a map (a map node per loaded face cost ~140 bytes on a 100k-shell plate). Emptied
+  /// once no later step adds faces.
   std::vector<std::pair<std::pair<Index, int>, Active>> m_active;
   std::vector<Face> m_faces;
   std::vector<Index> m_nodes;

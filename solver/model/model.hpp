@@ -109,9 +109,9 @@ struct Model {
   std::vector<PointInertia> point_inertias;
 
   // --- initial conditions and history --------------------------------------------------------
-  NodalVectors initial_velocity;  ///< (n_nodes × 3), zero unless given, m/s
-  /// (n_nodes × 3), rad/s: dofs 4–6 of `*INITIAL CONDITIONS, TYPE=VELOCITY` and the spin of
-  /// `TYPE=ROTATING VELOCITY` on shell nodes (the only nodes with rotations); zero unless given.
+  NodalVectors initial_velocity;  ///< (n_nodes × 3) zero unless given, or empty (zero), m/s
+  /// (n_nodes × 3) or empty, rad/s: dofs 4–6 of `*INITIAL CONDITIONS, TYPE=VELOCITY` and the
+  /// spin of `ROTATING VELOCITY` on shell nodes (the only ones that rotate); zero unless given.
   NodalVectors initial_angular_velocity;
   std::vector<Step> steps;
 

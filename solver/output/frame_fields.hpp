@@ -1,8 +1,8 @@
 #pragma once
 /// \file The fields only output needs: element stresses, volumes, thicknesses, PEEQ, the
 /// hourglass state for --import and the contact output per node. The OutputDriver owns them
-/// and fills them before each field frame (ElementSet::gather_output, ContactStage::fill_output,
-/// global_axis_stresses); the time loop never reads them.
+/// and fills them before each field frame (ElementSet::gather_output, ContactStage::fill_output);
+/// the time loop never reads them.
 
 #include <vector>
 
@@ -26,11 +26,6 @@ struct FrameFields {
   /// Shell section stresses at the bottom (SNEG) and top (SPOS) section points, same layout
   /// as `stress`; rows of non-shell elements are NaN. Empty unless the model has shells.
   std::vector<Real> stress_bottom, stress_top;
-  /// The copies of `stress`, `stress_bottom` and `stress_top` the XDMF file shows: global
-  /// axes (the shells' rows turned out of their local axes), VTK order XX YY ZZ XY YZ XZ
-  /// (n_elements × 6). Filled with `stress` (global_axis_stresses); the bottom and top ones
-  /// on models with shells only, else empty.
-  std::vector<Real> stress_global, stress_bottom_global, stress_top_global;
   /// Current shell thickness STH (n_elements), m; NaN for non-shell elements. Empty unless
   /// the model has shells.
   std::vector<Real> thickness;
@@ -60,11 +55,14 @@ struct FrameFields {
   NodalVectors contact_shear_force;    ///< CSHEARF (n_nodes × 3), N
 };
 
-/// Fills `stress_global` (and on a model with shells `stress_bottom_global` and
-/// `stress_top_global`) of `frame` from its `stress` (`stress_bottom`, `stress_top`): each
-/// shell's rows turned from its local axes (elements::quad_frame of its corners at
-/// `position`) to global axes, every row in VTK order.
-void global_axis_stresses(const Model& model, const NodalVectors& position, FrameFields& frame);
+/// The copy of the stress rows `rows` (n_elements × 6, Abaqus order: `stress`, `stress_bottom`
+/// or `stress_top` of a frame) that the XDMF file shows, into `global` (resized to n_elements ×
+/// 6): global axes (each shell's row turned out of its local axes, elements::quad_frame of its
+/// corners at `position`), VTK order. The writer fills it one tensor at a time, just before
+/// writing it, into one buffer: three global copies kept with the frame cost 144 bytes per
+/// element at the run's peak (issue 38).
+void global_axis_rows(const Model& model, const NodalVectors& position,
+                      const std::vector<Real>& rows, std::vector<Real>& global);
 
 /// Component order of the XDMF copies of a tensor: VTK's Tensor6 (XX YY ZZ XY YZ XZ), i.e.
 /// the Abaqus rows S11 S22 S33 S12 S23 S13.

@@ -39,7 +39,6 @@ void OutputDriver::write_frame(State& state, const FrameRequest& requested,
   if (m_displacement_written) what.displacement = true;
   m_displacement_written = what.displacement;
   elements.gather_output(state, what, m_frame);
-  if (what.stress) global_axis_stresses(m_model, state.position, m_frame);
   if (what.contact_stress || what.contact_status || what.contact_force)
     contact.fill_output(m_frame);
   nodes.sync_rotation(state);
