@@ -85,6 +85,37 @@ void Shell4rBlock::add_totals(ShellStepTotals& totals) const {
   }
 }
 
+namespace {
+
+/// The two in-plane hourglass resultants of a plastic batch's lanes (physical form with
+/// HG_PLASTIC, shell4r_hourglass.hpp; factors of exactly 1 elsewhere) advanced from their
+/// stores at `hstore` over rates r0, r1 with stiffness k, relaxed by `relax`, and held to the
+/// bound: the pattern's Gauss-point resultant norm (4 × the generalised resultant's) within
+/// `limit` (SHELL_HOURGLASS_PLASTIC_BOUND σ_f t, +inf on other lanes). Stores them, puts them
+/// in hq[0], hq[1] and adds their work over the increment to `work`.
+XPL_KERNEL_INLINE void plastic_membrane_hourglass(Real* hstore, Vec r0, Vec r1, Vec k, Vec relax,
+                                                  Vec limit, const QuadNatural<Vec>& nat,
+                                                  Vec poisson, Vec area, Real dt, Vec hq[],
+                                                  Vec& work) {
+  const Vec o0 = simd::load(hstore), o1 = simd::load(hstore + simd::W);
+  Vec n0 = relax * (o0 + (k * dt) * r0), n1 = relax * (o1 + (k * dt) * r1);
+  const Vec norm = 4.0 * hourglass_field_norm(nat, poisson, area, n0, n1);
+  const simd::Mask over = norm > limit;
+  if (simd::any(over)) {
+    const Vec f = simd::select(over, limit / simd::max(norm, limit), simd::splat(1.0));
+    n0 = f * n0;
+    n1 = f * n1;
+  }
+  hq[0] = n0;
+  hq[1] = n1;
+  simd::store(hstore, n0);
+  simd::store(hstore + simd::W, n1);
+  work += (0.5 * dt) * (o0 + n0) * r0;
+  work += (0.5 * dt) * (o1 + n1) * r1;
+}
+
+}  // namespace
+
 template <bool PLASTIC>
 void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
                                  const Real* const w[3], Real dt, Real* const f[3],
@@ -165,29 +196,13 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   [[maybe_unused]] const Vec plastic_on = PLASTIC ? constant(HG_PLASTIC) : simd::splat(0.0);
   if constexpr (PLASTIC) {
     const Vec one = simd::splat(1.0);
-    const Vec r0 = hourglass_rate(fm, ux), r1 = hourglass_rate(fm, uy);
-    const Vec k = c_plane * (one + plastic_on * (sr.tangent_membrane - one));
-    const Vec relax = one + plastic_on * (sr.membrane_return - one);
-    const Vec o0 = simd::load(hstore), o1 = simd::load(hstore + W);
-    Vec n0 = relax * (o0 + (k * dt) * r0), n1 = relax * (o1 + (k * dt) * r1);
-    // The bound: the pattern's Gauss-point resultant norm (4 × the generalised resultant's)
-    // within SHELL_HOURGLASS_PLASTIC_BOUND σ_f t (+inf on other lanes and in elastic ones).
+    // The bound: +inf on lanes without HG_PLASTIC (and in elastic batches).
     const Vec limit = simd::select(plastic_on > 0.0, (SHELL_HOURGLASS_PLASTIC_BOUND * t) * sr.flow,
                                    simd::splat(std::numeric_limits<Real>::infinity()));
-    const Vec norm =
-        4.0 * hourglass_field_norm(quad_natural(fm), constant(POISSON), fm.area, n0, n1);
-    const simd::Mask over = norm > limit;
-    if (simd::any(over)) {
-      const Vec f = simd::select(over, limit / simd::max(norm, limit), one);
-      n0 = f * n0;
-      n1 = f * n1;
-    }
-    hq[0] = n0;
-    hq[1] = n1;
-    simd::store(hstore, n0);
-    simd::store(hstore + W, n1);
-    hg_work += (0.5 * dt) * (o0 + n0) * r0;
-    hg_work += (0.5 * dt) * (o1 + n1) * r1;
+    plastic_membrane_hourglass(hstore, hourglass_rate(fm, ux), hourglass_rate(fm, uy),
+                               c_plane * (one + plastic_on * (sr.tangent_membrane - one)),
+                               one + plastic_on * (sr.membrane_return - one), limit,
+                               quad_natural(fm), constant(POISSON), fm.area, dt, hq, hg_work);
   } else {
     advance(0, c_plane, hourglass_rate(fm, ux));
     advance(1, c_plane, hourglass_rate(fm, uy));
