@@ -248,20 +248,35 @@ std::vector<Real> pack_rows(const NodalVectors& rows, const std::vector<Index>& 
   return packed;
 }
 
+/// Receive counts and displacements of a gather of `width` values per item of every rank
+/// (`items(r)`: rank r's items), in rank order; `total` is their sum.
+struct GatherLayout {
+  std::vector<int> counts, displacement;
+  std::size_t total = 0;
+};
+template <class Items>
+GatherLayout gather_layout(int size, std::size_t width, Items items) {
+  GatherLayout g;
+  g.counts.resize(static_cast<std::size_t>(size));
+  g.displacement.assign(g.counts.size(), 0);
+  for (int r = 0; r < size; ++r) g.counts[r] = static_cast<int>(items(r).size() * width);
+  for (int r = 1; r < size; ++r) g.displacement[r] = g.displacement[r - 1] + g.counts[r - 1];
+  g.total = static_cast<std::size_t>(g.displacement.back() + g.counts.back());
+  return g;
+}
+
 }  // namespace
 
 void DistributedRun::gather_to_root(NodalVectors& rows) const {
   if (rows.rows() == 0) return;
   ExchangeTimer timer(m_seconds[GATHERS]);
   const std::vector<Real> mine = pack_rows(rows, plan().owned);
-  std::vector<int> counts(static_cast<std::size_t>(m_size)), displacement(counts.size(), 0);
-  for (int r = 0; r < m_size; ++r) counts[r] = static_cast<int>(m_plan.part[r].owned.size() * 3);
-  for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
-  std::vector<Real> all(m_rank == 0 ? static_cast<std::size_t>(displacement.back() + counts.back())
-                                    : 0);
+  const GatherLayout g = gather_layout(
+      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
+  std::vector<Real> all(m_rank == 0 ? g.total : 0);
   MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
-               displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
+               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
   wait(gathered);
   if (m_rank != 0) return;
   std::size_t k = 0;
@@ -273,13 +288,12 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
 void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
   ExchangeTimer timer(m_seconds[GATHERS]);
   const std::vector<Real> mine = pack_rows(rows, plan().owned);
-  std::vector<int> counts(static_cast<std::size_t>(m_size)), displacement(counts.size(), 0);
-  for (int r = 0; r < m_size; ++r) counts[r] = static_cast<int>(m_plan.part[r].owned.size() * 3);
-  for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
-  std::vector<Real> all(static_cast<std::size_t>(displacement.back() + counts.back()));
+  const GatherLayout g = gather_layout(
+      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
+  std::vector<Real> all(g.total);
   MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
-                  displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
+  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(),
+                  g.counts.data(), g.displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
   wait(gathered);
   out.resize(rows.rows(), 3);
   std::size_t k = 0;
@@ -297,14 +311,12 @@ void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width)
   for (const Index e : plan().elements)
     mine.insert(mine.end(), rows.begin() + static_cast<std::ptrdiff_t>(e * w),
                 rows.begin() + static_cast<std::ptrdiff_t>((e + 1) * w));
-  std::vector<int> counts(static_cast<std::size_t>(m_size)), displacement(counts.size(), 0);
-  for (int r = 0; r < m_size; ++r) counts[r] = static_cast<int>(m_plan.part[r].elements.size() * w);
-  for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
-  std::vector<Real> all(m_rank == 0 ? static_cast<std::size_t>(displacement.back() + counts.back())
-                                    : 0);
+  const GatherLayout g = gather_layout(
+      m_size, w, [this](int r) -> const auto& { return m_plan.part[r].elements; });
+  std::vector<Real> all(m_rank == 0 ? g.total : 0);
   MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
-               displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
+               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
   wait(gathered);
   if (m_rank != 0) return;
   std::size_t k = 0;
