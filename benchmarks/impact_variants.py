@@ -7,6 +7,8 @@ For each scene ID the same draw (same speed, angles, materials, sizes) is writte
   c3d8    every deformable C3D8R turned C3D8 (fully integrated, no hourglass control): its peak
           ALLIE is what the mesh stores without the one-point element's hourglass modes
   fine    every element count doubled (2x finer mesh, 8x the hexes, 4x the shells)
+  fine_c3d8  both
+  fine4   every element count times four (scenes only); fine4_c3d8 with C3D8
 and run with one thread; each run is checked by impact_check.py's criteria. One line per run:
 the hourglass share (largest ALLAE / ALLIE over the checked rows, as the test reports it), peak
 ALLIE and ALLAE, ALLAE / ALLIE at the end, ETOTAL drift, the failed criteria.
@@ -31,27 +33,28 @@ import impact_scenes  # noqa: E402
 sys.path.insert(0, str(HERE.parent / "examples" / "impacts"))
 import make_impact_decks  # noqa: E402
 
-VARIANTS = ("base", "c3d8", "fine")
+VARIANTS = ("base", "c3d8", "fine", "fine_c3d8", "fine4", "fine4_c3d8")
 
 
 def parameters(scene_id, variant):
     """The scene's draw, changed for the variant."""
     p = impact_scenes.draw(scene_id)
-    if variant == "c3d8":
+    if variant.endswith("c3d8"):
         if p["projectile"] == "solid":
             p["projectile_element"] = "C3D8"
         if p["target"] == "solid" and p["support"] != "rigid":
             p["target_element"] = "C3D8"
-    elif variant == "fine":
-        p["projectile_counts"] = [2 * n for n in p["projectile_counts"]]
-        p["target_counts"] = [2 * n for n in p["target_counts"]]
+    if variant.startswith("fine"):
+        factor = 4 if variant.startswith("fine4") else 2
+        p["projectile_counts"] = [factor * n for n in p["projectile_counts"]]
+        p["target_counts"] = [factor * n for n in p["target_counts"]]
     return p
 
 
 def deck_variant(name, variant):
     """An examples/impacts deck (all hexes, blocks_*): C3D8 for every C3D8R, or every
     solid_block's counts doubled."""
-    if variant == "fine":
+    if variant in ("fine", "fine_c3d8"):
         block = impact_scenes.solid_block
         impact_scenes.solid_block = lambda n, size, counts, kind: block(
             n, size, [2 * c for c in counts], kind)
@@ -61,8 +64,8 @@ def deck_variant(name, variant):
             impact_scenes.solid_block = block
     else:
         text, meta = make_impact_decks.DECKS[name]()
-        if variant == "c3d8":
-            text = text.replace("TYPE=C3D8R,", "TYPE=C3D8,")
+    if variant in ("c3d8", "fine_c3d8"):
+        text = text.replace("TYPE=C3D8R,", "TYPE=C3D8,")
     return text, meta
 
 
@@ -126,8 +129,9 @@ def main(argv=None):
                 p = {"class": scene_id}
             else:
                 p = parameters(scene_id, variant)
-                if variant == "c3d8" and p == impact_scenes.draw(scene_id):
-                    continue  # no deformable C3D8R: the same deck as base
+                plain = parameters(scene_id, variant.replace("c3d8", "").strip("_") or "base")
+                if variant.endswith("c3d8") and p == plain:
+                    continue  # no deformable C3D8R: the same deck as base (fine)
             deck = write(scene_id, variant, args.work)
             results = impact_check.run_deck(args.xpl, deck, threads=False, reuse=args.reuse)
             messages = {c: (ok, m) for c, ok, m in results}
