@@ -2,19 +2,24 @@
 """Twins of the impact stress scenes (tests/stress/impact_scenes.py) that tell the physics of a
 coarse one-point mesh from a spurious hourglass energy (issue 32, items 5 and 7).
 
-For each scene ID the same draw (same speed, angles, materials, sizes) is written as
+For each scene ID (or deck NAME of examples/impacts made of hexes: blocks_600 ... blocks_3000)
+the same draw (same speed, angles, materials, sizes) is written as
   base    the scene as the stress test runs it
   c3d8    every deformable C3D8R turned C3D8 (fully integrated, no hourglass control): its peak
           ALLIE is what the mesh stores without the one-point element's hourglass modes
   fine    every element count doubled (2x finer mesh, 8x the hexes, 4x the shells)
   fine_c3d8  both
-  fine4   every element count times four (scenes only); fine4_c3d8 with C3D8
+  fine4   every element count times four; fine4_c3d8 with C3D8
 and run with one thread; each run is checked by impact_check.py's criteria. One line per run:
 the hourglass share (largest ALLAE / ALLIE over the checked rows, as the test reports it), peak
 ALLIE and ALLAE, ALLAE / ALLIE at the end, ETOTAL drift, the failed criteria.
 
 Usage:
-  impact_variants.py XPL ID... [--variants base,c3d8,fine] [--work DIR] [--json FILE]
+  impact_variants.py XPL ID-OR-NAME... [--variants base,c3d8,fine] [--work DIR] [--json FILE]
+      writes WORK/VARIANT/scene_ID/ (default ./impact_variants); --json appends one record a
+      run; --reuse checks the runs already there
+Used for benchmarks/RESULTS.md, "Known stress failures re-measured", and the causes in
+tests/stress/known_failures.txt.
 Needs numpy and h5py (/usr/bin/python3).
 """
 
@@ -22,8 +27,6 @@ import argparse
 import json
 import pathlib
 import sys
-
-import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "tests" / "stress"))
@@ -52,19 +55,20 @@ def parameters(scene_id, variant):
 
 
 def deck_variant(name, variant):
-    """An examples/impacts deck (all hexes, blocks_*): C3D8 for every C3D8R, or every
-    solid_block's counts doubled."""
-    if variant in ("fine", "fine_c3d8"):
+    """An examples/impacts deck made by solid_block (blocks_*): C3D8 for every C3D8R, or every
+    solid_block's counts doubled (times four)."""
+    if variant.startswith("fine"):
+        factor = 4 if variant.startswith("fine4") else 2
         block = impact_scenes.solid_block
         impact_scenes.solid_block = lambda n, size, counts, kind: block(
-            n, size, [2 * c for c in counts], kind)
+            n, size, [factor * c for c in counts], kind)
         try:
             text, meta = make_impact_decks.DECKS[name]()
         finally:
             impact_scenes.solid_block = block
     else:
         text, meta = make_impact_decks.DECKS[name]()
-    if variant in ("c3d8", "fine_c3d8"):
+    if variant.endswith("c3d8"):
         text = text.replace("TYPE=C3D8R,", "TYPE=C3D8,")
     return text, meta
 
