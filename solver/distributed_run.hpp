@@ -105,6 +105,15 @@ class DistributedRun {
   void gather_elements_to_root(std::vector<Real>& rows, int width) const;
   /// The largest of the ranks' values.
   int max(int value) const;
+  /// The rows (n_nodes × 3 each) of `nodes` (the same list on every rank) from the rank that
+  /// integrates each node (its owner; for a node of no element, the rank counting its chunk)
+  /// onto every rank, from `from[k]` into `to[k]` (MPI_Allgatherv; rows not listed are left
+  /// as they are). Collective.
+  void share_rows(const std::vector<Index>& nodes, const std::vector<const NodalVectors*>& from,
+                  const std::vector<NodalVectors*>& to) const;
+  /// The rank whose rows of `node` are the run's: its owner, or for a node of no element the
+  /// rank counting its chunk.
+  int row_source(Index node) const { return m_row_source[node]; }
 
   /// Wall time spent in this rank's exchanges and collectives, s: with the neighbours (the
   /// interface forces), shipping the chunks' forces, and gathers and reductions.
@@ -120,6 +129,7 @@ class DistributedRun {
   partition::ExchangePlan m_plan;
   std::vector<int> m_element_part;
   std::vector<int> m_node_owner;
+  std::vector<int> m_row_source;  ///< row_source()
   std::vector<unsigned char> m_in_part;
   Index m_chunk = 1;
   std::vector<int> m_chunk_owner;

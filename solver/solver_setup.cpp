@@ -89,6 +89,7 @@ void ExplicitSolver::Impl::set_up_distribution() {
     return run.allgather(mine, counts);
   };
   m_nodes.set_distribution(share, std::move(counted), fold);
+  m_contact.set_distribution(&run);
 
   // The report (rank 0's sink writes it).
   const double seconds =

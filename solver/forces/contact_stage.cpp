@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "contact/initial_overclosure.hpp"
+#include "solver/distributed_run.hpp"
 #include "solver/message_text.hpp"
 #include "solver/output/output_variables.hpp"
 
@@ -42,6 +43,16 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
       general != nullptr && (general->all_exterior || !general->inclusions.empty());
   if (!has_general && pairs.empty()) return;
 
+  // Distributed runs after t = 0: a rank's rows of the nodes it does not integrate are
+  // stale; the engine is built on the run's positions of every node (once per such step).
+  const bool gathered = m_run != nullptr && step > 0;
+  if (gathered) {
+    std::vector<Index> all(static_cast<std::size_t>(m_model.node_count()));
+    for (Index i = 0; i < m_model.node_count(); ++i) all[i] = i;
+    m_position = state.position;
+    m_run->share_rows(all, {&state.position}, {&m_position});
+    state.position.swap(m_position);
+  }
   contact::DomainSpec spec = domain_spec(has_general ? general : nullptr, pairs);
   spec.element_body = rigid.element_body();
   // Rigid nodes of node-based surfaces (point nodes) touch deformable faces only.
@@ -70,6 +81,15 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
                                      format_real(m_engine->broad_phase().margin()) + " m");
   set_rigid_bodies(rigid);
   resolve_overclosures(step, previous.get(), state, elements, rigid, prescribed);
+  if (gathered) state.position.swap(m_position);
+  if (m_run != nullptr) {
+    m_shared_nodes = m_engine->domain().slaves().nodes();
+    std::sort(m_shared_nodes.begin(), m_shared_nodes.end());
+    m_shared_nodes.erase(std::unique(m_shared_nodes.begin(), m_shared_nodes.end()),
+                         m_shared_nodes.end());
+    m_position = state.position;
+    m_velocity = state.velocity_half;
+  }
 }
 
 contact::DomainSpec ContactStage::domain_spec(const GeneralContact* general,
@@ -272,9 +292,14 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
   m_stored_energy = 0.0;
   if (!m_engine) return;
   if (m_engine->interference_ramping()) m_engine->set_step_time(state.step_time);
-  const contact::ContactTotals t = m_engine->update(
-      state.position, state.velocity_half, dt_taken, dt_penalty, elements.node_thickness(),
-      state.mass, elements.inverse_mass(), elements.force_internal(), m_timers);
+  if (m_run != nullptr)
+    m_run->share_rows(m_shared_nodes, {&state.position, &state.velocity_half},
+                      {&m_position, &m_velocity});
+  const contact::ContactTotals t =
+      m_engine->update(m_run != nullptr ? m_position : state.position,
+                       m_run != nullptr ? m_velocity : state.velocity_half, dt_taken, dt_penalty,
+                       elements.node_thickness(), state.mass, elements.inverse_mass(),
+                       elements.force_internal(), m_timers);
   state.energies.friction += t.friction_dissipation;
   // The interference ramp's energy is an input, as the work of a load: in ALLWK, and in
   // ALLPW, which then holds what the springs hold (ContactEnergyCheck).

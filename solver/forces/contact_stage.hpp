@@ -21,6 +21,8 @@
 
 namespace xpl {
 
+class DistributedRun;
+
 /// General contact and contact pairs of the current step; nothing to do when it has none (P2).
 class ContactStage {
  public:
@@ -40,6 +42,11 @@ class ContactStage {
   /// Nodes of ties (Ties::tied_nodes, n_nodes): held by the overclosure pass, their
   /// penetration an offset with reason "tie".
   void set_tied_nodes(std::vector<char> tied) { m_tied = std::move(tied); }
+  /// Distributed runs (docs/dev/mpi.md, "Contact under N ranks"): every rank runs the whole
+  /// contact pass, redundantly, on the positions and velocities of the contact nodes gathered
+  /// from the ranks that integrate them, so that each rank adds to the nodes it integrates
+  /// the one-rank contact forces in the one-rank order. `run` must outlive the stage.
+  void set_distribution(const DistributedRun* run) { m_run = run; }
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
   /// The engine of the current step (null without contact): its t = 0 candidate pairs feed
@@ -108,8 +115,13 @@ class ContactStage {
   PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
   std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
-  long m_lost = 0;                        ///< releases in the step (ContactTotals::lost)
-  long m_lost_increments = 0;             ///< increments with a release in the step
+  const DistributedRun* m_run = nullptr;  ///< distributed runs only
+  /// Distributed runs: the nodes the engine reads (its slave nodes: every face node and the
+  /// point nodes), ascending, and the run's positions and half-step velocities of them.
+  std::vector<Index> m_shared_nodes;
+  NodalVectors m_position, m_velocity;
+  long m_lost = 0;             ///< releases in the step (ContactTotals::lost)
+  long m_lost_increments = 0;  ///< increments with a release in the step
 };
 
 }  // namespace xpl
