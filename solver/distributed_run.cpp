@@ -86,7 +86,6 @@ std::vector<std::string> DistributedRun::refusals(const Model& model, bool impor
     pressure = pressure || !s.pressures.empty();
     gravity = gravity || !s.gravity.empty();
   }
-  if (!model.rigid_bodies.empty()) r.push_back("*RIGID BODY" + not_yet);
   if (!model.ties.empty()) r.push_back("*TIE" + not_yet);
   if (loads) r.push_back("*CLOAD" + not_yet);
   if (pressure) r.push_back("pressure loads (*DLOAD, *DSLOAD)" + not_yet);
@@ -101,20 +100,26 @@ DistributedRun::DistributedRun()
 DistributedRun::~DistributedRun() = default;
 
 void DistributedRun::set_partition(const Model& model, std::vector<int> element_part,
-                                   std::vector<Index> element_order, Index chunk) {
+                                   std::vector<Index> element_order, Index chunk,
+                                   const std::vector<Index>& element_body) {
   m_element_part = std::move(element_part);
   const Index n_nodes = model.node_count();
   partition::MeshPartition p;
   p.parts = m_size;
   p.element_part = m_element_part;
+  // A rigid body's elements run no kernel: in no part (their nodes are every rank's).
+  for (std::size_t e = 0; e < element_body.size(); ++e)
+    if (element_body[e] != NO_INDEX) p.element_part[e] = -1;
   p.node_owner.assign(static_cast<std::size_t>(n_nodes), m_size);
   for (Index e = 0; e < model.element_count(); ++e)
     for (Index k = model.element_offsets[e]; k < model.element_offsets[e + 1]; ++k) {
       int& owner = p.node_owner[model.element_nodes[k]];
-      owner = std::min(owner, m_element_part[e]);
+      if (p.element_part[e] >= 0) owner = std::min(owner, p.element_part[e]);
     }
+  std::vector<unsigned char> in_element(static_cast<std::size_t>(n_nodes), 0);
+  for (Index i = 0; i < n_nodes; ++i) in_element[i] = p.node_owner[i] < m_size ? 1 : 0;
   for (int& owner : p.node_owner)
-    if (owner == m_size) owner = 0;  // a node of no element: rank 0's
+    if (owner == m_size) owner = 0;  // a node of no (deformable) element: rank 0's
   m_node_owner = p.node_owner;
   partition::PartitionInput input;
   input.node_count = n_nodes;
@@ -137,8 +142,6 @@ void DistributedRun::set_partition(const Model& model, std::vector<int> element_
         static_cast<int>(std::max_element(owned.begin(), owned.end()) - owned.begin());
   }
   m_row_source = m_node_owner;
-  std::vector<unsigned char> in_element(static_cast<std::size_t>(n_nodes), 0);
-  for (const Index n : model.element_nodes) in_element[n] = 1;
   for (Index i = 0; i < n_nodes; ++i)
     if (in_element[i] == 0) m_row_source[i] = m_chunk_owner[i / chunk];
   std::vector<unsigned char> uses(static_cast<std::size_t>(n_nodes));

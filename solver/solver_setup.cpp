@@ -54,7 +54,7 @@ void ExplicitSolver::Impl::set_up_distribution() {
     metis = m_elements.partition_batches(run.size(), m_options.partition_method, element_part);
   run.broadcast(element_part);
   run.set_partition(m_model, element_part, m_elements.element_order(),
-                    CentralDifference::NODE_CHUNK);
+                    CentralDifference::NODE_CHUNK, m_rigid.element_body());
   m_elements.distribute(run);
 
   // Nodes this rank neither uses nor counts stay at rest (a node of no element moves on the
@@ -62,10 +62,12 @@ void ExplicitSolver::Impl::set_up_distribution() {
   const Index n = m_model.node_count();
   const bool rotations = !m_state.rotary_inertia.empty();
   std::vector<unsigned char> counted(static_cast<std::size_t>(n), 0);
+  // Rigid bodies move on every rank alike (every rank updates every body), so their nodes
+  // keep their motion everywhere.
   for (Index i = 0; i < n; ++i) {
     if (run.counts(i)) {
       counted[i] = 1;
-    } else if (!run.in_part(i)) {
+    } else if (!run.in_part(i) && !m_rigid.is_rigid_node(i)) {
       m_state.velocity.row(i).setZero();
       m_state.velocity_half.row(i).setZero();
       if (rotations) {
@@ -90,6 +92,16 @@ void ExplicitSolver::Impl::set_up_distribution() {
   };
   m_nodes.set_distribution(share, std::move(counted), fold);
   m_contact.set_distribution(&run);
+  if (!m_rigid.empty()) {
+    // The forces on the bodies' nodes from the ranks that hold them, in full (elements,
+    // contact, loads), so that every rank's update of every body is the one-rank update.
+    std::vector<Index> rigid_nodes;
+    for (Index i = 0; i < n; ++i)
+      if (m_rigid.is_rigid_node(i)) rigid_nodes.push_back(i);
+    m_nodes.set_rigid_share([&run, rigid_nodes](const std::vector<NodalVectors*>& rows) {
+      run.share_rows(rigid_nodes, {rows.begin(), rows.end()}, rows);
+    });
+  }
 
   // The report (rank 0's sink writes it).
   const double seconds =

@@ -205,6 +205,11 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   sums.kinetic = sum_chunks(n_chunks);
   RigidUpdate bodies;
   if (!rigid.empty()) {
+    if (m_share_rigid) {
+      std::vector<NodalVectors*> rows{&elements.force_internal()};
+      if (force_external != nullptr) rows.push_back(force_external);
+      m_share_rigid(rows);
+    }
     bodies = rigid.update(m_motion, state, elements.force_internal(), force_external, inc);
     sums.kinetic += bodies.kinetic;
     sums.work = bodies.work;

@@ -83,6 +83,12 @@ class CentralDifference {
     m_share_chunks = std::move(share);
     m_motion.set_distribution(std::move(counted), std::move(fold));
   }
+  /// Distributed runs with rigid bodies: every rank updates every body (the same inputs, the
+  /// same motion); `share` puts into the given rows (n_nodes × 3: the internal forces, the
+  /// external ones when the step has loads) the run's values at the bodies' nodes, from the
+  /// ranks that hold them (collective), before the bodies' update.
+  using RowShare = std::function<void(const std::vector<NodalVectors*>& rows)>;
+  void set_rigid_share(RowShare share) { m_share_rigid = std::move(share); }
   /// The largest |v(n+½)| component of the free translational DOFs at the last
   /// update_nodes(), m/s (for the health check; NaN shows in ALLKE instead).
   Real largest_speed() const { return m_largest_speed; }
@@ -120,6 +126,7 @@ class CentralDifference {
   /// prescribed in one step and loaded in the next); allocated when a step has either.
   NodalVectors m_previous_force;
   ChunkShare m_share_chunks;  ///< set_distribution(); empty: one rank
+  RowShare m_share_rigid;     ///< set_rigid_share(); empty: one rank or no bodies
 };
 
 }  // namespace xpl
