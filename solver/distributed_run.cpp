@@ -86,7 +86,6 @@ std::vector<std::string> DistributedRun::refusals(const Model& model, bool impor
     pressure = pressure || !s.pressures.empty();
     gravity = gravity || !s.gravity.empty();
   }
-  if (!model.ties.empty()) r.push_back("*TIE" + not_yet);
   if (loads) r.push_back("*CLOAD" + not_yet);
   if (pressure) r.push_back("pressure loads (*DLOAD, *DSLOAD)" + not_yet);
   if (gravity) r.push_back("gravity (*DLOAD, GRAV)" + not_yet);

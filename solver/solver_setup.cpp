@@ -92,6 +92,25 @@ void ExplicitSolver::Impl::set_up_distribution() {
   };
   m_nodes.set_distribution(share, std::move(counted), fold);
   m_contact.set_distribution(&run);
+  if (m_ties.active()) {
+    // Slave forces and corner motions from the ranks that hold them, so that every rank's
+    // tie passes are the one-rank passes.
+    std::vector<Index> slaves, corners;
+    for (const auto& [slave, corner] : m_ties.slave_master_nodes()) {
+      slaves.push_back(slave);
+      corners.push_back(corner);
+    }
+    for (std::vector<Index>* nodes : {&slaves, &corners}) {
+      std::sort(nodes->begin(), nodes->end());
+      nodes->erase(std::unique(nodes->begin(), nodes->end()), nodes->end());
+    }
+    const auto share = [&run](std::vector<Index> nodes) {
+      return [&run, nodes = std::move(nodes)](const std::vector<NodalVectors*>& rows) {
+        run.share_rows(nodes, {rows.begin(), rows.end()}, rows);
+      };
+    };
+    m_nodes.set_tie_share(share(std::move(slaves)), share(std::move(corners)));
+  }
   if (!m_rigid.empty()) {
     // The forces on the bodies' nodes from the ranks that hold them, in full (elements,
     // contact, loads), so that every rank's update of every body is the one-rank update.
