@@ -46,8 +46,7 @@ class DistributedRun {
   static int world_rank();
   static int world_size();
   /// What keeps `model` from running distributed today (one message per feature), empty if
-  /// nothing: contact, rigid bodies, ties, loads (*CLOAD, *DLOAD, *DSLOAD, gravity), an
-  /// imported state.
+  /// nothing: an imported state (--import).
   static std::vector<std::string> refusals(const Model& model, bool imported);
 
   /// The largest `value` of the ranks of MPI_COMM_WORLD (collective; `value` without MPI).

@@ -92,6 +92,10 @@ void ExplicitSolver::Impl::set_up_distribution() {
   };
   m_nodes.set_distribution(share, std::move(counted), fold);
   m_contact.set_distribution(&run);
+  m_nodes.set_load_share(
+      [&run](const std::vector<Index>& nodes, const std::vector<NodalVectors*>& rows) {
+        run.share_rows(nodes, {rows.begin(), rows.end()}, rows);
+      });
   if (m_ties.active()) {
     // Slave forces and corner motions from the ranks that hold them, so that every rank's
     // tie passes are the one-rank passes.

@@ -177,6 +177,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
                 elements.moment_internal().data(),  elements.moment_internal().data(), 0.0,
                 elements.inverse_inertia().data(),  state.rotary_inertia.data()};
 
+  if (m_share_loads) m_loads.share_positions(m_share_loads, state.position);
   // Prescribed and loaded DOFs keep their velocity at n-1/2 for the work and reaction terms.
   m_motion.keep_old_velocities(translation, rotation, n);
 
@@ -230,6 +231,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
     }
     m_ties->follow(state);
   }
+  if (m_share_loads) m_loads.share_work(m_share_loads);
   m_loads.add_work(sums.work);
   book_energies(state, inc, sums);
 }

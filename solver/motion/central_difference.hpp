@@ -98,6 +98,10 @@ class CentralDifference {
     m_share_tie_forces = std::move(forces);
     m_share_tie_motion = std::move(motion);
   }
+  /// Distributed runs with loads: the positions the pressures read before the loads are
+  /// evaluated, and the work terms of the loaded DOFs before their work is summed, through
+  /// `share` (ExternalLoads::share_positions, share_work; collective).
+  void set_load_share(ExternalLoads::NodeRowShare share) { m_share_loads = std::move(share); }
   /// The largest |v(n+½)| component of the free translational DOFs at the last
   /// update_nodes(), m/s (for the health check; NaN shows in ALLKE instead).
   Real largest_speed() const { return m_largest_speed; }
@@ -137,6 +141,7 @@ class CentralDifference {
   ChunkShare m_share_chunks;  ///< set_distribution(); empty: one rank
   RowShare m_share_rigid;     ///< set_rigid_share(); empty: one rank or no bodies
   RowShare m_share_tie_forces, m_share_tie_motion;  ///< set_tie_share(); empty: one rank
+  ExternalLoads::NodeRowShare m_share_loads;        ///< set_load_share(); empty: one rank
 };
 
 }  // namespace xpl
