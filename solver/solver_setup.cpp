@@ -50,8 +50,12 @@ void ExplicitSolver::Impl::set_up_distribution() {
   // layout, so that every batch, and its per-batch totals, belongs to one rank.
   std::vector<int> element_part;
   partition::MeshPartition metis;
+  // The t = 0 contact candidate pairs as extra edges (issue 37 item 2), so that contact
+  // partners tend to share a rank.
   if (run.rank() == 0)
-    metis = m_elements.partition_batches(run.size(), m_options.partition_method, element_part);
+    metis = m_elements.partition_batches(
+        run.size(), m_options.partition_method, element_part,
+        m_contact.start_candidates(m_state.position, m_elements, m_rigid));
   run.broadcast(element_part);
   run.set_partition(m_model, element_part, m_elements.element_order(),
                     CentralDifference::NODE_CHUNK, m_rigid.element_body());

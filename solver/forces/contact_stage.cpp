@@ -30,22 +30,10 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
     set_rigid_bodies(rigid);
     return;
   }
-  const GeneralContact* general = nullptr;
-  for (int k = step; k >= 0 && general == nullptr; --k)
-    if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
-  std::vector<ContactPair> pairs = m_model.contact_pairs;
-  for (int k = 0; k <= step; ++k)
-    pairs.insert(pairs.end(), m_model.steps[k].contact_pairs.begin(),
-                 m_model.steps[k].contact_pairs.end());
   std::unique_ptr<contact::ContactEngine> previous = std::move(m_engine);
-  m_pair_names.clear();
-  const bool has_general =
-      general != nullptr && (general->all_exterior || !general->inclusions.empty());
-  if (!has_general && pairs.empty()) return;
-
   // Distributed runs after t = 0: a rank's rows of the nodes it does not integrate are
   // stale; the engine is built on the run's positions of every node (once per such step).
-  const bool gathered = m_run != nullptr && step > 0;
+  const bool gathered = m_run != nullptr && step > 0 && defines_contact(step);
   if (gathered) {
     std::vector<Index> all(static_cast<std::size_t>(m_model.node_count()));
     for (Index i = 0; i < m_model.node_count(); ++i) all[i] = i;
@@ -53,6 +41,73 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
     m_run->share_rows(all, {&state.position}, {&m_position});
     state.position.swap(m_position);
   }
+  m_engine = build_engine(step, state.position, elements, rigid);
+  if (!m_engine) {
+    if (gathered) state.position.swap(m_position);
+    return;
+  }
+  const std::size_t n_faces = m_engine->domain().faces().size();
+  const Index n_slaves = m_engine->domain().slaves().size();
+  m_sink.message(Severity::Info, "step " + s.name + ": contact domain of " +
+                                     std::to_string(n_faces) + " faces and " +
+                                     std::to_string(n_slaves) + " slave nodes, search margin " +
+                                     format_real(m_engine->broad_phase().margin()) + " m");
+  set_rigid_bodies(rigid);
+  resolve_overclosures(step, previous.get(), state, elements, rigid, prescribed);
+  if (gathered) state.position.swap(m_position);
+  if (m_run != nullptr) {
+    m_shared_nodes = m_engine->domain().slaves().nodes();
+    std::sort(m_shared_nodes.begin(), m_shared_nodes.end());
+    m_shared_nodes.erase(std::unique(m_shared_nodes.begin(), m_shared_nodes.end()),
+                         m_shared_nodes.end());
+    m_position = state.position;
+    m_velocity = state.velocity_half;
+  }
+}
+
+std::vector<std::pair<Index, Index>> ContactStage::start_candidates(const NodalVectors& position,
+                                                                    const ElementSet& elements,
+                                                                    const RigidBodies& rigid) {
+  std::vector<std::pair<Index, Index>> candidates;
+  const std::vector<std::string> names = m_pair_names;
+  const std::unique_ptr<contact::ContactEngine> engine = build_engine(0, position, elements, rigid);
+  m_pair_names = names;
+  if (!engine) return candidates;
+  engine->probe(position, elements.node_thickness());
+  const contact::BroadPhase& broad = engine->broad_phase();
+  const std::vector<Index>& slaves = engine->domain().slaves().nodes();
+  const auto& faces = engine->domain().faces();
+  for (Index s = 0; s < static_cast<Index>(slaves.size()); ++s)
+    for (const Index f : broad.candidates(s))
+      if (faces[f].element != NO_INDEX) candidates.emplace_back(slaves[s], faces[f].element);
+  return candidates;
+}
+
+bool ContactStage::defines_contact(int step) const {
+  const GeneralContact* general = nullptr;
+  for (int k = step; k >= 0 && general == nullptr; --k)
+    if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
+  bool pairs = !m_model.contact_pairs.empty();
+  for (int k = 0; k <= step; ++k) pairs = pairs || !m_model.steps[k].contact_pairs.empty();
+  return pairs || (general != nullptr && (general->all_exterior || !general->inclusions.empty()));
+}
+
+std::unique_ptr<contact::ContactEngine> ContactStage::build_engine(int step,
+                                                                   const NodalVectors& position,
+                                                                   const ElementSet& elements,
+                                                                   const RigidBodies& rigid) {
+  const GeneralContact* general = nullptr;
+  for (int k = step; k >= 0 && general == nullptr; --k)
+    if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
+  std::vector<ContactPair> pairs = m_model.contact_pairs;
+  for (int k = 0; k <= step; ++k)
+    pairs.insert(pairs.end(), m_model.steps[k].contact_pairs.begin(),
+                 m_model.steps[k].contact_pairs.end());
+  m_pair_names.clear();
+  const bool has_general =
+      general != nullptr && (general->all_exterior || !general->inclusions.empty());
+  if (!has_general && pairs.empty()) return nullptr;
+
   contact::DomainSpec spec = domain_spec(has_general ? general : nullptr, pairs);
   spec.element_body = rigid.element_body();
   // Rigid nodes of node-based surfaces (point nodes) touch deformable faces only.
@@ -70,26 +125,9 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
   if (has_general) options.penalty_scale = general->penalty_scale;
   const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes,
                                           elements.element_kinds()};
-  contact::ContactDomain domain(spec, topology, state.position);
-  const std::size_t n_faces = domain.faces().size();
-  const Index n_slaves = domain.slaves().size();
-  m_engine = std::make_unique<contact::ContactEngine>(std::move(domain), std::move(laws), options,
-                                                      state.position, elements.node_thickness());
-  m_sink.message(Severity::Info, "step " + s.name + ": contact domain of " +
-                                     std::to_string(n_faces) + " faces and " +
-                                     std::to_string(n_slaves) + " slave nodes, search margin " +
-                                     format_real(m_engine->broad_phase().margin()) + " m");
-  set_rigid_bodies(rigid);
-  resolve_overclosures(step, previous.get(), state, elements, rigid, prescribed);
-  if (gathered) state.position.swap(m_position);
-  if (m_run != nullptr) {
-    m_shared_nodes = m_engine->domain().slaves().nodes();
-    std::sort(m_shared_nodes.begin(), m_shared_nodes.end());
-    m_shared_nodes.erase(std::unique(m_shared_nodes.begin(), m_shared_nodes.end()),
-                         m_shared_nodes.end());
-    m_position = state.position;
-    m_velocity = state.velocity_half;
-  }
+  contact::ContactDomain domain(spec, topology, position);
+  return std::make_unique<contact::ContactEngine>(std::move(domain), std::move(laws), options,
+                                                  position, elements.node_thickness());
 }
 
 contact::DomainSpec ContactStage::domain_spec(const GeneralContact* general,

@@ -47,6 +47,12 @@ class ContactStage {
   /// from the ranks that integrate them, so that each rank adds to the nodes it integrates
   /// the one-rank contact forces in the one-rank order. `run` must outlive the stage.
   void set_distribution(const DistributedRun* run) { m_run = run; }
+  /// Distributed runs, for the partition's graph (issue 37 item 2): the (slave node, element
+  /// of a master face) pairs the broad phase of step 1's contact lists on `position`, from an
+  /// engine of its own (nothing of the run changes); empty without contact in step 1.
+  std::vector<std::pair<Index, Index>> start_candidates(const NodalVectors& position,
+                                                        const ElementSet& elements,
+                                                        const RigidBodies& rigid);
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
   /// The engine of the current step (null without contact): its t = 0 candidate pairs feed
@@ -87,6 +93,14 @@ class ContactStage {
   void add_history_values(std::vector<Real>& row) const;
 
  private:
+  /// Whether the definition in force at `step` has contact (general contact with surfaces,
+  /// or a contact pair).
+  bool defines_contact(int step) const;
+  /// The engine of the definition in force at `step` on `position` (null: no contact); fills
+  /// m_pair_names.
+  std::unique_ptr<contact::ContactEngine> build_engine(int step, const NodalVectors& position,
+                                                       const ElementSet& elements,
+                                                       const RigidBodies& rigid);
   /// Domain of the general contact `general` (may be null) and the pairs `pairs`; fills
   /// m_pair_names in the engine's pair order.
   contact::DomainSpec domain_spec(const GeneralContact* general,
