@@ -62,7 +62,9 @@ ExchangePlan make_exchange_plan(const PartitionInput& input, const MeshPartition
   const std::vector<Index> element = slot_elements(input);
   const auto part_of_slot = [&](Index s) { return partition.element_part[element[s]]; };
 
-  for (Index e = 0; e < n_elements; ++e) plan.part[partition.element_part[e]].elements.push_back(e);
+  // An element of part < 0 is in no part (a rigid body's element: no kernel, no slots).
+  for (Index e = 0; e < n_elements; ++e)
+    if (partition.element_part[e] >= 0) plan.part[partition.element_part[e]].elements.push_back(e);
   for (Index n = 0; n < input.node_count; ++n)
     plan.part[partition.node_owner[n]].owned.push_back(n);
 
@@ -73,7 +75,8 @@ ExchangePlan make_exchange_plan(const PartitionInput& input, const MeshPartition
   for (Index n = 0; n < input.node_count; ++n) {
     users.clear();
     for (Index k = plan.order.node_start[n]; k < plan.order.node_start[n + 1]; ++k)
-      users.push_back(part_of_slot(plan.order.slots[k]));
+      if (part_of_slot(plan.order.slots[k]) >= 0)
+        users.push_back(part_of_slot(plan.order.slots[k]));
     std::sort(users.begin(), users.end());
     users.erase(std::unique(users.begin(), users.end()), users.end());
     for (const int p : users) {
@@ -109,6 +112,7 @@ ExchangePlan make_exchange_plan(const PartitionInput& input, const MeshPartition
       for (Index k = plan.order.node_start[n]; k < plan.order.node_start[n + 1]; ++k) {
         const Index s = plan.order.slots[k];
         const int r = part_of_slot(s);
+        if (r < 0) continue;
         if (r == static_cast<int>(p))
           pp.combine.push_back({-1, s});
         else

@@ -73,7 +73,8 @@ struct ExchangePlan {
 };
 
 /// The plan of `partition` (made by partition_mesh() from `input`), slots ordered by
-/// `element_rank` as in make_slot_order().
+/// `element_rank` as in make_slot_order(). An element whose part is negative is in no part:
+/// its slots are neither summed nor sent (a rigid body's element, which has no kernel).
 ExchangePlan make_exchange_plan(const PartitionInput& input, const MeshPartition& partition,
                                 std::span<const Index> element_rank = {});
 

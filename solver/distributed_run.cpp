@@ -77,22 +77,9 @@ int DistributedRun::world_max(int value) {
 }
 #endif
 
-std::vector<std::string> DistributedRun::refusals(const Model& model, bool imported) {
+std::vector<std::string> DistributedRun::refusals(const Model&, bool imported) {
   std::vector<std::string> r;
   const std::string not_yet = ": not distributed yet (issue 37); expected a run on one rank";
-  bool contact = !model.contact_pairs.empty(), loads = false, pressure = false, gravity = false;
-  for (const Step& s : model.steps) {
-    contact = contact || s.contact.has_value() || !s.contact_pairs.empty();
-    loads = loads || !s.loads.empty();
-    pressure = pressure || !s.pressures.empty();
-    gravity = gravity || !s.gravity.empty();
-  }
-  if (contact) r.push_back("contact (*CONTACT, *CONTACT PAIR)" + not_yet);
-  if (!model.rigid_bodies.empty()) r.push_back("*RIGID BODY" + not_yet);
-  if (!model.ties.empty()) r.push_back("*TIE" + not_yet);
-  if (loads) r.push_back("*CLOAD" + not_yet);
-  if (pressure) r.push_back("pressure loads (*DLOAD, *DSLOAD)" + not_yet);
-  if (gravity) r.push_back("gravity (*DLOAD, GRAV)" + not_yet);
   if (imported) r.push_back("--import" + not_yet);
   return r;
 }
@@ -103,20 +90,26 @@ DistributedRun::DistributedRun()
 DistributedRun::~DistributedRun() = default;
 
 void DistributedRun::set_partition(const Model& model, std::vector<int> element_part,
-                                   std::vector<Index> element_order, Index chunk) {
+                                   std::vector<Index> element_order, Index chunk,
+                                   const std::vector<Index>& element_body) {
   m_element_part = std::move(element_part);
   const Index n_nodes = model.node_count();
   partition::MeshPartition p;
   p.parts = m_size;
   p.element_part = m_element_part;
+  // A rigid body's elements run no kernel: in no part (their nodes are every rank's).
+  for (std::size_t e = 0; e < element_body.size(); ++e)
+    if (element_body[e] != NO_INDEX) p.element_part[e] = -1;
   p.node_owner.assign(static_cast<std::size_t>(n_nodes), m_size);
   for (Index e = 0; e < model.element_count(); ++e)
     for (Index k = model.element_offsets[e]; k < model.element_offsets[e + 1]; ++k) {
       int& owner = p.node_owner[model.element_nodes[k]];
-      owner = std::min(owner, m_element_part[e]);
+      if (p.element_part[e] >= 0) owner = std::min(owner, p.element_part[e]);
     }
+  std::vector<unsigned char> in_element(static_cast<std::size_t>(n_nodes), 0);
+  for (Index i = 0; i < n_nodes; ++i) in_element[i] = p.node_owner[i] < m_size ? 1 : 0;
   for (int& owner : p.node_owner)
-    if (owner == m_size) owner = 0;  // a node of no element: rank 0's
+    if (owner == m_size) owner = 0;  // a node of no (deformable) element: rank 0's
   m_node_owner = p.node_owner;
   partition::PartitionInput input;
   input.node_count = n_nodes;
@@ -138,6 +131,9 @@ void DistributedRun::set_partition(const Model& model, std::vector<int> element_
     m_chunk_owner[c] =
         static_cast<int>(std::max_element(owned.begin(), owned.end()) - owned.begin());
   }
+  m_row_source = m_node_owner;
+  for (Index i = 0; i < n_nodes; ++i)
+    if (in_element[i] == 0) m_row_source[i] = m_chunk_owner[i / chunk];
   std::vector<unsigned char> uses(static_cast<std::size_t>(n_nodes));
   m_ship_send.assign(static_cast<std::size_t>(m_size), {});
   m_ship_count.assign(static_cast<std::size_t>(m_size), 0);
@@ -393,6 +389,32 @@ int DistributedRun::max(int value) const {
   return result;
 }
 
+void DistributedRun::share_rows(const std::vector<Index>& nodes,
+                                const std::vector<const NodalVectors*>& from,
+                                const std::vector<NodalVectors*>& to) const {
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  const std::size_t width = 3 * from.size();
+  std::vector<std::vector<Index>> of_rank(static_cast<std::size_t>(m_size));
+  for (const Index n : nodes) of_rank[m_row_source[n]].push_back(n);
+  std::vector<Real> mine;
+  mine.reserve(of_rank[m_rank].size() * width);
+  for (const Index n : of_rank[m_rank])
+    for (const NodalVectors* rows : from)
+      for (int c = 0; c < 3; ++c) mine.push_back((*rows)(n, c));
+  const GatherLayout g = gather_layout(
+      m_size, width, [&of_rank](int r) -> const auto& { return of_rank[r]; });
+  std::vector<Real> all(g.total);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(),
+                  g.counts.data(), g.displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  std::size_t k = 0;
+  for (int r = 0; r < m_size; ++r)
+    for (const Index n : of_rank[r])
+      for (NodalVectors* rows : to)
+        for (int c = 0; c < 3; ++c) (*rows)(n, c) = all[k++];
+}
+
 #else
 
 // One rank: nothing to exchange (a distributed run needs XPL_MPI=ON).
@@ -413,6 +435,12 @@ void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out)
 void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
 void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
 void DistributedRun::share_chunks(std::vector<Real>&, int, int) const {}
+void DistributedRun::share_rows(const std::vector<Index>& nodes,
+                                const std::vector<const NodalVectors*>& from,
+                                const std::vector<NodalVectors*>& to) const {
+  for (std::size_t k = 0; k < from.size(); ++k)
+    for (const Index n : nodes) to[k]->row(n) = from[k]->row(n);
+}
 int DistributedRun::max(int value) const {
   return value;
 }

@@ -46,8 +46,7 @@ class DistributedRun {
   static int world_rank();
   static int world_size();
   /// What keeps `model` from running distributed today (one message per feature), empty if
-  /// nothing: contact, rigid bodies, ties, loads (*CLOAD, *DLOAD, *DSLOAD, gravity), an
-  /// imported state.
+  /// nothing: an imported state (--import).
   static std::vector<std::string> refusals(const Model& model, bool imported);
 
   /// The largest `value` of the ranks of MPI_COMM_WORLD (collective; `value` without MPI).
@@ -65,9 +64,11 @@ class DistributedRun {
   void broadcast(std::vector<int>& values) const;
   /// Takes the partition of the run: the part of each element (n_elements) and the position
   /// of each element in the one-rank summation order (distinct). Builds the exchange plan.
-  /// Nodal chunks of `chunk` nodes are each counted by one rank.
+  /// Nodal chunks of `chunk` nodes are each counted by one rank. The elements of rigid
+  /// bodies (`element_body`, RigidBodies::element_body(); empty: none) are in no part.
   void set_partition(const Model& model, std::vector<int> element_part,
-                     std::vector<Index> element_order, Index chunk);
+                     std::vector<Index> element_order, Index chunk,
+                     const std::vector<Index>& element_body);
   const partition::ExchangePlan& exchange_plan() const { return m_plan; }
   const partition::PartPlan& plan() const { return m_plan.part[m_rank]; }
   const std::vector<int>& element_part() const { return m_element_part; }
@@ -105,6 +106,15 @@ class DistributedRun {
   void gather_elements_to_root(std::vector<Real>& rows, int width) const;
   /// The largest of the ranks' values.
   int max(int value) const;
+  /// The rows (n_nodes × 3 each) of `nodes` (the same list on every rank) from the rank that
+  /// integrates each node (row_source())
+  /// onto every rank, from `from[k]` into `to[k]` (MPI_Allgatherv; rows not listed are left
+  /// as they are). Collective.
+  void share_rows(const std::vector<Index>& nodes, const std::vector<const NodalVectors*>& from,
+                  const std::vector<NodalVectors*>& to) const;
+  /// The rank whose rows of `node` are the run's: its owner, or for a node of no deformable
+  /// element the rank counting its chunk.
+  int row_source(Index node) const { return m_row_source[node]; }
 
   /// Wall time spent in this rank's exchanges and collectives, s: with the neighbours (the
   /// interface forces), shipping the chunks' forces, and gathers and reductions.
@@ -120,6 +130,7 @@ class DistributedRun {
   partition::ExchangePlan m_plan;
   std::vector<int> m_element_part;
   std::vector<int> m_node_owner;
+  std::vector<int> m_row_source;  ///< row_source()
   std::vector<unsigned char> m_in_part;
   Index m_chunk = 1;
   std::vector<int> m_chunk_owner;

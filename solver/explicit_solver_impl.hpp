@@ -45,6 +45,9 @@ struct ExplicitSolver::Impl {
   /// Distributed runs: the partition, this rank's elements, the masks of the nodal sums and
   /// the partition report.
   void set_up_distribution();
+  /// Distributed runs: contact, rigid bodies, ties and loads run whole on every rank on the
+  /// nodal rows gathered from the ranks that integrate them (docs/dev/mpi.md).
+  void share_features(DistributedRun& run);
   /// Distributed runs: every node's state from its owner to rank 0 before output.
   void gather_state();
   /// Puts an imported state (positions, velocities, rotations, stresses) into place.

@@ -50,11 +50,15 @@ void ExplicitSolver::Impl::set_up_distribution() {
   // layout, so that every batch, and its per-batch totals, belongs to one rank.
   std::vector<int> element_part;
   partition::MeshPartition metis;
+  // The t = 0 contact candidate pairs as extra edges (issue 37 item 2), so that contact
+  // partners tend to share a rank.
   if (run.rank() == 0)
-    metis = m_elements.partition_batches(run.size(), m_options.partition_method, element_part);
+    metis = m_elements.partition_batches(
+        run.size(), m_options.partition_method, element_part,
+        m_contact.start_candidates(m_state.position, m_elements, m_rigid));
   run.broadcast(element_part);
   run.set_partition(m_model, element_part, m_elements.element_order(),
-                    CentralDifference::NODE_CHUNK);
+                    CentralDifference::NODE_CHUNK, m_rigid.element_body());
   m_elements.distribute(run);
 
   // Nodes this rank neither uses nor counts stay at rest (a node of no element moves on the
@@ -62,10 +66,12 @@ void ExplicitSolver::Impl::set_up_distribution() {
   const Index n = m_model.node_count();
   const bool rotations = !m_state.rotary_inertia.empty();
   std::vector<unsigned char> counted(static_cast<std::size_t>(n), 0);
+  // Rigid bodies move on every rank alike (every rank updates every body), so their nodes
+  // keep their motion everywhere.
   for (Index i = 0; i < n; ++i) {
     if (run.counts(i)) {
       counted[i] = 1;
-    } else if (!run.in_part(i)) {
+    } else if (!run.in_part(i) && !m_rigid.is_rigid_node(i)) {
       m_state.velocity.row(i).setZero();
       m_state.velocity_half.row(i).setZero();
       if (rotations) {
@@ -89,6 +95,7 @@ void ExplicitSolver::Impl::set_up_distribution() {
     return run.allgather(mine, counts);
   };
   m_nodes.set_distribution(share, std::move(counted), fold);
+  share_features(run);
 
   // The report (rank 0's sink writes it).
   const double seconds =
@@ -117,6 +124,43 @@ void ExplicitSolver::Impl::set_up_distribution() {
                        " neighbour(s), " + std::to_string(p.send_slots()) +
                        " corner contributions sent per increment, the forces of " +
                        std::to_string(run.ship_count(r)) + " nodes received for its nodal chunks");
+  }
+}
+
+void ExplicitSolver::Impl::share_features(DistributedRun& run) {
+  m_contact.set_distribution(&run);
+  m_nodes.set_load_share(
+      [&run](const std::vector<Index>& nodes, const std::vector<NodalVectors*>& rows) {
+        run.share_rows(nodes, {rows.begin(), rows.end()}, rows);
+      });
+  if (m_ties.active()) {
+    // Slave forces and corner motions from the ranks that hold them, so that every rank's
+    // tie passes are the one-rank passes.
+    std::vector<Index> slaves, corners;
+    for (const auto& [slave, corner] : m_ties.slave_master_nodes()) {
+      slaves.push_back(slave);
+      corners.push_back(corner);
+    }
+    for (std::vector<Index>* nodes : {&slaves, &corners}) {
+      std::sort(nodes->begin(), nodes->end());
+      nodes->erase(std::unique(nodes->begin(), nodes->end()), nodes->end());
+    }
+    const auto share = [&run](std::vector<Index> nodes) {
+      return [&run, nodes = std::move(nodes)](const std::vector<NodalVectors*>& rows) {
+        run.share_rows(nodes, {rows.begin(), rows.end()}, rows);
+      };
+    };
+    m_nodes.set_tie_share(share(std::move(slaves)), share(std::move(corners)));
+  }
+  if (!m_rigid.empty()) {
+    // The forces on the bodies' nodes from the ranks that hold them, in full (elements,
+    // contact, loads), so that every rank's update of every body is the one-rank update.
+    std::vector<Index> rigid_nodes;
+    for (Index i = 0; i < m_model.node_count(); ++i)
+      if (m_rigid.is_rigid_node(i)) rigid_nodes.push_back(i);
+    m_nodes.set_rigid_share([&run, rigid_nodes](const std::vector<NodalVectors*>& rows) {
+      run.share_rows(rigid_nodes, {rows.begin(), rows.end()}, rows);
+    });
   }
 }
 

@@ -19,6 +19,11 @@ Hourglass control: the default, the enhanced assumed-strain form (no *SECTION CO
 example ran VISCOUS before issue 32; the stiffness form makes the coarse mesh stiff:
 benchmarks/RESULTS.md has all three).
 
+--rigid-plate replaces the wall boundary condition by a rigid plate (*RIGID BODY of C3D8R
+elements, its reference node fixed) a small gap below the impact face, met through general
+contact: the deck of the distributed-run test (tests/mpi, issue 37: a rigid body and contact
+across ranks).
+
 Standard library only. The committed examples/plasticity/taylor_bar.inp is the output with
 default arguments:  python3 examples/plasticity/make_taylor_bar.py
 """
@@ -39,6 +44,13 @@ END_TIME = 80.0e-6  # s
 # The table's last point: far beyond any plastic strain of the run (the table is held
 # constant after it), so that the hardening is linear throughout.
 TABLE_END_STRAIN = 10.0
+
+# --rigid-plate: the plate under the impact face (m), its elements' and nodes' first ids.
+PLATE_GAP = 0.05e-3
+PLATE_THICKNESS = 1.0e-3
+PLATE_SIZE = 10.0e-3
+PLATE_DIVISIONS = 4
+PLATE_BASE = 900001
 
 INNER_FRACTION = 0.5  # half-width of the inner square / radius
 
@@ -105,6 +117,15 @@ def build_deck(args):
         z = LENGTH * kz / nz
         for p, (x, y) in enumerate(points):
             out(f"{1 + p + per_layer * kz}, {x:.10g}, {y:.10g}, {z:.10g}")
+    if args.rigid_plate:
+        # PLATE_DIVISIONS^2 elements over [0, PLATE_SIZE]^2, one layer below z = -PLATE_GAP.
+        k = PLATE_DIVISIONS
+        for kz, z in enumerate((-PLATE_GAP - PLATE_THICKNESS, -PLATE_GAP)):
+            for j in range(k + 1):
+                for i in range(k + 1):
+                    out(f"{PLATE_BASE + i + (k + 1) * j + (k + 1) ** 2 * kz}, "
+                        f"{PLATE_SIZE * i / k:.10g}, {PLATE_SIZE * j / k:.10g}, {z:.10g}")
+        out(f"{PLATE_BASE - 1}, 0, 0, {-PLATE_GAP - PLATE_THICKNESS:.10g}")
     out("*ELEMENT, TYPE=C3D8R, ELSET=BAR")
     eid = 1
     for kz in range(nz):
@@ -114,6 +135,14 @@ def build_deck(args):
                      hi + q[0], hi + q[1], hi + q[2], hi + q[3]]
             out(f"{eid}, " + ", ".join(str(v) for v in nodes))
             eid += 1
+    if args.rigid_plate:
+        out("*ELEMENT, TYPE=C3D8R, ELSET=PLATE")
+        k = PLATE_DIVISIONS
+        for j in range(k):
+            for i in range(k):
+                c = [PLATE_BASE + i + (k + 1) * j + d for d in (0, 1, k + 2, k + 1)]
+                out(f"{PLATE_BASE + i + k * j}, " + ", ".join(str(v) for v in c) + ", " +
+                    ", ".join(str(v + (k + 1) ** 2) for v in c))
 
     def node_set(name, ids, comment):
         out(f"** {comment}")
@@ -134,6 +163,10 @@ def build_deck(args):
     node_set("WALL", wall, "The impact face z = 0, on the wall.")
     node_set("MOVING", moving, "Every node off the wall: these start at the impact velocity.")
     node_set("TOP", top, "The far end z = L0, for the final length.")
+    if args.rigid_plate:
+        node_set("PLATE_REF", [PLATE_BASE - 1], "The rigid plate's reference node, fixed.")
+        out(f"*RIGID BODY, REF NODE={PLATE_BASE - 1}, ELSET=PLATE")
+        out("*SOLID SECTION, ELSET=PLATE, MATERIAL=COPPER")
     if args.hourglass:
         out(f"*SECTION CONTROLS, NAME=BAR_CONTROLS, HOURGLASS={args.hourglass}")
         out("*SOLID SECTION, ELSET=BAR, MATERIAL=COPPER, CONTROLS=BAR_CONTROLS")
@@ -156,7 +189,12 @@ def build_deck(args):
     out("*BOUNDARY")
     out("SYM_X, 1, 1")
     out("SYM_Y, 2, 2")
-    out("WALL, 3, 3")
+    if args.rigid_plate:
+        out("PLATE_REF, 1, 6")
+        out("*CONTACT")
+        out("*CONTACT INCLUSIONS, ALL EXTERIOR")
+    else:
+        out("WALL, 3, 3")
     out(f"*OUTPUT, FIELD, NUMBER INTERVAL={args.frames}")
     out("*NODE OUTPUT")
     out("U, V")
@@ -180,6 +218,8 @@ def main():
     parser.add_argument("--hourglass", choices=["VISCOUS", "STIFFNESS", "ENHANCED"],
                         help="*SECTION CONTROLS with this hourglass form (default: none, the "
                              "solver's default, ENHANCED)")
+    parser.add_argument("--rigid-plate", action="store_true",
+                        help="a rigid plate met through contact instead of the wall BC")
     parser.add_argument("--out", type=pathlib.Path, default=DEFAULT_OUT)
     args = parser.parse_args()
     args.out.parent.mkdir(parents=True, exist_ok=True)

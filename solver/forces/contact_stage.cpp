@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "contact/initial_overclosure.hpp"
+#include "solver/distributed_run.hpp"
 #include "solver/message_text.hpp"
 #include "solver/output/output_variables.hpp"
 
@@ -29,115 +30,39 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
     set_rigid_bodies(rigid);
     return;
   }
-  const GeneralContact* general = nullptr;
-  for (int k = step; k >= 0 && general == nullptr; --k)
-    if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
-  std::vector<ContactPair> pairs = m_model.contact_pairs;
-  for (int k = 0; k <= step; ++k)
-    pairs.insert(pairs.end(), m_model.steps[k].contact_pairs.begin(),
-                 m_model.steps[k].contact_pairs.end());
   std::unique_ptr<contact::ContactEngine> previous = std::move(m_engine);
-  m_pair_names.clear();
-  const bool has_general =
-      general != nullptr && (general->all_exterior || !general->inclusions.empty());
-  if (!has_general && pairs.empty()) return;
-
-  contact::DomainSpec spec = domain_spec(has_general ? general : nullptr, pairs);
-  spec.element_body = rigid.element_body();
-  // Rigid nodes of node-based surfaces (point nodes) touch deformable faces only.
-  const bool node_based =
-      std::any_of(spec.surfaces.begin(), spec.surfaces.end(),
-                  [](const contact::DomainSurface& d) { return !d.nodes.empty(); });
-  if (node_based && !spec.element_body.empty()) {
-    spec.rigid_node.assign(static_cast<std::size_t>(m_model.node_count()), 0);
-    for (Index i = 0; i < m_model.node_count(); ++i) spec.rigid_node[i] = rigid.is_rigid_node(i);
+  // Distributed runs after t = 0: a rank's rows of the nodes it does not integrate are
+  // stale; the engine is built on the run's positions of every node (once per such step).
+  const bool gathered = m_run != nullptr && step > 0 && defines_contact(step);
+  if (gathered) {
+    std::vector<Index> all(static_cast<std::size_t>(m_model.node_count()));
+    for (Index i = 0; i < m_model.node_count(); ++i) all[i] = i;
+    m_position = state.position;
+    m_run->share_rows(all, {&state.position}, {&m_position});
+    state.position.swap(m_position);
   }
-  std::vector<contact::InteractionLaw> laws;
-  for (const SurfaceInteraction& i : m_model.surface_interactions)
-    laws.push_back({i.friction, i.linear ? i.linear_slope : 0.0});
-  contact::ContactOptions options;
-  if (has_general) options.penalty_scale = general->penalty_scale;
-  const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes,
-                                          elements.element_kinds()};
-  contact::ContactDomain domain(spec, topology, state.position);
-  const std::size_t n_faces = domain.faces().size();
-  const Index n_slaves = domain.slaves().size();
-  m_engine = std::make_unique<contact::ContactEngine>(std::move(domain), std::move(laws), options,
-                                                      state.position, elements.node_thickness());
+  m_engine = build_engine(step, state.position, elements, rigid);
+  if (!m_engine) {
+    if (gathered) state.position.swap(m_position);
+    return;
+  }
+  const std::size_t n_faces = m_engine->domain().faces().size();
+  const Index n_slaves = m_engine->domain().slaves().size();
   m_sink.message(Severity::Info, "step " + s.name + ": contact domain of " +
                                      std::to_string(n_faces) + " faces and " +
                                      std::to_string(n_slaves) + " slave nodes, search margin " +
                                      format_real(m_engine->broad_phase().margin()) + " m");
   set_rigid_bodies(rigid);
   resolve_overclosures(step, previous.get(), state, elements, rigid, prescribed);
-}
-
-contact::DomainSpec ContactStage::domain_spec(const GeneralContact* general,
-                                              const std::vector<ContactPair>& pairs) {
-  contact::DomainSpec spec;
-  std::vector<Index> domain_surface(m_model.surfaces.size(), NO_INDEX);
-  Index all_exterior = NO_INDEX;
-  auto surface = [&](Index model_surface) -> Index {
-    if (model_surface == NO_INDEX) {
-      if (all_exterior == NO_INDEX) {
-        all_exterior = static_cast<Index>(spec.surfaces.size());
-        spec.surfaces.push_back({"ALL_EXTERIOR", true, {}});
-      }
-      return all_exterior;
-    }
-    Index& k = domain_surface[model_surface];
-    if (k == NO_INDEX) {
-      k = static_cast<Index>(spec.surfaces.size());
-      const Surface& from = m_model.surfaces[model_surface];
-      contact::DomainSurface d;
-      d.name = from.name;
-      for (const ElementFace& f : from.faces) d.faces.push_back({f.element, f.face});
-      d.nodes = from.nodes;
-      d.node_areas = from.node_areas;
-      spec.surfaces.push_back(std::move(d));
-    }
-    return k;
-  };
-  // A node-based surface is slave only (SPEC C13; the deck reader refuses it as a master): a
-  // pair with one is one-sided, the node-based surface first, whatever the deck's order.
-  auto node_based = [&](Index model_surface) {
-    return model_surface != NO_INDEX && m_model.surfaces[model_surface].type == Surface::Type::Node;
-  };
-  auto name_of = [&](Index a, Index b) {
-    return spec.surfaces[a].name + (a == b ? "" : "-" + spec.surfaces[b].name);
-  };
-  if (general != nullptr) {
-    if (general->all_exterior) {
-      const Index k = surface(NO_INDEX);
-      spec.inclusions.push_back({k, k, false});
-      m_pair_names.push_back(name_of(k, k));
-    }
-    for (const SurfacePair& p : general->inclusions) {
-      const Index a = surface(p.first), b = surface(p.second);
-      if (node_based(p.first))
-        spec.inclusions.push_back({a, b, true});
-      else if (node_based(p.second))
-        spec.inclusions.push_back({b, a, true});
-      else
-        spec.inclusions.push_back({a, b, false});
-      m_pair_names.push_back(name_of(a, b));
-    }
-    for (const SurfacePair& p : general->exclusions)
-      spec.exclusions.push_back({surface(p.first), surface(p.second), false});
-    for (const auto& [p, interaction] : general->properties) {
-      if (p.first == NO_INDEX && p.second == NO_INDEX)
-        spec.default_interaction = interaction;
-      else
-        spec.interactions.push_back({{surface(p.first), surface(p.second), false}, interaction});
-    }
+  if (gathered) state.position.swap(m_position);
+  if (m_run != nullptr) {
+    m_shared_nodes = m_engine->domain().slaves().nodes();
+    std::sort(m_shared_nodes.begin(), m_shared_nodes.end());
+    m_shared_nodes.erase(std::unique(m_shared_nodes.begin(), m_shared_nodes.end()),
+                         m_shared_nodes.end());
+    m_position = state.position;
+    m_velocity = state.velocity_half;
   }
-  for (const ContactPair& p : pairs) {
-    const Index a = surface(p.slave), b = surface(p.master);
-    spec.inclusions.push_back({a, b, true});
-    spec.interactions.push_back({{a, b, true}, p.interaction});
-    m_pair_names.push_back(name_of(a, b));
-  }
-  return spec;
 }
 
 void ContactStage::resolve_overclosures(int step, const contact::ContactEngine* previous,
@@ -272,9 +197,14 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
   m_stored_energy = 0.0;
   if (!m_engine) return;
   if (m_engine->interference_ramping()) m_engine->set_step_time(state.step_time);
-  const contact::ContactTotals t = m_engine->update(
-      state.position, state.velocity_half, dt_taken, dt_penalty, elements.node_thickness(),
-      state.mass, elements.inverse_mass(), elements.force_internal(), m_timers);
+  if (m_run != nullptr)
+    m_run->share_rows(m_shared_nodes, {&state.position, &state.velocity_half},
+                      {&m_position, &m_velocity});
+  const contact::ContactTotals t =
+      m_engine->update(m_run != nullptr ? m_position : state.position,
+                       m_run != nullptr ? m_velocity : state.velocity_half, dt_taken, dt_penalty,
+                       elements.node_thickness(), state.mass, elements.inverse_mass(),
+                       elements.force_internal(), m_timers);
   state.energies.friction += t.friction_dissipation;
   // The interference ramp's energy is an input, as the work of a load: in ALLWK, and in
   // ALLPW, which then holds what the springs hold (ContactEnergyCheck).

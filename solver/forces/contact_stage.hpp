@@ -21,6 +21,8 @@
 
 namespace xpl {
 
+class DistributedRun;
+
 /// General contact and contact pairs of the current step; nothing to do when it has none (P2).
 class ContactStage {
  public:
@@ -40,6 +42,17 @@ class ContactStage {
   /// Nodes of ties (Ties::tied_nodes, n_nodes): held by the overclosure pass, their
   /// penetration an offset with reason "tie".
   void set_tied_nodes(std::vector<char> tied) { m_tied = std::move(tied); }
+  /// Distributed runs (docs/dev/mpi.md, "Contact under N ranks"): every rank runs the whole
+  /// contact pass, redundantly, on the positions and velocities of the contact nodes gathered
+  /// from the ranks that integrate them, so that each rank adds to the nodes it integrates
+  /// the one-rank contact forces in the one-rank order. `run` must outlive the stage.
+  void set_distribution(const DistributedRun* run) { m_run = run; }
+  /// Distributed runs, for the partition's graph (issue 37 item 2): the (slave node, element
+  /// of a master face) pairs the broad phase of step 1's contact lists on `position`, from an
+  /// engine of its own (nothing of the run changes); empty without contact in step 1.
+  std::vector<std::pair<Index, Index>> start_candidates(const NodalVectors& position,
+                                                        const ElementSet& elements,
+                                                        const RigidBodies& rigid);
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
   /// The engine of the current step (null without contact): its t = 0 candidate pairs feed
@@ -80,6 +93,14 @@ class ContactStage {
   void add_history_values(std::vector<Real>& row) const;
 
  private:
+  /// Whether the definition in force at `step` has contact (general contact with surfaces,
+  /// or a contact pair).
+  bool defines_contact(int step) const;
+  /// The engine of the definition in force at `step` on `position` (null: no contact); fills
+  /// m_pair_names.
+  std::unique_ptr<contact::ContactEngine> build_engine(int step, const NodalVectors& position,
+                                                       const ElementSet& elements,
+                                                       const RigidBodies& rigid);
   /// Domain of the general contact `general` (may be null) and the pairs `pairs`; fills
   /// m_pair_names in the engine's pair order.
   contact::DomainSpec domain_spec(const GeneralContact* general,
@@ -108,8 +129,13 @@ class ContactStage {
   PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
   std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
-  long m_lost = 0;                        ///< releases in the step (ContactTotals::lost)
-  long m_lost_increments = 0;             ///< increments with a release in the step
+  const DistributedRun* m_run = nullptr;  ///< distributed runs only
+  /// Distributed runs: the nodes the engine reads (its slave nodes: every face node and the
+  /// point nodes), ascending, and the run's positions and half-step velocities of them.
+  std::vector<Index> m_shared_nodes;
+  NodalVectors m_position, m_velocity;
+  long m_lost = 0;             ///< releases in the step (ContactTotals::lost)
+  long m_lost_increments = 0;  ///< increments with a release in the step
 };
 
 }  // namespace xpl

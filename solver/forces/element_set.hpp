@@ -136,9 +136,12 @@ class ElementSet {
   /// a vertex of the graph, with the nodes and the cost of its lanes: a batch's lanes are
   /// one colour, spread along the mesh, so that an element partition rounded to batches
   /// would be badly balanced), and the part of each element (that of its batch) in
-  /// `element_part` (n_elements; elements of no block: part 0).
-  partition::MeshPartition partition_batches(int parts, partition::Method method,
-                                             std::vector<int>& element_part) const;
+  /// `element_part` (n_elements; elements of no block: part 0). Each (node, element) of
+  /// `node_element_pairs` adds an edge between the first batch holding the node and the batch
+  /// of the element (the t = 0 contact candidate pairs).
+  partition::MeshPartition partition_batches(
+      int parts, partition::Method method, std::vector<int>& element_part,
+      const std::vector<std::pair<Index, Index>>& node_element_pairs = {}) const;
   /// The position of each element in the one-rank order of the nodal sums (block in force
   /// pass order, batch, lane); elements of no block NO_INDEX.
   std::vector<Index> element_order() const;

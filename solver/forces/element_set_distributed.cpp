@@ -23,8 +23,9 @@ constexpr int SOURCE_SHIFT = 29;
 
 }  // namespace
 
-partition::MeshPartition ElementSet::partition_batches(int parts, partition::Method method,
-                                                       std::vector<int>& element_part) const {
+partition::MeshPartition ElementSet::partition_batches(
+    int parts, partition::Method method, std::vector<int>& element_part,
+    const std::vector<std::pair<Index, Index>>& node_element_pairs) const {
   // Every batch of every block as one "element" of the partition: its lanes' nodes, cost.
   constexpr int W = simd::W;
   std::vector<Index> offsets{0}, nodes, lane_elements{0}, elements;
@@ -47,8 +48,28 @@ partition::MeshPartition ElementSet::partition_batches(int parts, partition::Met
       weight.push_back(cost);
     }
   });
+  // Extra edges: the batch of each pair's node (the first batch holding it) and that of its
+  // element (e.g. the t = 0 contact candidate pairs: partners tend to share a part).
+  std::vector<std::pair<Index, Index>> extra_edges;
+  if (!node_element_pairs.empty()) {
+    std::vector<Index> node_batch(static_cast<std::size_t>(m_model.node_count()), NO_INDEX);
+    std::vector<Index> element_batch(static_cast<std::size_t>(m_model.element_count()), NO_INDEX);
+    for (std::size_t b = 0; b + 1 < lane_elements.size(); ++b) {
+      for (Index k = lane_elements[b]; k < lane_elements[b + 1]; ++k)
+        element_batch[elements[k]] = static_cast<Index>(b);
+      for (Index k = offsets[b]; k < offsets[b + 1]; ++k)
+        if (node_batch[nodes[k]] == NO_INDEX) node_batch[nodes[k]] = static_cast<Index>(b);
+    }
+    for (const auto& [node, element] : node_element_pairs) {
+      const Index a = node_batch[node], b = element_batch[element];
+      if (a != NO_INDEX && b != NO_INDEX && a != b) extra_edges.emplace_back(a, b);
+    }
+    std::sort(extra_edges.begin(), extra_edges.end());
+    extra_edges.erase(std::unique(extra_edges.begin(), extra_edges.end()), extra_edges.end());
+  }
   partition::PartitionInput input;
   input.node_count = m_model.node_count();
+  input.extra_edges = extra_edges;
   input.element_offsets = offsets;
   input.element_nodes = nodes;
   input.element_weight = weight;

@@ -39,6 +39,9 @@ void ExternalLoads::collect(const Model& model, const BoundaryState& boundary,
       m_free_load_dofs.push_back(at);
       m_free_load_mask[at % n] |= static_cast<std::uint8_t>(1u << (at / n));
     }
+  m_free_load_nodes.clear();
+  for (Index i = 0; i < static_cast<Index>(m_free_load_mask.size()); ++i)
+    if (m_free_load_mask[i] != 0) m_free_load_nodes.push_back(i);
   if (!m_free_load_dofs.empty() && m_work_force.rows() == 0) {
     m_work_force = NodalVectors::Zero(model.node_count(), 3);
     m_work_velocity = NodalVectors::Zero(model.node_count(), 3);
@@ -87,6 +90,15 @@ void ExternalLoads::add_work(Real& work) {
       work = multiply_add(m_work_force.data()[at], m_work_velocity.data()[at], work);
   m_due = false;
   m_evaluated = false;
+}
+
+void ExternalLoads::share_positions(const NodeRowShare& share, NodalVectors& position) const {
+  if (m_due && !m_pressures.empty()) share(m_pressures.nodes(), {&position});
+}
+
+void ExternalLoads::share_work(const NodeRowShare& share) {
+  if (m_due && !m_free_load_dofs.empty())
+    share(m_free_load_nodes, {&m_work_force, &m_work_velocity});
 }
 
 }  // namespace xpl

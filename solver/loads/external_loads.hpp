@@ -4,6 +4,7 @@
 /// nodal pass, and their work on the DOFs that are not prescribed.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "common/types.hpp"
@@ -53,6 +54,17 @@ class ExternalLoads {
   /// ALLWK keeps its round-off; then the loads are no longer due.
   void add_work(Real& work);
 
+  /// Distributed runs: `share(nodes, rows)` puts into `rows` (n_nodes × 3) the run's values
+  /// at `nodes`, from the ranks that integrate them (collective).
+  using NodeRowShare =
+      std::function<void(const std::vector<Index>& nodes, const std::vector<NodalVectors*>& rows)>;
+  /// The positions the loads read (the corners of the loaded faces) into `position` before
+  /// they are evaluated, when they are due.
+  void share_positions(const NodeRowShare& share, NodalVectors& position) const;
+  /// The work terms of the free loaded DOFs (written by evaluate() on the ranks that
+  /// integrate them) onto every rank before add_work(), when the loads are due.
+  void share_work(const NodeRowShare& share);
+
  private:
   /// Loaded DOFs: CLOADs and the three components of every node under pressure or gravity;
   /// the free ones are those that are not prescribed.
@@ -68,6 +80,7 @@ class ExternalLoads {
   /// Loaded DOFs that are not prescribed, as c · n_nodes + node, in the order their work is
   /// summed (CLOADs, pressure nodes, gravity nodes).
   std::vector<Index> m_free_load_dofs;
+  std::vector<Index> m_free_load_nodes;        ///< the nodes of m_free_load_dofs, ascending
   std::vector<std::uint8_t> m_free_load_mask;  ///< per node: bit c set if DOF c is in the list
   /// The work of the loads on free DOFs over the last increment is Σ mean_force · v_before
   /// over m_free_load_dofs: ½(f_{n-1} + f_n) Δt (N s) and v(n−½) (m/s), n_nodes × 3, written

@@ -177,6 +177,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
                 elements.moment_internal().data(),  elements.moment_internal().data(), 0.0,
                 elements.inverse_inertia().data(),  state.rotary_inertia.data()};
 
+  if (m_share_loads) m_loads.share_positions(m_share_loads, state.position);
   // Prescribed and loaded DOFs keep their velocity at n-1/2 for the work and reaction terms.
   m_motion.keep_old_velocities(translation, rotation, n);
 
@@ -194,6 +195,12 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
                          translation.velocity_half, inc.dt_prev, m_previous_force);
       m_loads.set_evaluated();
     }
+    if (m_share_tie_forces) {
+      std::vector<NodalVectors*> rows{&elements.force_internal()};
+      if (force_external != nullptr) rows.push_back(force_external);
+      if (m_shells) rows.push_back(&elements.moment_internal());
+      m_share_tie_forces(rows);
+    }
     m_ties->gather(elements.force_internal(), force_external,
                    m_shells ? &elements.moment_internal() : nullptr);
   }
@@ -205,12 +212,26 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
   sums.kinetic = sum_chunks(n_chunks);
   RigidUpdate bodies;
   if (!rigid.empty()) {
+    if (m_share_rigid) {
+      std::vector<NodalVectors*> rows{&elements.force_internal()};
+      if (force_external != nullptr) rows.push_back(force_external);
+      m_share_rigid(rows);
+    }
     bodies = rigid.update(m_motion, state, elements.force_internal(), force_external, inc);
     sums.kinetic += bodies.kinetic;
     sums.work = bodies.work;
   }
   m_motion.update(state, translation, rotation, inc, bodies.jumps, m_previous_force, sums);
-  if (tied) m_ties->follow(state);  // slaves after their masters (prescribed and rigid too)
+  if (tied) {  // slaves after their masters (prescribed and rigid too)
+    if (m_share_tie_motion) {
+      std::vector<NodalVectors*> rows{&state.velocity_half, &state.velocity, &state.acceleration};
+      if (state.angular_velocity_half.rows() > 0)
+        rows.insert(rows.end(), {&state.angular_velocity_half, &state.angular_velocity});
+      m_share_tie_motion(rows);
+    }
+    m_ties->follow(state);
+  }
+  if (m_share_loads) m_loads.share_work(m_share_loads);
   m_loads.add_work(sums.work);
   book_energies(state, inc, sums);
 }

@@ -83,6 +83,25 @@ class CentralDifference {
     m_share_chunks = std::move(share);
     m_motion.set_distribution(std::move(counted), std::move(fold));
   }
+  /// Distributed runs with rigid bodies: every rank updates every body (the same inputs, the
+  /// same motion); `share` puts into the given rows (n_nodes × 3: the internal forces, the
+  /// external ones when the step has loads) the run's values at the bodies' nodes, from the
+  /// ranks that hold them (collective), before the bodies' update.
+  using RowShare = std::function<void(const std::vector<NodalVectors*>& rows)>;
+  void set_rigid_share(RowShare share) { m_share_rigid = std::move(share); }
+  /// Distributed runs with ties: every rank moves every slave's force to its corners and
+  /// every slave after its corners; `forces` puts into the given rows the run's values at the
+  /// slave nodes (internal forces, external ones when the step has loads, internal moments
+  /// with shells) before the forces move, `motion` those at the master corners (v(n+½), v, a,
+  /// and the angular velocities with rotations) before the slaves follow (collective).
+  void set_tie_share(RowShare forces, RowShare motion) {
+    m_share_tie_forces = std::move(forces);
+    m_share_tie_motion = std::move(motion);
+  }
+  /// Distributed runs with loads: the positions the pressures read before the loads are
+  /// evaluated, and the work terms of the loaded DOFs before their work is summed, through
+  /// `share` (ExternalLoads::share_positions, share_work; collective).
+  void set_load_share(ExternalLoads::NodeRowShare share) { m_share_loads = std::move(share); }
   /// The largest |v(n+½)| component of the free translational DOFs at the last
   /// update_nodes(), m/s (for the health check; NaN shows in ALLKE instead).
   Real largest_speed() const { return m_largest_speed; }
@@ -120,6 +139,9 @@ class CentralDifference {
   /// prescribed in one step and loaded in the next); allocated when a step has either.
   NodalVectors m_previous_force;
   ChunkShare m_share_chunks;  ///< set_distribution(); empty: one rank
+  RowShare m_share_rigid;     ///< set_rigid_share(); empty: one rank or no bodies
+  RowShare m_share_tie_forces, m_share_tie_motion;  ///< set_tie_share(); empty: one rank
+  ExternalLoads::NodeRowShare m_share_loads;        ///< set_load_share(); empty: one rank
 };
 
 }  // namespace xpl

@@ -4,9 +4,11 @@
 --frames all` at tolerance 0: every field of every frame and every history series, the
 energies included). Only in the XPL_MPI=ON build (ctest label mpi).
 
-Usage: mpi_bitwise.py XPL DECK OUT_DIR [--ranks 2,3] [--threads 1,2]
+Usage: mpi_bitwise.py XPL DECK OUT_DIR [--ranks 2,3] [--threads 1,2] [--time-period T]
        mpi_bitwise.py XPL DECK OUT_DIR --refused TEXT   (the deck must be refused on 2 ranks
                                                           with TEXT in the message)
+--time-period T runs a copy of the deck (in OUT_DIR) whose steps last T s each, to keep a long
+example short.
 Standard library only.
 """
 
@@ -38,15 +40,28 @@ def main():
     parser.add_argument("--ranks", default="2,3")
     parser.add_argument("--threads", default="1,2")
     parser.add_argument("--refused", default=None)
+    parser.add_argument("--time-period", default=None)
+    parser.add_argument("--import-state", default=None,
+                        help="with --refused: run with --import of this result file")
     args = parser.parse_args()
     out = pathlib.Path(args.out)
     shutil.rmtree(out, ignore_errors=True)
     out.mkdir(parents=True)
+    if args.time_period is not None:
+        # The line after each *DYNAMIC, EXPLICIT holds (initial increment, time period).
+        lines = pathlib.Path(args.deck).read_text().splitlines()
+        for k in range(len(lines) - 1):
+            if lines[k].upper().replace(" ", "").startswith("*DYNAMIC,EXPLICIT"):
+                lines[k + 1] = f", {args.time_period}"
+        short = out / pathlib.Path(args.deck).name
+        short.write_text("\n".join(lines) + "\n")
+        args.deck = str(short)
     job = pathlib.Path(args.deck).stem
 
     if args.refused is not None:
+        extra = ["--import", args.import_state] if args.import_state else []
         code, text = run(mpirun(2) + [args.xpl, "run", args.deck, "-o", str(out), "--quiet",
-                                      "--threads", "1"])
+                                      "--threads", "1"] + extra)
         if code != 1 or args.refused not in text or "not distributed yet" not in text:
             print(f"expected exit 1 and '{args.refused} ... not distributed yet', got {code}:\n{text}")
             return 1

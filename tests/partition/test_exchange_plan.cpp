@@ -303,3 +303,33 @@ TEST_CASE("the partition reports the exchange of a plane cut", "[partition][exch
   const MeshPartition one = partition::partition_mesh(input, 1, partition::Method::Bisection);
   CHECK(one.stats[0].send_slots == 0);
 }
+
+TEST_CASE("an element of no part (a rigid body's) has no slots in the exchange",
+          "[partition][exchange]") {
+  // Two-node elements: e0 = (0, 1) in part 0, e1 = (1, 2) in no part, e2 = (2, 3) in part 1,
+  // e3 = (1, 4) in part 1. Node 2 is used by part 1 only (e1 is in no part): not an interface
+  // node; node 1 is shared by parts 0 and 1 through e0 and e3, and e1's corner there is
+  // neither combined nor sent.
+  const std::vector<Index> offsets{0, 2, 4, 6, 8}, nodes{0, 1, 1, 2, 2, 3, 1, 4};
+  PartitionInput input;
+  input.node_count = 5;
+  input.element_offsets = offsets;
+  input.element_nodes = nodes;
+  MeshPartition p;
+  p.parts = 2;
+  p.element_part = {0, -1, 1, 1};
+  p.node_owner = {0, 0, 1, 1, 1};
+  const ExchangePlan plan = partition::make_exchange_plan(input, p);
+  CHECK(plan.part[0].elements == std::vector<Index>{0});
+  CHECK(plan.part[1].elements == std::vector<Index>{2, 3});
+  CHECK(plan.part[0].nodes == std::vector<Index>{0, 1});
+  CHECK(plan.part[1].nodes == std::vector<Index>{1, 2, 3, 4});
+  for (int k = 0; k < 2; ++k) {
+    CHECK(plan.part[k].interface_nodes == std::vector<Index>{1});
+    REQUIRE(plan.part[k].neighbours.size() == 1);
+    CHECK(plan.part[k].neighbours[0].send.size() == 1);  // its one corner at node 1
+    REQUIRE(plan.part[k].combine_start == std::vector<Index>{0, 2});
+    for (const partition::SlotSource& s : plan.part[k].combine)
+      CHECK((s.neighbour >= 0 || s.index == (k == 0 ? 1 : 6)));  // e0's or e3's corner
+  }
+}

@@ -1,0 +1,143 @@
+// The engine of a step's contact definition (ContactStage, contact_stage.hpp): the domain
+// described from the deck's *CONTACT and *CONTACT PAIR definitions, the engine built on it, and
+// the t = 0 candidate pairs of a distributed run's partition.
+#include <algorithm>
+
+#include "solver/forces/contact_stage.hpp"
+
+namespace xpl {
+
+std::vector<std::pair<Index, Index>> ContactStage::start_candidates(const NodalVectors& position,
+                                                                    const ElementSet& elements,
+                                                                    const RigidBodies& rigid) {
+  std::vector<std::pair<Index, Index>> candidates;
+  const std::vector<std::string> names = m_pair_names;
+  const std::unique_ptr<contact::ContactEngine> engine = build_engine(0, position, elements, rigid);
+  m_pair_names = names;
+  if (!engine) return candidates;
+  engine->probe(position, elements.node_thickness());
+  const contact::BroadPhase& broad = engine->broad_phase();
+  const std::vector<Index>& slaves = engine->domain().slaves().nodes();
+  const auto& faces = engine->domain().faces();
+  for (Index s = 0; s < static_cast<Index>(slaves.size()); ++s)
+    for (const Index f : broad.candidates(s))
+      if (faces[f].element != NO_INDEX) candidates.emplace_back(slaves[s], faces[f].element);
+  return candidates;
+}
+
+bool ContactStage::defines_contact(int step) const {
+  const GeneralContact* general = nullptr;
+  for (int k = step; k >= 0 && general == nullptr; --k)
+    if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
+  bool pairs = !m_model.contact_pairs.empty();
+  for (int k = 0; k <= step; ++k) pairs = pairs || !m_model.steps[k].contact_pairs.empty();
+  return pairs || (general != nullptr && (general->all_exterior || !general->inclusions.empty()));
+}
+
+std::unique_ptr<contact::ContactEngine> ContactStage::build_engine(int step,
+                                                                   const NodalVectors& position,
+                                                                   const ElementSet& elements,
+                                                                   const RigidBodies& rigid) {
+  const GeneralContact* general = nullptr;
+  for (int k = step; k >= 0 && general == nullptr; --k)
+    if (m_model.steps[k].contact) general = &*m_model.steps[k].contact;
+  std::vector<ContactPair> pairs = m_model.contact_pairs;
+  for (int k = 0; k <= step; ++k)
+    pairs.insert(pairs.end(), m_model.steps[k].contact_pairs.begin(),
+                 m_model.steps[k].contact_pairs.end());
+  m_pair_names.clear();
+  const bool has_general =
+      general != nullptr && (general->all_exterior || !general->inclusions.empty());
+  if (!has_general && pairs.empty()) return nullptr;
+
+  contact::DomainSpec spec = domain_spec(has_general ? general : nullptr, pairs);
+  spec.element_body = rigid.element_body();
+  // Rigid nodes of node-based surfaces (point nodes) touch deformable faces only.
+  const bool node_based =
+      std::any_of(spec.surfaces.begin(), spec.surfaces.end(),
+                  [](const contact::DomainSurface& d) { return !d.nodes.empty(); });
+  if (node_based && !spec.element_body.empty()) {
+    spec.rigid_node.assign(static_cast<std::size_t>(m_model.node_count()), 0);
+    for (Index i = 0; i < m_model.node_count(); ++i) spec.rigid_node[i] = rigid.is_rigid_node(i);
+  }
+  std::vector<contact::InteractionLaw> laws;
+  for (const SurfaceInteraction& i : m_model.surface_interactions)
+    laws.push_back({i.friction, i.linear ? i.linear_slope : 0.0});
+  contact::ContactOptions options;
+  if (has_general) options.penalty_scale = general->penalty_scale;
+  const contact::ElementTopology topology{m_model.element_offsets, m_model.element_nodes,
+                                          elements.element_kinds()};
+  contact::ContactDomain domain(spec, topology, position);
+  return std::make_unique<contact::ContactEngine>(std::move(domain), std::move(laws), options,
+                                                  position, elements.node_thickness());
+}
+
+contact::DomainSpec ContactStage::domain_spec(const GeneralContact* general,
+                                              const std::vector<ContactPair>& pairs) {
+  contact::DomainSpec spec;
+  std::vector<Index> domain_surface(m_model.surfaces.size(), NO_INDEX);
+  Index all_exterior = NO_INDEX;
+  auto surface = [&](Index model_surface) -> Index {
+    if (model_surface == NO_INDEX) {
+      if (all_exterior == NO_INDEX) {
+        all_exterior = static_cast<Index>(spec.surfaces.size());
+        spec.surfaces.push_back({"ALL_EXTERIOR", true, {}});
+      }
+      return all_exterior;
+    }
+    Index& k = domain_surface[model_surface];
+    if (k == NO_INDEX) {
+      k = static_cast<Index>(spec.surfaces.size());
+      const Surface& from = m_model.surfaces[model_surface];
+      contact::DomainSurface d;
+      d.name = from.name;
+      for (const ElementFace& f : from.faces) d.faces.push_back({f.element, f.face});
+      d.nodes = from.nodes;
+      d.node_areas = from.node_areas;
+      spec.surfaces.push_back(std::move(d));
+    }
+    return k;
+  };
+  // A node-based surface is slave only (SPEC C13; the deck reader refuses it as a master): a
+  // pair with one is one-sided, the node-based surface first, whatever the deck's order.
+  auto node_based = [&](Index model_surface) {
+    return model_surface != NO_INDEX && m_model.surfaces[model_surface].type == Surface::Type::Node;
+  };
+  auto name_of = [&](Index a, Index b) {
+    return spec.surfaces[a].name + (a == b ? "" : "-" + spec.surfaces[b].name);
+  };
+  if (general != nullptr) {
+    if (general->all_exterior) {
+      const Index k = surface(NO_INDEX);
+      spec.inclusions.push_back({k, k, false});
+      m_pair_names.push_back(name_of(k, k));
+    }
+    for (const SurfacePair& p : general->inclusions) {
+      const Index a = surface(p.first), b = surface(p.second);
+      if (node_based(p.first))
+        spec.inclusions.push_back({a, b, true});
+      else if (node_based(p.second))
+        spec.inclusions.push_back({b, a, true});
+      else
+        spec.inclusions.push_back({a, b, false});
+      m_pair_names.push_back(name_of(a, b));
+    }
+    for (const SurfacePair& p : general->exclusions)
+      spec.exclusions.push_back({surface(p.first), surface(p.second), false});
+    for (const auto& [p, interaction] : general->properties) {
+      if (p.first == NO_INDEX && p.second == NO_INDEX)
+        spec.default_interaction = interaction;
+      else
+        spec.interactions.push_back({{surface(p.first), surface(p.second), false}, interaction});
+    }
+  }
+  for (const ContactPair& p : pairs) {
+    const Index a = surface(p.slave), b = surface(p.master);
+    spec.inclusions.push_back({a, b, true});
+    spec.interactions.push_back({{a, b, true}, p.interaction});
+    m_pair_names.push_back(name_of(a, b));
+  }
+  return spec;
+}
+
+}  // namespace xpl
