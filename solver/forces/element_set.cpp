@@ -136,7 +136,7 @@ Real ElementSet::mass_factor(Index e) const {
 
 Index ElementSet::size() const {
   Index n = 0;
-  for_each_block([&](const auto& block) { n += block.size(); });
+  for_each_whole_block([&](const auto& block) { n += block.size(); });
   return n;
 }
 

@@ -63,7 +63,8 @@ class ElementSet {
 
   /// Whether the model has S4R elements (and so nodes with rotational DOFs).
   bool has_shells() const { return shells() != nullptr; }
-  /// Number of deformable elements (the element cycles of the run summary).
+  /// Number of deformable elements (the element cycles of the run summary), of every rank in
+  /// a distributed run.
   Index size() const;
 
   /// The setup messages, in this order: fixed mass scaling (also a .sta note), nodes without
