@@ -21,7 +21,7 @@ mkdir -p "$out"
 deck="$out/block_$n.inp"
 /usr/bin/python3 "$repo_root/benchmarks/make_block.py" -n "$n" --increments "$increments" \
   --out "$deck" > /dev/null
-mpirun_flags=(--oversubscribe --mca btl self,vader)
+mpirun_flags=(--oversubscribe --mca btl "self,vader")
 if [[ $(id -u) -eq 0 ]]; then mpirun_flags+=(--allow-run-as-root); fi
 export OMP_WAIT_POLICY=PASSIVE
 
