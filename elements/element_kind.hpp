@@ -11,7 +11,8 @@
 ///     ΔALLAE and the increment limit, and ΔALLVD, ΔALLPD where the kind has them);
 ///   - a constructor K(model indices, connectivity (NODES per element), properties, node count);
 ///   - the force pass in parts (thread_partition.hpp): mark_nodes, set_partition,
-///     forces_of_part(part, ForcePass), add_boundary_forces(k, node, ForcePass), add_totals;
+///     set_batch_phases, forces_of_part(part, ForcePass), add_boundary_forces(k, node,
+///     ForcePass), add_totals;
 ///   - output and imported state: gather_output(OutputArrays), gather_plastic_strain,
 ///     set_stress (middle, bottom and top section rows; solids read the middle ones);
 ///   - the lumped mass of the block (add_lumped_mass) and, per element in the reference
@@ -45,6 +46,9 @@ struct ForcePass {
   Real bulk_quadratic = 0.0;  ///< bulk viscosity b2 of the step
   NodalVectors& force;        ///< internal forces, added into, N
   NodalVectors& moment;       ///< internal moments, added into, N·m (0 rows without rotations)
+  /// The batches computed: every one (−1), or those of one phase (in_phase(), a block's
+  /// set_batch_phases()).
+  int phase = -1;
 };
 
 /// Element output arrays, model-sized rows (row e·6.. for stresses); a kind writes the rows
@@ -76,6 +80,7 @@ concept ElementKind = requires(K& k, const K& c, int parts, Index i, std::vector
   { c.element_index(i) } -> std::same_as<Index>;
   c.mark_nodes(parts, node_part);
   k.set_partition(parts, boundary);
+  k.set_batch_phases(std::vector<unsigned char>{});
   k.forces_of_part(parts, pass);
   c.add_boundary_forces(i, i, pass);
   c.add_totals(totals);

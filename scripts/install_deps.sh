@@ -17,6 +17,13 @@ PACKAGES=(
 if [[ ${XPL_WITH_PARAVIEW:-0} == 1 ]]; then
   PACKAGES+=(paraview python3-paraview xvfb xauth)
 fi
+# XPL_WITH_MPI=1 adds OpenMPI, METIS and the OpenMPI build of HDF5, for the MPI build
+# (XPL_MPI=ON, docs/dev/mpi.md; the MPI stage of scripts/run_tests.sh). Installing
+# libhdf5-openmpi-dev turns Debian's hdf5.pc alternative to the MPI build; the default build
+# still takes the serial HDF5, which CMakeLists.txt selects by its wrapper h5cc.
+if [[ ${XPL_WITH_MPI:-0} == 1 ]]; then
+  PACKAGES+=(libopenmpi-dev libmetis-dev libhdf5-openmpi-dev)
+fi
 
 is_installed() {
   # `dpkg -s` also succeeds for removed-but-not-purged packages: check the status line.

@@ -2,8 +2,8 @@
 # Smoke test of the MPI build (issue 37, docs/dev/mpi.md): builds xpl with XPL_MPI=ON and the
 # default build, runs an example deck on 1, 2 and 3 ranks and compares every result with the
 # default build's at tolerance 0 (bitwise: the distributed time loop sums in the one-rank
-# order). Not a CI job yet (CI time budget); as root on 2 cores it passes
-# --allow-run-as-root --oversubscribe. Decks with contact, rigid bodies, ties or loads are
+# order). The CI runs the MPI tests instead (scripts/run_mpi_tests.sh); as root on 2 cores it
+# passes --allow-run-as-root --oversubscribe. Decks with contact, rigid bodies, ties or loads are
 # refused on more than one rank (docs/dev/mpi.md).
 #
 # Usage: scripts/mpi_smoke.sh [DECK.inp]   (default examples/bar_impact/bar_impact.inp)

@@ -14,9 +14,14 @@
 #                     most) as a process under the sanitizers (default 80, 0 skips them;
 #                     about 0.5 s of CPU per deck)
 #                     The fuzz stage builds only xpl and xpl_fuzz_check with the sanitize preset.
+#   XPL_MPI_TESTS=1|0  the MPI stage after the default tests (scripts/run_mpi_tests.sh: installs
+#                     OpenMPI, METIS and the parallel HDF5, builds xpl with XPL_MPI=ON into
+#                     build/mpi, runs ctest -L mpi on 1, 2 and 3 ranks); on when CI=true, off
+#                     otherwise
 #   XPL_WERROR=ON|OFF  compiler warnings as errors in both builds (scripts/build.sh); the
 #                     build directory's setting when unset (not yet on in CI: below)
-# Exit code: ctest's, else the fuzzer's (1 when it found a crash, hang or sanitizer report).
+# Exit code: ctest's, else the MPI stage's, else the fuzzer's (1 when it found a crash, hang or
+# sanitizer report).
 set -euo pipefail
 
 preset="${1:-release}"
@@ -43,6 +48,12 @@ ctest "${ctest_target[@]}" --output-on-failure -j2
 status=$?
 set -e
 if [[ $status -ne 0 ]]; then exit "$status"; fi
+
+# The MPI build is a configuration of its own (build/mpi); the default build above keeps the
+# serial HDF5 even once the MPI packages are installed (CMakeLists.txt names its wrapper).
+mpi_tests_default=0
+if [[ ${CI:-} == true ]]; then mpi_tests_default=1; fi
+if [[ ${XPL_MPI_TESTS:-$mpi_tests_default} == 1 ]]; then bash scripts/run_mpi_tests.sh; fi
 
 fuzz_decks="${XPL_FUZZ_DECKS:-3000}"
 fuzz_process_decks="${XPL_FUZZ_PROCESS_DECKS:-300}"

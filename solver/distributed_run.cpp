@@ -201,13 +201,17 @@ void DistributedRun::post_receives(int width) {
   }
 }
 
-const std::vector<std::vector<Real>>& DistributedRun::exchange() {
+void DistributedRun::send() {
   ExchangeTimer timer(m_seconds[NEIGHBOURS]);
   const auto& neighbours = plan().neighbours;
   m_requests->send.assign(neighbours.size(), MPI_REQUEST_NULL);
   for (std::size_t j = 0; j < neighbours.size(); ++j)
     MPI_Isend(m_send[j].data(), static_cast<int>(m_send[j].size()), MPI_DOUBLE, neighbours[j].part,
               FORCE_TAG, MPI_COMM_WORLD, &m_requests->send[j]);
+}
+
+const std::vector<std::vector<Real>>& DistributedRun::receive() {
+  ExchangeTimer timer(m_seconds[NEIGHBOURS]);
   wait_all(static_cast<int>(m_requests->receive.size()), m_requests->receive.data());
   wait_all(static_cast<int>(m_requests->send.size()), m_requests->send.data());
   return m_receive;
@@ -420,7 +424,8 @@ void DistributedRun::share_rows(const std::vector<Index>& nodes,
 // One rank: nothing to exchange (a distributed run needs XPL_MPI=ON).
 void DistributedRun::broadcast(std::vector<int>&) const {}
 void DistributedRun::post_receives(int) {}
-const std::vector<std::vector<Real>>& DistributedRun::exchange() {
+void DistributedRun::send() {}
+const std::vector<std::vector<Real>>& DistributedRun::receive() {
   return m_receive;
 }
 std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::vector<int>& counts,

@@ -88,11 +88,13 @@ class DistributedRun {
   void share_chunks(std::vector<Real>& values, int width, int blocks) const;
 
   /// \name The force exchange of an increment: post_receives() before the element pass,
-  /// then the send buffers filled (width values per slot, NeighbourExchange::send order),
-  /// then exchange(): sends, waits; returns the received buffers (one per neighbour).
+  /// then the send buffers filled (width values per slot, NeighbourExchange::send order) once
+  /// the interface batches are computed, send() (returns at once), and after the interior
+  /// batches receive(): waits; returns the received buffers (one per neighbour).
   void post_receives(int width);
   std::vector<std::vector<Real>>& send_buffers() { return m_send; }
-  const std::vector<std::vector<Real>>& exchange();
+  void send();
+  const std::vector<std::vector<Real>>& receive();
 
   /// Every rank's `mine` concatenated in rank order (MPI_Allgatherv); `counts` (size()) the
   /// number of values of each rank: found, or with `counts_known` given (one collective less).

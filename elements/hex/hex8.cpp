@@ -38,12 +38,12 @@ void Hex8Block::internal_forces(const NodalVectors& position, const NodalVectors
 
 void Hex8Block::forces_of_part(int part, const NodalVectors& position,
                                const NodalVectors& velocity_half, Real dt, Real bulk_linear,
-                               Real bulk_quadratic, NodalVectors& force) {
+                               Real bulk_quadratic, NodalVectors& force, int phase) {
   const Index n_nodes = static_cast<Index>(position.rows());
   const Real* px = position.data();
   const Real* vx = velocity_half.data();
   Real* fx = force.data();
-  m_batches.for_part_batches(part, m_batch_plastic, [&](Index b, auto plastic) {
+  m_batches.for_part_batches(part, m_batch_plastic, phase, [&](Index b, auto plastic) {
     compute_batch<decltype(plastic)::value>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
                                             vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx,
                                             fx + n_nodes, fx + 2 * n_nodes);

@@ -53,10 +53,11 @@ class Hex8Block : public HexBlock {
 
   /// \name The pieces of internal_forces() for a pass over several blocks (as Hex8rBlock's).
   void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
-                      Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force);
+                      Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
+                      int phase = -1);
   void forces_of_part(int part, const ForcePass& p) {
     forces_of_part(part, p.position, p.velocity_half, p.dt, p.bulk_linear, p.bulk_quadratic,
-                   p.force);
+                   p.force, p.phase);
   }
   /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
   void add_totals(HexStepTotals& totals) const;

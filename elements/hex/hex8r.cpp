@@ -66,12 +66,12 @@ void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVector
 
 void Hex8rBlock::forces_of_part(int part, const NodalVectors& position,
                                 const NodalVectors& velocity_half, Real dt, Real bulk_linear,
-                                Real bulk_quadratic, NodalVectors& force) {
+                                Real bulk_quadratic, NodalVectors& force, int phase) {
   const Index n_nodes = static_cast<Index>(position.rows());
   const Real* px = position.data();
   const Real* vx = velocity_half.data();
   Real* fx = force.data();
-  m_batches.for_part_batches(part, m_batch_plastic, [&](Index b, auto plastic) {
+  m_batches.for_part_batches(part, m_batch_plastic, phase, [&](Index b, auto plastic) {
     constexpr bool P = decltype(plastic)::value;
     const auto run = [&](auto path) {
       compute_batch<P, decltype(path)::value>(b, px, px + n_nodes, px + 2 * n_nodes, vx,

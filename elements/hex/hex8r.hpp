@@ -85,10 +85,11 @@ class Hex8rBlock : public HexBlock {
   /// Part `part` of the force pass (same arguments as internal_forces()): its batches of every
   /// colour, forces at boundary nodes into the exchange buffer, the rest into `force`.
   void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
-                      Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force);
+                      Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
+                      int phase = -1);
   void forces_of_part(int part, const ForcePass& p) {
     forces_of_part(part, p.position, p.velocity_half, p.dt, p.bulk_linear, p.bulk_quadratic,
-                   p.force);
+                   p.force, p.phase);
   }
   /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
   void add_totals(HexStepTotals& totals) const;

@@ -140,16 +140,20 @@ class HexBatches {
   void own_partition(int parts, Index node_count);
   /// Number of parts of the partition held (0: none yet).
   int parts() const { return m_parts; }
+  /// The phase of each batch (in_phase(); empty: every batch of phase 0).
+  void set_batch_phases(std::vector<unsigned char> phase) { m_batch_phase = std::move(phase); }
   /// Calls `batch(b, plastic)` for the batches of part `part`, colour after colour, with
   /// `plastic` std::true_type where `batch_plastic[b]` (empty: no plastic batch) says the
   /// batch has a plastic lane, else std::false_type (P2: elastic batches compile without any
   /// plasticity work).
+  /// Only the batches of phase `phase` when `phase` ≥ 0 (in_phase(), set_batch_phases()).
   template <class ComputeBatch>
-  void for_part_batches(int part, const std::vector<unsigned char>& batch_plastic,
+  void for_part_batches(int part, const std::vector<unsigned char>& batch_plastic, int phase,
                         ComputeBatch&& batch) const {
     for (int c = 0; c < color_count(); ++c) {
       const auto [first, last] = part_batches(m_color_batches, c, part, m_parts);
       for (Index b = first; b < last; ++b) {
+        if (!in_phase(m_batch_phase, phase, b)) continue;
         if (!batch_plastic.empty() && batch_plastic[b])
           batch(b, std::true_type{});
         else
@@ -221,7 +225,8 @@ class HexBatches {
   std::vector<Index> m_batch_critical;
   std::vector<Index> m_batch_failed;
   int m_parts = 0;
-  bool m_own_partition = false;  ///< built by own_partition() for the block alone
+  std::vector<unsigned char> m_batch_phase;  ///< [b] (in_phase()), or empty
+  bool m_own_partition = false;              ///< built by own_partition() for the block alone
   CornerExchange m_exchange;
   std::vector<Real> m_exchange_force;   ///< [slot][3], N
   std::vector<Index> m_boundary_nodes;  ///< of the partition of the block alone

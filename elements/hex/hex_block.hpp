@@ -66,6 +66,10 @@ class HexBlock {
   }
   /// Number of parts of the partition held (0: none yet).
   int parts() const { return m_batches.parts(); }
+  /// The phase of each batch (in_phase(); empty: every batch of phase 0).
+  void set_batch_phases(std::vector<unsigned char> phase) {
+    m_batches.set_batch_phases(std::move(phase));
+  }
   /// Adds the exchanged corner forces of boundary node k (rank), `node`, into `force`.
   void add_boundary_forces(Index k, Index node, NodalVectors& force) const {
     m_batches.add_boundary_forces(k, node, force);

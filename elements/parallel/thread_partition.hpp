@@ -34,6 +34,15 @@ inline std::pair<Index, Index> part_batches(const std::vector<Index>& color_batc
           first + static_cast<Index>(static_cast<long long>(count) * (part + 1) / parts)};
 }
 
+/// Whether a pass of phase `phase` computes batch b: every batch when `phase` < 0, else the
+/// batches marked `phase` in `batch_phase` (empty: every batch is of phase 0). Distributed
+/// runs compute the batches at the interface between ranks first (phase 0), send their
+/// corners, and compute the others (phase 1) while the messages travel (solver/forces/
+/// element_set.cpp); each phase keeps the colour and batch order of the whole pass.
+inline bool in_phase(const std::vector<unsigned char>& batch_phase, int phase, Index b) {
+  return phase < 0 || (batch_phase.empty() ? 0 : int{batch_phase[b]}) == phase;
+}
+
 /// Marks in `node_part` (n_nodes; UNTOUCHED, a part, or SHARED) the nodes each part of
 /// `parts` touches in a batched block: `conn` [batch][corners][lanes] node indices,
 /// `lane_owner` [batch][lanes] (NO_INDEX: padding lane, ignored).

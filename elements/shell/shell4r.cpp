@@ -55,7 +55,7 @@ void Shell4rBlock::set_partition(int parts, const BoundaryNodes& boundary) {
 void Shell4rBlock::forces_of_part(int part, const NodalVectors& position,
                                   const NodalVectors& velocity_half,
                                   const NodalVectors& angular_velocity_half, Real dt,
-                                  NodalVectors& force, NodalVectors& moment) {
+                                  NodalVectors& force, NodalVectors& moment, int phase) {
   const Index nn = static_cast<Index>(position.rows());
   const Real* const p[3] = {position.data(), position.data() + nn, position.data() + 2 * nn};
   const Real* const v[3] = {velocity_half.data(), velocity_half.data() + nn,
@@ -67,6 +67,7 @@ void Shell4rBlock::forces_of_part(int part, const NodalVectors& position,
   for (int c = 0; c < color_count(); ++c) {
     const auto [first, last] = part_batches(m_color_batches, c, part, m_parts);
     for (Index b = first; b < last; ++b) {
+      if (!in_phase(m_batch_phase, phase, b)) continue;
       if (m_plastic.batch_plastic(static_cast<std::size_t>(b)))
         compute_batch<true>(b, p, v, w, dt, f, m);
       else

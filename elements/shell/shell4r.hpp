@@ -214,9 +214,10 @@ class Shell4rBlock {
   void mark_nodes(int parts, std::vector<Index>& node_part) const;
   void set_partition(int parts, const BoundaryNodes& boundary);
   int parts() const { return m_parts; }
+  void set_batch_phases(std::vector<unsigned char> phase) { m_batch_phase = std::move(phase); }
   void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
                       const NodalVectors& angular_velocity_half, Real dt, NodalVectors& force,
-                      NodalVectors& moment);
+                      NodalVectors& moment, int phase = -1);
   /// Adds the exchanged corner forces and moments of boundary node k (rank), `node`.
   void add_boundary_forces(Index k, Index node, NodalVectors& force, NodalVectors& moment) const {
     const Index n = static_cast<Index>(force.rows());
@@ -234,7 +235,7 @@ class Shell4rBlock {
   }
   void forces_of_part(int part, const ForcePass& p) {
     forces_of_part(part, p.position, p.velocity_half, p.angular_velocity_half, p.dt, p.force,
-                   p.moment);
+                   p.moment, p.phase);
   }
   void add_boundary_forces(Index k, Index node, const ForcePass& p) const {
     add_boundary_forces(k, node, p.force, p.moment);
@@ -410,6 +411,7 @@ class Shell4rBlock {
   std::vector<Index> m_batch_failed;
   // Partition of the force pass (thread_partition.hpp).
   int m_parts = 0;
+  std::vector<unsigned char> m_batch_phase;  ///< [b] (in_phase()), or empty
   bool m_own_partition = false;
   CornerExchange m_exchange;
   std::vector<Real> m_exchange_force;   ///< [slot][6]: force N, moment N·m

@@ -136,7 +136,7 @@ Real ElementSet::mass_factor(Index e) const {
 
 Index ElementSet::size() const {
   Index n = 0;
-  for_each_block([&](const auto& block) { n += block.size(); });
+  for_each_whole_block([&](const auto& block) { n += block.size(); });
   return n;
 }
 
@@ -245,8 +245,7 @@ void ElementSet::use_partition(int parts) {
   std::vector<Index> node_part(static_cast<std::size_t>(m_model.node_count()), elements::UNTOUCHED);
   for_each_block(ForcePassOrder{}, [&](auto& block) { block.mark_nodes(parts, node_part); });
   // Distributed runs: the interface nodes' corners go to slots too, for the exchange.
-  if (m_run != nullptr)
-    for (const Index n : m_run->plan().interface_nodes) node_part[n] = elements::SHARED;
+  if (m_run != nullptr) mark_batch_phases(node_part);
   const elements::BoundaryNodes boundary = elements::boundary_nodes(node_part);
   for_each_block(ForcePassOrder{}, [&](auto& block) { block.set_partition(parts, boundary); });
   m_boundary_nodes = boundary.nodes;
@@ -259,27 +258,35 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
   // One parallel region for every block and colour (thread_partition.hpp).
   const int parts = std::max(1, omp_get_max_threads());
   use_partition(parts);
-  if (m_run != nullptr) m_run->post_receives(m_rotations ? 6 : 3);
-  const elements::ForcePass pass{state.position,
-                                 state.velocity_half,
-                                 state.angular_velocity_half,
-                                 dt,
-                                 s.bulk_linear,
-                                 s.bulk_quadratic,
-                                 m_force_internal,
-                                 m_moment_internal};
-  elements::partitioned_pass(
-      parts, static_cast<Index>(m_boundary_nodes.size()),
-      [&](int p) {
-        for_each_block(ForcePassOrder{}, [&](auto& block) { block.forces_of_part(p, pass); });
-      },
-      [&](Index k) {
-        const Index node = m_boundary_nodes[k];
-        for_each_block(ForcePassOrder{},
-                       [&](auto& block) { block.add_boundary_forces(k, node, pass); });
-      });
+  elements::ForcePass pass{state.position,
+                           state.velocity_half,
+                           state.angular_velocity_half,
+                           dt,
+                           s.bulk_linear,
+                           s.bulk_quadratic,
+                           m_force_internal,
+                           m_moment_internal};
+  const auto compute_parts = [&](int p) {
+    for_each_block(ForcePassOrder{}, [&](auto& block) { block.forces_of_part(p, pass); });
+  };
+  const auto add_boundary = [&](Index k) {
+    const Index node = m_boundary_nodes[k];
+    for_each_block(ForcePassOrder{},
+                   [&](auto& block) { block.add_boundary_forces(k, node, pass); });
+  };
   if (m_run != nullptr) {
-    exchange_interface_forces();
+    // Distributed runs: the batches at the interface first, their corners sent, then the
+    // others while the messages travel (mark_batch_phases()).
+    m_run->post_receives(m_rotations ? 6 : 3);
+    pass.phase = 0;
+    elements::partitioned_pass(parts, 0, compute_parts, add_boundary);
+    send_interface_forces();
+    pass.phase = 1;
+  }
+  elements::partitioned_pass(parts, static_cast<Index>(m_boundary_nodes.size()), compute_parts,
+                             add_boundary);
+  if (m_run != nullptr) {
+    combine_interface_forces();
     m_run->ship_forces(m_force_internal, m_rotations ? &m_moment_internal : nullptr);
     reduce_totals(totals);
     return;

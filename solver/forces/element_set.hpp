@@ -63,7 +63,8 @@ class ElementSet {
 
   /// Whether the model has S4R elements (and so nodes with rotational DOFs).
   bool has_shells() const { return shells() != nullptr; }
-  /// Number of deformable elements (the element cycles of the run summary).
+  /// Number of deformable elements (the element cycles of the run summary), of every rank in
+  /// a distributed run.
   Index size() const;
 
   /// The setup messages, in this order: fixed mass scaling (also a .sta note), nodes without
@@ -184,9 +185,19 @@ class ElementSet {
   void report_warped_shells(const NodalVectors& reference, OutputSink& sink) const;
   /// Splits the blocks into `parts` per-thread parts for the force pass, unless they are.
   void use_partition(int parts);
+  /// Distributed runs: marks the batches with a corner at an interface node (phase 0, the
+  /// first of the force pass) and the others (phase 1) in every block, and SHARED in
+  /// `node_part` the interface nodes and the nodes batches of both phases touch (their
+  /// corners then go to slots, summed in batch order whichever phase ran first).
+  void mark_batch_phases(std::vector<Index>& node_part);
   /// Distributed runs: the values of the corner slots of the rank's interface nodes after
-  /// a pass to the neighbours, and the interface nodes' forces folded in the one-rank order.
-  void exchange_interface_forces();
+  /// the pass of phase 0, sent to the neighbours.
+  void send_interface_forces();
+  /// Distributed runs: once the neighbours' values are in, the interface nodes' forces folded
+  /// in the one-rank order.
+  void combine_interface_forces();
+  /// The value of component c of the corner slot `source` (m_slot_source).
+  Real slot_value(Index source, int c) const;
   /// Distributed runs: the totals of every batch of every rank into the whole blocks and
   /// their one-rank reduction into `totals`.
   void reduce_totals(ElementTotals& totals);

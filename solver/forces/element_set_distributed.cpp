@@ -160,7 +160,37 @@ void ElementSet::distribute(DistributedRun& run) {
   m_slot_parts = 0;
 }
 
-void ElementSet::exchange_interface_forces() {
+void ElementSet::mark_batch_phases(std::vector<Index>& node_part) {
+  constexpr int W = simd::W;
+  const partition::PartPlan& plan = m_run->plan();
+  std::vector<unsigned char> interface(static_cast<std::size_t>(m_model.node_count()), 0);
+  for (const Index n : plan.interface_nodes) interface[n] = 1;
+  // Bit p set: a batch of phase p touches the node.
+  std::vector<unsigned char> touched(interface.size(), 0);
+  for_each_block([&](auto& block) {
+    using K = std::remove_cvref_t<decltype(block)>;
+    const std::vector<Index>& owners = block.lane_owners();
+    const auto for_each_node = [&](Index b, auto&& f) {
+      for (int l = 0; l < W; ++l) {
+        if (owners[b * W + l] == NO_INDEX) continue;
+        const Index* nodes = m_model.nodes_of(block.element_index(owners[b * W + l]));
+        for (int a = 0; a < K::NODES; ++a) f(nodes[a]);
+      }
+    };
+    std::vector<unsigned char> phase(static_cast<std::size_t>(block.batch_count()), 1);
+    for (Index b = 0; b < block.batch_count(); ++b) {
+      for_each_node(b, [&](Index n) {
+        if (interface[n] != 0) phase[b] = 0;
+      });
+      for_each_node(b, [&](Index n) { touched[n] |= static_cast<unsigned char>(1 << phase[b]); });
+    }
+    block.set_batch_phases(std::move(phase));
+  });
+  for (std::size_t n = 0; n < touched.size(); ++n)
+    if (touched[n] == 3 || interface[n] != 0) node_part[n] = elements::SHARED;
+}
+
+void ElementSet::send_interface_forces() {
   constexpr int W = simd::W;
   const partition::PartPlan& plan = m_run->plan();
   const int width = m_rotations ? 6 : 3;
@@ -193,24 +223,31 @@ void ElementSet::exchange_interface_forces() {
     (std::make_index_sequence<3>{});
     m_slot_parts = m_parts;
   }
-  const auto value = [&](Index source, int c) -> Real {
-    const Index slot = source & ((Index{1} << SOURCE_SHIFT) - 1);
-    switch (source >> SOURCE_SHIFT) {
-      case KIND_HEX8R:
-        return c < 3 ? std::get<KIND_HEX8R>(m_blocks)->exchange_values()[3 * slot + c] : 0.0;
-      case KIND_HEX8:
-        return c < 3 ? std::get<KIND_HEX8>(m_blocks)->exchange_values()[3 * slot + c] : 0.0;
-      default:
-        return std::get<KIND_SHELL>(m_blocks)->exchange_values()[6 * slot + c];
-    }
-  };
   std::vector<std::vector<Real>>& send = m_run->send_buffers();
   for (std::size_t j = 0; j < plan.neighbours.size(); ++j) {
     Real* out = send[j].data();
     for (const Index s : plan.neighbours[j].send)
-      for (int c = 0; c < width; ++c) *out++ = value(m_slot_source[s], c);
+      for (int c = 0; c < width; ++c) *out++ = slot_value(m_slot_source[s], c);
   }
-  const std::vector<std::vector<Real>>& received = m_run->exchange();
+  m_run->send();
+}
+
+Real ElementSet::slot_value(Index source, int c) const {
+  const Index slot = source & ((Index{1} << SOURCE_SHIFT) - 1);
+  switch (source >> SOURCE_SHIFT) {
+    case KIND_HEX8R:
+      return c < 3 ? std::get<KIND_HEX8R>(m_blocks)->exchange_values()[3 * slot + c] : 0.0;
+    case KIND_HEX8:
+      return c < 3 ? std::get<KIND_HEX8>(m_blocks)->exchange_values()[3 * slot + c] : 0.0;
+    default:
+      return std::get<KIND_SHELL>(m_blocks)->exchange_values()[6 * slot + c];
+  }
+}
+
+void ElementSet::combine_interface_forces() {
+  const partition::PartPlan& plan = m_run->plan();
+  const int width = m_rotations ? 6 : 3;
+  const std::vector<std::vector<Real>>& received = m_run->receive();
   // Each interface node: every contribution, own or received, folded from +0 in the one-rank
   // order (partition::PartPlan::combine), replacing the sum of the rank's own corners.
   for (std::size_t k = 0; k < plan.interface_nodes.size(); ++k) {
@@ -220,7 +257,7 @@ void ElementSet::exchange_interface_forces() {
       for (Index i = plan.combine_start[k]; i < plan.combine_start[k + 1]; ++i) {
         const partition::SlotSource& src = plan.combine[i];
         sum += src.neighbour < 0
-                   ? value(m_slot_source[src.index], c)
+                   ? slot_value(m_slot_source[src.index], c)
                    : received[src.neighbour][static_cast<std::size_t>(src.index) * width + c];
       }
       if (c < 3)
