@@ -129,58 +129,25 @@ XPL_KERNEL_INLINE Vec von_mises_product(Vec axx, Vec ayy, Vec axy, Vec bxx, Vec 
   return axx * bxx - 0.5 * (axx * byy + ayy * bxx) + ayy * byy + 3.0 * (axy * bxy);
 }
 
-/// Plastic batches: what the section points tell the physical hourglass
-/// (ShellSectionResultants), summed over the points with their weights w: the tangent ratios
-/// r (Σ w r, Σ w ζ² r and Σ w ζ²), the trial and returned membrane stresses (Σ w σ) and the
-/// flow stress (Σ w max(σ_y, σ_vM)).
-struct SectionTangents {
-  Vec membrane = simd::splat(0.0), bending = simd::splat(0.0), weight_b = simd::splat(0.0);
-  Vec flow = simd::splat(0.0);
-  Vec trial_n[3] = {simd::splat(0.0), simd::splat(0.0), simd::splat(0.0)};
-  Vec returned_n[3] = {simd::splat(0.0), simd::splat(0.0), simd::splat(0.0)};
-
-  /// Adds a point of weight `weight` at ζ `zeta` whose stress went from `start` to the trial
-  /// stress `trial` and was returned to `returned` (xx, yy, xy, Pa), of static yield stress
-  /// `yield` (Pa).
-  XPL_KERNEL_INLINE void add_point(Vec weight, Vec zeta, const Vec start[3], const Vec trial[3],
-                                   const Vec returned[3], Vec yield) {
-    for (int c = 0; c < 3; ++c) trial_n[c] += weight * trial[c];
-    for (int c = 0; c < 3; ++c) returned_n[c] += weight * returned[c];
-    // Tangent ratio of the point: the returned stress increment along the elastic one, in the
-    // von Mises product; 1 where the point stays elastic, about 0 where it flows.
-    const Vec elastic[3] = {trial[0] - start[0], trial[1] - start[1], trial[2] - start[2]};
-    const Vec along = von_mises_product(returned[0] - start[0], returned[1] - start[1],
-                                        returned[2] - start[2], elastic[0], elastic[1], elastic[2]);
-    const Vec trial2 =
-        von_mises_product(elastic[0], elastic[1], elastic[2], elastic[0], elastic[1], elastic[2]);
-    const Vec ratio = simd::select(
-        trial2 > 0.0,
-        simd::min(simd::max(along / simd::max(trial2, simd::splat(1e-300)), simd::splat(0.0)),
-                  simd::splat(1.0)),
-        simd::splat(1.0));
-    const Vec wz2 = weight * zeta * zeta;
-    membrane += weight * ratio;
-    bending += wz2 * ratio;
-    weight_b += wz2;
-    const Vec vm = simd::sqrt(von_mises_product(returned[0], returned[1], returned[2], returned[0],
-                                                returned[1], returned[2]));
-    flow += simd::select(weight > 0.0, weight * simd::max(yield, vm), simd::splat(0.0));
-  }
-  /// The section's ratios and flow stress into `out` (the weights of a batch's points sum
-  /// to 1: Simpson, shell4r_setup.cpp).
-  XPL_KERNEL_INLINE void finish(ShellSectionResultants& out) const {
-    const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
-    out.tangent_membrane = simd::min(membrane, one);
-    out.tangent_bending = simd::select(weight_b > 0.0, bending / simd::max(weight_b, tiny), one);
-    const Vec n_trial =
-        von_mises_product(trial_n[0], trial_n[1], trial_n[2], trial_n[0], trial_n[1], trial_n[2]);
-    const Vec n_returned = von_mises_product(returned_n[0], returned_n[1], returned_n[2],
-                                             returned_n[0], returned_n[1], returned_n[2]);
-    out.membrane_return = simd::select(
-        n_trial > 0.0, simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
-    out.flow = flow;
-  }
-};
+/// Plastic batches: the section's tangent ratios, membrane return ratio and flow stress
+/// (ShellSectionResultants) into `out`, from the sums over its points with weights w: Σ w r
+/// and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², the trial and returned membrane
+/// stresses Σ w σ, and Σ w max(σ_y, σ_vM). The weights of a batch's points sum to 1
+/// (Simpson, shell4r_setup.cpp).
+XPL_KERNEL_INLINE void section_tangents(Vec tan_m, Vec tan_b, Vec weight_b, const Vec trial_n[3],
+                                        const Vec returned_n[3], Vec flow,
+                                        ShellSectionResultants& out) {
+  const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
+  out.tangent_membrane = simd::min(tan_m, one);
+  out.tangent_bending = simd::select(weight_b > 0.0, tan_b / simd::max(weight_b, tiny), one);
+  const Vec n_trial =
+      von_mises_product(trial_n[0], trial_n[1], trial_n[2], trial_n[0], trial_n[1], trial_n[2]);
+  const Vec n_returned = von_mises_product(returned_n[0], returned_n[1], returned_n[2],
+                                           returned_n[0], returned_n[1], returned_n[2]);
+  out.membrane_return = simd::select(
+      n_trial > 0.0, simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
+  out.flow = flow;
+}
 
 /// Positions `x`, velocities `vel` and angular velocities `om` of the 4 corners of a batch
 /// (component arrays p, v, w; corner node indices `conn`, [corner 4][W]).
@@ -223,8 +190,10 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   Vec work = simd::splat(0.0);  // strain energy increment per unit area
   // Plastic batches: dissipation per unit area and Σ weight · Δε33ᵖ over the section points.
   Vec plastic_work = simd::splat(0.0), thinning = simd::splat(0.0);
-  // Plastic batches: the points' tangent ratios and flow stress for the physical hourglass.
-  [[maybe_unused]] shell4r_kernel::SectionTangents tangents;
+  // Plastic batches: Σ w r and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², the trial and
+  // returned membrane stresses Σ w σ, and the flow stress.
+  [[maybe_unused]] Vec tan_m = simd::splat(0.0), tan_b = tan_m, weight_b = tan_m, flow = tan_m;
+  [[maybe_unused]] Vec trial_n[3] = {tan_m, tan_m, tan_m}, returned_n[3] = {tan_m, tan_m, tan_m};
   for (int k = 0; k < m_points; ++k) {
     const Vec zeta = 0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset;
     const Vec weight = simd::load(&m_weight[(b * m_points + k) * W]);
@@ -238,11 +207,35 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
     Vec syy_n = syy + q12 * exx + q11 * eyy;
     Vec sxy_n = sxy + g * exy;
     if constexpr (PLASTIC) {
-      const Vec start[3] = {sxx, syy, sxy}, trial[3] = {sxx_n, syy_n, sxy_n};
+      const Vec start[3] = {sxx, syy, sxy};
+      const Vec trial[3] = {sxx_n - sxx, syy_n - syy, sxy_n - sxy};
+      trial_n[0] += weight * sxx_n;
+      trial_n[1] += weight * syy_n;
+      trial_n[2] += weight * sxy_n;
       plastic_work += tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n,
                                                   syy_n, sxy_n, thinning);
-      const Vec returned[3] = {sxx_n, syy_n, sxy_n};
-      tangents.add_point(weight, zeta, start, trial, returned, m_plastic.static_yield(b, k));
+      returned_n[0] += weight * sxx_n;
+      returned_n[1] += weight * syy_n;
+      returned_n[2] += weight * sxy_n;
+      // Tangent ratio of the point: the returned stress increment along the elastic one, in
+      // the von Mises product; 1 where the point stays elastic, about 0 where it flows.
+      const Vec along = shell4r_kernel::von_mises_product(sxx_n - sxx, syy_n - syy, sxy_n - sxy,
+                                                          trial[0], trial[1], trial[2]);
+      const Vec trial2 = shell4r_kernel::von_mises_product(trial[0], trial[1], trial[2], trial[0],
+                                                           trial[1], trial[2]);
+      const Vec ratio = simd::select(
+          trial2 > 0.0,
+          simd::min(simd::max(along / simd::max(trial2, simd::splat(1e-300)), simd::splat(0.0)),
+                    simd::splat(1.0)),
+          simd::splat(1.0));
+      const Vec wz2 = weight * zeta * zeta;
+      tan_m += weight * ratio;
+      tan_b += wz2 * ratio;
+      weight_b += wz2;
+      const Vec vm =
+          simd::sqrt(shell4r_kernel::von_mises_product(sxx_n, syy_n, sxy_n, sxx_n, syy_n, sxy_n));
+      flow += simd::select(weight > 0.0, weight * simd::max(m_plastic.static_yield(b, k), vm),
+                           simd::splat(0.0));
     }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
@@ -280,7 +273,8 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   work += (0.5 * dt) * t_mid * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
   const Vec qx = t * txz_n, qy = t * tyz_n;
   ShellSectionResultants out{t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work};
-  if constexpr (PLASTIC) tangents.finish(out);
+  if constexpr (PLASTIC)
+    shell4r_kernel::section_tangents(tan_m, tan_b, weight_b, trial_n, returned_n, flow, out);
   return out;
 }
 
