@@ -17,56 +17,16 @@ using simd::Vec;
 Hex8Block::Hex8Block(std::vector<Index> element_index, const std::vector<Index>& connectivity,
                      const std::vector<HexMaterial>& materials, Index node_count,
                      const BatchLayout* layout)
-    : HexBlock(std::move(element_index), connectivity, materials, node_count, N_CONST, layout) {
-  const auto nb = static_cast<std::size_t>(m_batches.batch_count());
-  m_stress.assign(nb * HEX8_POINTS * 6 * W, 0.0);
-  m_point_volume.assign(nb * HEX8_POINTS * W, 0.0);
-  m_volume.assign(nb * W, 0.0);
-  m_viscous_before.assign(nb * W, 0.0);
-  m_batch_energy.assign(nb * 3, 0.0);
-  setup_plasticity(materials);
-}
-
-void Hex8Block::internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
-                                Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
-                                HexStepTotals& totals) {
-  m_batches.own_pass(force, [&](int p) {
-    forces_of_part(p, position, velocity_half, dt, bulk_linear, bulk_quadratic, force);
-  });
-  add_totals(totals);
-}
-
-void Hex8Block::forces_of_part(int part, const NodalVectors& position,
-                               const NodalVectors& velocity_half, Real dt, Real bulk_linear,
-                               Real bulk_quadratic, NodalVectors& force, int phase) {
-  const Index n_nodes = static_cast<Index>(position.rows());
-  const Real* px = position.data();
-  const Real* vx = velocity_half.data();
-  Real* fx = force.data();
-  m_batches.for_part_batches(part, m_batch_plastic, phase, [&](Index b, auto plastic) {
-    compute_batch<decltype(plastic)::value>(b, px, px + n_nodes, px + 2 * n_nodes, vx, vx + n_nodes,
-                                            vx + 2 * n_nodes, dt, bulk_linear, bulk_quadratic, fx,
-                                            fx + n_nodes, fx + 2 * n_nodes);
-  });
-}
-
-void Hex8Block::add_totals(HexStepTotals& totals) const {
-  for (Index b = 0; b < m_batches.batch_count(); ++b) {
-    totals.strain_energy_increment += m_batch_energy[b * 3 + 0];
-    totals.viscous_energy_increment += m_batch_energy[b * 3 + 1];
-    totals.plastic_energy_increment += m_batch_energy[b * 3 + 2];
-  }
-  m_batches.merge_limits(totals);
+    : Hex8Base(std::move(element_index), connectivity, materials, node_count, N_CONST, layout) {
+  m_point_volume.assign(static_cast<std::size_t>(m_batches.batch_count()) * HEX8_POINTS * W, 0.0);
 }
 
 template <bool PLASTIC>
-void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const Real* pz,
-                              const Real* vx, const Real* vy, const Real* vz, Real dt, Real b1,
-                              Real b2, Real* fx, Real* fy, Real* fz) {
+void Hex8Block::compute_batch(Index batch, const NodalColumns& c, Real dt, Real b1, Real b2) {
   const Index* conn = m_batches.conn(batch);
   const Real* cst = m_batches.constants(batch);
   V3<Vec> ax[8], av[8];
-  gather_modes(conn, px, py, pz, vx, vy, vz, ax, av);
+  gather_modes(conn, c.x[0], c.x[1], c.x[2], c.v[0], c.v[1], c.v[2], ax, av);
 
   // Element geometry at x_{n+1} (forces, volume, stable increment) and x_{n+1/2} (rates).
   V3<Vec> am[8], g[8], gm[8];
@@ -157,7 +117,7 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
   simd::store(&m_volume[static_cast<std::size_t>(batch) * W], vol);
 
   Vec strain_inc = dt * strain_power;
-  [[maybe_unused]] Vec plastic_inc = simd::splat(0.0);
+  Vec plastic_inc = simd::splat(0.0);
   if constexpr (PLASTIC) {
     plastic_inc = dissipation;
     strain_inc -= plastic_inc;
@@ -165,54 +125,16 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
   const Vec visc_inc = hex_kernel::viscous_work(
       &m_viscous_before[static_cast<std::size_t>(batch) * W], sv, dt, volm, tr);
 
-  m_batches.scatter(batch, fnx, fny, fnz, fx, fy, fz);
-  Real e_strain = 0.0, e_visc = 0.0, e_plastic = 0.0;
+  m_batches.scatter(batch, fnx, fny, fnz, c.f[0], c.f[1], c.f[2]);
   bool ok[W];
-  for (int l = 0; l < W; ++l) {
-    // A fully integrated element also fails where a Gauss point's Jacobian turns over.
-    ok[l] = vol[l] > 0.0 && volm[l] > 0.0 && min_det[l] > 0.0;
-    if (m_batches.lane_owner(batch, l) == NO_INDEX) continue;
-    e_strain += strain_inc[l];
-    e_visc += visc_inc[l];
-    if constexpr (PLASTIC) e_plastic += plastic_inc[l];
-  }
-  m_batch_energy[batch * 3 + 0] = e_strain;
-  m_batch_energy[batch * 3 + 1] = e_visc;
-  m_batch_energy[batch * 3 + 2] = e_plastic;
-  m_batches.record_limit(batch, bulk.dt_e, ok);
+  // A fully integrated element also fails where a Gauss point's Jacobian turns over.
+  for (int l = 0; l < W; ++l) ok[l] = vol[l] > 0.0 && volm[l] > 0.0 && min_det[l] > 0.0;
+  record_batch(batch, {strain_inc, visc_inc, plastic_inc}, bulk.dt_e, ok);
 }
 
-void Hex8Block::gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {
-  for (Index i = 0; i < size(); ++i) {
-    const std::array<Real, 6> s = this->stress(i);
-    const Index e = m_batches.element_index(i);
-    for (int c = 0; c < 6; ++c) stress[e * 6 + c] = s[c];
-    const Index b = m_batches.slot(i) / W, l = m_batches.slot(i) % W;
-    volume[e] = m_volume[b * W + l];
-  }
-}
-
-void Hex8Block::set_stress(std::span<const Real> stress) {
-  m_batches.check_model_rows(stress.size(), 6, "Hex8Block::set_stress");
-  for (Index b = 0; b < m_batches.batch_count(); ++b)
-    for (int l = 0; l < W; ++l) {
-      // Padding lanes take lane 0's stress, whose copy they compute.
-      const auto e =
-          static_cast<std::size_t>(m_batches.element_index(m_batches.lane_element(b, l)));
-      for (int q = 0; q < HEX8_POINTS; ++q)
-        for (int c = 0; c < 6; ++c)
-          m_stress[((static_cast<std::size_t>(b) * HEX8_POINTS + q) * 6 + c) * W + l] =
-              stress[e * 6 + c];
-    }
-}
-
-std::array<Real, 6> Hex8Block::point_stress(Index i, int q) const {
-  const Index b = m_batches.slot(i) / W, l = m_batches.slot(i) % W;
-  std::array<Real, 6> s{};
-  for (int c = 0; c < 6; ++c)
-    s[c] = m_stress[((static_cast<std::size_t>(b) * HEX8_POINTS + q) * 6 + c) * W + l];
-  return s;
-}
+// The kinds' force pass (HexBlock::forces_of_part()) runs both forms.
+template void Hex8Block::compute_batch<false>(Index, const NodalColumns&, Real, Real, Real);
+template void Hex8Block::compute_batch<true>(Index, const NodalColumns&, Real, Real, Real);
 
 std::array<Real, 6> Hex8Block::stress(Index i) const {
   const Index b = m_batches.slot(i) / W, l = m_batches.slot(i) % W;

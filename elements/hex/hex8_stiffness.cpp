@@ -1,4 +1,4 @@
-// The linear stiffness product of the C3D8 block (Hex8Block::add_stiffness_product), for the
+// The linear stiffness product of one C3D8 batch (HexBlock::add_stiffness_product), for the
 // global estimate of the highest frequency (solver/increment/global_increment.*).
 #include "elements/hex/hex8.hpp"
 #include "elements/hex/hex8_geometry.hpp"
@@ -8,26 +8,11 @@ namespace xpl::elements {
 
 using simd::Vec;
 
-void Hex8Block::add_stiffness_product(const NodalVectors& position, const NodalVectors& u,
-                                      NodalVectors& y) const {
-  const Index n_nodes = static_cast<Index>(position.rows());
-  const Real* px = position.data();
-  const Real* ux = u.data();
-  Real* yx = y.data();
-  // Colour by colour: the lanes and batches of a colour share no node.
-  m_batches.for_color_batches(ParallelSite::HexStiffness, [&](Index b) {
-    stiffness_batch(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes, ux + 2 * n_nodes, yx,
-                    yx + n_nodes, yx + 2 * n_nodes);
-  });
-}
-
-void Hex8Block::stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz,
-                                const Real* ux, const Real* uy, const Real* uz, Real* yx, Real* yy,
-                                Real* yz) const {
+void Hex8Block::stiffness_batch(Index batch, const NodalColumns& c) const {
   const Index* conn = m_batches.conn(batch);
   const Real* cst = m_batches.constants(batch);
   V3<Vec> ax[8], au[8], g[8];
-  gather_modes(conn, px, py, pz, ux, uy, uz, ax, au);
+  gather_modes(conn, c.x[0], c.x[1], c.x[2], c.v[0], c.v[1], c.v[2], ax, au);
   Vec vol;
   volume_gradient(ax, g, vol);
   Vec tr = simd::splat(0.0);
@@ -74,7 +59,7 @@ void Hex8Block::stiffness_batch(Index batch, const Real* px, const Real* py, con
   from_modes(Fx, fnx);
   from_modes(Fy, fny);
   from_modes(Fz, fnz);
-  m_batches.scatter_direct(batch, fnx, fny, fnz, yx, yy, yz);
+  m_batches.scatter_direct(batch, fnx, fny, fnz, c.f[0], c.f[1], c.f[2]);
 }
 
 }  // namespace xpl::elements

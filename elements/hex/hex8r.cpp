@@ -23,13 +23,9 @@ static_assert(ENHANCED_STATE == 12 && ENHANCED_STATE <= HOURGLASS_STATE_WIDTH);
 Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
                        const std::vector<HexMaterial>& materials, Index node_count,
                        const BatchLayout* layout)
-    : HexBlock(std::move(element_index), connectivity, materials, node_count, N_CONST, layout) {
+    : Hex8rBase(std::move(element_index), connectivity, materials, node_count, N_CONST, layout) {
   const auto nb = static_cast<std::size_t>(m_batches.batch_count());
-  m_stress.assign(nb * 6 * W, 0.0);
   m_hourglass.assign(nb * 12 * W, 0.0);
-  m_volume.assign(nb * W, 0.0);
-  m_viscous_before.assign(nb * W, 0.0);
-  m_batch_energy.assign(nb * 4, 0.0);
   m_batch_path.assign(nb, HourglassPath::FlanaganBelytschko);
   for (Index b = 0; b < m_batches.batch_count(); ++b) {
     int enhanced = 0;
@@ -52,55 +48,22 @@ Hex8rBlock::Hex8rBlock(std::vector<Index> element_index, const std::vector<Index
     else if (enhanced > 0)
       m_batch_path[b] = HourglassPath::Mixed;
   }
-  setup_plasticity(materials);
+  if (has_plasticity()) m_peeq_rate.assign(m_lane_law.size(), 0.0);
 }
 
-void Hex8rBlock::internal_forces(const NodalVectors& position, const NodalVectors& velocity_half,
-                                 Real dt, Real bulk_linear, Real bulk_quadratic,
-                                 NodalVectors& force, HexStepTotals& totals) {
-  m_batches.own_pass(force, [&](int p) {
-    forces_of_part(p, position, velocity_half, dt, bulk_linear, bulk_quadratic, force);
-  });
-  add_totals(totals);
-}
-
-void Hex8rBlock::forces_of_part(int part, const NodalVectors& position,
-                                const NodalVectors& velocity_half, Real dt, Real bulk_linear,
-                                Real bulk_quadratic, NodalVectors& force, int phase) {
-  const Index n_nodes = static_cast<Index>(position.rows());
-  const Real* px = position.data();
-  const Real* vx = velocity_half.data();
-  Real* fx = force.data();
-  m_batches.for_part_batches(part, m_batch_plastic, phase, [&](Index b, auto plastic) {
-    constexpr bool P = decltype(plastic)::value;
-    const auto run = [&](auto path) {
-      compute_batch<P, decltype(path)::value>(b, px, px + n_nodes, px + 2 * n_nodes, vx,
-                                              vx + n_nodes, vx + 2 * n_nodes, dt, bulk_linear,
-                                              bulk_quadratic, fx, fx + n_nodes, fx + 2 * n_nodes);
-    };
-    switch (m_batch_path[b]) {
-      case HourglassPath::FlanaganBelytschko:
-        run(std::integral_constant<HourglassPath, HourglassPath::FlanaganBelytschko>{});
-        break;
-      case HourglassPath::Enhanced:
-        run(std::integral_constant<HourglassPath, HourglassPath::Enhanced>{});
-        break;
-      case HourglassPath::Mixed:
-        run(std::integral_constant<HourglassPath, HourglassPath::Mixed>{});
-        break;
-    }
-  });
-}
-
-void Hex8rBlock::add_totals(HexStepTotals& totals) const {
-  // Serial reduction in batch order: independent of the thread count.
-  for (Index b = 0; b < m_batches.batch_count(); ++b) {
-    totals.strain_energy_increment += m_batch_energy[b * 4 + 0];
-    totals.hourglass_energy_increment += m_batch_energy[b * 4 + 1];
-    totals.viscous_energy_increment += m_batch_energy[b * 4 + 2];
-    totals.plastic_energy_increment += m_batch_energy[b * 4 + 3];
+template <bool PLASTIC>
+void Hex8rBlock::batch_forces(Index batch, const NodalColumns& c, Real dt, Real b1, Real b2) {
+  switch (m_batch_path[batch]) {
+    case HourglassPath::FlanaganBelytschko:
+      compute_batch<PLASTIC, HourglassPath::FlanaganBelytschko>(batch, c, dt, b1, b2);
+      break;
+    case HourglassPath::Enhanced:
+      compute_batch<PLASTIC, HourglassPath::Enhanced>(batch, c, dt, b1, b2);
+      break;
+    case HourglassPath::Mixed:
+      compute_batch<PLASTIC, HourglassPath::Mixed>(batch, c, dt, b1, b2);
+      break;
   }
-  m_batches.merge_limits(totals);
 }
 
 namespace {
@@ -233,9 +196,7 @@ XPL_KERNEL_INLINE void corner_forces(const Vec sn[6], Vec sv, const V3<Vec> Q[4]
 }  // namespace
 
 template <bool PLASTIC, Hex8rBlock::HourglassPath PATH>
-void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, const Real* pz,
-                               const Real* vx, const Real* vy, const Real* vz, Real dt, Real b1,
-                               Real b2, Real* fx, Real* fy, Real* fz) {
+void Hex8rBlock::compute_batch(Index batch, const NodalColumns& c, Real dt, Real b1, Real b2) {
   const Index* conn = m_batches.conn(batch);
   const Real* cst = m_batches.constants(batch);
   Real* sig = &m_stress[static_cast<std::size_t>(batch) * 6 * W];
@@ -243,7 +204,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
 
   // Gather and go to mode space (positions x_{n+1}, velocities v_{n+1/2}).
   V3<Vec> ax[8], av[8], corners[8];
-  gather_modes(conn, px, py, pz, vx, vy, vz, ax, av, corners);
+  gather_modes(conn, c.x[0], c.x[1], c.x[2], c.v[0], c.v[1], c.v[2], ax, av, corners);
   // One point sees the mean gradient only: a corner node pushed through the element leaves the
   // volume positive (and the stress finite) while the element is turned inside out at that
   // corner. A corner counts as turned over past HEX_FOLD_LIMIT (hex8r.hpp says why not at 0).
@@ -328,7 +289,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   simd::store(&m_volume[static_cast<std::size_t>(batch) * W], vol);
   // Stress work minus plastic work: ALLSE is the elastic energy of the stress state.
   Vec strain_inc = dt * volm * strain_power;
-  [[maybe_unused]] Vec plastic_inc = simd::splat(0.0);
+  Vec plastic_inc = simd::splat(0.0);
   if constexpr (PLASTIC) {
     plastic_inc = volm * dissipation;
     strain_inc -= plastic_inc;
@@ -337,45 +298,16 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
       &m_viscous_before[static_cast<std::size_t>(batch) * W], sv, dt, volm, tr);
   const Vec hg_inc = dt * hg_power;
 
-  // Scatter (lanes of a batch share no node) and per-batch reductions over real lanes.
-  m_batches.scatter(batch, fnx, fny, fnz, fx, fy, fz);
-  Real e_strain = 0.0, e_hg = 0.0, e_visc = 0.0, e_plastic = 0.0;
+  // Scatter (lanes of a batch share no node) and the per-batch sums over real lanes.
+  m_batches.scatter(batch, fnx, fny, fnz, c.f[0], c.f[1], c.f[2]);
   bool ok[W];
-  for (int l = 0; l < W; ++l) {
-    ok[l] = vol[l] > 0.0 && volm[l] > 0.0 && !(fold[l] < 0.0);
-    if (m_batches.lane_owner(batch, l) == NO_INDEX) continue;
-    e_strain += strain_inc[l];
-    e_hg += hg_inc[l];
-    e_visc += visc_inc[l];
-    if constexpr (PLASTIC) e_plastic += plastic_inc[l];
-  }
-  m_batch_energy[batch * 4 + 0] = e_strain;
-  m_batch_energy[batch * 4 + 1] = e_hg;
-  m_batch_energy[batch * 4 + 2] = e_visc;
-  m_batch_energy[batch * 4 + 3] = e_plastic;
-  m_batches.record_limit(batch, bulk.dt_e, ok);
+  for (int l = 0; l < W; ++l) ok[l] = vol[l] > 0.0 && volm[l] > 0.0 && !(fold[l] < 0.0);
+  record_batch(batch, {strain_inc, hg_inc, visc_inc, plastic_inc}, bulk.dt_e, ok);
 }
 
-void Hex8rBlock::gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {
-  for (Index i = 0; i < size(); ++i) {
-    const Index slot = m_batches.slot(i);
-    const Index b = slot / W, l = slot % W;
-    const Index e = m_batches.element_index(i);
-    for (int c = 0; c < 6; ++c) stress[e * 6 + c] = m_stress[(b * 6 + c) * W + l];
-    volume[e] = m_volume[b * W + l];
-  }
-}
-
-void Hex8rBlock::set_stress(std::span<const Real> stress) {
-  m_batches.check_model_rows(stress.size(), 6, "Hex8rBlock::set_stress");
-  // Padding lanes compute a copy of lane 0 of their batch: they take its stress as well.
-  for (Index b = 0; b < m_batches.batch_count(); ++b)
-    for (int l = 0; l < W; ++l) {
-      const auto e =
-          static_cast<std::size_t>(m_batches.element_index(m_batches.lane_element(b, l)));
-      for (int c = 0; c < 6; ++c) m_stress[(b * 6 + c) * W + l] = stress[e * 6 + c];
-    }
-}
+// The kinds' force pass (HexBlock::forces_of_part()) runs both forms.
+template void Hex8rBlock::batch_forces<false>(Index, const NodalColumns&, Real, Real, Real);
+template void Hex8rBlock::batch_forces<true>(Index, const NodalColumns&, Real, Real, Real);
 
 void Hex8rBlock::gather_hourglass_state(std::vector<Real>& rows) const {
   gather_lane_rows(m_hourglass, 12, W, m_batches.element_indices(), m_batches.slots(), rows);
@@ -384,14 +316,6 @@ void Hex8rBlock::gather_hourglass_state(std::vector<Real>& rows) const {
 void Hex8rBlock::set_hourglass_state(std::span<const Real> rows) {
   set_lane_rows(rows, 12, W, m_batches.element_indices(), m_batches.slots(),
                 m_batches.lane_owners(), m_hourglass);
-}
-
-std::array<Real, 6> Hex8rBlock::stress(Index i) const {
-  const Index slot = m_batches.slot(i);
-  const Index b = slot / W, l = slot % W;
-  std::array<Real, 6> s{};
-  for (int c = 0; c < 6; ++c) s[c] = m_stress[(b * 6 + c) * W + l];
-  return s;
 }
 
 }  // namespace xpl::elements

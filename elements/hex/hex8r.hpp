@@ -18,8 +18,6 @@
 #include "common/types.hpp"
 #include "elements/hex/hex_block.hpp"
 #include "elements/lane_state.hpp"
-#include "elements/material/plasticity.hpp"
-#include "elements/material/radial_return_lanes.hpp"
 #include "elements/parallel/simd.hpp"
 
 namespace xpl::elements {
@@ -57,71 +55,28 @@ inline constexpr Real HOURGLASS_VISCOSITY = 0.1;
 /// the plane of its three neighbours reaches −0.5 a sixth of an edge past it.
 inline constexpr Real HEX_FOLD_LIMIT = 0.5;
 
-/// A set of C3D8R elements and their state (stress, hourglass forces).
-class Hex8rBlock : public HexBlock {
+class Hex8rBlock;
+/// The scaffolding C3D8R shares with C3D8: 1 stress point, 4 energies (strain, hourglass,
+/// viscous, plastic).
+using Hex8rBase = HexBlock<Hex8rBlock, 1, 4>;
+
+/// A set of C3D8R elements and their state (stress, hourglass forces). The force pass, output
+/// and import are HexBlock's; this class adds the hourglass control.
+class Hex8rBlock : public Hex8rBase {
  public:
   static constexpr const char* NAME = "C3D8R";
   /// What the setup message says after the element and colour counts.
   static constexpr const char* SETUP_NOTE = " (race-free parallel assembly)";
+  /// The totals the batch energies add into, in their order in the batch.
+  static constexpr Real HexStepTotals::* ENERGY_TOTALS[] = {
+      &HexStepTotals::strain_energy_increment, &HexStepTotals::hourglass_energy_increment,
+      &HexStepTotals::viscous_energy_increment, &HexStepTotals::plastic_energy_increment};
   /// `element_index`: model index of each element; `connectivity`: 8 node indices per
   /// element (Abaqus order, same order as element_index); `materials`: one per element.
   /// `layout`: as HexBatches' (null: coloured and packed here).
   Hex8rBlock(std::vector<Index> element_index, const std::vector<Index>& connectivity,
              const std::vector<HexMaterial>& materials, Index node_count,
              const BatchLayout* layout = nullptr);
-
-  /// One internal-force evaluation at the end of an increment.
-  /// `position` x_{n+1} and `velocity_half` v_{n+1/2} (n_nodes × 3); `dt` = t_{n+1} − t_n
-  /// (0 at the start of the analysis). The strain increment is taken on the mid-increment
-  /// geometry (exactly zero for rigid rotations), forces on x_{n+1}. Adds the internal
-  /// forces into `force` (n_nodes × 3, N) and updates the element state.
-  /// The block alone is split into omp_get_max_threads() parts (one parallel region).
-  void internal_forces(const NodalVectors& position, const NodalVectors& velocity_half, Real dt,
-                       Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
-                       HexStepTotals& totals);
-
-  /// \name The pieces of internal_forces() for a pass over several blocks (ElementSet; the
-  /// partition's in HexBlock).
-  /// Part `part` of the force pass (same arguments as internal_forces()): its batches of every
-  /// colour, forces at boundary nodes into the exchange buffer, the rest into `force`.
-  void forces_of_part(int part, const NodalVectors& position, const NodalVectors& velocity_half,
-                      Real dt, Real bulk_linear, Real bulk_quadratic, NodalVectors& force,
-                      int phase = -1);
-  void forces_of_part(int part, const ForcePass& p) {
-    forces_of_part(part, p.position, p.velocity_half, p.dt, p.bulk_linear, p.bulk_quadratic,
-                   p.force, p.phase);
-  }
-  /// Adds the energies and the increment limit of the last pass to `totals`, in batch order.
-  void add_totals(HexStepTotals& totals) const;
-  /// \name Distributed runs (solver/distributed_run.hpp): the totals of batch b as
-  /// BATCH_TOTALS values (its energies, then its limit), and back.
-  static constexpr int BATCH_TOTALS = 4 + 3;
-  void pack_batch_totals(Index b, Real* out) const {
-    for (int k = 0; k < 4; ++k) out[k] = m_batch_energy[b * 4 + k];
-    m_batches.pack_limit(b, out + 4);
-  }
-  void unpack_batch_totals(Index b, const Real* in) {
-    for (int k = 0; k < 4; ++k) m_batch_energy[b * 4 + k] = in[k];
-    m_batches.unpack_limit(b, in + 4);
-  }
-
-  /// Writes stress (row e·6.., S11 S22 S33 S12 S13 S23) and current volume of every element
-  /// of the block at its model index into model-sized arrays.
-  void gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const;
-  void gather_output(const OutputArrays& out) const { gather_output(out.stress, out.volume); }
-
-  /// Sets the stress of every element of the block from model-sized rows (n_elements × 6,
-  /// row e·6.., S11 S22 S33 S12 S13 S23, global axes, Pa): the inverse of gather_output's
-  /// stress part, for a run that starts from an imported state. Rows of elements outside the
-  /// block are not read. The accumulated hourglass forces are left as they are (see
-  /// set_hourglass_state), and so is the volume that gather_output reports (set by the next
-  /// internal-force pass).
-  void set_stress(std::span<const Real> stress);
-  /// The element kinds' form (element_kind.hpp): a solid reads the `middle` rows.
-  void set_stress(const NodalVectors& /*position*/, std::span<const Real> middle,
-                  std::span<const Real> /*bottom*/, std::span<const Real> /*top*/) {
-    set_stress(middle);
-  }
 
   /// Writes the hourglass state of every block element at its model index into model-sized
   /// rows (n_elements × HOURGLASS_STATE_WIDTH, lane_state.hpp): the stiffness form's
@@ -132,41 +87,21 @@ class Hex8rBlock : public HexBlock {
   /// The inverse of gather_hourglass_state, for a run that starts from an imported state.
   void set_hourglass_state(std::span<const Real> rows);
 
-  /// Stress of block element i (constructor order), for tests.
-  std::array<Real, 6> stress(Index i) const;
+  /// Stress of block element i (constructor order).
+  std::array<Real, 6> stress(Index i) const { return point_stress(i, 0); }
 
-  /// Whether any element of the block is plastic (else no plastic state exists, P2).
-  bool has_plasticity() const { return !m_laws.empty(); }
-  /// Writes the equivalent plastic strain PEEQ (-) of every element of the block at its model
-  /// index into a model-sized array (n_elements); elastic elements write 0.
-  void gather_plastic_strain(std::vector<Real>& peeq) const;
-  /// Sets PEEQ of the plastic elements of the block from a model-sized array (n_elements, -,
-  /// ≥ 0): the inverse of gather_plastic_strain, for a run that starts from an imported
-  /// state. Rows of elastic elements and of elements outside the block are not read.
+  /// Sets PEEQ of the plastic elements (HexBlock::set_plastic_strain()) and zeroes their rate.
   void set_plastic_strain(std::span<const Real> peeq);
-  /// PEEQ (-) and its rate over the last increment (1/s) of block element i, for tests.
+  /// PEEQ (-) and its rate over the last increment (1/s) of block element i, for output and
+  /// tests.
   Real plastic_strain(Index i) const;
   Real plastic_strain_rate(Index i) const;
 
-  /// Linear stiffness product y += K u of the block at `position` (n_nodes × 3, m), for the
-  /// model's highest frequency: the uniform-gradient part (λ, 2μ) and the stiffness or
-  /// enhanced hourglass term as internal_forces() applies them, from a stress-free state (no
-  /// geometric stiffness; the viscous hourglass form and bulk viscosity are damping, not
-  /// stiffness). `u` (m) and `y` (N) are n_nodes × 3; no element state changes. K u is the
-  /// derivative of the internal force along u. Race-free and independent of the thread count.
-  void add_stiffness_product(const NodalVectors& position, const NodalVectors& u,
-                             NodalVectors& y) const;
-
  private:
-  static constexpr int W = simd::W;
+  friend Hex8rBase;
   // Per-lane constants: the shared ones (HexBatches::Constant), then the hourglass control's.
   enum Constant {
-    LAMBDA = HexBatches::LAMBDA,
-    TWO_MU = HexBatches::TWO_MU,
-    DENSITY = HexBatches::DENSITY,
-    WAVE_SPEED = HexBatches::WAVE_SPEED,
-    DT_FACTOR = HexBatches::DT_FACTOR,
-    HG_STIFFNESS = HexBatches::N_SHARED,
+    HG_STIFFNESS = N_SHARED,
     HG_VISCOSITY,
     HG_MU,      ///< κμ of the enhanced form (0 in lanes of the other forms), Pa
     HG_LAMBDA,  ///< κλ̄ = κ 2μλ/(λ + 2μ) of the enhanced form, Pa
@@ -175,10 +110,12 @@ class Hex8rBlock : public HexBlock {
   /// Which hourglass families the lanes of a batch use (one code path per batch).
   enum class HourglassPath : unsigned char { FlanaganBelytschko, Enhanced, Mixed };
 
+  /// The force kernel of one batch (HexBlock::forces_of_part()): compute_batch for the
+  /// batch's hourglass path.
+  template <bool PLASTIC>
+  void batch_forces(Index batch, const NodalColumns& c, Real dt, Real b1, Real b2);
   template <bool PLASTIC, HourglassPath PATH>
-  void compute_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* vx,
-                     const Real* vy, const Real* vz, Real dt, Real b1, Real b2, Real* fx, Real* fy,
-                     Real* fz);
+  void compute_batch(Index batch, const NodalColumns& c, Real dt, Real b1, Real b2);
   /// J2 return of the trial stresses `sn` (6 × W) of a batch with plastic lanes over the
   /// increment `dt` from the stresses `start`: scales the deviatoric part of yielding lanes
   /// onto the yield surface, updates PEEQ, its rate and the yield stress, and returns the
@@ -186,28 +123,19 @@ class Hex8rBlock : public HexBlock {
   /// return_work()). One SIMD yield test; the batch return within table segments, the scalar
   /// return only where that does not apply.
   simd::Vec plastic_return(Index batch, const simd::Vec start[6], simd::Vec sn[6], Real dt);
-  /// Copies the plastic laws and the plastic state arrays (constructor).
-  void setup_plasticity(const std::vector<HexMaterial>& materials);
+  /// y += K u of one batch (HexBlock::add_stiffness_product()): the uniform-gradient part
+  /// (λ, 2μ) and the stiffness or enhanced hourglass term as the force pass applies them, from
+  /// a stress-free state (no geometric stiffness; the viscous hourglass form and bulk viscosity
+  /// are damping, not stiffness). K u is the derivative of the internal force along u.
+  void stiffness_batch(Index batch, const NodalColumns& c) const;
   template <HourglassPath PATH>
-  void stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz, const Real* ux,
-                       const Real* uy, const Real* uz, Real* yx, Real* yy, Real* yz) const;
+  void stiffness_batch(Index batch, const NodalColumns& c) const;
 
-  // State, batch b lane l:
-  std::vector<Real> m_stress;  ///< [b][6][W]
   /// [b][12][W] hourglass state: stiffness form Q_α (4 modes × 3, N), enhanced form its
   /// frame stresses and ξηζ resultant (hex8r_enhanced.hpp)
   std::vector<Real> m_hourglass;
   std::vector<HourglassPath> m_batch_path;  ///< [b]
-  std::vector<Real> m_volume;               ///< [b][W]
-  std::vector<Real> m_viscous_before;       ///< [b][W] bulk-viscosity pressure of the last call
-  // Plasticity (all empty when no element is plastic):
-  std::vector<Plasticity> m_laws;              ///< the distinct laws of the block's materials
-  std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, or -1 (elastic lane)
-  std::vector<unsigned char> m_batch_plastic;  ///< [b] 1 if any lane of the batch is plastic
-  RadialReturnLanes m_points;                  ///< [b][W] ε̄ᵖ, yield stress and table segment
-  std::vector<Real> m_peeq_rate;               ///< [b][W] Δε̄ᵖ/dt of the last increment, 1/s
-  // Per-batch energies, reduced serially in batch order (deterministic).
-  std::vector<Real> m_batch_energy;  ///< [b][4]: strain, hourglass, viscous, plastic
+  std::vector<Real> m_peeq_rate;  ///< [b][W] Δε̄ᵖ/dt of the last increment, 1/s (plastic only)
 };
 
 }  // namespace xpl::elements

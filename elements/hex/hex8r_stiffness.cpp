@@ -1,4 +1,4 @@
-// The linear stiffness product of the C3D8R block (Hex8rBlock::add_stiffness_product): what
+// The linear stiffness product of one C3D8R batch (HexBlock::add_stiffness_product): what
 // the global estimate of the highest frequency needs (solver/increment/global_increment.*).
 #include "elements/hex/hex8_geometry.hpp"
 #include "elements/hex/hex8r.hpp"
@@ -9,34 +9,21 @@ namespace xpl::elements {
 
 using simd::Vec;
 
-void Hex8rBlock::add_stiffness_product(const NodalVectors& position, const NodalVectors& u,
-                                       NodalVectors& y) const {
-  const Index n_nodes = static_cast<Index>(position.rows());
-  const Real* px = position.data();
-  const Real* ux = u.data();
-  Real* yx = y.data();
-  // Colour by colour: the lanes and batches of a colour share no node.
-  m_batches.for_color_batches(ParallelSite::HexStiffness, [&](Index b) {
-    // Enhanced and mixed batches take the general instantiation; the Flanagan–Belytschko
-    // one is the form's kernel alone (bit for bit the products of the form before).
-    if (m_batch_path[b] == HourglassPath::FlanaganBelytschko)
-      stiffness_batch<HourglassPath::FlanaganBelytschko>(b, px, px + n_nodes, px + 2 * n_nodes, ux,
-                                                         ux + n_nodes, ux + 2 * n_nodes, yx,
-                                                         yx + n_nodes, yx + 2 * n_nodes);
-    else
-      stiffness_batch<HourglassPath::Mixed>(b, px, px + n_nodes, px + 2 * n_nodes, ux, ux + n_nodes,
-                                            ux + 2 * n_nodes, yx, yx + n_nodes, yx + 2 * n_nodes);
-  });
+void Hex8rBlock::stiffness_batch(Index batch, const NodalColumns& c) const {
+  // Enhanced and mixed batches take the general instantiation; the Flanagan–Belytschko one is
+  // the form's kernel alone (bit for bit the products of the form before).
+  if (m_batch_path[batch] == HourglassPath::FlanaganBelytschko)
+    stiffness_batch<HourglassPath::FlanaganBelytschko>(batch, c);
+  else
+    stiffness_batch<HourglassPath::Mixed>(batch, c);
 }
 
 template <Hex8rBlock::HourglassPath PATH>
-void Hex8rBlock::stiffness_batch(Index batch, const Real* px, const Real* py, const Real* pz,
-                                 const Real* ux, const Real* uy, const Real* uz, Real* yx, Real* yy,
-                                 Real* yz) const {
+void Hex8rBlock::stiffness_batch(Index batch, const NodalColumns& c) const {
   const Index* conn = m_batches.conn(batch);
   const Real* cst = m_batches.constants(batch);
   V3<Vec> ax[8], au[8];
-  gather_modes(conn, px, py, pz, ux, uy, uz, ax, au);
+  gather_modes(conn, c.x[0], c.x[1], c.x[2], c.v[0], c.v[1], c.v[2], ax, au);
   V3<Vec> g[8];
   Vec vol;
   volume_gradient(ax, g, vol);
@@ -127,7 +114,7 @@ void Hex8rBlock::stiffness_batch(Index batch, const Real* px, const Real* py, co
   from_modes(Fx, fnx);
   from_modes(Fy, fny);
   from_modes(Fz, fnz);
-  m_batches.scatter_direct(batch, fnx, fny, fnz, yx, yy, yz);
+  m_batches.scatter_direct(batch, fnx, fny, fnz, c.f[0], c.f[1], c.f[2]);
 }
 
 }  // namespace xpl::elements

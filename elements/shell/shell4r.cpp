@@ -173,25 +173,14 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
 
   const ShellPlaneRates rates{dxx, dyy, gxy, kxx, kyy, kxy, gxz, gyz};
   const ShellSectionResultants sr = section_resultants<PLASTIC>(b, dt, rates);
-  const Vec q11 = constant(Q11), t = sr.t, qx = sr.qx, qy = sr.qy;
+  const Vec t = sr.t;
 
   // Hourglass resultants (accumulated in the corotational frame). In-plane patterns: stiffness
   // form in both forms; bending and transverse shear: the form of the lane (the other form's
   // coefficients are zero on it), each evaluated only when a lane of the batch uses it.
   const Vec bb = 2.0 * (fm.b1a * fm.b1a + fm.b1b * fm.b1b + fm.b2a * fm.b2a + fm.b2b * fm.b2b);
   const Vec c_plane = constant(HG_MODULUS) * t * fm.area * bb * 0.25;
-  Real* hstore = &m_hourglass[b * N_HOURGLASS * W];
-  Vec hq[N_HOURGLASS];
-  for (Vec& h : hq) h = simd::splat(0.0);
-  Vec hg_work = simd::splat(0.0);
-  // Advances resultant h by Δ = dt·(its rate of change) and adds its work over `rate`.
-  auto store = [&](int h, Vec increment, Vec rate) {
-    const Vec old = simd::load(hstore + h * W);
-    hq[h] = old + increment;
-    simd::store(hstore + h * W, hq[h]);
-    hg_work += (0.5 * dt) * (old + hq[h]) * rate;
-  };
-  auto advance = [&](int h, Vec stiffness, Vec rate) { store(h, (stiffness * dt) * rate, rate); };
+  shell4r_kernel::HourglassAdvance<N_HOURGLASS> hg{&m_hourglass[b * N_HOURGLASS * W], dt};
   // Plastic batches, physical form: the hourglass follows the section's plastic state on the
   // lanes with HG_PLASTIC (shell4r_hourglass.hpp); other lanes get factors of exactly 1.
   [[maybe_unused]] const Vec plastic_on = PLASTIC ? constant(HG_PLASTIC) : simd::splat(0.0);
@@ -200,66 +189,35 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
     // The bound: +inf on lanes without HG_PLASTIC (and in elastic batches).
     const Vec limit = simd::select(plastic_on > 0.0, (SHELL_HOURGLASS_PLASTIC_BOUND * t) * sr.flow,
                                    simd::splat(std::numeric_limits<Real>::infinity()));
-    plastic_membrane_hourglass(hstore, hourglass_rate(fm, ux), hourglass_rate(fm, uy),
+    plastic_membrane_hourglass(hg.stored, hourglass_rate(fm, ux), hourglass_rate(fm, uy),
                                c_plane * (one + plastic_on * (sr.tangent_membrane - one)),
                                one + plastic_on * (sr.membrane_return - one), limit,
-                               quad_natural(fm), constant(POISSON), fm.area, dt, hq, hg_work);
+                               quad_natural(fm), constant(POISSON), fm.area, dt, hg.value, hg.work);
   } else {
-    advance(0, c_plane, hourglass_rate(fm, ux));
-    advance(1, c_plane, hourglass_rate(fm, uy));
+    hg.advance(0, c_plane, hourglass_rate(fm, ux));
+    hg.advance(1, c_plane, hourglass_rate(fm, uy));
   }
   const Vec rate_tx = hourglass_rate(fm, tx), rate_ty = hourglass_rate(fm, ty);
   if (forms & FORM_OLD) {
     const Vec bend = constant(HG_OLD) * t * t * t * (1.0 / 12.0);
     const Vec c_rot = bend * fm.area * bb * 0.25;
-    advance(2, bend * bb, hourglass_rate(fm, vz));
-    advance(3, c_rot, rate_tx);
-    advance(4, c_rot, rate_ty);
+    hg.advance(2, bend * bb, hourglass_rate(fm, vz));
+    hg.advance(3, c_rot, rate_tx);
+    hg.advance(4, c_rot, rate_ty);
   }
   const QuadFrame<Vec> fe = quad_frame(x);
   // Shear resultants acting through the one-point shear (stiffness-form lanes) and through
   // the edge shears (physical lanes, with the linear-part resultants).
-  Vec qx_point = qx, qy_point = qy;
-  Vec hz[4], hbx[4], hby[4];  // physical form: normal forces and β-forces per node
-  for (int a = 0; a < 4; ++a) hz[a] = hbx[a] = hby[a] = simd::splat(0.0);
-  if (forms & FORM_PHYS) {
-    const Vec scale = constant(HG_PHYS);
-    const QuadNatural<Vec> nat = quad_natural(fm);
-    const Vec shear_k = (scale * constant(SHEAR_T)) * t * fm.area * (1.0 / 3.0);
-    advance(5, shear_k * nat.aa, edge.g_xi);
-    advance(6, shear_k * nat.cc, edge.g_eta);
-    // Bending: q̇ = (γ·θy, −γ·θx)/4, Ṁ = K_b q̇.
-    const Vec q1 = 0.25 * rate_ty, q2 = -0.25 * rate_tx;
-    Vec k1, k2;
-    bending_hourglass_apply(nat, constant(POISSON), q1, q2, k1, k2);
-    Vec bend_k = (scale * q11) * t * t * t * (1.0 / 36.0) * fm.area;
-    if constexpr (PLASTIC) {
-      const Vec one = simd::splat(1.0);
-      const Vec tangent = simd::max(sr.tangent_bending, simd::splat(SHELL_HOURGLASS_TANGENT_FLOOR));
-      bend_k = bend_k * (one + plastic_on * (tangent - one));
-    }
-    store(7, (bend_k * dt) * k1, q1);
-    store(8, (bend_k * dt) * k2, q2);
-    Vec qx_edge = qx, qy_edge = qy;
-    if (forms == FORM_PHYS) {
-      qx_point = qy_point = simd::splat(0.0);
-    } else {
-      const Vec on = constant(PHYS_ON);
-      qx_edge = on * qx;
-      qy_edge = on * qy;
-      qx_point = qx - qx_edge;
-      qy_point = qy - qy_edge;
-    }
-    edge_shear_forces(fe, quad_natural(fe), quad_edges(fe, x), qx_edge, qy_edge, hq[5], hq[6], hz,
-                      hbx, hby);
-  }
+  shell4r_kernel::ShearForces shear{sr.qx, sr.qy};
+  if (forms & FORM_PHYS)
+    physical_hourglass<PLASTIC>(b, fm, fe, x, edge, rate_tx, rate_ty, sr, plastic_on, hg, shear);
 
   // Forces and moments on x_{n+1}.
   V3<Vec> fn[4], mn[4];
-  corner_forces(fe, {sr.nxx, sr.nyy, sr.nxy, sr.mxx, sr.myy, sr.mxy, qx_point, qy_point}, hq, hz,
-                hbx, hby, forms & FORM_OLD, forms & FORM_PHYS, fn, mn);
+  corner_forces(fe, {sr.nxx, sr.nyy, sr.nxy, sr.mxx, sr.myy, sr.mxy, shear.qx, shear.qy}, hg.value,
+                shear.hz, shear.hbx, shear.hby, forms & FORM_OLD, forms & FORM_PHYS, fn, mn);
 
-  finish_batch<PLASTIC>(batch, fe, fm.area, sr.work, sr.plastic_work, hg_work, fn, mn, f, m);
+  finish_batch<PLASTIC>(batch, fe, fm.area, sr.work, sr.plastic_work, hg.work, fn, mn, f, m);
 }
 
 }  // namespace xpl::elements

@@ -95,8 +95,15 @@ inline constexpr int SHELL_MAX_POINTS = 15;
 
 template <class T>
 struct QuadFrame;
+template <class T>
+struct EdgeShear;
 struct ShellPlaneRates;
 struct ShellSectionResultants;
+namespace shell4r_kernel {
+template <int N>
+struct HourglassAdvance;
+struct ShearForces;
+}  // namespace shell4r_kernel
 
 /// Material and section constants of one shell element.
 struct ShellProperties {
@@ -365,12 +372,25 @@ class Shell4rBlock {
   template <bool PLASTIC>
   void compute_batch(Index batch, const Real* const p[3], const Real* const v[3],
                      const Real* const w[3], Real dt, Real* const f[3], Real* const m[3]);
-  /// The pieces of compute_batch (shell4r.cpp), inlined into it: the through-thickness
-  /// integration of batch b with its plasticity and thickness update, and the stable increment,
-  /// fold check, scatter and per-batch reductions.
+  /// The pieces of compute_batch (shell4r.cpp, shell4r_kernel.hpp), inlined into it: the
+  /// through-thickness integration of batch b with its plasticity and thickness update, the
+  /// physical hourglass, and the stable increment, fold check, scatter and per-batch
+  /// reductions.
   template <bool PLASTIC>
   [[gnu::always_inline]] inline ShellSectionResultants section_resultants(
       std::size_t b, Real dt, const ShellPlaneRates& rates);
+  /// The physical form's transverse-shear and bending hourglass of batch b (lanes with
+  /// PHYS_ON; shell4r_hourglass.hpp): advances resultants 5..8 in `hg` from the edge shears
+  /// `edge` and the rotation patterns' rates `rate_tx`, `rate_ty` on the mid geometry `fm`
+  /// (bending stiffness following the section's tangent on lanes with `plastic_on`), and puts
+  /// into `shear` the part of the shear resultants of `sr` that acts through the one-point shear
+  /// and the edge shears' nodal forces on x_{n+1} (`fe`, corners `x`).
+  template <bool PLASTIC>
+  [[gnu::always_inline]] inline void physical_hourglass(
+      std::size_t b, const QuadFrame<simd::Vec>& fm, const QuadFrame<simd::Vec>& fe,
+      const V3<simd::Vec> x[4], const EdgeShear<simd::Vec>& edge, simd::Vec rate_tx,
+      simd::Vec rate_ty, const ShellSectionResultants& sr, simd::Vec plastic_on,
+      shell4r_kernel::HourglassAdvance<N_HOURGLASS>& hg, shell4r_kernel::ShearForces& shear);
   template <bool PLASTIC>
   [[gnu::always_inline]] inline void finish_batch(Index batch, const QuadFrame<simd::Vec>& fe,
                                                   simd::Vec mid_area, simd::Vec work,

@@ -1,7 +1,8 @@
 #pragma once
 /// \file The pieces of the S4R force kernel (Shell4rBlock::compute_batch, shell4r.cpp, the one
-/// file that includes this): node gather, through-thickness integration, nodal forces, the
-/// stable increment and the per-batch reductions, all inlined into the kernel.
+/// file that includes this): node gather, through-thickness integration, the physical form's
+/// shear and bending hourglass, nodal forces, the stable increment and the per-batch
+/// reductions, all inlined into the kernel.
 
 #include <cmath>
 #include <limits>
@@ -11,6 +12,7 @@
 #include "elements/parallel/simd.hpp"
 #include "elements/shell/quad_shell_geometry.hpp"
 #include "elements/shell/shell4r.hpp"
+#include "elements/shell/shell4r_hourglass.hpp"
 #include "elements/shell/shell4r_increment.hpp"
 #include "elements/vec3.hpp"
 
@@ -89,10 +91,62 @@ XPL_KERNEL_INLINE void corner_forces(const QuadFrame<Vec>& fe, const ShellResult
   }
 }
 
+/// The hourglass resultants of a batch as its kernel advances them: N values per lane, each
+/// from its store at `stored` ([h][W], corotational frame, N or N·m), and their work over the
+/// increment `dt` (J) in `work`. Resultants the batch does not use stay 0.
+template <int N>
+struct HourglassAdvance {
+  Real* stored;
+  Real dt;
+  Vec value[N] = {};
+  Vec work = simd::splat(0.0);
+
+  /// Advances resultant h by `increment` (dt times its rate of change), stores it and adds its
+  /// trapezoidal work over the generalised rate `rate`.
+  XPL_KERNEL_INLINE void store(int h, Vec increment, Vec rate) {
+    const Vec old = simd::load(stored + h * W);
+    value[h] = old + increment;
+    simd::store(stored + h * W, value[h]);
+    work += (0.5 * dt) * (old + value[h]) * rate;
+  }
+  /// Advances resultant h at `stiffness` over `rate`: increment stiffness · dt · rate.
+  XPL_KERNEL_INLINE void advance(int h, Vec stiffness, Vec rate) {
+    store(h, (stiffness * dt) * rate, rate);
+  }
+};
+
+/// The transverse shear resultants of a batch (N/m) as they reach the nodes: `qx`, `qy` through
+/// the one-point shear (stiffness-form lanes), and on physical-form lanes through the edge
+/// shears, the normal forces `hz` and β-forces `hbx`, `hby` per node (N, zero elsewhere).
+struct ShearForces {
+  Vec qx, qy;
+  Vec hz[4] = {}, hbx[4] = {}, hby[4] = {};
+};
+
 /// The von Mises product of two plane stresses a, b (Pa²): a·b = a_xx b_xx − ½(a_xx b_yy +
 /// a_yy b_xx) + a_yy b_yy + 3 a_xy b_xy, so a·a = σ_vM(a)².
 XPL_KERNEL_INLINE Vec von_mises_product(Vec axx, Vec ayy, Vec axy, Vec bxx, Vec byy, Vec bxy) {
   return axx * bxx - 0.5 * (axx * byy + ayy * bxx) + ayy * byy + 3.0 * (axy * bxy);
+}
+
+/// Plastic batches: the section's tangent ratios, membrane return ratio and flow stress
+/// (ShellSectionResultants) into `out`, from the sums over its points with weights w: Σ w r
+/// and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², the trial and returned membrane
+/// stresses Σ w σ, and Σ w max(σ_y, σ_vM). The weights of a batch's points sum to 1
+/// (Simpson, shell4r_setup.cpp).
+XPL_KERNEL_INLINE void section_tangents(Vec tan_m, Vec tan_b, Vec weight_b, const Vec trial_n[3],
+                                        const Vec returned_n[3], Vec flow,
+                                        ShellSectionResultants& out) {
+  const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
+  out.tangent_membrane = simd::min(tan_m, one);
+  out.tangent_bending = simd::select(weight_b > 0.0, tan_b / simd::max(weight_b, tiny), one);
+  const Vec n_trial =
+      von_mises_product(trial_n[0], trial_n[1], trial_n[2], trial_n[0], trial_n[1], trial_n[2]);
+  const Vec n_returned = von_mises_product(returned_n[0], returned_n[1], returned_n[2],
+                                           returned_n[0], returned_n[1], returned_n[2]);
+  out.membrane_return = simd::select(
+      n_trial > 0.0, simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
+  out.flow = flow;
 }
 
 /// Positions `x`, velocities `vel` and angular velocities `om` of the 4 corners of a batch
@@ -219,20 +273,51 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   work += (0.5 * dt) * t_mid * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
   const Vec qx = t * txz_n, qy = t * tyz_n;
   ShellSectionResultants out{t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work};
-  if constexpr (PLASTIC) {
-    // The weights of a batch's points sum to 1 (Simpson, shell4r_setup.cpp).
-    const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
-    out.tangent_membrane = simd::min(tan_m, one);
-    out.tangent_bending = simd::select(weight_b > 0.0, tan_b / simd::max(weight_b, tiny), one);
-    const Vec n_trial = shell4r_kernel::von_mises_product(trial_n[0], trial_n[1], trial_n[2],
-                                                          trial_n[0], trial_n[1], trial_n[2]);
-    const Vec n_returned = shell4r_kernel::von_mises_product(
-        returned_n[0], returned_n[1], returned_n[2], returned_n[0], returned_n[1], returned_n[2]);
-    out.membrane_return = simd::select(
-        n_trial > 0.0, simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
-    out.flow = flow;
-  }
+  if constexpr (PLASTIC)
+    shell4r_kernel::section_tangents(tan_m, tan_b, weight_b, trial_n, returned_n, flow, out);
   return out;
+}
+
+template <bool PLASTIC>
+void Shell4rBlock::physical_hourglass(std::size_t b, const QuadFrame<Vec>& fm,
+                                      const QuadFrame<Vec>& fe, const V3<Vec> x[4],
+                                      const EdgeShear<Vec>& edge, Vec rate_tx, Vec rate_ty,
+                                      const ShellSectionResultants& sr,
+                                      [[maybe_unused]] Vec plastic_on,
+                                      shell4r_kernel::HourglassAdvance<N_HOURGLASS>& hg,
+                                      shell4r_kernel::ShearForces& shear) {
+  const Real* cst = &m_const[b * N_CONST * W];
+  auto constant = [&](Constant k) { return simd::load(cst + k * W); };
+  const Vec t = sr.t;
+  const Vec scale = constant(HG_PHYS);
+  const QuadNatural<Vec> nat = quad_natural(fm);
+  const Vec shear_k = (scale * constant(SHEAR_T)) * t * fm.area * (1.0 / 3.0);
+  hg.advance(5, shear_k * nat.aa, edge.g_xi);
+  hg.advance(6, shear_k * nat.cc, edge.g_eta);
+  // Bending: q̇ = (γ·θy, −γ·θx)/4, Ṁ = K_b q̇.
+  const Vec q1 = 0.25 * rate_ty, q2 = -0.25 * rate_tx;
+  Vec k1, k2;
+  bending_hourglass_apply(nat, constant(POISSON), q1, q2, k1, k2);
+  Vec bend_k = (scale * constant(Q11)) * t * t * t * (1.0 / 36.0) * fm.area;
+  if constexpr (PLASTIC) {
+    const Vec one = simd::splat(1.0);
+    const Vec tangent = simd::max(sr.tangent_bending, simd::splat(SHELL_HOURGLASS_TANGENT_FLOOR));
+    bend_k = bend_k * (one + plastic_on * (tangent - one));
+  }
+  hg.store(7, (bend_k * hg.dt) * k1, q1);
+  hg.store(8, (bend_k * hg.dt) * k2, q2);
+  Vec qx_edge = sr.qx, qy_edge = sr.qy;
+  if (m_batch_forms[b] == FORM_PHYS) {
+    shear.qx = shear.qy = simd::splat(0.0);
+  } else {
+    const Vec on = constant(PHYS_ON);
+    qx_edge = on * sr.qx;
+    qy_edge = on * sr.qy;
+    shear.qx = sr.qx - qx_edge;
+    shear.qy = sr.qy - qy_edge;
+  }
+  edge_shear_forces(fe, quad_natural(fe), quad_edges(fe, x), qx_edge, qy_edge, hg.value[5],
+                    hg.value[6], shear.hz, shear.hbx, shear.hby);
 }
 
 template <bool PLASTIC>
