@@ -64,9 +64,9 @@ inline constexpr Real SHELL_EXACT_ROTARY_MARGIN = 1.1;
 
 /// Plastic sections of the physical form (issue 32 item 5): the hourglass resultants advance
 /// with the section's current tangent, measured at its section points, instead of the elastic
-/// moduli. Bending increments keep at least this fraction of the elastic stiffness: with 0.1
-/// or less the corner elements of the crash tube's first fold fold over
-/// (benchmarks/RESULTS.md, "S4R, fourth round").
+/// moduli. Bending increments keep at least this fraction of the elastic stiffness, a lower
+/// bound for stability: at 0.15 or less a corner element of the crash tube's first fold folds
+/// over; 0.175 to 1 complete, ALLAE rising with it (benchmarks/RESULTS.md, "floor sweep").
 inline constexpr Real SHELL_HOURGLASS_TANGENT_FLOOR = 0.2;
 /// Plastic sections of the physical form: the in-plane hourglass resultants relax with the
 /// membrane return and their linear resultant field stays within this multiple of the
