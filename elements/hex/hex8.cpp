@@ -184,11 +184,13 @@ void Hex8Block::compute_batch(Index batch, const Real* px, const Real* py, const
 
 void Hex8Block::gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {
   for (Index i = 0; i < size(); ++i) {
-    const std::array<Real, 6> s = this->stress(i);
     const Index e = m_batches.element_index(i);
-    for (int c = 0; c < 6; ++c) stress[e * 6 + c] = s[c];
+    if (!stress.empty()) {
+      const std::array<Real, 6> s = this->stress(i);
+      for (int c = 0; c < 6; ++c) stress[e * 6 + c] = s[c];
+    }
     const Index b = m_batches.slot(i) / W, l = m_batches.slot(i) % W;
-    volume[e] = m_volume[b * W + l];
+    if (!volume.empty()) volume[e] = m_volume[b * W + l];
   }
 }
 

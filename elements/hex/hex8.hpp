@@ -73,7 +73,8 @@ class Hex8Block : public HexBlock {
   }
 
   /// Writes the element stress (row e·6.., S11 S22 S33 S12 S13 S23: the volume average of the
-  /// integration points) and current volume of every element at its model index.
+  /// integration points) and current volume of every element at its model index; an empty
+  /// array is left alone.
   void gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const;
   void gather_output(const OutputArrays& out) const { gather_output(out.stress, out.volume); }
   /// Sets the stress of every integration point of every element from model-sized rows

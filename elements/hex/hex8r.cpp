@@ -361,8 +361,9 @@ void Hex8rBlock::gather_output(std::vector<Real>& stress, std::vector<Real>& vol
     const Index slot = m_batches.slot(i);
     const Index b = slot / W, l = slot % W;
     const Index e = m_batches.element_index(i);
-    for (int c = 0; c < 6; ++c) stress[e * 6 + c] = m_stress[(b * 6 + c) * W + l];
-    volume[e] = m_volume[b * W + l];
+    if (!stress.empty())
+      for (int c = 0; c < 6; ++c) stress[e * 6 + c] = m_stress[(b * 6 + c) * W + l];
+    if (!volume.empty()) volume[e] = m_volume[b * W + l];
   }
 }
 

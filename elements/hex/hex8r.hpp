@@ -105,7 +105,7 @@ class Hex8rBlock : public HexBlock {
   }
 
   /// Writes stress (row e·6.., S11 S22 S33 S12 S13 S23) and current volume of every element
-  /// of the block at its model index into model-sized arrays.
+  /// of the block at its model index into model-sized arrays; an empty array is left alone.
   void gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const;
   void gather_output(const OutputArrays& out) const { gather_output(out.stress, out.volume); }
 

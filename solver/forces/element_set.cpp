@@ -364,8 +364,7 @@ void ElementSet::gather_output(const State& state, const FrameRequest& what,
   m_run->gather_elements_to_root(frame.thickness, 1);
 }
 
-void ElementSet::gather_local_output(const State& state, const FrameRequest& what,
-                                     FrameFields& frame) const {
+void ElementSet::gather_plastic_strain(const FrameRequest& what, FrameFields& frame) const {
   if (what.plastic_strain) {
     // PEEQ of every element (0 where elastic); each block writes the rows of its elements.
     frame.peeq.assign(static_cast<std::size_t>(m_model.element_count()), 0.0);
@@ -386,6 +385,11 @@ void ElementSet::gather_local_output(const State& state, const FrameRequest& wha
       });
     }
   }
+}
+
+void ElementSet::gather_local_output(const State& state, const FrameRequest& what,
+                                     FrameFields& frame) const {
+  gather_plastic_strain(what, frame);
   if (!what.stress && !what.volume && !what.thickness) return;
   // Element output arrays exist only in runs that write element output (P2).
   const auto n_elements = static_cast<std::size_t>(m_model.element_count());
@@ -407,6 +411,57 @@ void ElementSet::gather_local_output(const State& state, const FrameRequest& wha
   }
   const elements::OutputArrays out{state.position,      frame.stress,     frame.volume,
                                    frame.stress_bottom, frame.stress_top, frame.thickness};
+  for_each_block([&](const auto& block) { block.gather_output(out); });
+}
+
+void ElementSet::fill_output(const State& state, ElementField field,
+                             std::vector<Real>& rows) const {
+  // The values of gather_local_output: the same initial rows (0 or NaN where no block writes)
+  // and each block writing its elements' rows of this field only (the other arrays empty).
+  const auto n_elements = static_cast<std::size_t>(m_model.element_count());
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  if (field == ElementField::HourglassState) {
+    rows.clear();
+    if (!has_hourglass_state()) return;
+    rows.assign(n_elements * elements::HOURGLASS_STATE_WIDTH, 0.0);
+    for_each_block([&](const auto& block) {
+      if constexpr (requires { block.gather_hourglass_state(rows); })
+        block.gather_hourglass_state(rows);
+    });
+    return;
+  }
+  std::vector<Real> none;
+  const auto pick = [&](ElementField f) -> std::vector<Real>& { return f == field ? rows : none; };
+  switch (field) {
+    case ElementField::Stress:
+      rows.assign(n_elements * 6, 0.0);
+      break;
+    case ElementField::Volume:
+      rows.assign(n_elements, 0.0);
+      break;
+    case ElementField::StressBottom:
+    case ElementField::StressTop:
+      if (shells())
+        rows.assign(n_elements * 6, nan);
+      else
+        rows.clear();
+      break;
+    case ElementField::Thickness:
+      if (shells())
+        rows.assign(n_elements, nan);
+      else
+        rows.clear();
+      break;
+    case ElementField::HourglassState:
+      break;
+  }
+  if (rows.empty()) return;
+  const elements::OutputArrays out{state.position,
+                                   pick(ElementField::Stress),
+                                   pick(ElementField::Volume),
+                                   pick(ElementField::StressBottom),
+                                   pick(ElementField::StressTop),
+                                   pick(ElementField::Thickness)};
   for_each_block([&](const auto& block) { block.gather_output(out); });
 }
 
