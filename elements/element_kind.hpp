@@ -53,7 +53,8 @@ struct ForcePass {
 
 /// Element output arrays, model-sized rows (row e·6.. for stresses); a kind writes the rows
 /// of its elements. The section arrays (bottom, top, thickness) are sized only on models
-/// with a kind that writes them.
+/// with a kind that writes them. An empty array is not asked for: a kind leaves it alone (a
+/// frame written field by field asks for one array at a time, ElementSet::fill_output).
 struct OutputArrays {
   const NodalVectors& position;      ///< configuration of the output, m
   std::vector<Real>& stress;         ///< S, middle section point for shells, Pa

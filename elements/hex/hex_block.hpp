@@ -168,14 +168,17 @@ class HexBlock {
   }
 
   /// Writes the element stress (row e·6.., S11 S22 S33 S12 S13 S23, Derived::stress()) and
-  /// current volume of every element of the block at its model index into model-sized arrays.
+  /// current volume of every element of the block at its model index into model-sized arrays;
+  /// an empty array is left alone (the output driver asks for one field at a time).
   void gather_output(std::vector<Real>& stress, std::vector<Real>& volume) const {
     for (Index i = 0; i < size(); ++i) {
-      const std::array<Real, 6> s = derived().stress(i);
       const Index e = m_batches.element_index(i);
-      for (int c = 0; c < 6; ++c) stress[e * 6 + c] = s[c];
+      if (!stress.empty()) {
+        const std::array<Real, 6> s = derived().stress(i);
+        for (int c = 0; c < 6; ++c) stress[e * 6 + c] = s[c];
+      }
       const Index b = m_batches.slot(i) / W, l = m_batches.slot(i) % W;
-      volume[e] = m_volume[b * W + l];
+      if (!volume.empty()) volume[e] = m_volume[b * W + l];
     }
   }
   void gather_output(const OutputArrays& out) const { gather_output(out.stress, out.volume); }

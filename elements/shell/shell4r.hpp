@@ -276,7 +276,7 @@ class Shell4rBlock {
   ShellSectionOutput section_output(const NodalVectors& position, Index i) const;
 
   /// Writes middle/bottom/top stresses (rows e·6.., Abaqus order) and thickness of every block
-  /// element at its model index into model-sized arrays.
+  /// element at its model index into model-sized arrays; an empty array is left alone.
   void gather_output(const NodalVectors& position, std::vector<Real>& stress,
                      std::vector<Real>& bottom, std::vector<Real>& top,
                      std::vector<Real>& thickness) const;

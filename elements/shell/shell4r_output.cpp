@@ -76,15 +76,17 @@ int Shell4rBlock::points_of(std::size_t b, std::size_t l) const {
 void Shell4rBlock::gather_output(const NodalVectors& position, std::vector<Real>& stress,
                                  std::vector<Real>& bottom, std::vector<Real>& top,
                                  std::vector<Real>& thickness) const {
+  const bool stresses = !stress.empty() || !bottom.empty() || !top.empty();
   for (Index i = 0; i < size(); ++i) {
-    const ShellSectionOutput out = section_output(position, i);
     const std::size_t e = static_cast<std::size_t>(m_element_index[i]);
+    if (!thickness.empty()) thickness[e] = m_thickness[slot_of(i)];
+    if (!stresses) continue;
+    const ShellSectionOutput out = section_output(position, i);
     for (int c = 0; c < 6; ++c) {
-      bottom[e * 6 + c] = out.stress[0][c];
-      stress[e * 6 + c] = out.stress[1][c];
-      top[e * 6 + c] = out.stress[2][c];
+      if (!bottom.empty()) bottom[e * 6 + c] = out.stress[0][c];
+      if (!stress.empty()) stress[e * 6 + c] = out.stress[1][c];
+      if (!top.empty()) top[e * 6 + c] = out.stress[2][c];
     }
-    thickness[e] = out.thickness;
   }
 }
 

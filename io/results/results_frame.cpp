@@ -38,10 +38,10 @@ void check_fields(const State& state, const FrameFields& fields, const FrameRequ
   if (what.velocity) check_rows(state.velocity, n_nodes, "V");
   if (what.acceleration) check_rows(state.acceleration, n_nodes, "A");
   if (what.reaction) check_rows(state.reaction, n_nodes, "RF");
-  if (what.stress) {
-    check_size(fields.stress, n_elements * 6, "stress");
-  }
-  if (what.volume) check_size(fields.volume, n_elements, "volume");
+  // Element fields from a source are checked as the writer takes them (element_rows).
+  const bool held = fields.source == nullptr;
+  if (what.stress && held) check_size(fields.stress, n_elements * 6, "stress");
+  if (what.volume && held) check_size(fields.volume, n_elements, "volume");
   if (what.plastic_strain) check_size(fields.peeq, n_elements, "peeq");
   if (what.plastic_strain && plastic_shells) {
     check_size(fields.peeq_bottom, n_elements, "peeq_bottom");
@@ -52,12 +52,12 @@ void check_fields(const State& state, const FrameFields& fields, const FrameRequ
   if (what.displacement) check_rows(state.rotation, n_nodes, "UR");
   if (what.velocity) check_rows(state.angular_velocity, n_nodes, "VR");
   if (what.reaction) check_rows(state.reaction_moment, n_nodes, "RM");
-  if (what.stress) {
+  if (what.stress && held) {
     check_size(fields.stress_bottom, n_elements * 6, "stress_bottom");
     check_size(fields.stress_top, n_elements * 6, "stress_top");
-    check_rows(state.position, n_nodes, "position");  // the global-axis copies
   }
-  if (what.thickness) check_size(fields.thickness, n_elements, "thickness");
+  if (what.stress) check_rows(state.position, n_nodes, "position");  // the global-axis copies
+  if (what.thickness && held) check_size(fields.thickness, n_elements, "thickness");
 }
 
 void check_contact(const FrameFields& fields, const FrameRequest& what, Index n_nodes) {
@@ -92,16 +92,14 @@ std::vector<double> mises_rows(const std::vector<Real>& stress) {
   return mises;
 }
 
-/// Largest von Mises stress through the thickness: of S_SNEG, S and S_SPOS on shells, of S on
-/// solids (whose S_SNEG and S_SPOS rows are NaN).
-std::vector<double> mises_max(const Model& model, const FrameFields& fields) {
-  std::vector<double> out = mises_rows(fields.stress);
-  for (std::size_t e = 0; e < out.size(); ++e) {
-    if (!is_shell(model.element_types[e])) continue;
-    out[e] = std::max(
-        {out[e], von_mises(&fields.stress_bottom[e * 6]), von_mises(&fields.stress_top[e * 6])});
-  }
-  return out;
+/// The rows of element field `field` of the frame (`name` for the error), `width` values per
+/// element: held by `fields` or pulled from its source into `buffer`.
+const std::vector<Real>& element_rows(const Model& model, const FrameFields& fields,
+                                      ElementField field, std::size_t width, const char* name,
+                                      std::vector<Real>& buffer) {
+  const std::vector<Real>& rows = fields.element_rows(field, buffer);
+  check_size(rows, static_cast<std::size_t>(model.element_count()) * width, name);
+  return rows;
 }
 
 /// Writes the frame dataset of `v` from the state and the frame fields.
@@ -122,26 +120,26 @@ void write_variable(hid_t group, const OutputVariable& v, const Model& model, co
       return write_nodal(group, v, state.angular_velocity);
     case OutputId::RM:
       return write_nodal(group, v, state.reaction_moment);
-    case OutputId::S:
-      return write_values(group, v, fields.stress);
-    case OutputId::EVOL:
-      return write_values(group, v, fields.volume);
-    case OutputId::MISES:
-      return write_values(group, v, mises_rows(fields.stress));
-    case OutputId::MISES_SNEG:
-      return write_values(group, v, mises_rows(fields.stress_bottom));
-    case OutputId::MISES_SPOS:
-      return write_values(group, v, mises_rows(fields.stress_top));
-    case OutputId::MISES_MAX:
-      return write_values(group, v, mises_max(model, fields));
-    case OutputId::STH:
-      return write_values(group, v, fields.thickness);
+    case OutputId::EVOL: {
+      std::vector<Real> buffer;
+      return write_values(group, v,
+                          element_rows(model, fields, ElementField::Volume, 1, "volume", buffer));
+    }
+    case OutputId::STH: {
+      std::vector<Real> buffer;
+      return write_values(
+          group, v, element_rows(model, fields, ElementField::Thickness, 1, "thickness", buffer));
+    }
     case OutputId::PEEQ:
       return write_values(group, v, fields.peeq);
+    case OutputId::S:
+    case OutputId::MISES:
     case OutputId::S_SNEG:
-      return write_values(group, v, fields.stress_bottom);
     case OutputId::S_SPOS:
-      return write_values(group, v, fields.stress_top);
+    case OutputId::MISES_SNEG:
+    case OutputId::MISES_SPOS:
+    case OutputId::MISES_MAX:
+      break;  // write_stresses
     case OutputId::PEEQ_SNEG:
       return write_values(group, v, fields.peeq_bottom);
     case OutputId::PEEQ_SMID:
@@ -162,7 +160,8 @@ void write_variable(hid_t group, const OutputVariable& v, const Model& model, co
     case OutputId::CFS:
       break;
   }
-  throw std::logic_error("write_frame: " + std::string(v.name) + " is not field output");
+  throw std::logic_error("write_frame: " + std::string(v.name) +
+                         " is not field output written alone");
 }
 
 /// Comma-separated component names of `v` ("S11,S22,S33,S12,S13,S23").
@@ -185,42 +184,79 @@ void describe(hid_t group, const std::string& name, const std::string& component
   h5::set_string_attribute(data.get(), "description", std::string(description));
 }
 
-/// Writes /xdmf/NNNNNN (`path`): the tensors the XDMF file shows, in VTK order, in global axes
-/// (S, S_SNEG, S_SPOS) and, on shell models, the shells' local-axes ones (S_LOCAL, ...; NaN
-/// rows for solids). The datasets of /frames/NNNNNN keep the Abaqus order; the copies live
-/// outside the frame group so that a frame holds datasets only, as before. Each copy is made
-/// (global_axis_rows at `position`) and written in turn in one buffer, so that a frame holds
-/// one n_elements × 6 array more than its fields, not six.
-void write_xdmf_tensors(hid_t file, const std::string& path, const Model& model,
-                        const NodalVectors& position, const FrameFields& fields) {
+/// Whether stress output variable `id` is one the frame writes (it is in `variables`).
+bool written(const std::vector<const OutputVariable*>& variables, OutputId id) {
+  return std::any_of(variables.begin(), variables.end(),
+                     [id](const OutputVariable* v) { return v->id == id; });
+}
+
+/// Writes `v` (`values`) into `group` and describes it.
+void write_described(hid_t group, const OutputVariable& v, const std::vector<Real>& values,
+                     const ModelUnits& units) {
+  write_values(group, v, values);
+  describe(group, std::string(v.name), component_list(v), units.label(v.unit), v.description);
+}
+
+/// Writes the stress datasets among `variables` into the frame group `g` (S, MISES, and on
+/// shell models S_SNEG, S_SPOS, MISES_SNEG, MISES_SPOS, MISES_MAX) and /xdmf/NNNNNN (`path`):
+/// the tensors the XDMF file shows, in VTK order, in global axes (S, S_SNEG, S_SPOS) and, on
+/// shell models, the shells' local-axes ones (S_LOCAL, ...; NaN rows for solids). The datasets
+/// of /frames/NNNNNN keep the Abaqus order; the copies live outside the frame group so that a
+/// frame holds datasets only, as before. Tensor by tensor: each is taken once
+/// (element_rows, pulled from the elements in a one-process run) and written with its von
+/// Mises stress and its XDMF copies (global_axis_rows at `position`, one buffer) before the
+/// next, so that a frame holds one tensor, one copy and MISES_MAX at a time.
+void write_stresses(hid_t file, hid_t g, const std::string& path, const Model& model,
+                    const NodalVectors& position, const FrameFields& fields,
+                    const std::vector<const OutputVariable*>& variables, const ModelUnits& units) {
   const h5::Handle group = h5::require_group(file, path);
   const bool shells = model.has_shells();
   const auto n = static_cast<std::size_t>(model.element_count());
   struct Tensor {
-    const char* name;
-    const std::vector<Real>* rows;  ///< Abaqus order, local axes on shells
+    ElementField field;
+    OutputId rows, mises;
+    const char* field_name;  ///< the FrameFields member, for the size check
   };
   const Tensor tensors[] = {
-      {"S", &fields.stress}, {"S_SNEG", &fields.stress_bottom}, {"S_SPOS", &fields.stress_top}};
+      {ElementField::Stress, OutputId::S, OutputId::MISES, "stress"},
+      {ElementField::StressBottom, OutputId::S_SNEG, OutputId::MISES_SNEG, "stress_bottom"},
+      {ElementField::StressTop, OutputId::S_SPOS, OutputId::MISES_SPOS, "stress_top"}};
   const std::string global_names = "XX,YY,ZZ,XY,YZ,XZ";
-  std::vector<double> copy;
+  const bool maximum = written(variables, OutputId::MISES_MAX);
+  // Largest von Mises stress through the thickness: of S, S_SNEG and S_SPOS on shells (in
+  // that order, as std::max of the three), of S on solids (whose S_SNEG and S_SPOS are NaN).
+  std::vector<double> mises_max;
+  std::vector<Real> buffer, copy;
   for (const Tensor& t : tensors) {
-    if (!shells && t.rows != &fields.stress) continue;
-    const std::string name = t.name;
-    global_axis_rows(model, position, *t.rows, copy);
+    if (!shells && t.field != ElementField::Stress) continue;
+    const std::vector<Real>& rows = element_rows(model, fields, t.field, 6, t.field_name, buffer);
+    if (written(variables, t.rows)) write_described(g, output_variable(t.rows), rows, units);
+    if (written(variables, t.mises) || maximum) {
+      std::vector<double> mises = mises_rows(rows);
+      if (written(variables, t.mises)) write_described(g, output_variable(t.mises), mises, units);
+      if (maximum && t.field == ElementField::Stress) {
+        mises_max = std::move(mises);
+      } else if (maximum) {
+        for (std::size_t e = 0; e < n; ++e)
+          if (is_shell(model.element_types[e])) mises_max[e] = std::max(mises_max[e], mises[e]);
+      }
+    }
+    const std::string name(output_variable(t.rows).name);
+    global_axis_rows(model, position, rows, copy);
     h5::write_real(group.get(), name, copy, {n, 6});
     describe(group.get(), name, global_names, "Pa",
              "copy of " + name + " for the XDMF file: global axes, VTK order");
     if (!shells) continue;
     copy.assign(n * 6, std::nan(""));
     for (std::size_t e = 0; e < n; ++e)
-      if (is_shell(model.element_types[e])) to_vtk(&(*t.rows)[e * 6], &copy[e * 6]);
+      if (is_shell(model.element_types[e])) to_vtk(&rows[e * 6], &copy[e * 6]);
     h5::write_real(group.get(), name + "_LOCAL", copy, {n, 6});
     describe(group.get(), name + "_LOCAL", "11,22,33,12,23,13", "Pa",
              "copy of " + name +
                  " for the XDMF file: shells only (NaN rows for solids), local shell axes, VTK "
                  "order");
   }
+  if (maximum) write_described(g, output_variable(OutputId::MISES_MAX), mises_max, units);
 }
 
 }  // namespace
@@ -243,18 +279,25 @@ void check_frame(const Model& model, const State& state, const FrameFields& fiel
 void write_frame_datasets(hid_t file, hid_t g, const std::string& name, const Model& model,
                           const State& state, const FrameFields& fields, const FrameRequest& what,
                           const ModelUnits& units) {
-  for (const OutputVariable* v : frame_variables(what, output_scope(model))) {
+  const std::vector<const OutputVariable*> variables = frame_variables(what, output_scope(model));
+  for (const OutputVariable* v : variables) {
+    if (v->frame == &FrameRequest::stress) continue;  // write_stresses
     write_variable(g, *v, model, state, fields);
     describe(g, std::string(v->name), component_list(*v), units.label(v->unit), v->description);
   }
-  if (what.stress) write_xdmf_tensors(file, "xdmf/" + name, model, state.position, fields);
-  if (what.stress && !fields.hourglass_state.empty()) {
-    // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
-    // --import (io/result_tools/import_state.hpp).
-    const auto n_elements = static_cast<std::size_t>(model.element_count());
-    const auto width = static_cast<std::size_t>(FrameFields::HOURGLASS_WIDTH);
-    check_size(fields.hourglass_state, n_elements * width, "hourglass_state");
-    h5::write_real(g, "HGSTATE", fields.hourglass_state, {n_elements, width});
+  if (what.stress)
+    write_stresses(file, g, "xdmf/" + name, model, state.position, fields, variables, units);
+  std::vector<Real> buffer;
+  if (what.stress) {
+    const std::vector<Real>& hourglass = fields.element_rows(ElementField::HourglassState, buffer);
+    if (!hourglass.empty()) {
+      // Not an output variable (not in the XDMF): the elements' internal hourglass state, for
+      // --import (io/result_tools/import_state.hpp).
+      const auto n_elements = static_cast<std::size_t>(model.element_count());
+      const auto width = static_cast<std::size_t>(FrameFields::HOURGLASS_WIDTH);
+      check_size(hourglass, n_elements * width, "hourglass_state");
+      h5::write_real(g, "HGSTATE", hourglass, {n_elements, width});
+    }
   }
 }
 

@@ -112,6 +112,17 @@ class ElementSet {
   /// Element output requested by `what` (stress, section stresses, volume, thickness, PEEQ) into
   /// `state`; the arrays are allocated on first use (n_elements rows).
   void gather_output(const State& state, const FrameRequest& what, FrameFields& frame) const;
+  /// Whether fill_output can make a frame's element fields one at a time: runs in one
+  /// process. A distributed run gathers them all to rank 0 at once (gather_output), since
+  /// every rank takes part in each gather.
+  bool fills_fields_alone() const { return m_run == nullptr; }
+  /// PEEQ of `what` into `frame` (gather_output without the element fields of
+  /// ElementField).
+  void gather_plastic_strain(const FrameRequest& what, FrameFields& frame) const;
+  /// `field` of every element at `state` into `rows`, laid out as the FrameFields member of
+  /// that name and with the values gather_output gives it; empty where gather_output leaves
+  /// the member empty. The field alone: a frame written field by field holds one at a time.
+  void fill_output(const State& state, ElementField field, std::vector<Real>& rows) const;
 
   /// Internal nodal forces of the increment (n_nodes × 3), N; contact adds its forces here.
   NodalVectors& force_internal() { return m_force_internal; }

@@ -4,6 +4,29 @@
 
 namespace xpl {
 
+const std::vector<Real>& FrameFields::element_rows(ElementField field,
+                                                   std::vector<Real>& buffer) const {
+  if (source != nullptr) {
+    source->fill(field, buffer);
+    return buffer;
+  }
+  switch (field) {
+    case ElementField::Stress:
+      return stress;
+    case ElementField::StressBottom:
+      return stress_bottom;
+    case ElementField::StressTop:
+      return stress_top;
+    case ElementField::Thickness:
+      return thickness;
+    case ElementField::Volume:
+      return volume;
+    case ElementField::HourglassState:
+      break;
+  }
+  return hourglass_state;
+}
+
 void global_axis_rows(const Model& model, const NodalVectors& position,
                       const std::vector<Real>& rows, std::vector<Real>& global) {
   const auto n = static_cast<std::size_t>(model.element_count());

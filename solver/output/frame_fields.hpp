@@ -1,8 +1,9 @@
 #pragma once
 /// \file The fields only output needs: element stresses, volumes, thicknesses, PEEQ, the
 /// hourglass state for --import and the contact output per node. The OutputDriver owns them
-/// and fills them before each field frame (ElementSet::gather_output, ContactStage::fill_output);
-/// the time loop never reads them.
+/// and fills them before each field frame (ElementSet::gather_output, ContactStage::fill_output),
+/// or lets the writer pull the element fields one at a time from the element blocks
+/// (ElementFieldSource); the time loop never reads them.
 
 #include <vector>
 
@@ -11,6 +12,21 @@
 #include "solver/model/model.hpp"
 
 namespace xpl {
+
+/// An element field of a frame that a writer can ask for on its own (FrameFields::element_rows).
+enum class ElementField { Stress, StressBottom, StressTop, Thickness, Volume, HourglassState };
+
+/// Fills the element fields of a frame on request, one at a time, from the solution: a writer
+/// that takes them in turn into one buffer holds one field of the frame at a time instead of
+/// all of them (six fields, 304 bytes per S4R element, issue 38).
+class ElementFieldSource {
+ public:
+  virtual ~ElementFieldSource() = default;
+  /// Fills `rows` with `field` of every element, sized and laid out as the FrameFields member
+  /// of the same name (stress, stress_bottom, stress_top, thickness, volume, hourglass_state);
+  /// empty where the frame would leave that member empty (no shells, no hourglass state).
+  virtual void fill(ElementField field, std::vector<Real>& rows) const = 0;
+};
 
 /// The output-only fields of a field frame. Element fields: rows in the model's element order;
 /// node fields: rows in the model's node order.
@@ -53,6 +69,15 @@ struct FrameFields {
   std::vector<Real> contact_status;    ///< CSTATUS (n_nodes): 0 open, 1 slipping, 2 sticking
   NodalVectors contact_normal_force;   ///< CNORMF (n_nodes × 3), N
   NodalVectors contact_shear_force;    ///< CSHEARF (n_nodes × 3), N
+
+  /// When set, the element fields stress, stress_bottom, stress_top, thickness, volume and
+  /// hourglass_state are not held (empty) and come from `source` on request; the writer reads
+  /// them through element_rows either way.
+  const ElementFieldSource* source = nullptr;
+
+  /// The rows of `field`: the member of that name, or, with a `source`, `buffer` filled from
+  /// it (the member is then empty).
+  const std::vector<Real>& element_rows(ElementField field, std::vector<Real>& buffer) const;
 };
 
 /// The copy of the stress rows `rows` (n_elements × 6, Abaqus order: `stress`, `stress_bottom`

@@ -2,6 +2,25 @@
 
 namespace xpl {
 
+namespace {
+
+/// The element fields of a frame made when the writer asks for them, from the elements at the
+/// frame's state.
+class ElementFieldPull final : public ElementFieldSource {
+ public:
+  ElementFieldPull(const ElementSet& elements, const State& state)
+      : m_elements(elements), m_state(state) {}
+  void fill(ElementField field, std::vector<Real>& rows) const override {
+    m_elements.fill_output(m_state, field, rows);
+  }
+
+ private:
+  const ElementSet& m_elements;
+  const State& m_state;
+};
+
+}  // namespace
+
 OutputDriver::OutputDriver(const Model& model, OutputSink& sink, PhaseTimers& timers)
     : m_model(model), m_sink(sink), m_timers(timers) {}
 
@@ -38,11 +57,27 @@ void OutputDriver::write_frame(State& state, const FrameRequest& requested,
   FrameRequest what = requested;
   if (m_displacement_written) what.displacement = true;
   m_displacement_written = what.displacement;
-  elements.gather_output(state, what, m_frame);
+  // One process: the writer pulls the element fields one at a time (nothing of them is kept
+  // between frames, and a frame holds one field at a time: issue 38). Distributed: every
+  // field gathered to rank 0 first.
+  const ElementFieldPull pull(elements, state);
+  if (elements.fills_fields_alone()) {
+    elements.gather_plastic_strain(what, m_frame);
+    m_frame.source = &pull;
+  } else {
+    elements.gather_output(state, what, m_frame);
+    m_frame.source = nullptr;
+  }
   if (what.contact_stress || what.contact_status || what.contact_force)
     contact.fill_output(m_frame);
   nodes.sync_rotation(state);
-  m_sink.write_frame(m_model, state, m_frame, what);
+  try {
+    m_sink.write_frame(m_model, state, m_frame, what);
+  } catch (...) {
+    m_frame.source = nullptr;
+    throw;
+  }
+  m_frame.source = nullptr;
 }
 
 void OutputDriver::write_history(State& state, const ContactStage& contact,

@@ -48,9 +48,10 @@ class OutputDriver {
   /// Whether a history row is due at `step_time` (and the step has history output).
   bool history_due(Real step_time, bool last);
 
-  /// One field frame of `what`: element output and contact output gathered into the driver's
-  /// FrameFields, rotations into `state`, first (the writer makes the global-axis copies of
-  /// the shell stresses, global_axis_rows). Once a
+  /// One field frame of `what`: PEEQ and contact output gathered into the driver's
+  /// FrameFields, rotations into `state`, first; the writer pulls the other element fields
+  /// one at a time from `elements` (FrameFields::source; a distributed run gathers them all
+  /// first) and makes the global-axis copies of the shell stresses (global_axis_rows). Once a
   /// frame has written U, every later frame writes it too (a frame of another request without U
   /// would be drawn undeformed in ParaView).
   void write_frame(State& state, const FrameRequest& what, const ElementSet& elements,

@@ -43,10 +43,12 @@ class UniaxialSink : public test::CaptureSink {
     Sample s;
     s.time = state.time;
     s.strain = std::log((H + state.displacement(loaded_node, 0)) / H);
-    s.stress = fields.stress[0];
-    for (int c = 1; c < 6; ++c) s.lateral = std::max(s.lateral, std::abs(fields.stress[c]));
+    std::vector<Real> buffer;
+    const std::vector<Real>& stress = fields.element_rows(ElementField::Stress, buffer);
+    s.stress = stress[0];
+    for (int c = 1; c < 6; ++c) s.lateral = std::max(s.lateral, std::abs(stress[c]));
     s.peeq = fields.peeq.empty() ? -1.0 : fields.peeq[0];
-    s.log_volume = std::log(fields.volume[0] / (H * H * H));
+    s.log_volume = std::log(fields.element_rows(ElementField::Volume, buffer)[0] / (H * H * H));
     samples.push_back(s);
   }
   Real energy(const std::string& name, std::size_t row) const {
