@@ -125,8 +125,9 @@ template <bool PLASTIC, bool FB, bool ENHANCED>
 XPL_KERNEL_INLINE void hourglass_resultants(const V3<Vec> ax[8], const V3<Vec> av[8],
                                             const V3<Vec> g[8], const Vec L[3][3], Vec vol,
                                             Vec inv_vol, const HourglassLanes& lanes, Real dt,
-                                            const Vec& relax, const Vec& hg_limit, Real* hgq,
-                                            V3<Vec> Q[4], Vec& hg_power) {
+                                            const Vec& relax, const Vec& hg_limit,
+                                            const Vec flow[6], Real* hgq, V3<Vec> Q[4],
+                                            Vec& hg_power) {
   [[maybe_unused]] Vec stored[12];
   if constexpr (FB) {
     // Flanagan–Belytschko: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α) on x_{n+1}.
@@ -165,8 +166,9 @@ XPL_KERNEL_INLINE void hourglass_resultants(const V3<Vec> ax[8], const V3<Vec> a
     for (int k = 0; k < ENHANCED_STATE; ++k) old[k] = simd::load(hgq + k * W);
     V3<Vec> force[4];
     Vec power;
-    enhanced_step(ax, av, g[3], L, vol, inv_vol, mu, lanes.lambda, dt, PLASTIC ? &relax : nullptr,
-                  PLASTIC ? &hg_limit : nullptr, old, next, force, power);
+    enhanced_step<PLASTIC>(ax, av, g[3], L, vol, inv_vol, mu, lanes.lambda, dt,
+                           PLASTIC ? &relax : nullptr, PLASTIC ? &hg_limit : nullptr, flow, old,
+                           next, force, power);
     if constexpr (!FB) {
       for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = next[k];
       for (int m = 0; m < 4; ++m) Q[m] = force[m];
@@ -283,6 +285,8 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   // flow stress (see hex8r.hpp).
   [[maybe_unused]] Vec relax = simd::splat(1.0);
   [[maybe_unused]] Vec hg_limit = simd::splat(std::numeric_limits<Real>::infinity());
+  [[maybe_unused]] Vec flow[6] = {simd::splat(0.0), simd::splat(0.0), simd::splat(0.0),
+                                  simd::splat(0.0), simd::splat(0.0), simd::splat(0.0)};
   // No flow without an increment (dt = 0 at the start: an imported state stays as it is).
   if constexpr (PLASTIC) {
     if (dt > 0.0) {
@@ -297,6 +301,15 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
         // a flowing lane.
         const Vec yield = simd::load(m_points.yield_row(static_cast<std::size_t>(batch) * W));
         hg_limit = HOURGLASS_PLASTIC_AMPLITUDE * simd::max(yield, simd::sqrt(1.5 * returned));
+        // The unit flow direction of a lane that flowed, 0 elsewhere.
+        const simd::Mask flowed = relax < 1.0;
+        const Vec p = (sn[0] + sn[1] + sn[2]) * (1.0 / 3.0);
+        const Vec inv = simd::select(
+            flowed, 1.0 / simd::sqrt(simd::max(returned, simd::splat(1e-300))), simd::splat(0.0));
+        flow[0] = (sn[0] - p) * inv;
+        flow[1] = (sn[1] - p) * inv;
+        flow[2] = (sn[2] - p) * inv;
+        for (int c = 3; c < 6; ++c) flow[c] = sn[c] * inv;
       }
     }
   }
@@ -319,7 +332,7 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
     constexpr bool FB = PATH != HourglassPath::Enhanced;
     constexpr bool ENHANCED = PATH != HourglassPath::FlanaganBelytschko;
     hourglass_resultants<PLASTIC, FB, ENHANCED>(ax, av, g, L, vol, inv_vol, lanes, dt, relax,
-                                                hg_limit, hgq, Q, hg_power);
+                                                hg_limit, flow, hgq, Q, hg_power);
   }
 
   Vec fnx[8], fny[8], fnz[8];
