@@ -281,12 +281,9 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
   hex_kernel::jaumann_update(s, rate, lambda * tr, two_mu, dt, sn);
   // The elastic update is the trial state of the J2 return (its plastic work per lane, Pa).
   [[maybe_unused]] Vec dissipation = simd::splat(0.0);
-  // The enhanced resultants of a yielding lane relax with its stress, and stay within its
-  // flow stress (see hex8r.hpp).
-  [[maybe_unused]] Vec relax = simd::splat(1.0);
-  [[maybe_unused]] Vec hg_limit = simd::splat(std::numeric_limits<Real>::infinity());
-  [[maybe_unused]] Vec flow[6] = {simd::splat(0.0), simd::splat(0.0), simd::splat(0.0),
-                                  simd::splat(0.0), simd::splat(0.0), simd::splat(0.0)};
+  // The enhanced resultants of a yielding lane relax with its stress, stay within its flow
+  // stress and take no strain along its flow (see hex8r.hpp).
+  [[maybe_unused]] PlasticHourglass yielding = elastic_hourglass();
   // No flow without an increment (dt = 0 at the start: an imported state stays as it is).
   if constexpr (PLASTIC) {
     if (dt > 0.0) {
@@ -295,21 +292,8 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
       } else {
         const Vec trial = deviator_norm2(sn);
         dissipation = plastic_return(batch, s, sn, dt);
-        const Vec returned = deviator_norm2(sn);
-        relax = return_factor(trial, returned);
-        // The flow stress: the static yield stress, or the (rate-raised) von Mises stress of
-        // a flowing lane.
         const Vec yield = simd::load(m_points.yield_row(static_cast<std::size_t>(batch) * W));
-        hg_limit = HOURGLASS_PLASTIC_AMPLITUDE * simd::max(yield, simd::sqrt(1.5 * returned));
-        // The unit flow direction of a lane that flowed, 0 elsewhere.
-        const simd::Mask flowed = relax < 1.0;
-        const Vec p = (sn[0] + sn[1] + sn[2]) * (1.0 / 3.0);
-        const Vec inv = simd::select(
-            flowed, 1.0 / simd::sqrt(simd::max(returned, simd::splat(1e-300))), simd::splat(0.0));
-        flow[0] = (sn[0] - p) * inv;
-        flow[1] = (sn[1] - p) * inv;
-        flow[2] = (sn[2] - p) * inv;
-        for (int c = 3; c < 6; ++c) flow[c] = sn[c] * inv;
+        yielding = plastic_hourglass(sn, trial, deviator_norm2(sn), yield);
       }
     }
   }
@@ -331,8 +315,9 @@ void Hex8rBlock::compute_batch(Index batch, const Real* px, const Real* py, cons
                                simd::load(cst + HG_MU * W), simd::load(cst + HG_LAMBDA * W)};
     constexpr bool FB = PATH != HourglassPath::Enhanced;
     constexpr bool ENHANCED = PATH != HourglassPath::FlanaganBelytschko;
-    hourglass_resultants<PLASTIC, FB, ENHANCED>(ax, av, g, L, vol, inv_vol, lanes, dt, relax,
-                                                hg_limit, flow, hgq, Q, hg_power);
+    hourglass_resultants<PLASTIC, FB, ENHANCED>(ax, av, g, L, vol, inv_vol, lanes, dt,
+                                                yielding.relax, yielding.limit, yielding.flow, hgq,
+                                                Q, hg_power);
   }
 
   Vec fnx[8], fny[8], fnz[8];

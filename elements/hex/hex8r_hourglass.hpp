@@ -7,6 +7,8 @@
 /// element: the stiffness form's resultants, or the enhanced form's frame stresses), and the
 /// hourglass power (W) whose integral is the artificial energy ALLAE.
 
+#include <limits>
+
 #include "elements/hex/hex8r_enhanced.hpp"
 #include "elements/parallel/simd.hpp"
 
@@ -30,6 +32,44 @@ inline simd::Vec return_factor(simd::Vec trial, simd::Vec returned) {
   const simd::Mask some = trial > 0.0;
   const simd::Vec ratio = returned / simd::max(trial, simd::splat(1e-300));
   return simd::select(some, simd::sqrt(simd::min(ratio, simd::splat(1.0))), simd::splat(1.0));
+}
+
+/// Amplitude of the linear hourglass stress that carries a section's fully plastic moment:
+/// σ_y t²/4 = (κ σ_y) t²/6 with κ = 3/2.
+inline constexpr Real HOURGLASS_PLASTIC_AMPLITUDE = 1.5;
+
+/// What the radial return of a lane's stress gives the enhanced stabilisation (hex8r.hpp).
+struct PlasticHourglass {
+  simd::Vec relax;    ///< |dev σ| / |dev σ_trial|: 1 where nothing yielded
+  simd::Vec limit;    ///< bound of the plane hourglass stresses, Pa (+inf: none)
+  simd::Vec flow[6];  ///< unit flow direction dev σ/|dev σ| (Voigt), 0 where nothing flowed
+};
+
+/// An elastic lane's: no relaxation, no bound, no flow.
+inline PlasticHourglass elastic_hourglass() {
+  PlasticHourglass h;
+  h.relax = simd::splat(1.0);
+  h.limit = simd::splat(std::numeric_limits<Real>::infinity());
+  for (simd::Vec& n : h.flow) n = simd::splat(0.0);
+  return h;
+}
+
+/// A plastic lane's, from the returned stress `sn` (Voigt, Pa), the squared deviator norms
+/// before (`trial`) and after (`returned`) the return and the static yield stress `yield` (Pa):
+/// the return factor, 3/2 of the flow stress (the static yield stress, or the rate-raised von
+/// Mises stress of a flowing lane; HOURGLASS_PLASTIC_AMPLITUDE) and the flow direction.
+inline PlasticHourglass plastic_hourglass(const simd::Vec sn[6], simd::Vec trial,
+                                          simd::Vec returned, simd::Vec yield) {
+  using simd::Vec;
+  PlasticHourglass h;
+  h.relax = return_factor(trial, returned);
+  h.limit = HOURGLASS_PLASTIC_AMPLITUDE * simd::max(yield, simd::sqrt(1.5 * returned));
+  const Vec p = (sn[0] + sn[1] + sn[2]) * (1.0 / 3.0);
+  const Vec inv = simd::select(
+      h.relax < 1.0, 1.0 / simd::sqrt(simd::max(returned, simd::splat(1e-300))), simd::splat(0.0));
+  for (int c = 0; c < 3; ++c) h.flow[c] = (sn[c] - p) * inv;
+  for (int c = 3; c < 6; ++c) h.flow[c] = sn[c] * inv;
+  return h;
 }
 
 /// One increment of the hourglass resultants of a batch.
@@ -62,10 +102,6 @@ inline void flanagan_belytschko_step(const V3<simd::Vec> ax[8], const V3<simd::V
     s.power += dot(0.5 * (old[m] + s.stored[m]) + c_hg * q, q);
   }
 }
-
-/// Amplitude of the linear hourglass stress that carries a section's fully plastic moment:
-/// σ_y t²/4 = (κ σ_y) t²/6 with κ = 3/2.
-inline constexpr Real HOURGLASS_PLASTIC_AMPLITUDE = 1.5;
 
 /// The plastic bound of the enhanced state `S` (ENHANCED_STATE values per lane, see
 /// hex8r_enhanced.hpp): each plane's von Mises stress, √(S_a² + S_b² − S_a S_b + 3 S_ab²), is
