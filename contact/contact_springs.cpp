@@ -123,7 +123,9 @@ void ContactEngine::prepare_spring(Index s, ContactConstraint& c, const SlaveTou
   c.gap = t.gap;
   c.normal = t.normal;
   const Real master_mass = master_mass_at_point(t.shape, face.nodes, mass, inverse_mass);
-  Real k = penalty_stiffness(spring.law, slaves.areas()[s], mass[node], master_mass, dt_penalty,
+  // A rigid body's node does not move with its spring (penalty.hpp, RIGID_MASS).
+  const Real slave_mass = m_domain.slave_rigid(s) ? RIGID_MASS : mass[node];
+  Real k = penalty_stiffness(spring.law, slaves.areas()[s], slave_mass, master_mass, dt_penalty,
                              m_options.penalty_scale);
   k *= t.weight;
   spring.k = k;

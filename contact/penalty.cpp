@@ -30,10 +30,13 @@ Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>
 
 Real default_penalty_stiffness(Real slave_mass, Real master_mass, Real dt, Real scale) {
   if (!(dt > 0.0)) return 0.0;
-  // m_eff = 1/(1/m_s + 1/m_m); a rigid corner makes the master mass infinite.
-  const bool slave_only = master_mass == RIGID_MASTER_MASS || !(master_mass > 0.0);
+  // m_eff = 1/(1/m_s + 1/m_m); a rigid corner makes the master mass infinite, a rigid slave
+  // node the slave mass.
+  const bool master_moves = master_mass != RIGID_MASS && master_mass > 0.0;
+  if (slave_mass == RIGID_MASS)
+    return master_moves ? DEFAULT_PENALTY_FACTOR * scale * master_mass / (dt * dt) : 0.0;
   const Real m_eff =
-      slave_only ? slave_mass : slave_mass * master_mass / (slave_mass + master_mass);
+      master_moves ? slave_mass * master_mass / (slave_mass + master_mass) : slave_mass;
   return DEFAULT_PENALTY_FACTOR * scale * m_eff / (dt * dt);
 }
 

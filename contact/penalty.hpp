@@ -94,9 +94,11 @@ Real normal_contact_update(ContactConstraint& constraint, Real gap, Real stiffne
 Real onset_offset(const ContactConstraint& before, Index face, Real gap, const Vec3& normal,
                   const Vec3& relative_velocity, Real dt);
 
-/// The master mass of a face with a rigid corner (a corner of zero inverse mass): infinite, so
-/// that m_eff is the slave node's own mass.
-inline constexpr Real RIGID_MASTER_MASS = std::numeric_limits<Real>::infinity();
+/// The mass of a rigid side of a spring — a master face with a rigid corner (a corner of zero
+/// inverse mass), or a slave node of a rigid body: infinite, since the body's mass does not
+/// move with one spring's force (a body driven by a boundary condition not at all, a free body
+/// as a whole, bounded by the engine's body cap), so that m_eff is the other side's mass.
+inline constexpr Real RIGID_MASS = std::numeric_limits<Real>::infinity();
 
 /// The contact law of one surface interaction.
 struct InteractionLaw {
@@ -110,7 +112,7 @@ Real mass_at_point(const std::array<Real, 4>& weights, const std::array<Real, 4>
 
 /// Master mass at the contact point of a face with corners `corners` (node indices), shape
 /// weights `weights`, nodal masses `mass` (kg) and inverse masses `inverse_mass` (1/kg, 0 for
-/// a rigid body node): mass_at_point of the corner masses, or RIGID_MASTER_MASS when a corner
+/// a rigid body node): mass_at_point of the corner masses, or RIGID_MASS when a corner
 /// is rigid (its mass does not move with the contact force); kg.
 ///
 /// Inline, and summed straight from the nodal masses: the engine's force loop has always
@@ -125,7 +127,7 @@ inline Real master_mass_at_point(const std::array<Real, 4>& weights,
     master_mass += weights[a] * mass[corners[a]];
     rigid = rigid || inverse_mass[corners[a]] == 0.0;
   }
-  return rigid ? RIGID_MASTER_MASS : master_mass;
+  return rigid ? RIGID_MASS : master_mass;
 }
 
 /// Default penalty stiffness k = α·s·m_eff/Δt², N/m, with α = DEFAULT_PENALTY_FACTOR, s the
@@ -140,9 +142,14 @@ inline Real master_mass_at_point(const std::array<Real, 4>& weights,
 /// (frequencies add in squares) and for a node carrying several springs (a slave node that is
 /// also a master corner, both views of balanced contact).
 ///
-/// A rigid master (master_mass = RIGID_MASTER_MASS, 1/m_m = 0) and a master without mass
-/// (m_m ≤ 0: nothing to share the spring with) give m_eff = m_s. A slave node without mass
-/// gives 0, and so does Δt ≤ 0 (a caller error).
+/// A rigid master (master_mass = RIGID_MASS, 1/m_m = 0) and a master without mass (m_m ≤ 0:
+/// nothing to share the spring with) give m_eff = m_s. A rigid slave node (slave_mass =
+/// RIGID_MASS, 1/m_s = 0) gives m_eff = m_m, the mass the spring actually moves: the lumped
+/// mass of a rigid body's node is its share of the body's volume, not what resists the spring,
+/// and a finely meshed rigid punch would otherwise press with springs softer by the ratio of
+/// its node masses to the partner's (Abaqus/Explicit and LS-DYNA likewise take a rigid
+/// body's penalty from its deformable partner). A slave node without mass gives 0, and so do
+/// a rigid slave on a rigid or massless master and Δt ≤ 0 (a caller error).
 Real default_penalty_stiffness(Real slave_mass, Real master_mass, Real dt, Real scale = 1.0);
 
 /// Stiffness of a LINEAR pressure–overclosure law: k = slope (Pa/m) × tributary area (m²); N/m.

@@ -88,8 +88,9 @@ template <bool PLASTIC, bool FB, bool ENHANCED>
 XPL_KERNEL_INLINE void hourglass_resultants(const V3<Vec> ax[8], const V3<Vec> av[8],
                                             const V3<Vec> g[8], const Vec L[3][3], Vec vol,
                                             Vec inv_vol, const HourglassLanes& lanes, Real dt,
-                                            const Vec& relax, const Vec& hg_limit, Real* hgq,
-                                            V3<Vec> Q[4], Vec& hg_power) {
+                                            const Vec& relax, const Vec& hg_limit,
+                                            const Vec flow[6], Real* hgq, V3<Vec> Q[4],
+                                            Vec& hg_power) {
   [[maybe_unused]] Vec stored[12];
   if constexpr (FB) {
     // Flanagan–Belytschko: q_α = γ_α·v = 8 (av_α − L_{n+1} a_α) on x_{n+1}.
@@ -128,8 +129,9 @@ XPL_KERNEL_INLINE void hourglass_resultants(const V3<Vec> ax[8], const V3<Vec> a
     for (int k = 0; k < ENHANCED_STATE; ++k) old[k] = simd::load(hgq + k * W);
     V3<Vec> force[4];
     Vec power;
-    enhanced_step(ax, av, g[3], L, vol, inv_vol, mu, lanes.lambda, dt, PLASTIC ? &relax : nullptr,
-                  PLASTIC ? &hg_limit : nullptr, old, next, force, power);
+    enhanced_step<PLASTIC>(ax, av, g[3], L, vol, inv_vol, mu, lanes.lambda, dt,
+                           PLASTIC ? &relax : nullptr, PLASTIC ? &hg_limit : nullptr, flow, old,
+                           next, force, power);
     if constexpr (!FB) {
       for (int k = 0; k < ENHANCED_STATE; ++k) stored[k] = next[k];
       for (int m = 0; m < 4; ++m) Q[m] = force[m];
@@ -240,10 +242,9 @@ void Hex8rBlock::compute_batch(Index batch, const NodalColumns& c, Real dt, Real
   hex_kernel::jaumann_update(s, rate, lambda * tr, two_mu, dt, sn);
   // The elastic update is the trial state of the J2 return (its plastic work per lane, Pa).
   [[maybe_unused]] Vec dissipation = simd::splat(0.0);
-  // The enhanced resultants of a yielding lane relax with its stress, and stay within its
-  // flow stress (see hex8r.hpp).
-  [[maybe_unused]] Vec relax = simd::splat(1.0);
-  [[maybe_unused]] Vec hg_limit = simd::splat(std::numeric_limits<Real>::infinity());
+  // The enhanced resultants of a yielding lane relax with its stress, stay within its flow
+  // stress and take no strain along its flow (see hex8r.hpp).
+  [[maybe_unused]] PlasticHourglass yielding = elastic_hourglass();
   // No flow without an increment (dt = 0 at the start: an imported state stays as it is).
   if constexpr (PLASTIC) {
     if (dt > 0.0) {
@@ -252,12 +253,8 @@ void Hex8rBlock::compute_batch(Index batch, const NodalColumns& c, Real dt, Real
       } else {
         const Vec trial = deviator_norm2(sn);
         dissipation = plastic_return(batch, s, sn, dt);
-        const Vec returned = deviator_norm2(sn);
-        relax = return_factor(trial, returned);
-        // The flow stress: the static yield stress, or the (rate-raised) von Mises stress of
-        // a flowing lane.
         const Vec yield = simd::load(m_points.yield_row(static_cast<std::size_t>(batch) * W));
-        hg_limit = HOURGLASS_PLASTIC_AMPLITUDE * simd::max(yield, simd::sqrt(1.5 * returned));
+        yielding = plastic_hourglass(sn, trial, deviator_norm2(sn), yield);
       }
     }
   }
@@ -279,8 +276,9 @@ void Hex8rBlock::compute_batch(Index batch, const NodalColumns& c, Real dt, Real
                                simd::load(cst + HG_MU * W), simd::load(cst + HG_LAMBDA * W)};
     constexpr bool FB = PATH != HourglassPath::Enhanced;
     constexpr bool ENHANCED = PATH != HourglassPath::FlanaganBelytschko;
-    hourglass_resultants<PLASTIC, FB, ENHANCED>(ax, av, g, L, vol, inv_vol, lanes, dt, relax,
-                                                hg_limit, hgq, Q, hg_power);
+    hourglass_resultants<PLASTIC, FB, ENHANCED>(ax, av, g, L, vol, inv_vol, lanes, dt,
+                                                yielding.relax, yielding.limit, yielding.flow, hgq,
+                                                Q, hg_power);
   }
 
   Vec fnx[8], fny[8], fnz[8];

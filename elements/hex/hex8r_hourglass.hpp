@@ -7,6 +7,8 @@
 /// element: the stiffness form's resultants, or the enhanced form's frame stresses), and the
 /// hourglass power (W) whose integral is the artificial energy ALLAE.
 
+#include <limits>
+
 #include "elements/hex/hex8r_enhanced.hpp"
 #include "elements/parallel/simd.hpp"
 
@@ -30,6 +32,44 @@ inline simd::Vec return_factor(simd::Vec trial, simd::Vec returned) {
   const simd::Mask some = trial > 0.0;
   const simd::Vec ratio = returned / simd::max(trial, simd::splat(1e-300));
   return simd::select(some, simd::sqrt(simd::min(ratio, simd::splat(1.0))), simd::splat(1.0));
+}
+
+/// Amplitude of the linear hourglass stress that carries a section's fully plastic moment:
+/// σ_y t²/4 = (κ σ_y) t²/6 with κ = 3/2.
+inline constexpr Real HOURGLASS_PLASTIC_AMPLITUDE = 1.5;
+
+/// What the radial return of a lane's stress gives the enhanced stabilisation (hex8r.hpp).
+struct PlasticHourglass {
+  simd::Vec relax;    ///< |dev σ| / |dev σ_trial|: 1 where nothing yielded
+  simd::Vec limit;    ///< bound of the plane hourglass stresses, Pa (+inf: none)
+  simd::Vec flow[6];  ///< unit flow direction dev σ/|dev σ| (Voigt), 0 where nothing flowed
+};
+
+/// An elastic lane's: no relaxation, no bound, no flow.
+inline PlasticHourglass elastic_hourglass() {
+  PlasticHourglass h;
+  h.relax = simd::splat(1.0);
+  h.limit = simd::splat(std::numeric_limits<Real>::infinity());
+  for (simd::Vec& n : h.flow) n = simd::splat(0.0);
+  return h;
+}
+
+/// A plastic lane's, from the returned stress `sn` (Voigt, Pa), the squared deviator norms
+/// before (`trial`) and after (`returned`) the return and the static yield stress `yield` (Pa):
+/// the return factor, 3/2 of the flow stress (the static yield stress, or the rate-raised von
+/// Mises stress of a flowing lane; HOURGLASS_PLASTIC_AMPLITUDE) and the flow direction.
+inline PlasticHourglass plastic_hourglass(const simd::Vec sn[6], simd::Vec trial,
+                                          simd::Vec returned, simd::Vec yield) {
+  using simd::Vec;
+  PlasticHourglass h;
+  h.relax = return_factor(trial, returned);
+  h.limit = HOURGLASS_PLASTIC_AMPLITUDE * simd::max(yield, simd::sqrt(1.5 * returned));
+  const Vec p = (sn[0] + sn[1] + sn[2]) * (1.0 / 3.0);
+  const Vec inv = simd::select(
+      h.relax < 1.0, 1.0 / simd::sqrt(simd::max(returned, simd::splat(1e-300))), simd::splat(0.0));
+  for (int c = 0; c < 3; ++c) h.flow[c] = (sn[c] - p) * inv;
+  for (int c = 3; c < 6; ++c) h.flow[c] = sn[c] * inv;
+  return h;
 }
 
 /// One increment of the hourglass resultants of a batch.
@@ -63,10 +103,6 @@ inline void flanagan_belytschko_step(const V3<simd::Vec> ax[8], const V3<simd::V
   }
 }
 
-/// Amplitude of the linear hourglass stress that carries a section's fully plastic moment:
-/// σ_y t²/4 = (κ σ_y) t²/6 with κ = 3/2.
-inline constexpr Real HOURGLASS_PLASTIC_AMPLITUDE = 1.5;
-
 /// The plastic bound of the enhanced state `S` (ENHANCED_STATE values per lane, see
 /// hex8r_enhanced.hpp): each plane's von Mises stress, √(S_a² + S_b² − S_a S_b + 3 S_ab²), is
 /// scaled down to `limit` (Pa per lane; +inf: no bound) where it exceeds it; the ξηζ
@@ -93,18 +129,53 @@ inline void bound_enhanced(simd::Vec limit, const V3<simd::Vec>& d, simd::Vec v9
   for (int k = 9; k < 12; ++k) S[k] = f * S[k];
 }
 
+/// The hourglass strain rates `eps` (enhanced_strains()) of a lane whose centre flows, less
+/// their part along the centre's flow direction: `flow` the unit deviatoric direction
+/// dev σ/|dev σ| (Voigt 11 22 33 12 13 23, global; all zero in a lane that does not flow),
+/// `ratio` = λ̄/2μ (the plane-stress transverse strain −ratio (ε_a + ε_b) of each plane).
+/// Each plane's strain, completed by its transverse strain, loses (N:ε) N on the plane's
+/// components: the elastic–plastic tangent of J2 flow with a hardening modulus small next to
+/// μ, which a fully integrated element's points apply to the linear variation of the strain.
+inline void flow_projected(const EnhancedFrame<simd::Vec>& f, const simd::Vec* flow,
+                           simd::Vec ratio, const simd::Vec eps[9], simd::Vec out[9]) {
+  using simd::Vec;
+  // N in the element frame, n[i][j] = e_i·N·e_j.
+  Vec n[3][3];
+  for (int i = 0; i < 3; ++i) {
+    const V3<Vec>& e = f.e[i];
+    const V3<Vec> ne{flow[0] * e.x + flow[3] * e.y + flow[4] * e.z,
+                     flow[3] * e.x + flow[1] * e.y + flow[5] * e.z,
+                     flow[4] * e.x + flow[5] * e.y + flow[2] * e.z};
+    for (int j = 0; j < 3; ++j) n[i][j] = dot(f.e[j], ne);
+  }
+  // Planes ξ, η, ζ: in-plane axes (a, b) and normal c.
+  constexpr int axes[3][3] = {{1, 2, 0}, {0, 2, 1}, {0, 1, 2}};
+  for (int p = 0; p < 3; ++p) {
+    const int a = axes[p][0], b = axes[p][1], c = axes[p][2];
+    const Vec ea = eps[3 * p], eb = eps[3 * p + 1], g = eps[3 * p + 2];
+    const Vec ec = -ratio * (ea + eb);
+    const Vec along = n[a][a] * ea + n[b][b] * eb + n[a][b] * g + n[c][c] * ec;
+    out[3 * p] = ea - along * n[a][a];
+    out[3 * p + 1] = eb - along * n[b][b];
+    out[3 * p + 2] = g - 2.0 * along * n[a][b];
+  }
+}
+
 /// The enhanced stabilisation over one increment (hex8r_enhanced.hpp). Hourglass velocities
 /// q̂_α = av_α − L a_α on the mid-increment geometry (`L` the mid velocity gradient, 1/s; the
 /// mid modes a − ½dt av), so that a linear field gives exactly zero; the frame on the end
 /// geometry (`ax`, `g3` = ∂V/∂a3 there, `vol`, `inv_vol`). The state `old` (ENHANCED_STATE
 /// rows) advances to `next` with the moduli `mu` = κμ, `lambda_bar` = κλ̄ (Pa per lane), then
 /// is multiplied by `relax` and bounded by `limit` (bound_enhanced) unless these are null.
+/// PROJECT (a plastic batch): the strain increments lose their part along the centre's flow
+/// direction `flow` first (flow_projected(); 6 rows, 0 in a lane that does not flow).
 /// `force` receives the Flanagan–Belytschko resultants Q_α = R Q̂_α / 8 (N) the assembly
 /// applies, `power` the hourglass power with the mean stresses of the increment (W).
+template <bool PROJECT>
 inline void enhanced_step(const V3<simd::Vec> ax[8], const V3<simd::Vec> av[8],
                           const V3<simd::Vec>& g3, const simd::Vec L[3][3], simd::Vec vol,
                           simd::Vec inv_vol, simd::Vec mu, simd::Vec lambda_bar, Real dt,
-                          const simd::Vec* relax, const simd::Vec* limit,
+                          const simd::Vec* relax, const simd::Vec* limit, const simd::Vec* flow,
                           const simd::Vec old[ENHANCED_STATE], simd::Vec next[ENHANCED_STATE],
                           V3<simd::Vec> force[4], simd::Vec& power) {
   using simd::Vec;
@@ -122,7 +193,14 @@ inline void enhanced_step(const V3<simd::Vec> ax[8], const V3<simd::Vec> av[8],
   Vec eps[9], ds[9];
   enhanced_strains(f, u, eps);
   const Vec lb = lambda_bar * dt;
-  enhanced_stress_increment(eps, mu * (2.0 * dt) + lb, lb, mu * dt, ds);
+  if constexpr (PROJECT) {
+    // The hourglass strain along the centre's flow direction is plastic (0 where none flows).
+    Vec moved[9];
+    flow_projected(f, flow, lambda_bar / simd::max(2.0 * mu, simd::splat(1e-300)), eps, moved);
+    enhanced_stress_increment(moved, mu * (2.0 * dt) + lb, lb, mu * dt, ds);
+  } else {
+    enhanced_stress_increment(eps, mu * (2.0 * dt) + lb, lb, mu * dt, ds);
+  }
   for (int k = 0; k < 9; ++k) next[k] = old[k] + ds[k];
   const Vec v9 = vol * (1.0 / 9.0);
   const V3<Vec> k7 = enhanced_mode7_stiffness(f, v9 * mu);

@@ -106,6 +106,15 @@ TEST_CASE("default penalty stiffness", "[contact][penalty][stiffness]") {
         Approx(2.0 * 0.5 * 0.75e-3 / (dt * dt)).epsilon(1e-14));
   CHECK(contact::default_penalty_stiffness(0.0, 1.0, dt) == 0.0);
   CHECK(contact::default_penalty_stiffness(1.0, 1.0, 0.0) == 0.0);
+  // A rigid side does not move with the spring: m_eff is the other side's mass, whichever
+  // side is rigid (a rigid punch's light node on a heavy plate face is as stiff as the plate's
+  // node on the punch's face), and nothing moves between two rigid sides.
+  CHECK(contact::default_penalty_stiffness(1e-5, contact::RIGID_MASS, dt) ==
+        Approx(0.5 * 1e-5 / (dt * dt)).epsilon(1e-14));
+  CHECK(contact::default_penalty_stiffness(contact::RIGID_MASS, 4e-4, dt) ==
+        Approx(0.5 * 4e-4 / (dt * dt)).epsilon(1e-14));
+  CHECK(contact::default_penalty_stiffness(contact::RIGID_MASS, contact::RIGID_MASS, dt) == 0.0);
+  CHECK(contact::default_penalty_stiffness(contact::RIGID_MASS, 0.0, dt) == 0.0);
   const std::array<Real, 4> w{0.25, 0.25, 0.25, 0.25}, m{1, 2, 3, 6};
   CHECK(contact::mass_at_point(w, m) == Approx(3.0).epsilon(1e-15));
 }

@@ -1,6 +1,7 @@
 // The enhanced assumed-strain hourglass stabilisation of C3D8R (elements/hex/hex8r_enhanced.hpp,
 // issue 32): the patch test, rigid rotation of stored resultants, energy, forces as the
-// derivative of an energy, the plastic relaxation and bound (a hinge at M_p), and lanes of
+// derivative of an energy, the plastic relaxation and bound (a hinge at M_p), the flow
+// projection of a yielding element's hourglass strain, and lanes of
 // mixed forms in one batch. Bending against beam theory: test_hex8r_enhanced_bending.cpp.
 
 #include <catch2/catch.hpp>
@@ -15,6 +16,7 @@
 
 #include "elements/hex/hex8_geometry.hpp"
 #include "elements/hex/hex8r.hpp"
+#include "elements/hex/hex8r_hourglass.hpp"
 #include "hex_fixtures.hpp"
 
 using namespace xpl;
@@ -310,4 +312,50 @@ TEST_CASE("enhanced: a plastic hinge one element thick bends at the fully plasti
   CHECK(first_slope == Approx(E * inertia).epsilon(0.01));
   CHECK(moment == Approx(m_plastic).epsilon(0.03));
   CHECK(artificial == Approx(work).epsilon(0.01));
+}
+
+TEST_CASE("enhanced: a yielding element's hourglass strain along its flow loads no stress",
+          "[elements][hex8r][enhanced][plastic]") {
+  // flow_projected() in a frame turned about z by 30°: the flow of uniaxial compression along
+  // z, N = (−1, −1, 2)/√6 (a diagonal tensor, so the same in the turned frame).
+  using simd::Vec;
+  EnhancedFrame<Vec> f;
+  const Real c = std::cos(0.5236), s = std::sin(0.5236);
+  f.e[0] = {simd::splat(c), simd::splat(s), simd::splat(0.0)};
+  f.e[1] = {simd::splat(-s), simd::splat(c), simd::splat(0.0)};
+  f.e[2] = {simd::splat(0.0), simd::splat(0.0), simd::splat(1.0)};
+  for (Vec& ci : f.c) ci = simd::splat(100.0);
+  const Real r6 = 1.0 / std::sqrt(6.0);
+  const Vec flow[6] = {simd::splat(-r6), simd::splat(-r6), simd::splat(2.0 * r6),
+                       simd::splat(0.0), simd::splat(0.0), simd::splat(0.0)};
+  const Vec zero[6] = {simd::splat(0.0), simd::splat(0.0), simd::splat(0.0),
+                       simd::splat(0.0), simd::splat(0.0), simd::splat(0.0)};
+  const Real ratio = 0.3 / 0.7;  // λ̄/2μ = ν/(1 − ν)
+  // Plane η (axes 1, 3; transverse 2): a strain coaxial with the flow, ε11 = −1, ε33 = 2
+  // (transverse −ratio·1); plane ζ (axes 1, 2): a shear γ12, orthogonal to N; plane ξ (axes
+  // 2, 3): ε22 = ε33 = 1 (transverse ε11 = −2 ratio).
+  Vec eps[9] = {simd::splat(1.0),  simd::splat(1.0), simd::splat(0.0),
+                simd::splat(-1.0), simd::splat(2.0), simd::splat(0.0),
+                simd::splat(0.0),  simd::splat(0.0), simd::splat(3.0)};
+  Vec out[9];
+  flow_projected(f, zero, simd::splat(ratio), eps, out);
+  for (int k = 0; k < 9; ++k) CHECK(out[k][0] == eps[k][0]);  // nothing flows: unchanged
+  flow_projected(f, flow, simd::splat(ratio), eps, out);
+  // ζ: the shear is orthogonal to the flow and stays.
+  CHECK(out[6][0] == Approx(0.0).margin(1e-14));
+  CHECK(out[7][0] == Approx(0.0).margin(1e-14));
+  CHECK(out[8][0] == Approx(3.0).epsilon(1e-14));
+  // η: N:ε = (1 + 4 + ratio)/√6 comes off along (N11, N33) = (−1, 2)/√6.
+  const Real along = (1.0 + 4.0 + ratio) * r6;
+  CHECK(out[3][0] == Approx(-1.0 + along * r6).epsilon(1e-13));
+  CHECK(out[4][0] == Approx(2.0 - 2.0 * along * r6).epsilon(1e-13));
+  CHECK(out[5][0] == Approx(0.0).margin(1e-14));
+  // The rest of the coaxial strain, completed by its transverse strain, is nearly
+  // orthogonal to N (exactly but for the transverse strain's own change).
+  const Real a = out[3][0], b = out[4][0];
+  CHECK(std::abs(-a + 2.0 * b + ratio * (a + b)) * r6 < 0.25 * along);
+  // ξ: N:ε = (−1 + 2 + 2 ratio)/√6 comes off along (N22, N33) = (−1, 2)/√6.
+  const Real along_xi = (1.0 + 2.0 * ratio) * r6;
+  CHECK(out[0][0] == Approx(1.0 + along_xi * r6).epsilon(1e-13));
+  CHECK(out[1][0] == Approx(1.0 - 2.0 * along_xi * r6).epsilon(1e-13));
 }
