@@ -17,6 +17,10 @@
 
 namespace xpl::io {
 
+void ImportedState::add_note(std::string text) {
+  notes.push_back(std::move(text));
+}
+
 namespace {
 
 using h5::has_link;
@@ -28,13 +32,6 @@ const char* const SAME_MESH =
     "element types, connectivity and reference coordinates)";
 /// What every defect of the file's structure expects.
 const char* const XPL_FILE = "expected the .h5 result file of an earlier xpl run";
-
-/// Adds a note for the .msg. Out of line on purpose: GCC 12 inlining a string literal's
-/// std::string into vector::push_back warns -Warray-bounds inside the string's move (a false
-/// positive) when the file is built with the precompiled header, which stopped CI's -Werror.
-[[gnu::noinline]] void add_note(ImportedState& state, std::string text) {
-  state.notes.push_back(std::move(text));
-}
 
 /// Relative tolerance on the reference coordinates, times the model size.
 constexpr Real COORDINATE_TOLERANCE = 1e-9;
@@ -299,12 +296,9 @@ void read_nodal_state(const Frame& frame, const std::vector<Index>& node_of_row,
     state.angular_velocity = read_nodal(file, frame.path, "VR", node_of_row, model);
   }
   const bool shells = model.has_shells();
-  if (shells && !frame.has("UR")) {
-    add_note(state, "no UR in the last frame: rotations start at 0");
-  }
-  if (shells && !frame.has("VR")) {
-    add_note(state, "no VR in the last frame: angular velocities start at 0");
-  }
+  if (shells && !frame.has("UR")) state.add_note("no UR in the last frame: rotations start at 0");
+  if (shells && !frame.has("VR"))
+    state.add_note("no VR in the last frame: angular velocities start at 0");
 }
 
 /// S, and the shells' S_SNEG and S_SPOS, of the frame.
@@ -315,7 +309,7 @@ void read_stresses(const Frame& frame, const std::vector<Index>& element_of_row,
   if (frame.has("S")) {
     state.stress = read_cells(frame.file, frame.path + "/S", element_of_row, model, all_rows);
   } else if (model.element_count() > 0) {
-    add_note(state, "no S in the last frame: the elements start unstressed");
+    state.add_note("no S in the last frame: the elements start unstressed");
   }
   if (frame.has("S_SNEG") && frame.has("S_SPOS")) {
     state.stress_bottom =
@@ -323,9 +317,9 @@ void read_stresses(const Frame& frame, const std::vector<Index>& element_of_row,
     state.stress_top =
         read_cells(frame.file, frame.path + "/S_SPOS", element_of_row, model, shell_rows);
   } else if (model.has_shells() && frame.has("S")) {
-    add_note(state,
-             "no S_SNEG/S_SPOS in the last frame: the shells take the middle stress S through the "
-             "whole thickness (no bending stress)");
+    state.add_note(
+        "no S_SNEG/S_SPOS in the last frame: the shells take the middle stress S through the "
+        "whole thickness (no bending stress)");
   }
 }
 
@@ -344,7 +338,7 @@ void read_plastic_strains(const Frame& frame, const std::vector<Index>& element_
               frame.path + "/PEEQ is negative at element " + std::to_string(model.element_ids[e]),
               "expected equivalent plastic strains >= 0");
     } else {
-      add_note(state, "no PEEQ in the last frame: the plastic strains start at 0");
+      state.add_note("no PEEQ in the last frame: the plastic strains start at 0");
     }
   }
   if (!model.has_plastic_shells()) return;
@@ -362,9 +356,9 @@ void read_plastic_strains(const Frame& frame, const std::vector<Index>& element_
   } else if (!state.peeq.empty()) {
     // A frame of another writer: the largest PEEQ through the thickness, everywhere in it.
     for (std::vector<Real>* field : fields) *field = state.peeq;
-    add_note(state,
-             "no PEEQ_SNEG/PEEQ_SMID/PEEQ_SPOS in the last frame: the shells take their largest "
-             "PEEQ through the whole thickness");
+    state.add_note(
+        "no PEEQ_SNEG/PEEQ_SMID/PEEQ_SPOS in the last frame: the shells take their largest "
+        "PEEQ through the whole thickness");
   }
 }
 
@@ -383,7 +377,7 @@ void read_hourglass_and_thickness(const Frame& frame, const std::vector<Index>& 
     state.hourglass_state = read_cells(frame.file, frame.path + "/HGSTATE", element_of_row, model,
                                        all_rows, FrameFields::HOURGLASS_WIDTH);
   } else if (hourglass_elements && frame.has("S")) {
-    add_note(state, "no HGSTATE in the last frame: the hourglass forces start at zero");
+    state.add_note("no HGSTATE in the last frame: the hourglass forces start at zero");
   }
   if (shells && frame.has("STH")) {
     state.shell_thickness =
@@ -394,7 +388,7 @@ void read_hourglass_and_thickness(const Frame& frame, const std::vector<Index>& 
             frame.path + "/STH is not positive at element " + std::to_string(model.element_ids[e]),
             "expected shell thicknesses > 0");
   } else if (shells && frame.has("S")) {
-    add_note(state, "no STH in the last frame: the shells start at their section thickness");
+    state.add_note("no STH in the last frame: the shells start at their section thickness");
   }
 }
 
@@ -427,10 +421,9 @@ ImportedState read_file(hid_t file, const Model& model) {
   read_plastic_strains(frame, element_of_row, model, state);
   read_hourglass_and_thickness(frame, element_of_row, model, state);
   const std::string status = h5::string_attribute(file, "/", "status").value_or("");
-  if (!status.empty() && status != "completed" && status != "checked") {
-    add_note(state, "the earlier run's status is '" + status +
-                        "', not 'completed': its last frame is imported as it is");
-  }
+  if (!status.empty() && status != "completed" && status != "checked")
+    state.add_note("the earlier run's status is '" + status +
+                   "', not 'completed': its last frame is imported as it is");
   return state;
 }
 

@@ -1,0 +1,51 @@
+// The distributed run's exchanges in a build without MPI (XPL_MPI=OFF): one rank, nothing to
+// exchange; each collective returns what this rank holds.
+#include "solver/distributed_run.hpp"
+
+namespace xpl {
+
+#if !XPL_HAVE_MPI
+
+int DistributedRun::world_rank() {
+  return 0;
+}
+
+int DistributedRun::world_size() {
+  return 1;
+}
+
+int DistributedRun::world_max(int value) {
+  return value;
+}
+
+void DistributedRun::broadcast(std::vector<int>&) const {}
+void DistributedRun::post_receives(int) {}
+void DistributedRun::send() {}
+const std::vector<std::vector<Real>>& DistributedRun::receive() {
+  return m_receive;
+}
+std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::vector<int>& counts,
+                                            bool) const {
+  counts.assign(1, static_cast<int>(mine.size()));
+  return mine;
+}
+void DistributedRun::gather_to_root(NodalVectors&) const {}
+void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
+  out = rows;
+}
+void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
+void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
+void DistributedRun::share_chunks(std::vector<Real>&, int, int) const {}
+void DistributedRun::share_rows(const std::vector<Index>& nodes,
+                                const std::vector<const NodalVectors*>& from,
+                                const std::vector<NodalVectors*>& to) const {
+  for (std::size_t k = 0; k < from.size(); ++k)
+    for (const Index n : nodes) to[k]->row(n) = from[k]->row(n);
+}
+int DistributedRun::max(int value) const {
+  return value;
+}
+
+#endif
+
+}  // namespace xpl
