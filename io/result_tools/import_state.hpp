@@ -25,9 +25,9 @@ struct ImportedState : InitialState {
   long increment = 0;  ///< total increment count of the frame
   /// What was missing or assumed, one sentence each, for the .msg file.
   std::vector<std::string> notes;
-  /// Adds a note. Defined in import_state.cpp: GCC 12 inlining a literal's std::string into
+  /// Adds a note. Never inlined: GCC 12 inlining a literal's std::string into
   /// push_back warned -Warray-bounds under the precompiled header (a false positive).
-  void add_note(std::string text);
+  [[gnu::noinline]] void add_note(std::string text);
 };
 
 /// Reads the last frame (the highest /frames/NNNNNN) of the xpl result file `h5`, opened
