@@ -40,7 +40,7 @@ class Hex8Block : public Hex8Base {
   static constexpr const char* SETUP_NOTE =
       "; 2x2x2 points, mean dilatation (selectively reduced), no hourglass control";
   /// The totals the batch energies add into, in their order in the batch.
-  static constexpr Real HexStepTotals::* ENERGY_TOTALS[] = {
+  static constexpr Real HexStepTotals::*ENERGY_TOTALS[] = {
       &HexStepTotals::strain_energy_increment, &HexStepTotals::viscous_energy_increment,
       &HexStepTotals::plastic_energy_increment};
   /// `element_index`: model index of each element; `connectivity`: 8 node indices per element

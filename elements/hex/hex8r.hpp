@@ -78,7 +78,7 @@ class Hex8rBlock : public Hex8rBase {
   /// What the setup message says after the element and colour counts.
   static constexpr const char* SETUP_NOTE = " (race-free parallel assembly)";
   /// The totals the batch energies add into, in their order in the batch.
-  static constexpr Real HexStepTotals::* ENERGY_TOTALS[] = {
+  static constexpr Real HexStepTotals::*ENERGY_TOTALS[] = {
       &HexStepTotals::strain_energy_increment, &HexStepTotals::hourglass_energy_increment,
       &HexStepTotals::viscous_energy_increment, &HexStepTotals::plastic_energy_increment};
   /// `element_index`: model index of each element; `connectivity`: 8 node indices per
