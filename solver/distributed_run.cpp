@@ -236,6 +236,16 @@ std::vector<Real> pack_rows(const NodalVectors& rows, const std::vector<Index>& 
   return packed;
 }
 
+/// The inverse of pack_rows over every rank: `all` holds each rank's owned rows in rank order
+/// (`part[r].owned`), written into `rows`.
+void unpack_owned_rows(const std::vector<Real>& all, const std::vector<partition::PartPlan>& part,
+                       NodalVectors& rows) {
+  std::size_t k = 0;
+  for (const auto& rank : part)
+    for (const Index n : rank.owned)
+      for (int c = 0; c < 3; ++c) rows(n, c) = all[k++];
+}
+
 /// Receive counts and displacements of a gather of `width` values per item of every rank
 /// (`items(r)`: rank r's items), in rank order; `total` is their sum.
 struct GatherLayout {
@@ -266,11 +276,7 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
   MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
                g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
   wait(gathered);
-  if (m_rank != 0) return;
-  std::size_t k = 0;
-  for (int r = 0; r < m_size; ++r)
-    for (const Index n : m_plan.part[r].owned)
-      for (int c = 0; c < 3; ++c) rows(n, c) = all[k++];
+  if (m_rank == 0) unpack_owned_rows(all, m_plan.part, rows);
 }
 
 void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
@@ -284,10 +290,7 @@ void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out)
                   g.counts.data(), g.displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
   wait(gathered);
   out.resize(rows.rows(), 3);
-  std::size_t k = 0;
-  for (int r = 0; r < m_size; ++r)
-    for (const Index n : m_plan.part[r].owned)
-      for (int c = 0; c < 3; ++c) out(n, c) = all[k++];
+  unpack_owned_rows(all, m_plan.part, out);
 }
 
 void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
