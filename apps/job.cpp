@@ -109,6 +109,16 @@ bool read_import(const JobArguments& args, Model& model, InitialState& initial) 
   return true;
 }
 
+/// A failure of this rank of a distributed run alone (its files, its memory): the solver's own
+/// stops (SolverError) come from reduced values and reach every rank together, but the other
+/// ranks would wait for this one in their next collective for ever, so the job ends here on
+/// every rank. Every rank says why: the others' std::cerr is silenced.
+void end_every_rank(int rank, const std::string& cause) {
+  std::fprintf(stderr, "xpl: error on rank %d: %s; ending the run on every rank\n", rank,
+               escape_control(cause).c_str());
+  DistributedRun::abort_world(EXIT_INTERNAL);
+}
+
 int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop_signal) {
   const auto stopped = [&] { return stop_signal != nullptr ? int(*stop_signal) : 0; };
   Model model;
@@ -221,6 +231,10 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
   } catch (const std::exception& e) {
     const std::string cause = cause_of(e);
     if (files) files->fail(cause);
+    if (args.distributed) {
+      files.reset();  // closed before MPI_Abort, which runs no destructor
+      end_every_rank(args.rank, cause);
+    }
     std::cerr << "xpl: error: " << escape_control(cause) << "\n";
     return EXIT_INTERNAL;
   }
@@ -241,11 +255,13 @@ int run_job(const JobArguments& args, volatile std::sig_atomic_t* stop_signal) n
     return run_job_unguarded(args, stop_signal);
   } catch (const std::exception& e) {
     try {
+      if (args.distributed) end_every_rank(args.rank, cause_of(e));
       std::cerr << "xpl: error: " << escape_control(cause_of(e)) << "\n";
     } catch (...) {
     }
   } catch (...) {
     try {
+      if (args.distributed) end_every_rank(args.rank, "an unknown internal error");
       std::cerr << "xpl: error: an unknown internal error\n";
     } catch (...) {
     }

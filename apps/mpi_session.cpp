@@ -4,6 +4,7 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <thread>
 #endif
 
@@ -11,7 +12,25 @@ namespace xpl::apps {
 
 #if XPL_HAVE_MPI
 
+namespace {
+
+/// Whether a launcher started this process as a rank: mpirun/mpiexec of OpenMPI (and its
+/// PMIx), MPICH's Hydra (PMI) or srun set one of these.
+bool launched_as_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "PMI_FD"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
+
+}  // namespace
+
 MpiSession::MpiSession(int* argc, char*** argv) {
+  // Started without a launcher: one rank, exactly as without MPI. A singleton MPI_Init would
+  // cost 0.4-0.5 s of start-up per run here and start OpenMPI's PMIx server, whose shared
+  // state a killed run can leave behind (CI saw every later singleton fail with PMIx
+  // "OUT-OF-RESOURCE" after a timed-out mpirun).
+  if (!launched_as_rank()) return;
+  m_initialized = true;
   int provided = 0;
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
@@ -19,7 +38,7 @@ MpiSession::MpiSession(int* argc, char*** argv) {
 }
 
 MpiSession::~MpiSession() {
-  MPI_Finalize();
+  if (m_initialized) MPI_Finalize();
 }
 
 int MpiSession::share_exit_code(int code) const {

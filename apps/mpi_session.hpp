@@ -1,18 +1,19 @@
 #pragma once
-/// \file MPI for `mpirun -np N xpl run` (XPL_MPI=ON, issue 37 item 1). Without XPL_MPI the
-/// session is one rank of one and does nothing.
+/// \file MPI for `mpirun -np N xpl run` (XPL_MPI=ON, issue 37 item 1). Without XPL_MPI, or
+/// started without a launcher (no mpirun, mpiexec or srun), the session is one rank of one,
+/// does nothing and MPI is never initialised.
 ///
-/// For now the model is not distributed: rank 0 runs the whole job (the result files are
-/// its own, exactly as without MPI) and reports the partition it would use for N ranks in
-/// the .msg; ranks 1 .. N − 1 read nothing, write nothing and wait for rank 0's exit code,
-/// asleep (they poll a non-blocking broadcast every few milliseconds instead of spinning in a
-/// blocking one, so that an oversubscribed rank 0 keeps its core).
+/// `xpl run` on N > 1 ranks runs distributed (apps/job.hpp, solver/distributed_run.hpp); other
+/// commands run on rank 0 while ranks 1 .. N − 1 wait for its exit code, asleep (they poll a
+/// non-blocking broadcast every few milliseconds instead of spinning in a blocking one, so
+/// that an oversubscribed rank 0 keeps its core).
 
 #include <string>
 
 namespace xpl::apps {
 
-/// MPI_Init_thread (funneled: only the main thread calls MPI) to MPI_Finalize.
+/// MPI_Init_thread (funneled: only the main thread calls MPI) to MPI_Finalize, when a launcher
+/// started the process.
 class MpiSession {
  public:
   MpiSession(int* argc, char*** argv);
@@ -33,6 +34,7 @@ class MpiSession {
  private:
   int m_rank = 0;
   int m_size = 1;
+  bool m_initialized = false;
 };
 
 }  // namespace xpl::apps

@@ -61,6 +61,10 @@ int DistributedRun::world_max(int value) {
   MPI_Allreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   return result;
 }
+
+void DistributedRun::abort_world(int code) {
+  if (world_size() > 1) MPI_Abort(MPI_COMM_WORLD, code);
+}
 #else
 struct DistributedRun::Requests {};  // the one-rank functions: distributed_run_one_rank.cpp
 #endif

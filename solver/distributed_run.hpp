@@ -51,6 +51,10 @@ class DistributedRun {
 
   /// The largest `value` of the ranks of MPI_COMM_WORLD (collective; `value` without MPI).
   static int world_max(int value);
+  /// Ends every rank of MPI_COMM_WORLD with exit code `code` (MPI_Abort): for a failure of this
+  /// rank alone, which the others would wait for in their next collective. Returns only when
+  /// there is no other rank to end.
+  static void abort_world(int code);
 
   DistributedRun();
   ~DistributedRun();
