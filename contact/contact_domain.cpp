@@ -109,6 +109,20 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
     m_face_depth[f] = DEPTH_LIMIT_FRACTION * std::sqrt(d.dot(d));
   }
 
+  // The surface's hex faces that share an edge: each is the other's face across it.
+  m_face_across.assign(m_faces.size(), {NO_INDEX, NO_INDEX, NO_INDEX, NO_INDEX});
+  std::map<std::pair<Index, Index>, std::vector<std::pair<Index, int>>> edge_faces;
+  for (Index f = 0; f < n_faces; ++f)
+    for (int k = 0; k < 4 && !m_faces[f].shell; ++k) {
+      const Index a = m_faces[f].nodes[k], b = m_faces[f].nodes[(k + 1) % 4];
+      edge_faces[{std::min(a, b), std::max(a, b)}].emplace_back(f, k);
+    }
+  for (const auto& [edge, list] : edge_faces)
+    if (list.size() == 2) {
+      m_face_across[list[0].first][list[0].second] = list[1].first;
+      m_face_across[list[1].first][list[1].second] = list[0].first;
+    }
+
   // Slave node masks: the surfaces of the faces around the node. A node is rigid when it
   // belongs to a rigid face, double sided when all its faces are shell sides.
   const Index n_slave = m_slaves.size();

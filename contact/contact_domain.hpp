@@ -20,6 +20,7 @@
 /// partner's nodes. Where the meshes match both views hold a touch and the contact is twice
 /// as stiff, within the node budget of the engine. Two rigid bodies never touch.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -97,6 +98,10 @@ class ContactDomain {
   /// How deep (m) a node may be below face f and still be taken as touching it: half the
   /// element's depth behind a solid face, half the thickness of a shell (the mid-surface).
   Real face_depth(Index f) const { return m_face_depth[f]; }
+  /// The hex face of the domain across hex face f's edge `edge` (from corner `edge` to corner
+  /// `edge` + 1): the one other hex face with both of the edge's nodes, the surface's next face
+  /// there; NO_INDEX when there is none or more than one, or f is a shell face.
+  Index face_across(Index f, int edge) const { return m_face_across[f][edge]; }
   std::span<const Real> face_depths() const { return m_face_depth; }
 
   /// Weight of the touch of slave slot s on face f: 0 when they may not touch, ½ for a view
@@ -128,6 +133,7 @@ class ContactDomain {
   std::vector<ContactFace> m_faces;
   std::vector<char> m_face_rigid;
   std::vector<Real> m_face_depth;
+  std::vector<std::array<Index, 4>> m_face_across;
   SlaveNodes m_slaves;
   std::vector<std::uint64_t> m_slave_mask;
   std::vector<char> m_slave_rigid;

@@ -194,6 +194,12 @@ class ContactEngine {
   bool admissible(const SlaveView& v, Index f, const NodalVectors& position,
                   std::span<const Real> node_thickness, SlaveTouch& out, Real& distance,
                   Real nearer_than = std::numeric_limits<Real>::infinity()) const;
+  /// Whether `point`, whose closest point on hex face f is `cp` beside f's edge or corner
+  /// (`lateral` beyond it, m), is
+  /// not f's to touch there: the surface goes on flat into its next face (which takes the
+  /// point), or turns away convex and the point is outside the body in front of the next face.
+  bool beside_next_face(Index f, const ClosestPoint& cp, const Vec3& point, Real lateral,
+                        const NodalVectors& position, std::span<const Real> node_thickness) const;
 
   ContactDomain m_domain;
   std::vector<InteractionLaw> m_laws;

@@ -71,6 +71,15 @@ inline constexpr Real FALLBACK_MARGIN = 1e-3;
 /// face tilted by a fold of a few tens of degrees still is.
 inline constexpr Real OPPOSING_COSINE = 0.2;
 
+/// Sine of the angle by which a solid surface must turn up in front of a face at its edge to
+/// count as a concave corner there (≈0.6°): a flat or convex edge hands a node beside it to
+/// the next face (contact_search.cpp, admissible()); a mesh that is flat to round-off is flat.
+inline constexpr Real CONCAVE_EDGE_SINE = 0.01;
+
+/// How far in front of the next face's plane, as a fraction of the depth of the element behind a
+/// face, a node beside the face's convex edge is outside the body rather than at the edge.
+inline constexpr Real OUTSIDE_EDGE_FRACTION = 0.05;
+
 /// Contact area (m², model units) of a node of a node-based surface (SPEC C13) whose `*SURFACE,
 /// TYPE=NODE` data line gives none: 1, the unit area Abaqus takes for a blank area field. It
 /// enters only what needs an area (a LINEAR pressure–overclosure slope, the CPRESS output);
