@@ -1,7 +1,9 @@
 #include "contact/closest_point.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace xpl::contact {
@@ -19,6 +21,9 @@ constexpr Real NEWTON_STEP_TOLERANCE = 1e-13;
 constexpr Real STRONG_WARP = 0.02;
 /// Safety factor of the convexity test (convex_on_square) against rounding.
 constexpr Real CONVEX_MARGIN = 2.0;
+/// Relative slack of convex_on_square_sharp against rounding (its terms are sums of a few
+/// products, each rounded to about 1e-16 of the largest).
+constexpr Real CONVEX_SLACK = 1e-9;
 /// A boundary point is the minimum over the face only when the distance grows into the face
 /// by more than this times |x_ξ| (|x_ξ| + |x_η|) per unit of ξ (and the same in η), so that
 /// rounding cannot decide it.
@@ -41,9 +46,21 @@ struct Bilinear {
   Vec3 at(Real xi, Real eta) const { return a0 + xi * a1 + eta * a2 + (xi * eta) * a3; }
 };
 
+/// Whether a and b are the same double, bit for bit (−0 and +0 differ).
+bool same_bits(Real a, Real b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
 /// Stationary point of |x(ξ, η) − p|² strictly inside the square, if Newton started at
 /// (xi, eta) finds one.
+///
+/// An iterate is a function of the one before alone; when one repeats the iterate two steps
+/// back bit for bit (the projection bouncing between two points on the boundary, a third of
+/// the capped runs on a folding tube), the iteration cycles between them with the step just
+/// taken, which was not below the tolerance, and would end at the iteration cap without
+/// converging: it stops there at once, with the same answer.
 bool newton_interior(const Bilinear& q, const Vec3& p, Real& xi, Real& eta) {
+  Real before_xi = std::numeric_limits<Real>::quiet_NaN(), before_eta = before_xi;
   for (int it = 0; it < MAX_NEWTON_ITERATIONS; ++it) {
     const Vec3 r = q.at(xi, eta) - p;
     const Vec3 x_xi = q.a1 + eta * q.a3;
@@ -63,9 +80,13 @@ bool newton_interior(const Bilinear& q, const Vec3& p, Real& xi, Real& eta) {
     const Real new_xi = std::clamp(xi + d_xi, -1.0, 1.0);
     const Real new_eta = std::clamp(eta + d_eta, -1.0, 1.0);
     const Real step = std::max(std::abs(new_xi - xi), std::abs(new_eta - eta));
+    const Real last_xi = xi, last_eta = eta;
     xi = new_xi;
     eta = new_eta;
     if (step < NEWTON_STEP_TOLERANCE) return std::abs(xi) < 1.0 && std::abs(eta) < 1.0;
+    if (same_bits(xi, before_xi) && same_bits(eta, before_eta)) return false;
+    before_xi = last_xi;
+    before_eta = last_eta;
   }
   return false;
 }
@@ -85,6 +106,44 @@ bool convex_on_square(const Bilinear& q, const Vec3& p) {
   const Real sigma = std::abs((q.a0 - p).dot(q.a3)) + twist;
   const Real c = std::abs(q.a1.dot(q.a2)) + twist;
   return n_min * n_min > CONVEX_MARGIN * (2.0 * c * sigma + sigma * sigma);
+}
+
+/// The smallest of |a + t b|² over t ∈ [−1, 1] (m²), by its value at the ends and at the
+/// vertex of the parabola.
+Real min_square_on_segment(const Vec3& a, const Vec3& b) {
+  const Real bb = b.dot(b);
+  Real smallest = std::min((a - b).dot(a - b), (a + b).dot(a + b));
+  if (bb > 0.0) {
+    const Real t = std::clamp(-a.dot(b) / bb, -1.0, 1.0);
+    const Vec3 v = a + t * b;
+    smallest = std::min(smallest, v.dot(v));
+  }
+  return smallest;
+}
+
+/// A second, sharper test of the same property as convex_on_square: half the Hessian is
+/// [[h00(η), h01(ξ, η)], [h01, h11(ξ)]] with h00 = |a1 + η a3|², h11 = |a2 + ξ a3|² and
+/// h01 = x_ξ·x_η + s = a1·a2 + (a0 − p)·a3 + 2ξ a1·a3 + 2η a2·a3 + 2ξη a3·a3, bilinear, so
+/// its largest magnitude on the square is at a corner. min h00 · min h11 > max h01² makes the
+/// determinant positive everywhere. It holds on sheared or strongly twisted faces where the
+/// triangle inequalities of convex_on_square give up (a node a few millimetres from a face of
+/// a folding tube). The slack CONVEX_SLACK (relative) and the rounding allowance of h01 keep
+/// rounding from deciding it.
+bool convex_on_square_sharp(const Bilinear& q, const Vec3& p) {
+  const Real h00 = min_square_on_segment(q.a1, q.a3);
+  const Real h11 = min_square_on_segment(q.a2, q.a3);
+  if (!(h00 > 0.0) || !(h11 > 0.0)) return false;
+  const Real b0 = q.a1.dot(q.a2) + (q.a0 - p).dot(q.a3);
+  const Real b1 = 2.0 * q.a1.dot(q.a3), b2 = 2.0 * q.a2.dot(q.a3), b3 = 2.0 * q.a3.dot(q.a3);
+  Real h01 = 0.0;
+  for (int k = 0; k < 4; ++k)
+    h01 = std::max(h01, std::abs(b0 + CORNER_XI[k] * b1 + CORNER_ETA[k] * b2 +
+                                 CORNER_XI[k] * CORNER_ETA[k] * b3));
+  const Real len1 = length(q.a1), len2 = length(q.a2), len3 = length(q.a3);
+  const Real rounding =
+      CONVEX_SLACK * (len1 * len2 + length(q.a0 - p) * len3 + 2.0 * (len1 + len2 + len3) * len3);
+  const Real bound = h01 + rounding;
+  return (1.0 - CONVEX_SLACK) * h00 * h11 > bound * bound;
 }
 
 /// Closest point of segment a → b to p: parameter t ∈ [0, 1].
@@ -150,7 +209,7 @@ bool edge_point_is_minimum(const Bilinear& q, const Vec3& p, const ClosestPoint&
   // Moving into the face (−bound) raises the distance: bound · gradient < −margin.
   if (bound_xi != 0.0 && !(bound_xi * r.dot(x_xi) < -scale * len_xi)) return false;
   if (bound_eta != 0.0 && !(bound_eta * r.dot(x_eta) < -scale * len_eta)) return false;
-  return convex_on_square(q, p);
+  return convex_on_square(q, p) || convex_on_square_sharp(q, p);
 }
 
 }  // namespace
