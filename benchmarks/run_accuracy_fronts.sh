@@ -6,8 +6,8 @@
 # CASE.csv, CASE.png and fronts.md (the tables for benchmarks/RESULTS.md).
 # Takes about 8 minutes of CPU (three quarters of it CalculiX's); on the shared 2-core
 # machine under a load average of 20 that was 40 minutes of wall time.
-# The committed bar results are from CASES=bar_wall,bar_bar REPEAT=5 (the tables use the
-# fastest repeat), the others from REPEAT=1.
+# The committed results (2026-12-06) are from REPEAT=1, every case; those of 2026-12-02 (in
+# benchmarks/RESULTS.md) had the bar cases from REPEAT=5 (the tables use the fastest repeat).
 # Environment overrides: CASES (comma list, default all), REPEAT (runs per configuration,
 # 1), SKIP_BUILD=1 (use the existing build), XPL (binary, build/release/apps/xpl),
 # CCX (CalculiX binary; CCX=none: xpl only), WORK_DIR (build/accuracy),

@@ -30,6 +30,14 @@ Usage: check_energy_readable.py XPL REPO WORK_DIR
    |ETOTAL - ETOTAL(0)| < 1e-6 of ETOTAL(0) in both (2e-10 and 3e-13 measured; the twisted
    strip drifted 0.6 % here and 4.7 % over the benchmark's 4 ms, 60 times the bent one, while
    the shift of the conserved energy at the short last increment went unbooked).
+   Then the benchmark's own runs (issue 32 item 6: "the torsion strip drifts no more than the
+   bending strips"): torsion over 4 ms from the twist rate with the rotations (dof 4) and
+   without them, bending over 4 ms and over the benchmark's 60 ms. Each torsion drift is at
+   most the bending strips' level: the largest bending drift, or 1e-8 of ETOTAL(0) where that
+   is lower (the bending drift is round-off, 1e-12 to 7e-10, and the floor keeps the check
+   from comparing two round-offs; measured 2026-12-06: torsion 4.5e-11 with rotations, 2.2e-9
+   without, bending 9.8e-13 over 4 ms and 6.6e-10 over 60 ms; the issue's 2.2 % against
+   0.2 % was before ALLKD booked the shift of the conserved energy at a change of increment).
 """
 
 import pathlib
@@ -199,20 +207,32 @@ def strips(xpl, repo, work, failures):
     import strip_torsion
 
     drifts = {}
-    for mode in ("torsion", "bending"):
-        deck = work / f"strip_{mode}.inp"
-        text = strip_torsion.build(20, 4, mode, 1.03e-3, rotations=False)
+    # name: (mode, step length, rotations given with the twist rate)
+    runs = {"torsion": ("torsion", 1.03e-3, False), "bending": ("bending", 1.03e-3, False),
+            "torsion_4ms": ("torsion", 4.0e-3, True),
+            "torsion_4ms_u3": ("torsion", 4.0e-3, False),
+            "bending_4ms": ("bending", 4.0e-3, False), "bending_60ms": ("bending", 0.06, False)}
+    for name, (mode, period, rotations) in runs.items():
+        deck = work / f"strip_{name}.inp"
+        text = strip_torsion.build(20, 4, mode, period, rotations=rotations)
         deck.write_text(text.replace(
             "*END STEP", "*OUTPUT, HISTORY, TIME INTERVAL=1e-5\n*ENERGY OUTPUT\n*END STEP"))
-        r = run(xpl, deck, work / f"strip_{mode}")
+        r = run(xpl, deck, work / f"strip_{name}")
         if r.returncode != 0:
-            failures.append(f"strip {mode}: exit {r.returncode}: {r.stderr.strip()[-300:]}")
+            failures.append(f"strip {name}: exit {r.returncode}: {r.stderr.strip()[-300:]}")
             continue
-        total = energies(work / f"strip_{mode}" / f"strip_{mode}.h5")["ETOTAL"]
-        drifts[mode] = np.abs(total - total[0]).max() / abs(total[0])
-        print(f"strip {mode}: largest |ETOTAL drift| {drifts[mode]:.3g} of ETOTAL(0)")
-        if drifts[mode] > 1e-6:
-            failures.append(f"strip {mode}: ETOTAL drifts by {drifts[mode]:.3g} of ETOTAL(0)")
+        total = energies(work / f"strip_{name}" / f"strip_{name}.h5")["ETOTAL"]
+        drifts[name] = np.abs(total - total[0]).max() / abs(total[0])
+        print(f"strip {name}: largest |ETOTAL drift| {drifts[name]:.3g} of ETOTAL(0)")
+        if drifts[name] > 1e-6:
+            failures.append(f"strip {name}: ETOTAL drifts by {drifts[name]:.3g} of ETOTAL(0)")
+    bending = [d for n, d in drifts.items() if n.startswith("bending")]
+    if len(bending) == 3:
+        level = max(max(bending), 1e-8)
+        for name in ("torsion", "torsion_4ms", "torsion_4ms_u3"):
+            if name in drifts and drifts[name] > level:
+                failures.append(f"strip {name}: ETOTAL drifts by {drifts[name]:.3g} of ETOTAL(0), "
+                                f"more than the bending strips' level {level:.3g}")
 
 
 def main():
