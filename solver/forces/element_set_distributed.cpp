@@ -155,6 +155,11 @@ void ElementSet::distribute_blocks(std::index_sequence<I...>) {
 
 void ElementSet::distribute(DistributedRun& run) {
   m_run = &run;
+  // The global estimate on rank 0 alone (the whole blocks, gathered positions), its largest
+  // eigenvalue and product count broadcast.
+  m_global.set_distribution(run.rank() == 0, [&run](Real& lambda, int& products) {
+    run.broadcast_estimate(lambda, products);
+  });
   distribute_blocks(std::make_index_sequence<3>{});
   m_parts = 0;  // the force pass partitions the rank's blocks anew
   m_slot_parts = 0;
@@ -268,7 +273,7 @@ void ElementSet::combine_interface_forces() {
   }
 }
 
-void ElementSet::reduce_totals(ElementTotals& totals) {
+void ElementSet::post_totals() {
   // This rank's batch totals, kind after kind, batch after batch.
   std::vector<Real> mine;
   [&]<std::size_t... I>(std::index_sequence<I...>) {
@@ -300,7 +305,11 @@ void ElementSet::reduce_totals(ElementTotals& totals) {
         ...);
   }
   (std::make_index_sequence<3>{});
-  const std::vector<Real> all = m_run->allgather(mine, counts, true);
+  m_run->post_allgather(std::move(mine), counts);
+}
+
+void ElementSet::reduce_totals(ElementTotals& totals) {
+  const std::vector<Real>& all = m_run->wait_allgather();
   // Into the whole blocks at their batches, then the one-rank reduction of each.
   std::size_t at = 0;
   for (int r = 0; r < m_run->size(); ++r) [&]<std::size_t... I>(std::index_sequence<I...>) {
