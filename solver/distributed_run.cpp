@@ -85,8 +85,7 @@ int DistributedRun::world_size() {
 
 int DistributedRun::world_max(int value) {
   if (world_size() == 1) return value;
-  // Not MPI_Allreduce: the other ranks wait here while rank 0 opens its files, and OpenMPI's
-  // blocking collectives spin (wait_all()).
+  // Not the blocking MPI_Allreduce, which spins (wait_all()) while rank 0 opens its files.
   int result = value;
   MPI_Request request = MPI_REQUEST_NULL;
   MPI_Iallreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &request);
@@ -178,8 +177,7 @@ void DistributedRun::set_partition(const Model& model, std::vector<int> element_
 #if XPL_HAVE_MPI
 
 void DistributedRun::broadcast(std::vector<int>& values) const {
-  // Non-blocking, waited for without spinning (wait_all()): the other ranks wait here while
-  // rank 0 partitions.
+  // Non-blocking, waited for without spinning (wait_all()) while rank 0 partitions.
   int n = static_cast<int>(values.size());
   MPI_Request request = MPI_REQUEST_NULL;
   MPI_Ibcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
@@ -322,20 +320,6 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
   if (m_rank == 0) unpack_owned_rows(all, m_plan.part, rows);
 }
 
-void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
-  ExchangeTimer timer(m_seconds[GATHERS]);
-  const std::vector<Real> mine = pack_rows(rows, plan().owned);
-  const GatherLayout g = gather_layout(
-      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
-  std::vector<Real> all(g.total);
-  MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(),
-                  g.counts.data(), g.displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
-  wait(gathered);
-  out.resize(rows.rows(), 3);
-  unpack_owned_rows(all, m_plan.part, out);
-}
-
 void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
   if (rows.empty()) return;
   ExchangeTimer timer(m_seconds[GATHERS]);
@@ -398,17 +382,9 @@ void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
 }
 
 void DistributedRun::share_chunks(std::vector<Real>& values, int width, int blocks, int& largest,
-                                  std::vector<Real>& rows, std::vector<int>& row_counts,
+                                  std::vector<Real>& rows, std::vector<int>& counts,
                                   bool counts_known) const {
   const auto n_chunks = m_chunk_owner.size();
-  if (!counts_known) {
-    ExchangeTimer timer(m_seconds[GATHERS]);
-    const int n = static_cast<int>(rows.size());
-    row_counts.assign(static_cast<std::size_t>(m_size), 0);
-    MPI_Request request = MPI_REQUEST_NULL;
-    MPI_Iallgather(&n, 1, MPI_INT, row_counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
-    wait(request);
-  }
   // Each rank's chunks, its `largest` (an int, exact in a double), then its rows.
   std::vector<Real> mine;
   for (int b = 0; b < blocks; ++b)
@@ -419,32 +395,20 @@ void DistributedRun::share_chunks(std::vector<Real>& values, int width, int bloc
                     values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c + 1) * width));
   mine.push_back(static_cast<Real>(largest));
   mine.insert(mine.end(), rows.begin(), rows.end());
-  std::vector<int> counts(static_cast<std::size_t>(m_size), 1);
-  for (int r = 0; r < m_size; ++r) counts[r] += row_counts[r];
-  for (int b = 0; b < blocks; ++b)
-    for (std::size_t c = 0; c < n_chunks; ++c) counts[m_chunk_owner[c]] += width;
-  const std::vector<Real> all = allgather(mine, counts, true);
+  const std::vector<Real> all = allgather(mine, counts, counts_known);
   rows.clear();
   std::size_t at = 0;
   for (int r = 0; r < m_size; ++r) {
+    const std::size_t end = at + static_cast<std::size_t>(counts[r]);
     for (int b = 0; b < blocks; ++b)
       for (std::size_t c = 0; c < n_chunks; ++c)
         if (m_chunk_owner[c] == r)
           for (int k = 0; k < width; ++k) values[(b * n_chunks + c) * width + k] = all[at++];
     largest = std::max(largest, static_cast<int>(all[at++]));
     rows.insert(rows.end(), all.begin() + static_cast<std::ptrdiff_t>(at),
-                all.begin() + static_cast<std::ptrdiff_t>(at + row_counts[r]));
-    at += static_cast<std::size_t>(row_counts[r]);
+                all.begin() + static_cast<std::ptrdiff_t>(end));
+    at = end;
   }
-}
-
-int DistributedRun::max(int value) const {
-  ExchangeTimer timer(m_seconds[GATHERS]);
-  int result = value;
-  MPI_Request request = MPI_REQUEST_NULL;
-  MPI_Iallreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &request);
-  wait(request);
-  return result;
 }
 
 void DistributedRun::share_rows(const std::vector<Index>& nodes,

@@ -17,15 +17,16 @@
 ///   rank's per-batch values are gathered (MPI_Allgatherv) into the whole layout on every
 ///   rank and reduced there by the one-rank code, in batch order.
 /// - Global stable-increment estimate (Lanczos, at the start of a step and when the element
-///   estimate moves): the positions are gathered on every rank from their owners and every
-///   rank runs the one-rank estimate on the whole mesh.
+///   estimate moves): the positions are gathered to rank 0 from their owners, rank 0 runs the
+///   one-rank estimate on the whole mesh and broadcasts its largest eigenvalue.
 /// - Nodal sums (ALLKE, ALLKD, ALLWK): the one-rank code sums the nodes in chunks of
 ///   CentralDifference::NODE_CHUNK and adds the chunks in order. Each chunk is counted by one
 ///   rank (the one owning most of its nodes), which integrates every node of the chunk: the
 ///   nodes of the chunk its elements do not use get their finished force from their owner
 ///   each increment (ship_forces(), point to point), so its chunk sums are the one-rank
 ///   ones; the chunk sums are then gathered and added in chunk order. The prescribed DOFs'
-///   terms are gathered and folded in DOF order.
+///   terms are gathered with them (share_chunks()) and folded in DOF order. A rank's nodal
+///   passes visit only the nodes it moves (CentralDifference::set_distribution()).
 /// Output: rank 0 writes; before a frame or history row it gathers the owners' rows.
 
 #include <memory>
@@ -92,10 +93,11 @@ class DistributedRun {
   /// such arrays back to back, e.g. translations then rotations) of every chunk from the
   /// rank that counts it (MPI_Allgatherv). Two more values ride along (no collective of their
   /// own): `largest` (e.g. a stop signal): in, this rank's value; out, the largest of the
-  /// ranks'; `rows`: in, this rank's; out, every rank's in rank order, `row_counts` the number
-  /// of each rank's (found, one collective more, unless `counts_known`).
+  /// ranks'; `rows`: in, this rank's; out, every rank's in rank order. `counts`: the number of
+  /// values each rank sends (found, one collective more, unless `counts_known`: they change
+  /// only with the number of rows).
   void share_chunks(std::vector<Real>& values, int width, int blocks, int& largest,
-                    std::vector<Real>& rows, std::vector<int>& row_counts, bool counts_known) const;
+                    std::vector<Real>& rows, std::vector<int>& counts, bool counts_known) const;
 
   /// \name The force exchange of an increment: post_receives() before the element pass,
   /// then the send buffers filled (width values per slot, NeighbourExchange::send order) once
@@ -117,12 +119,8 @@ class DistributedRun {
   const std::vector<Real>& wait_allgather();
   /// The rows (n_nodes × 3) of the nodes each rank owns, from their owners to rank 0.
   void gather_to_root(NodalVectors& rows) const;
-  /// The same, onto every rank, from `rows` into `out`.
-  void allgather_rows(const NodalVectors& rows, NodalVectors& out) const;
   /// Element rows (`width` values per element) from each element's rank to rank 0.
   void gather_elements_to_root(std::vector<Real>& rows, int width) const;
-  /// The largest of the ranks' values.
-  int max(int value) const;
   /// The rows (n_nodes × 3 each) of `nodes` (the same list on every rank) from the rank that
   /// integrates each node (row_source())
   /// onto every rank, from `from[k]` into `to[k]` (MPI_Allgatherv; rows not listed are left

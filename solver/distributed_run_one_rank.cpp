@@ -39,9 +39,6 @@ const std::vector<Real>& DistributedRun::wait_allgather() {
   return m_posted_all;
 }
 void DistributedRun::gather_to_root(NodalVectors&) const {}
-void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
-  out = rows;
-}
 void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
 void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
 void DistributedRun::share_chunks(std::vector<Real>&, int, int, int&, std::vector<Real>&,
@@ -51,9 +48,6 @@ void DistributedRun::share_rows(const std::vector<Index>& nodes,
                                 const std::vector<NodalVectors*>& to) const {
   for (std::size_t k = 0; k < from.size(); ++k)
     for (const Index n : nodes) to[k]->row(n) = from[k]->row(n);
-}
-int DistributedRun::max(int value) const {
-  return value;
 }
 
 #endif

@@ -87,7 +87,7 @@ class CentralDifference {
   void set_distribution(ChunkShare share, std::vector<unsigned char> counted,
                         const std::vector<unsigned char>& integrated) {
     m_share_chunks = std::move(share);
-    m_motion.set_distribution(std::move(counted));
+    m_motion.set_distribution(std::move(counted), integrated);
     set_spans(integrated);
   }
   /// Nodes the nodal passes visit on this rank (all without a distribution).

@@ -171,6 +171,9 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
   KineticSums counted, kinetic;
   for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
     const PrescribedDof& d = m_prescribed[k];
+    // Distributed runs: a node this rank does not move is no one's business here (its
+    // counting rank has it: the counted nodes are moved).
+    if (rows != nullptr && !m_moved.empty() && m_moved[d.node] == 0) continue;
     const bool turn = d.component >= 3;
     const int c = d.component % 3;
     const NodalField& field = turn ? rotation : translation;

@@ -48,8 +48,12 @@ class PrescribedMotion {
   /// of the prescribed motion, f_before, f_now, v_old): prescribe() gives the rank's rows,
   /// finish() folds every rank's.
   static constexpr int FOLD_WIDTH = 9;
-  /// `counted`: 1 for the nodes whose DOFs this rank counts (exactly one rank counts each).
-  void set_distribution(std::vector<unsigned char> counted) { m_counted = std::move(counted); }
+  /// `counted`: 1 for the nodes whose DOFs this rank counts (exactly one rank counts each);
+  /// `moved`: 1 for the nodes this rank moves (prescribe() leaves the others' DOFs alone).
+  void set_distribution(std::vector<unsigned char> counted, std::vector<unsigned char> moved) {
+    m_counted = std::move(counted);
+    m_moved = std::move(moved);
+  }
   /// The prescribed DOFs of the step (those the nodal update drives).
   const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
 
@@ -130,6 +134,7 @@ class PrescribedMotion {
   /// Distributed runs: 1 for the nodes whose work and jumps this rank counts (set_counted()),
   /// empty: every node.
   std::vector<unsigned char> m_counted;
+  std::vector<unsigned char> m_moved;    ///< set_distribution(); empty: every node
   std::vector<Real> m_prescribed_value;  ///< current value of each prescribed DOF
   std::vector<Real> m_v_old_prescribed;  ///< v(n−½) at each prescribed DOF
   NodalVectors m_previous_moment;        ///< moment at prescribed rotations, previous inc.
