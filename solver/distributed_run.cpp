@@ -35,7 +35,35 @@ class ExchangeTimer {
 #if XPL_HAVE_MPI
 struct DistributedRun::Requests {
   std::vector<MPI_Request> receive, send;
+  MPI_Request gather = MPI_REQUEST_NULL;  ///< post_allgather()
 };
+
+namespace {
+
+constexpr int FORCE_TAG = 37;
+
+/// Waits for `n` requests. Not MPI_Waitall: OpenMPI spins in it, and on an oversubscribed or
+/// shared machine the spinning rank takes the core from the rank it waits for (2 ranks on 2
+/// loaded cores spent 70-85 % of the loop waiting). Tests for 50 us, then sleeps between
+/// tests, 10 us at first, doubling up to 200 us.
+void wait_all(int n, MPI_Request* requests) {
+  using namespace std::chrono_literals;
+  const auto start = std::chrono::steady_clock::now();
+  auto pause = 10us;
+  for (int done = 0;;) {
+    MPI_Testall(n, requests, &done, MPI_STATUSES_IGNORE);
+    if (done != 0) return;
+    if (std::chrono::steady_clock::now() - start < 50us) continue;
+    std::this_thread::sleep_for(pause);
+    pause = std::min<std::chrono::microseconds>(2 * pause, 200us);
+  }
+}
+
+void wait(MPI_Request& request) {
+  wait_all(1, &request);
+}
+
+}  // namespace
 
 int DistributedRun::world_rank() {
   int initialized = 0;
@@ -57,8 +85,11 @@ int DistributedRun::world_size() {
 
 int DistributedRun::world_max(int value) {
   if (world_size() == 1) return value;
+  // Not the blocking MPI_Allreduce, which spins (wait_all()) while rank 0 opens its files.
   int result = value;
-  MPI_Allreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &request);
+  wait(request);
   return result;
 }
 
@@ -145,38 +176,25 @@ void DistributedRun::set_partition(const Model& model, std::vector<int> element_
 
 #if XPL_HAVE_MPI
 
-namespace {
-
-constexpr int FORCE_TAG = 37;
-
-/// Waits for `n` requests. Not MPI_Waitall: OpenMPI spins in it, and on an oversubscribed or
-/// shared machine the spinning rank takes the core from the rank it waits for (2 ranks on 2
-/// loaded cores spent 70-85 % of the loop waiting). Tests for 50 us, then sleeps between
-/// tests, 10 us at first, doubling up to 200 us.
-void wait_all(int n, MPI_Request* requests) {
-  using namespace std::chrono_literals;
-  const auto start = std::chrono::steady_clock::now();
-  auto pause = 10us;
-  for (int done = 0;;) {
-    MPI_Testall(n, requests, &done, MPI_STATUSES_IGNORE);
-    if (done != 0) return;
-    if (std::chrono::steady_clock::now() - start < 50us) continue;
-    std::this_thread::sleep_for(pause);
-    pause = std::min<std::chrono::microseconds>(2 * pause, 200us);
-  }
-}
-
-void wait(MPI_Request& request) {
-  wait_all(1, &request);
-}
-
-}  // namespace
-
 void DistributedRun::broadcast(std::vector<int>& values) const {
+  // Non-blocking, waited for without spinning (wait_all()) while rank 0 partitions.
   int n = static_cast<int>(values.size());
-  MPI_Bcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ibcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  wait(request);
   values.resize(static_cast<std::size_t>(n));
-  MPI_Bcast(values.data(), n, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Ibcast(values.data(), n, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  wait(request);
+}
+
+void DistributedRun::broadcast_estimate(Real& value, int& count) const {
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  Real both[2] = {value, static_cast<Real>(count)};  // an int is exact in a double
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ibcast(both, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD, &request);
+  wait(request);
+  value = both[0];
+  count = static_cast<int>(both[1]);
 }
 
 void DistributedRun::post_receives(int width) {
@@ -227,6 +245,25 @@ std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::
                   MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
   wait(gathered);
   return all;
+}
+
+void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<int>& counts) {
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  m_posted_mine = std::move(mine);
+  m_posted_counts = counts;
+  m_posted_displacement.assign(static_cast<std::size_t>(m_size), 0);
+  for (int r = 1; r < m_size; ++r)
+    m_posted_displacement[r] = m_posted_displacement[r - 1] + m_posted_counts[r - 1];
+  m_posted_all.resize(static_cast<std::size_t>(m_posted_displacement.back() + counts.back()));
+  MPI_Iallgatherv(m_posted_mine.data(), static_cast<int>(m_posted_mine.size()), MPI_DOUBLE,
+                  m_posted_all.data(), m_posted_counts.data(), m_posted_displacement.data(),
+                  MPI_DOUBLE, MPI_COMM_WORLD, &m_requests->gather);
+}
+
+const std::vector<Real>& DistributedRun::wait_allgather() {
+  ExchangeTimer timer(m_seconds[GATHERS]);
+  wait(m_requests->gather);
+  return m_posted_all;
 }
 
 namespace {
@@ -281,20 +318,6 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
                g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
   wait(gathered);
   if (m_rank == 0) unpack_owned_rows(all, m_plan.part, rows);
-}
-
-void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
-  ExchangeTimer timer(m_seconds[GATHERS]);
-  const std::vector<Real> mine = pack_rows(rows, plan().owned);
-  const GatherLayout g = gather_layout(
-      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
-  std::vector<Real> all(g.total);
-  MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(),
-                  g.counts.data(), g.displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
-  wait(gathered);
-  out.resize(rows.rows(), 3);
-  unpack_owned_rows(all, m_plan.part, out);
 }
 
 void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
@@ -358,8 +381,11 @@ void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
   }
 }
 
-void DistributedRun::share_chunks(std::vector<Real>& values, int width, int blocks) const {
+void DistributedRun::share_chunks(std::vector<Real>& values, int width, int blocks, int& largest,
+                                  std::vector<Real>& rows, std::vector<int>& counts,
+                                  bool counts_known) const {
   const auto n_chunks = m_chunk_owner.size();
+  // Each rank's chunks, its `largest` (an int, exact in a double), then its rows.
   std::vector<Real> mine;
   for (int b = 0; b < blocks; ++b)
     for (std::size_t c = 0; c < n_chunks; ++c)
@@ -367,25 +393,22 @@ void DistributedRun::share_chunks(std::vector<Real>& values, int width, int bloc
         mine.insert(mine.end(),
                     values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c) * width),
                     values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c + 1) * width));
-  std::vector<int> counts(static_cast<std::size_t>(m_size), 0);
-  for (int b = 0; b < blocks; ++b)
-    for (std::size_t c = 0; c < n_chunks; ++c) counts[m_chunk_owner[c]] += width;
-  const std::vector<Real> all = allgather(mine, counts, true);
+  mine.push_back(static_cast<Real>(largest));
+  mine.insert(mine.end(), rows.begin(), rows.end());
+  const std::vector<Real> all = allgather(mine, counts, counts_known);
+  rows.clear();
   std::size_t at = 0;
-  for (int r = 0; r < m_size; ++r)
+  for (int r = 0; r < m_size; ++r) {
+    const std::size_t end = at + static_cast<std::size_t>(counts[r]);
     for (int b = 0; b < blocks; ++b)
       for (std::size_t c = 0; c < n_chunks; ++c)
         if (m_chunk_owner[c] == r)
           for (int k = 0; k < width; ++k) values[(b * n_chunks + c) * width + k] = all[at++];
-}
-
-int DistributedRun::max(int value) const {
-  ExchangeTimer timer(m_seconds[GATHERS]);
-  int result = value;
-  MPI_Request request = MPI_REQUEST_NULL;
-  MPI_Iallreduce(&value, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &request);
-  wait(request);
-  return result;
+    largest = std::max(largest, static_cast<int>(all[at++]));
+    rows.insert(rows.end(), all.begin() + static_cast<std::ptrdiff_t>(at),
+                all.begin() + static_cast<std::ptrdiff_t>(end));
+    at = end;
+  }
 }
 
 void DistributedRun::share_rows(const std::vector<Index>& nodes,

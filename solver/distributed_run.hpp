@@ -17,15 +17,16 @@
 ///   rank's per-batch values are gathered (MPI_Allgatherv) into the whole layout on every
 ///   rank and reduced there by the one-rank code, in batch order.
 /// - Global stable-increment estimate (Lanczos, at the start of a step and when the element
-///   estimate moves): the positions are gathered on every rank from their owners and every
-///   rank runs the one-rank estimate on the whole mesh.
+///   estimate moves): the positions are gathered to rank 0 from their owners, rank 0 runs the
+///   one-rank estimate on the whole mesh and broadcasts its largest eigenvalue.
 /// - Nodal sums (ALLKE, ALLKD, ALLWK): the one-rank code sums the nodes in chunks of
 ///   CentralDifference::NODE_CHUNK and adds the chunks in order. Each chunk is counted by one
 ///   rank (the one owning most of its nodes), which integrates every node of the chunk: the
 ///   nodes of the chunk its elements do not use get their finished force from their owner
 ///   each increment (ship_forces(), point to point), so its chunk sums are the one-rank
 ///   ones; the chunk sums are then gathered and added in chunk order. The prescribed DOFs'
-///   terms are gathered and folded in DOF order.
+///   terms are gathered with them (share_chunks()) and folded in DOF order. A rank's nodal
+///   passes visit only the nodes it moves (CentralDifference::set_distribution()).
 /// Output: rank 0 writes; before a frame or history row it gathers the owners' rows.
 
 #include <memory>
@@ -66,6 +67,8 @@ class DistributedRun {
 
   /// Rank 0's `values` on every rank.
   void broadcast(std::vector<int>& values) const;
+  /// Rank 0's `value` and `count` on every rank (one collective).
+  void broadcast_estimate(Real& value, int& count) const;
   /// Takes the partition of the run: the part of each element (n_elements) and the position
   /// of each element in the one-rank summation order (distinct). Builds the exchange plan.
   /// Nodal chunks of `chunk` nodes are each counted by one rank. The elements of rigid
@@ -88,8 +91,13 @@ class DistributedRun {
   void ship_forces(NodalVectors& force, NodalVectors* moment);
   /// The chunk values `per_chunk` (values per chunk: `width`, chunk after chunk; `blocks`
   /// such arrays back to back, e.g. translations then rotations) of every chunk from the
-  /// rank that counts it (MPI_Allgatherv).
-  void share_chunks(std::vector<Real>& values, int width, int blocks) const;
+  /// rank that counts it (MPI_Allgatherv). Two more values ride along (no collective of their
+  /// own): `largest` (e.g. a stop signal): in, this rank's value; out, the largest of the
+  /// ranks'; `rows`: in, this rank's; out, every rank's in rank order. `counts`: the number of
+  /// values each rank sends (found, one collective more, unless `counts_known`: they change
+  /// only with the number of rows).
+  void share_chunks(std::vector<Real>& values, int width, int blocks, int& largest,
+                    std::vector<Real>& rows, std::vector<int>& counts, bool counts_known) const;
 
   /// \name The force exchange of an increment: post_receives() before the element pass,
   /// then the send buffers filled (width values per slot, NeighbourExchange::send order) once
@@ -104,14 +112,15 @@ class DistributedRun {
   /// number of values of each rank: found, or with `counts_known` given (one collective less).
   std::vector<Real> allgather(const std::vector<Real>& mine, std::vector<int>& counts,
                               bool counts_known = false) const;
+  /// allgather() in two halves, so that it travels while the rank does other work (one at a
+  /// time): post_allgather() starts it with every rank's count known, wait_allgather() waits
+  /// and returns every rank's values in rank order.
+  void post_allgather(std::vector<Real> mine, const std::vector<int>& counts);
+  const std::vector<Real>& wait_allgather();
   /// The rows (n_nodes × 3) of the nodes each rank owns, from their owners to rank 0.
   void gather_to_root(NodalVectors& rows) const;
-  /// The same, onto every rank, from `rows` into `out`.
-  void allgather_rows(const NodalVectors& rows, NodalVectors& out) const;
   /// Element rows (`width` values per element) from each element's rank to rank 0.
   void gather_elements_to_root(std::vector<Real>& rows, int width) const;
-  /// The largest of the ranks' values.
-  int max(int value) const;
   /// The rows (n_nodes × 3 each) of `nodes` (the same list on every rank) from the rank that
   /// integrates each node (row_source())
   /// onto every rank, from `from[k]` into `to[k]` (MPI_Allgatherv; rows not listed are left
@@ -144,6 +153,8 @@ class DistributedRun {
   std::vector<std::vector<Index>> m_ship_send, m_ship_receive;
   std::vector<std::vector<Real>> m_ship_send_buffer, m_ship_receive_buffer;
   std::vector<std::vector<Real>> m_send, m_receive;
+  std::vector<Real> m_posted_mine, m_posted_all;  ///< post_allgather()
+  std::vector<int> m_posted_counts, m_posted_displacement;
   struct Requests;
   std::unique_ptr<Requests> m_requests;
   mutable double m_seconds[TIMINGS] = {};

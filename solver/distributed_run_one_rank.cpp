@@ -21,6 +21,7 @@ int DistributedRun::world_max(int value) {
 void DistributedRun::abort_world(int) {}
 
 void DistributedRun::broadcast(std::vector<int>&) const {}
+void DistributedRun::broadcast_estimate(Real&, int&) const {}
 void DistributedRun::post_receives(int) {}
 void DistributedRun::send() {}
 const std::vector<std::vector<Real>>& DistributedRun::receive() {
@@ -31,21 +32,22 @@ std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::
   counts.assign(1, static_cast<int>(mine.size()));
   return mine;
 }
-void DistributedRun::gather_to_root(NodalVectors&) const {}
-void DistributedRun::allgather_rows(const NodalVectors& rows, NodalVectors& out) const {
-  out = rows;
+void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<int>&) {
+  m_posted_all = std::move(mine);
 }
+const std::vector<Real>& DistributedRun::wait_allgather() {
+  return m_posted_all;
+}
+void DistributedRun::gather_to_root(NodalVectors&) const {}
 void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
 void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
-void DistributedRun::share_chunks(std::vector<Real>&, int, int) const {}
+void DistributedRun::share_chunks(std::vector<Real>&, int, int, int&, std::vector<Real>&,
+                                  std::vector<int>&, bool) const {}
 void DistributedRun::share_rows(const std::vector<Index>& nodes,
                                 const std::vector<const NodalVectors*>& from,
                                 const std::vector<NodalVectors*>& to) const {
   for (std::size_t k = 0; k < from.size(); ++k)
     for (const Index n : nodes) to[k]->row(n) = from[k]->row(n);
-}
-int DistributedRun::max(int value) const {
-  return value;
 }
 
 #endif

@@ -159,11 +159,14 @@ void ExplicitSolver::Impl::run_step(int step) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
 }
 
+int ExplicitSolver::Impl::local_signal() const {
+  return m_options.stop_signal != nullptr ? static_cast<int>(*m_options.stop_signal) : 0;
+}
+
 int ExplicitSolver::Impl::stop_requested() const {
-  const int signal =
-      m_options.stop_signal != nullptr ? static_cast<int>(*m_options.stop_signal) : 0;
-  // Distributed runs stop at the same increment on every rank.
-  return m_run ? m_run->max(signal) : signal;
+  // Distributed runs stop at the same increment on every rank: the largest signal of the
+  // ranks, gathered with the kinetic sums of this increment's nodal update.
+  return m_run ? m_shared_signal : local_signal();
 }
 
 void ExplicitSolver::Impl::write_interrupted(bool frame_written, bool history_written) {
@@ -248,20 +251,22 @@ void ExplicitSolver::Impl::report_exchange() {
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
   std::vector<int> counts;
   const DistributedRun& run = *m_run;
-  const std::vector<Real> all =
-      m_run->allgather({run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
-                        run.exchange_seconds(DistributedRun::SHIP),
-                        run.exchange_seconds(DistributedRun::GATHERS), m_loop_seconds},
-                       counts);
+  const std::vector<Real> all = m_run->allgather(
+      {run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
+       run.exchange_seconds(DistributedRun::SHIP), run.exchange_seconds(DistributedRun::GATHERS),
+       m_loop_seconds, static_cast<Real>(m_nodes.integrated_count())},
+      counts);
   for (int r = 0; r < m_run->size(); ++r) {
-    const Real* t = &all[5 * static_cast<std::size_t>(r)];
+    const Real* t = &all[6 * static_cast<std::size_t>(r)];
     m_sink.message(Severity::Info,
                    "mpi: rank " + std::to_string(r) + ": exchanges and collectives " +
                        format_real(t[0]) + " s of " + format_real(t[4]) + " s in the time loop (" +
                        format_real(t[4] > 0.0 ? 100.0 * t[0] / t[4] : 0.0) +
                        " %, waits for slower ranks and setup included): neighbours " +
                        format_real(t[1]) + " s, chunk forces " + format_real(t[2]) +
-                       " s, gathers and reductions " + format_real(t[3]) + " s");
+                       " s, gathers and reductions " + format_real(t[3]) +
+                       " s; its nodal update moves " + std::to_string(static_cast<Index>(t[5])) +
+                       " of " + std::to_string(m_model.node_count()) + " nodes");
   }
 }
 

@@ -75,8 +75,11 @@ struct ExplicitSolver::Impl {
   /// The time loop of one step: increments until the step time reaches its period, or until
   /// a stop signal arrives.
   void run_step(int step);
-  /// The signal that asks the run to stop (SolverOptions::stop_signal), or 0.
+  /// The signal that asks the run to stop (SolverOptions::stop_signal), or 0. Distributed
+  /// runs: the largest of the ranks' signals as the increment's nodal update shared them.
   int stop_requested() const;
+  /// This rank's stop signal now, or 0.
+  int local_signal() const;
   /// Ends the increment a stop signal interrupted: the frame, history row and status line
   /// that did not fall due there, so that the results end at the time reached.
   void write_interrupted(bool frame_written, bool history_written);
@@ -115,6 +118,9 @@ struct ExplicitSolver::Impl {
   double m_loop_seconds = 0.0;            ///< wall time of the time loops
   bool m_started = false;                 ///< t = 0 has been taken
   int m_stopped_by = 0;                   ///< the signal that stopped the run, 0 while it runs
+  /// Distributed runs: the largest stop signal of the ranks, read and shared with the kinetic
+  /// sums of the last nodal update (one collective less per increment).
+  int m_shared_signal = 0;
 };
 
 }  // namespace xpl

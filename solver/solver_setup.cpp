@@ -66,6 +66,14 @@ void ExplicitSolver::Impl::set_up_distribution() {
   const Index n = m_model.node_count();
   const bool rotations = !m_state.rotary_inertia.empty();
   std::vector<unsigned char> counted(static_cast<std::size_t>(n), 0);
+  // The nodes this rank moves: those its elements use, those of the chunks it counts, and the
+  // rigid-body and tie nodes, which every rank moves alike (the passes skip the others).
+  std::vector<unsigned char> integrated(static_cast<std::size_t>(n), 0);
+  for (Index i = 0; i < n; ++i)
+    integrated[i] = run.counts(i) || run.in_part(i) || m_rigid.is_rigid_node(i) ? 1 : 0;
+  if (m_ties.active())
+    for (const auto& [slave, corner] : m_ties.slave_master_nodes())
+      integrated[slave] = integrated[corner] = 1;
   // Rigid bodies move on every rank alike (every rank updates every body), so their nodes
   // keep their motion everywhere.
   for (Index i = 0; i < n; ++i) {
@@ -80,21 +88,21 @@ void ExplicitSolver::Impl::set_up_distribution() {
       }
     }
   }
-  const auto share = [&run](std::vector<KineticSums>& sums, std::vector<Real>& speed) {
-    // Translations, rotations, speeds (and a 0): three blocks of two values per chunk.
+  const auto share = [this, &run, counts = std::vector<int>()](
+                         std::vector<KineticSums>& sums, std::vector<Real>& speed,
+                         std::vector<Real>& rows, bool same_counts) mutable {
+    // Translations, rotations, speeds (and a 0): three blocks of two values per chunk; the
+    // stop signal (stop_requested()) and the prescribed DOFs' rows ride along.
     std::vector<Real> values;
     values.reserve(sums.size() * 2 + speed.size() * 2);
     for (const KineticSums& s : sums) values.insert(values.end(), {s.centred, s.spread});
     for (const Real v : speed) values.insert(values.end(), {v, 0.0});
-    run.share_chunks(values, 2, 3);
+    m_shared_signal = local_signal();
+    run.share_chunks(values, 2, 3, m_shared_signal, rows, counts, same_counts && !counts.empty());
     for (std::size_t k = 0; k < sums.size(); ++k) sums[k] = {values[2 * k], values[2 * k + 1]};
     for (std::size_t k = 0; k < speed.size(); ++k) speed[k] = values[2 * (sums.size() + k)];
   };
-  const auto fold = [&run](const std::vector<Real>& mine) {
-    std::vector<int> counts;
-    return run.allgather(mine, counts);
-  };
-  m_nodes.set_distribution(share, std::move(counted), fold);
+  m_nodes.set_distribution(share, std::move(counted), integrated);
   share_features(run);
 
   // The report (rank 0's sink writes it).

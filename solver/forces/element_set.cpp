@@ -286,6 +286,9 @@ void ElementSet::compute_forces(const State& state, Real dt, ElementTotals& tota
   elements::partitioned_pass(parts, static_cast<Index>(m_boundary_nodes.size()), compute_parts,
                              add_boundary);
   if (m_run != nullptr) {
+    // The batch totals travel while the rank waits for its neighbours' corners and ships its
+    // chunk owners' forces: one wait for all three.
+    post_totals();
     combine_interface_forces();
     m_run->ship_forces(m_force_internal, m_rotations ? &m_moment_internal : nullptr);
     reduce_totals(totals);
@@ -312,22 +315,23 @@ ElementEstimate ElementSet::increment_estimate(const State& state, const Element
   });
   if (stiffness && !s.increment.fixed) {
     ScopedTimer timer(m_timers, Phase::InternalForce);
-    // Distributed runs: every rank estimates on the whole mesh, with the positions of every
-    // node gathered from their owners (when the estimate is due, on every rank alike).
-    bool gathered = false;
-    const auto product = [this, &state, &gathered](const NodalVectors& u, NodalVectors& y) {
-      if (m_run != nullptr && !gathered) {
-        m_run->allgather_rows(state.position, m_whole_position);
-        gathered = true;
-      }
+    // Distributed runs: rank 0 estimates on the whole mesh, with the positions of every node
+    // gathered from their owners when the estimate is due, and shares the result
+    // (distribute()).
+    const auto gather = [this, &state] {
+      if (m_run == nullptr) return;
+      m_whole_position = state.position;
+      m_run->gather_to_root(m_whole_position);
+    };
+    const auto product = [this, &state](const NodalVectors& u, NodalVectors& y) {
       const NodalVectors& x = m_run != nullptr ? m_whole_position : state.position;
       for_each_whole_block([&](const auto& block) {
         if constexpr (requires { block.add_stiffness_product(x, u, y); })
           block.add_stiffness_product(x, u, y);
       });
     };
-    e.global_ratio =
-        m_global.apply(product, state.position.rows(), m_inverse_mass, s.bulk_linear, totals);
+    e.global_ratio = m_global.apply(product, state.position.rows(), m_inverse_mass, s.bulk_linear,
+                                    totals, gather);
   }
   return e;
 }

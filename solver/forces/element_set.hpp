@@ -209,8 +209,13 @@ class ElementSet {
   void combine_interface_forces();
   /// The value of component c of the corner slot `source` (m_slot_source).
   Real slot_value(Index source, int c) const;
-  /// Distributed runs: the totals of every batch of every rank into the whole blocks and
-  /// their one-rank reduction into `totals`.
+  /// The values of the corner slot `source`, and how many it has (3: a hex's force, 6: a
+  /// shell's force and moment).
+  const Real* slot_values(Index source, int& count) const;
+  /// Distributed runs: post_totals() sends the rank's batch totals to every rank
+  /// (DistributedRun::post_allgather(), returns at once); reduce_totals() waits for every
+  /// rank's, puts them into the whole blocks and reduces them as one rank does into `totals`.
+  void post_totals();
   void reduce_totals(ElementTotals& totals);
   template <std::size_t... I>
   void distribute_blocks(std::index_sequence<I...>);

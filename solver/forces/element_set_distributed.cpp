@@ -155,6 +155,11 @@ void ElementSet::distribute_blocks(std::index_sequence<I...>) {
 
 void ElementSet::distribute(DistributedRun& run) {
   m_run = &run;
+  // The global estimate on rank 0 alone (the whole blocks, gathered positions), its largest
+  // eigenvalue and product count broadcast.
+  m_global.set_distribution(run.rank() == 0, [&run](Real& lambda, int& products) {
+    run.broadcast_estimate(lambda, products);
+  });
   distribute_blocks(std::make_index_sequence<3>{});
   m_parts = 0;  // the force pass partitions the rank's blocks anew
   m_slot_parts = 0;
@@ -244,31 +249,50 @@ Real ElementSet::slot_value(Index source, int c) const {
   }
 }
 
+const Real* ElementSet::slot_values(Index source, int& count) const {
+  const Index slot = source & ((Index{1} << SOURCE_SHIFT) - 1);
+  switch (source >> SOURCE_SHIFT) {
+    case KIND_HEX8R:
+      count = 3;
+      return &std::get<KIND_HEX8R>(m_blocks)->exchange_values()[3 * slot];
+    case KIND_HEX8:
+      count = 3;
+      return &std::get<KIND_HEX8>(m_blocks)->exchange_values()[3 * slot];
+    default:
+      count = 6;
+      return &std::get<KIND_SHELL>(m_blocks)->exchange_values()[6 * slot];
+  }
+}
+
 void ElementSet::combine_interface_forces() {
   const partition::PartPlan& plan = m_run->plan();
   const int width = m_rotations ? 6 : 3;
   const std::vector<std::vector<Real>>& received = m_run->receive();
   // Each interface node: every contribution, own or received, folded from +0 in the one-rank
   // order (partition::PartPlan::combine), replacing the sum of the rank's own corners.
+  // Each component's sum in the same order as slot_value() one at a time, the slot's kind
+  // looked up once per slot (a hex slot gives +0 to the moments, as slot_value() does).
   for (std::size_t k = 0; k < plan.interface_nodes.size(); ++k) {
     const Index n = plan.interface_nodes[k];
+    Real sum[6] = {};
+    for (Index i = plan.combine_start[k]; i < plan.combine_start[k + 1]; ++i) {
+      const partition::SlotSource& src = plan.combine[i];
+      int count = width;
+      const Real* values =
+          src.neighbour < 0 ? slot_values(m_slot_source[src.index], count)
+                            : &received[src.neighbour][static_cast<std::size_t>(src.index) * width];
+      for (int c = 0; c < width; ++c) sum[c] += c < count ? values[c] : 0.0;
+    }
     for (int c = 0; c < width; ++c) {
-      Real sum = 0.0;
-      for (Index i = plan.combine_start[k]; i < plan.combine_start[k + 1]; ++i) {
-        const partition::SlotSource& src = plan.combine[i];
-        sum += src.neighbour < 0
-                   ? slot_value(m_slot_source[src.index], c)
-                   : received[src.neighbour][static_cast<std::size_t>(src.index) * width + c];
-      }
       if (c < 3)
-        m_force_internal(n, c) = sum;
+        m_force_internal(n, c) = sum[c];
       else
-        m_moment_internal(n, c - 3) = sum;
+        m_moment_internal(n, c - 3) = sum[c];
     }
   }
 }
 
-void ElementSet::reduce_totals(ElementTotals& totals) {
+void ElementSet::post_totals() {
   // This rank's batch totals, kind after kind, batch after batch.
   std::vector<Real> mine;
   [&]<std::size_t... I>(std::index_sequence<I...>) {
@@ -300,7 +324,11 @@ void ElementSet::reduce_totals(ElementTotals& totals) {
         ...);
   }
   (std::make_index_sequence<3>{});
-  const std::vector<Real> all = m_run->allgather(mine, counts, true);
+  m_run->post_allgather(std::move(mine), counts);
+}
+
+void ElementSet::reduce_totals(ElementTotals& totals) {
+  const std::vector<Real>& all = m_run->wait_allgather();
   // Into the whole blocks at their batches, then the one-rank reduction of each.
   std::size_t at = 0;
   for (int r = 0; r < m_run->size(); ++r) [&]<std::size_t... I>(std::index_sequence<I...>) {

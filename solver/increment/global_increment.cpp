@@ -70,6 +70,12 @@ Real GlobalIncrementLimit::apply(const elements::Hex8rBlock& hex, const NodalVec
 Real GlobalIncrementLimit::apply(const StiffnessProduct& product, Index n_nodes,
                                  const std::vector<Real>& inverse_mass, Real bulk_linear,
                                  const elements::IncrementLimit& limit) {
+  return apply(product, n_nodes, inverse_mass, bulk_linear, limit, {});
+}
+
+Real GlobalIncrementLimit::apply(const StiffnessProduct& product, Index n_nodes,
+                                 const std::vector<Real>& inverse_mass, Real bulk_linear,
+                                 const elements::IncrementLimit& limit, const Prepare& prepare) {
   const Real element_dt = limit.stable_dt;
   if (!std::isfinite(element_dt) || !(element_dt > 0.0) || limit.failed_element != NO_INDEX)
     return 1.0;
@@ -79,7 +85,10 @@ Real GlobalIncrementLimit::apply(const StiffnessProduct& product, Index n_nodes,
   if (m_due || moved) {
     const auto start = std::chrono::steady_clock::now();
     FrequencyEstimate e;
-    const Real lambda = largest_eigenvalue(product, n_nodes, inverse_mass, e.products);
+    if (prepare) prepare();
+    Real lambda =
+        m_estimates ? largest_eigenvalue(product, n_nodes, inverse_mass, e.products) : 0.0;
+    if (m_share) m_share(lambda, e.products);
     e.omega_max = std::sqrt(std::max(lambda, 0.0));
     e.global_dt = global_increment(e.omega_max, element_dt, bulk_linear);
     e.element_dt = element_dt;

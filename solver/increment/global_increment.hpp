@@ -65,6 +65,21 @@ class GlobalIncrementLimit {
   Real apply(const StiffnessProduct& product, Index n_nodes, const std::vector<Real>& inverse_mass,
              Real bulk_linear, const elements::IncrementLimit& limit);
 
+  /// Distributed runs (solver/distributed_run.hpp): the estimate is made on one rank only and
+  /// shared. When an estimate is due, every rank calls `prepare` (collective: e.g. the positions
+  /// gathered to the rank that estimates), the rank with `estimates` runs the Lanczos
+  /// iteration, and `share(lambda, products)` puts its largest eigenvalue and product count on
+  /// every rank (collective); the same λ gives every rank the same ratio, bit for bit.
+  using Prepare = std::function<void()>;
+  using Share = std::function<void(Real& lambda, int& products)>;
+  void set_distribution(bool estimates, Share share) {
+    m_estimates = estimates;
+    m_share = std::move(share);
+  }
+  /// apply() with a `prepare` step (set_distribution()).
+  Real apply(const StiffnessProduct& product, Index n_nodes, const std::vector<Real>& inverse_mass,
+             Real bulk_linear, const elements::IncrementLimit& limit, const Prepare& prepare);
+
   /// The estimate made since the last call, if any (for the .msg); false if none.
   bool take_new_estimate(FrequencyEstimate& out);
   /// The last estimate (ratio 1 and omega 0 before the first).
@@ -77,7 +92,9 @@ class GlobalIncrementLimit {
                           const std::vector<Real>& inverse_mass, int& products) const;
 
   bool m_due = true;
-  int m_since = 0;  ///< apply() calls since the last estimate
+  int m_since = 0;          ///< apply() calls since the last estimate
+  bool m_estimates = true;  ///< set_distribution(): this rank runs the estimate
+  Share m_share;            ///< set_distribution(); empty: one rank
   bool m_reported = true;
   FrequencyEstimate m_last;
 };

@@ -36,6 +36,33 @@ void CentralDifference::apply_loads(const State&, Real step_time, Real total_tim
   m_loads.apply(m_model, m_boundary, step_time, total_time);
 }
 
+void CentralDifference::set_spans(const std::vector<unsigned char>& integrated) {
+  const Index n = m_model.node_count();
+  const Index n_chunks = (n + NODE_CHUNK - 1) / NODE_CHUNK;
+  m_span_start.assign(1, 0);
+  m_spans.clear();
+  for (Index chunk = 0; chunk < n_chunks; ++chunk) {
+    const Index last = std::min(n, (chunk + 1) * NODE_CHUNK);
+    for (Index i = chunk * NODE_CHUNK; i < last;) {
+      if (integrated[i] == 0) {
+        ++i;
+        continue;
+      }
+      const Index first = i;
+      while (i < last && integrated[i] != 0) ++i;
+      m_spans.insert(m_spans.end(), {first, i});
+    }
+    m_span_start.push_back(static_cast<Index>(m_spans.size() / 2));
+  }
+}
+
+Index CentralDifference::integrated_count() const {
+  if (m_span_start.empty()) return m_model.node_count();
+  Index count = 0;
+  for (std::size_t k = 0; k + 1 < m_spans.size(); k += 2) count += m_spans[k + 1] - m_spans[k];
+  return count;
+}
+
 void CentralDifference::advance_positions(State& state, ElementSet& elements, Real dt) {
   ScopedTimer timer(m_timers, Phase::Integration);
   const Index n = m_model.node_count();
@@ -48,15 +75,16 @@ void CentralDifference::advance_positions(State& state, ElementSet& elements, Re
   NodalVectors& m = elements.moment_internal();
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
   for (Index chunk = 0; chunk < n_chunks; ++chunk) {
+    // Every force cleared (a rank's contact pass adds to nodes it does not move); only the
+    // nodes this rank moves advance (the others stay at rest here, for_each_span()).
     const Index first = chunk * NODE_CHUNK, count = std::min(n, first + NODE_CHUNK) - first;
-    for (int c = 0; c < 3; ++c) {
-      x.col(c).segment(first, count) += dt * v.col(c).segment(first, count);
-      f.col(c).segment(first, count).setZero();
-    }
-    if (m_shells) {
-      m_rotations.advance_range(state.angular_velocity_half, dt, first, first + count);
+    for (int c = 0; c < 3; ++c) f.col(c).segment(first, count).setZero();
+    if (m_shells)
       for (int c = 0; c < 3; ++c) m.col(c).segment(first, count).setZero();
-    }
+    for_each_span(chunk, [&](Index a, Index b) {
+      for (int c = 0; c < 3; ++c) x.col(c).segment(a, b - a) += dt * v.col(c).segment(a, b - a);
+      if (m_shells) m_rotations.advance_range(state.angular_velocity_half, dt, a, b);
+    });
   }
   if (m_shells) m_rotation_synced = false;
 }
@@ -110,30 +138,33 @@ RangeSums update_range(const NodalField& d, Index off, Index first, Index last, 
 void CentralDifference::update_chunk(State& state, const NodalField& translation,
                                      const NodalField& rotation, const NodalIncrement& inc,
                                      Index chunk) {
+  // A chunk this rank counts is one span, so that its sums are the one-rank sums; the sums
+  // of the others are replaced by their counting rank's (set_distribution()).
   const Index n = m_model.node_count();
-  const Index first = chunk * NODE_CHUNK, last = std::min(n, first + NODE_CHUNK);
-  if (m_loads.pending())
-    m_loads.evaluate(first, last, state.position, translation.velocity_half, inc.dt_prev,
-                     m_previous_force);
-  KineticSums ke;
+  KineticSums ke, ke_rotation;
   Real speed = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    const RangeSums sums = translation.acceleration
-                               ? update_range<true>(translation, c * n, first, last, inc.dt_avg,
-                                                    inc.w_new, inc.w_before)
-                               : update_range<false>(translation, c * n, first, last, inc.dt_avg,
-                                                     inc.w_new, inc.w_before);
-    ke += sums.kinetic;
-    speed = std::max(speed, sums.speed);
-  }
+  for_each_span(chunk, [&](Index first, Index last) {
+    if (m_loads.pending())
+      m_loads.evaluate(first, last, state.position, translation.velocity_half, inc.dt_prev,
+                       m_previous_force);
+    for (int c = 0; c < 3; ++c) {
+      const RangeSums sums = translation.acceleration
+                                 ? update_range<true>(translation, c * n, first, last, inc.dt_avg,
+                                                      inc.w_new, inc.w_before)
+                                 : update_range<false>(translation, c * n, first, last, inc.dt_avg,
+                                                       inc.w_new, inc.w_before);
+      ke += sums.kinetic;
+      speed = std::max(speed, sums.speed);
+    }
+    if (!m_shells) return;
+    for (int c = 0; c < 3; ++c)
+      ke_rotation +=
+          update_range<false>(rotation, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before)
+              .kinetic;
+  });
   m_chunk_sums[chunk] = ke;
   m_chunk_speed[chunk] = speed;
-  if (!m_shells) return;
-  ke = KineticSums{};
-  for (int c = 0; c < 3; ++c)
-    ke += update_range<false>(rotation, c * n, first, last, inc.dt_avg, inc.w_new, inc.w_before)
-              .kinetic;
-  m_chunk_sums[(n + NODE_CHUNK - 1) / NODE_CHUNK + chunk] = ke;
+  if (m_shells) m_chunk_sums[(n + NODE_CHUNK - 1) / NODE_CHUNK + chunk] = ke_rotation;
 }
 
 KineticSums CentralDifference::sum_chunks(Index n_chunks) {
@@ -191,8 +222,10 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
     if (m_loads.pending()) {
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
       for (Index chunk = 0; chunk < n_chunks; ++chunk)
-        m_loads.evaluate(chunk * NODE_CHUNK, std::min(n, (chunk + 1) * NODE_CHUNK), state.position,
-                         translation.velocity_half, inc.dt_prev, m_previous_force);
+        for_each_span(chunk, [&](Index first, Index last) {
+          m_loads.evaluate(first, last, state.position, translation.velocity_half, inc.dt_prev,
+                           m_previous_force);
+        });
       m_loads.set_evaluated();
     }
     if (m_share_tie_forces) {
@@ -207,21 +240,39 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
 #pragma omp parallel for schedule(static) if (n_chunks > 1)
   for (Index chunk = 0; chunk < n_chunks; ++chunk)
     update_chunk(state, translation, rotation, inc, chunk);
-  if (m_share_chunks) m_share_chunks(m_chunk_sums, m_chunk_speed);
   NodalSums sums;
-  sums.kinetic = sum_chunks(n_chunks);
   RigidUpdate bodies;
-  if (!rigid.empty()) {
-    if (m_share_rigid) {
-      std::vector<NodalVectors*> rows{&elements.force_internal()};
-      if (force_external != nullptr) rows.push_back(force_external);
-      m_share_rigid(rows);
+  if (!m_share_chunks) {
+    sums.kinetic = sum_chunks(n_chunks);
+    if (!rigid.empty()) {
+      bodies = rigid.update(m_motion, state, elements.force_internal(), force_external, inc);
+      sums.kinetic += bodies.kinetic;
+      sums.work = bodies.work;
     }
-    bodies = rigid.update(m_motion, state, elements.force_internal(), force_external, inc);
-    sums.kinetic += bodies.kinetic;
-    sums.work = bodies.work;
+    m_motion.update(state, translation, rotation, inc, bodies.jumps, m_previous_force, sums);
+  } else {
+    // Distributed runs: the bodies and the prescribed DOFs move first (neither reads the
+    // kinetic sums), so that the chunks' sums, the prescribed DOFs' rows and the stop signal
+    // travel in one collective; then the sums in the one-rank order.
+    if (!rigid.empty()) {
+      if (m_share_rigid) {
+        std::vector<NodalVectors*> rows{&elements.force_internal()};
+        if (force_external != nullptr) rows.push_back(force_external);
+        m_share_rigid(rows);
+      }
+      bodies = rigid.update(m_motion, state, elements.force_internal(), force_external, inc);
+    }
+    const bool same_counts = !m_motion.first_update();
+    std::vector<Real> rows =
+        m_motion.prescribe(state, translation, rotation, inc, m_previous_force);
+    m_share_chunks(m_chunk_sums, m_chunk_speed, rows, same_counts);
+    sums.kinetic = sum_chunks(n_chunks);
+    if (!rigid.empty()) {
+      sums.kinetic += bodies.kinetic;
+      sums.work = bodies.work;
+    }
+    m_motion.finish(translation, rotation, inc, bodies.jumps, m_previous_force, rows, sums);
   }
-  m_motion.update(state, translation, rotation, inc, bodies.jumps, m_previous_force, sums);
   if (tied) {  // slaves after their masters (prescribed and rigid too)
     if (m_share_tie_motion) {
       std::vector<NodalVectors*> rows{&state.velocity_half, &state.velocity, &state.acceleration};

@@ -5,6 +5,7 @@
 /// the external loads (solver/loads/external_loads.hpp); the rigid bodies (rigid_bodies.hpp) and
 /// the finite rotations of shell nodes (node_rotations.hpp).
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -75,14 +76,22 @@ class CentralDifference {
 
   /// Distributed runs (distributed_run.hpp): `share` replaces the kinetic sums and largest
   /// speeds of the chunks this rank does not count ([translations, rotations] per chunk,
-  /// speeds per chunk) by those of the ranks that do (collective); the prescribed DOFs'
-  /// sums go through `fold` (PrescribedMotion::set_distribution).
-  using ChunkShare = std::function<void(std::vector<KineticSums>& sums, std::vector<Real>& speed)>;
+  /// speeds per chunk) by those of the ranks that do, and the rank's rows of the prescribed
+  /// DOFs (PrescribedMotion::prescribe()) by every rank's, in one collective; `same_counts`:
+  /// every rank has as many rows as at the last call.
+  /// `integrated`: 1 for the nodes this rank moves (those its elements use, the nodes of the
+  /// chunks it counts, rigid-body and tie nodes); the nodal passes skip the others, which no
+  /// one reads on this rank (set_spans()).
+  using ChunkShare = std::function<void(std::vector<KineticSums>& sums, std::vector<Real>& speed,
+                                        std::vector<Real>& rows, bool same_counts)>;
   void set_distribution(ChunkShare share, std::vector<unsigned char> counted,
-                        PrescribedMotion::Fold fold) {
+                        const std::vector<unsigned char>& integrated) {
     m_share_chunks = std::move(share);
-    m_motion.set_distribution(std::move(counted), std::move(fold));
+    m_motion.set_distribution(std::move(counted), integrated);
+    set_spans(integrated);
   }
+  /// Nodes the nodal passes visit on this rank (all without a distribution).
+  Index integrated_count() const;
   /// Distributed runs with rigid bodies: every rank updates every body (the same inputs, the
   /// same motion); `share` puts into the given rows (n_nodes × 3: the internal forces, the
   /// external ones when the step has loads) the run's values at the bodies' nodes, from the
@@ -116,6 +125,21 @@ class CentralDifference {
   /// The kinetic sums of the chunks, added in chunk order (translations first), and the
   /// largest speed.
   KineticSums sum_chunks(Index n_chunks);
+  /// The runs of consecutive nodes with `integrated` 1, per chunk (m_spans).
+  void set_spans(const std::vector<unsigned char>& integrated);
+  /// `f(first, last)` for each run of nodes of `chunk` the passes visit: the whole chunk
+  /// without a distribution (and for a chunk this rank counts, so that its sums are the
+  /// one-rank sums).
+  template <class F>
+  void for_each_span(Index chunk, F&& f) const {
+    if (m_span_start.empty()) {
+      const Index first = chunk * NODE_CHUNK;
+      f(first, std::min(m_model.node_count(), first + NODE_CHUNK));
+      return;
+    }
+    for (Index k = m_span_start[chunk]; k < m_span_start[chunk + 1]; ++k)
+      f(m_spans[2 * k], m_spans[2 * k + 1]);
+  }
   /// ALLKE, ALLKD and ALLWK of the update into `state` from its sums.
   void book_energies(State& state, const NodalIncrement& inc, const NodalSums& sums);
 
@@ -139,7 +163,10 @@ class CentralDifference {
   /// prescribed in one step and loaded in the next); allocated when a step has either.
   NodalVectors m_previous_force;
   ChunkShare m_share_chunks;  ///< set_distribution(); empty: one rank
-  RowShare m_share_rigid;     ///< set_rigid_share(); empty: one rank or no bodies
+  /// Distributed runs: the runs [first, last) of the nodes this rank moves, chunk by chunk
+  /// (runs of chunk c: m_span_start[c] to m_span_start[c + 1]); empty: every node.
+  std::vector<Index> m_span_start, m_spans;
+  RowShare m_share_rigid;  ///< set_rigid_share(); empty: one rank or no bodies
   RowShare m_share_tie_forces, m_share_tie_motion;  ///< set_tie_share(); empty: one rank
   ExternalLoads::NodeRowShare m_share_loads;        ///< set_load_share(); empty: one rank
 };

@@ -109,6 +109,30 @@ void PrescribedMotion::update(State& state, const NodalField& translation,
                               const NodalField& rotation, const NodalIncrement& inc,
                               const RigidJumps& rigid_jumps, NodalVectors& previous_force,
                               NodalSums& sums) {
+  book_jumps(rigid_jumps, sums);
+  update_prescribed(state, translation, rotation, inc, previous_force, sums, nullptr);
+  end_update(translation, rotation, inc, rigid_jumps, previous_force, sums);
+}
+
+std::vector<Real> PrescribedMotion::prescribe(State& state, const NodalField& translation,
+                                              const NodalField& rotation, const NodalIncrement& inc,
+                                              NodalVectors& previous_force) {
+  std::vector<Real> rows;
+  NodalSums untouched;
+  update_prescribed(state, translation, rotation, inc, previous_force, untouched, &rows);
+  return rows;
+}
+
+void PrescribedMotion::finish(const NodalField& translation, const NodalField& rotation,
+                              const NodalIncrement& inc, const RigidJumps& rigid_jumps,
+                              NodalVectors& previous_force, const std::vector<Real>& all,
+                              NodalSums& sums) {
+  book_jumps(rigid_jumps, sums);
+  fold_rows(all, inc, sums);
+  end_update(translation, rotation, inc, rigid_jumps, previous_force, sums);
+}
+
+void PrescribedMotion::book_jumps(const RigidJumps& rigid_jumps, NodalSums& sums) {
   // Jumps of the prescribed motion: found with the update, their work corrected after it
   // (the update itself stays as it is for every other DOF).
   if (m_jump_work_pending != 0.0) {
@@ -121,7 +145,11 @@ void PrescribedMotion::update(State& state, const NodalField& translation,
     m_jump.energy += rigid_jumps.energy;
     m_jump.largest = std::max(m_jump.largest, rigid_jumps.largest);
   }
-  update_prescribed(state, translation, rotation, inc, previous_force, sums);
+}
+
+void PrescribedMotion::end_update(const NodalField& translation, const NodalField& rotation,
+                                  const NodalIncrement& inc, const RigidJumps& rigid_jumps,
+                                  NodalVectors& previous_force, NodalSums& sums) {
   // The DOFs that jumped pair the states before and after the jump, not the mirror-time
   // velocity: their spread is no Δt(n+½)² a² and takes no part in the increment shift.
   sums.jump_spread = rigid_jumps.spread;
@@ -131,7 +159,8 @@ void PrescribedMotion::update(State& state, const NodalField& translation,
 
 void PrescribedMotion::update_prescribed(State& state, const NodalField& translation,
                                          const NodalField& rotation, const NodalIncrement& inc,
-                                         NodalVectors& previous_force, NodalSums& sums) {
+                                         NodalVectors& previous_force, NodalSums& sums,
+                                         std::vector<Real>* rows) {
   // Prescribed DOFs: velocity from the BC, reaction = m a - (f_ext - f_int).
   // External work by the trapezoidal rule over [t_{n-1}, t_n]: exact for constant forces.
   const Index n = m_model.node_count();
@@ -140,9 +169,11 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     m_jump.time = inc.time;
   }
   KineticSums counted, kinetic;
-  std::vector<Real> rows;  // distributed runs: this rank's DOFs, folded after the loop
   for (std::size_t k = 0; k < m_prescribed.size(); ++k) {
     const PrescribedDof& d = m_prescribed[k];
+    // Distributed runs: a node this rank does not move is no one's business here (its
+    // counting rank has it: the counted nodes are moved).
+    if (rows != nullptr && !m_moved.empty() && m_moved[d.node] == 0) continue;
     const bool turn = d.component >= 3;
     const int c = d.component % 3;
     const NodalField& field = turn ? rotation : translation;
@@ -165,7 +196,7 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     const Real v_free = field.velocity_half[at];
     const Real free_before = v_old + inc.w_before * (v_free - v_old);
     const Real new_before = v_old + inc.w_before * (v_new - v_old);
-    if (!m_fold) {
+    if (rows == nullptr) {
       counted.add(m, free_before, v_free);
       kinetic.add(m, new_before, v_new);
     }
@@ -185,29 +216,34 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     field.velocity_half[at] = v_new;
     field.velocity[at] = v_whole;
     const Real f_now = f_ext + r;
-    if (m_fold) {
+    if (rows != nullptr) {
       if (count)
-        rows.insert(rows.end(), {static_cast<Real>(k), m, free_before, v_free, new_before, v_new,
-                                 f_before, f_now, v_old});
+        rows->insert(rows->end(), {static_cast<Real>(k), m, free_before, v_free, new_before, v_new,
+                                   f_before, f_now, v_old});
     } else {
       sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
     }
     f_before = f_now;
   }
-  if (m_fold) {
-    // Every rank's DOFs, folded in DOF order as the loop above does on one rank.
-    const std::vector<Real> all = m_fold(rows);
-    std::vector<const Real*> by_dof(m_prescribed.size(), nullptr);
-    for (std::size_t r = 0; r + FOLD_WIDTH <= all.size(); r += FOLD_WIDTH)
-      by_dof[static_cast<std::size_t>(all[r])] = &all[r + 1];
-    for (const Real* d : by_dof) {
-      if (d == nullptr) continue;
-      const Real m = d[0], free_before = d[1], v_free = d[2], new_before = d[3], v_new = d[4];
-      const Real f_before = d[5], f_now = d[6], v_old = d[7];
-      counted.add(m, free_before, v_free);
-      kinetic.add(m, new_before, v_new);
-      sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
-    }
+  if (rows != nullptr) return;  // fold_rows() books them
+  kinetic -= counted;
+  sums.kinetic += kinetic;
+}
+
+void PrescribedMotion::fold_rows(const std::vector<Real>& all, const NodalIncrement& inc,
+                                 NodalSums& sums) const {
+  // Every rank's DOFs, folded in DOF order as update_prescribed() does on one rank.
+  KineticSums counted, kinetic;
+  std::vector<const Real*> by_dof(m_prescribed.size(), nullptr);
+  for (std::size_t r = 0; r + FOLD_WIDTH <= all.size(); r += FOLD_WIDTH)
+    by_dof[static_cast<std::size_t>(all[r])] = &all[r + 1];
+  for (const Real* d : by_dof) {
+    if (d == nullptr) continue;
+    const Real m = d[0], free_before = d[1], v_free = d[2], new_before = d[3], v_new = d[4];
+    const Real f_before = d[5], f_now = d[6], v_old = d[7];
+    counted.add(m, free_before, v_free);
+    kinetic.add(m, new_before, v_new);
+    sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
   }
   kinetic -= counted;
   sums.kinetic += kinetic;

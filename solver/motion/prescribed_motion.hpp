@@ -45,14 +45,14 @@ class PrescribedMotion {
   void report_step(int step, OutputSink& sink) const;
   /// Distributed runs (distributed_run.hpp): what one prescribed DOF adds to the sums, as
   /// FOLD_WIDTH values (its index, mass, the velocities before and after of the counted and
-  /// of the prescribed motion, f_before, f_now, v_old), and `fold`, which gets the rank's
-  /// rows and returns every rank's (collective), in any order.
+  /// of the prescribed motion, f_before, f_now, v_old): prescribe() gives the rank's rows,
+  /// finish() folds every rank's.
   static constexpr int FOLD_WIDTH = 9;
-  using Fold = std::function<std::vector<Real>(const std::vector<Real>& mine)>;
-  /// `counted`: 1 for the nodes whose DOFs this rank counts (exactly one rank counts each).
-  void set_distribution(std::vector<unsigned char> counted, Fold fold) {
+  /// `counted`: 1 for the nodes whose DOFs this rank counts (exactly one rank counts each);
+  /// `moved`: 1 for the nodes this rank moves (prescribe() leaves the others' DOFs alone).
+  void set_distribution(std::vector<unsigned char> counted, std::vector<unsigned char> moved) {
     m_counted = std::move(counted);
-    m_fold = std::move(fold);
+    m_moved = std::move(moved);
   }
   /// The prescribed DOFs of the step (those the nodal update drives).
   const std::vector<PrescribedDof>& prescribed() const { return m_prescribed; }
@@ -80,6 +80,16 @@ class PrescribedMotion {
   void update(State& state, const NodalField& translation, const NodalField& rotation,
               const NodalIncrement& inc, const RigidJumps& rigid_jumps,
               NodalVectors& previous_force, NodalSums& sums);
+  /// Distributed runs: update() in two halves around one collective (the rows travel with the
+  /// nodal chunks' sums): prescribe() sets the prescribed DOFs' motion and reactions and
+  /// returns this rank's rows (FOLD_WIDTH values per DOF it counts); finish() books what
+  /// update() books, with every rank's rows `all` (in any order) folded in DOF order.
+  std::vector<Real> prescribe(State& state, const NodalField& translation,
+                              const NodalField& rotation, const NodalIncrement& inc,
+                              NodalVectors& previous_force);
+  void finish(const NodalField& translation, const NodalField& rotation, const NodalIncrement& inc,
+              const RigidJumps& rigid_jumps, NodalVectors& previous_force,
+              const std::vector<Real>& all, NodalSums& sums);
   /// A warning to the sink when the last update() met a jump of the prescribed motion, with
   /// the energy the impulse put in; then forgets the jump.
   void report_jump(int step, OutputSink& sink);
@@ -95,8 +105,20 @@ class PrescribedMotion {
   /// the correction of the kinetic sums to what the free update counted. The velocity at t_n
   /// (state.velocity, output V) of a DOF with a prescribed velocity is the BC's own value at
   /// t_n (after t = 0), not the mean of the half-step velocities.
+  /// Distributed runs (`rows` not null): the sums are left alone and the rank's rows appended
+  /// to `rows` instead, for fold_rows().
   void update_prescribed(State& state, const NodalField& translation, const NodalField& rotation,
-                         const NodalIncrement& inc, NodalVectors& previous_force, NodalSums& sums);
+                         const NodalIncrement& inc, NodalVectors& previous_force, NodalSums& sums,
+                         std::vector<Real>* rows);
+  /// Distributed runs: every rank's rows (`all`) into `sums` in DOF order, as
+  /// update_prescribed() adds them on one rank.
+  void fold_rows(const std::vector<Real>& all, const NodalIncrement& inc, NodalSums& sums) const;
+  /// Before the prescribed DOFs: the pending work of the impulses and the bodies' jumps.
+  void book_jumps(const RigidJumps& rigid_jumps, NodalSums& sums);
+  /// After them: the jumps' spread and work; the update is no longer the step's first.
+  void end_update(const NodalField& translation, const NodalField& rotation,
+                  const NodalIncrement& inc, const RigidJumps& rigid_jumps,
+                  NodalVectors& previous_force, NodalSums& sums);
   /// After update_prescribed: the work of the jumps in m_jumps counted as impulses (their
   /// trapezoidal term replaced), into `sums.work` and the pending work of the next increment;
   /// adds the correction of the kinetic sums (a DOF that jumps pairs its states before and
@@ -112,7 +134,7 @@ class PrescribedMotion {
   /// Distributed runs: 1 for the nodes whose work and jumps this rank counts (set_counted()),
   /// empty: every node.
   std::vector<unsigned char> m_counted;
-  Fold m_fold;
+  std::vector<unsigned char> m_moved;    ///< set_distribution(); empty: every node
   std::vector<Real> m_prescribed_value;  ///< current value of each prescribed DOF
   std::vector<Real> m_v_old_prescribed;  ///< v(n−½) at each prescribed DOF
   NodalVectors m_previous_moment;        ///< moment at prescribed rotations, previous inc.
