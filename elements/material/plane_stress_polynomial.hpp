@@ -60,19 +60,19 @@ XPL_KERNEL_INLINE PolynomialReturn polynomial_return(simd::Mask active, simd::Ve
   const Vec tolerance = simd::splat(2.0 * POLYNOMIAL_TOLERANCE);
   Vec x = zero, lo = zero, hi = simd::splat(std::numeric_limits<Real>::infinity());
   simd::Mask open = active;
-  simd::Mask failed = active & (active == 0);  // all clear
+  simd::Mask failed{};  // all clear
   // Q and the pieces of its derivatives at Δγ = 0, where u1 = u2 = w = A = 1.
   Vec u1 = one, u2 = one, w = one, A = one, dA = a + c, B = p1 + p2, dB = 2.0 * (c * p1 + a * p2);
   Vec sA2 = s2, Q = s2 - B;
   for (int iteration = 0;; ++iteration) {
-    open &= ~(simd::abs(Q) <= tolerance * sA2);
+    open &= ~simd::less_equal(simd::abs(Q), tolerance * sA2);
     if (!simd::any(open)) break;
     if (iteration == POLYNOMIAL_ITERATIONS) {
       failed |= open;
       break;
     }
-    lo = simd::select(open & (Q < 0.0), x, lo);
-    hi = simd::select(open & (Q > 0.0), x, hi);
+    lo = simd::select(open & simd::less(Q, 0.0), x, lo);
+    hi = simd::select(open & simd::greater(Q, 0.0), x, hi);
     // Householder's third-order step x − Q(6Q'² − 3QQ'')/(6Q'³ − 6QQ'Q'' + Q²Q''').
     const Vec dQ = 2.0 * s2 * (A * dA) + 2.0 * beta * (w * B) - (w * w) * dB;
     const Vec ddQ = 2.0 * s2 * (dA * dA + ac2 * A) - 2.0 * (beta * beta) * B +
@@ -80,8 +80,9 @@ XPL_KERNEL_INLINE PolynomialReturn polynomial_return(simd::Mask active, simd::Ve
     const Vec d3Q = 6.0 * s2 * (dA * ac2) - 6.0 * (beta * beta) * dB + 6.0 * beta * (w * b2);
     const Vec denominator = 6.0 * (dQ * dQ * dQ) - 6.0 * (Q * dQ * ddQ) + (Q * Q) * d3Q;
     const Vec next = x - (Q * (6.0 * (dQ * dQ) - 3.0 * (Q * ddQ))) / denominator;
-    const simd::Mask ok =
-        (dQ > 0.0) & (denominator > 0.0) & (next > lo) & (next < hi) & (1.0 - beta * next > 0.0);
+    const simd::Mask ok = simd::greater(dQ, 0.0) & simd::greater(denominator, 0.0) &
+                          simd::greater(next, lo) & simd::less(next, hi) &
+                          simd::greater(1.0 - beta * next, 0.0);
     failed |= open & ~ok;
     open &= ok;
     x = simd::select(open, next, x);

@@ -94,7 +94,7 @@ XPL_KERNEL_INLINE PlaneStressLanes plane_stress_lanes(Laws laws, simd::Mask acti
   r.dpeeq = p.dpeeq;
   r.yield = p.yield;
   r.dgamma = p.dgamma;
-  const simd::Mask crossed = linear & ~p.failed & (peeq + p.dpeeq > seg_end);
+  const simd::Mask crossed = linear & ~p.failed & simd::greater(peeq + p.dpeeq, seg_end);
   const simd::Mask rest = (active & ~linear) | p.failed | crossed;
   if (simd::any(rest)) [[unlikely]]
     newton_return_lanes(laws(), rest, p.failed, seg_stress, seg_slope, seg_end, q11, q12, shear,
@@ -181,14 +181,12 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
   const std::size_t r = row(b, k);
   const Vec y = simd::load(&m_yield[r]);
   const Vec vm2 = sxx * sxx - sxx * syy + syy * syy + 3.0 * (sxy * sxy);
-  const simd::Mask yielding = vm2 > (y * y) * (1.0 + SHELL_YIELD_TOLERANCE);
+  const simd::Mask yielding = simd::greater(vm2, (y * y) * (1.0 + SHELL_YIELD_TOLERANCE));
   Vec dissipation = simd::splat(0.0);
   if (!simd::any(yielding)) return dissipation;
   // Rate-free tables on the segment of ε̄ᵖ_n: σ_y = y + slope Δε̄ᵖ (y = σ_y(ε̄ᵖ_n), kept up
   // by the returns) up to ε̄ᵖ = end, slope and end from the segment table.
-  simd::Mask linear;
-  for (std::size_t l = 0; l < W; ++l) linear[l] = m_lane_linear[b * W + l];
-  linear &= yielding;
+  const simd::Mask linear = simd::load_mask(&m_lane_linear[b * W]) & yielding;
   const Index* segment = &m_segment[r];
   const Vec slope = simd::gather(m_segment_slope.data(), segment);
   const Vec end = simd::gather(m_segment_end.data(), segment);
@@ -218,7 +216,7 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
   // (finish_point takes the rate factor out where there is one).
   simd::store(&m_yield[r], simd::select(yielding, ret.yield, y));
   const simd::Mask other = yielding & ~linear;
-  const simd::Mask passed = linear & (peeq_end >= end);
+  const simd::Mask passed = linear & simd::greater_equal(peeq_end, end);
   if (simd::any(other | passed)) [[unlikely]]
     finish_point(b, r, other, passed, peeq_end);
   return dissipation;

@@ -139,13 +139,15 @@ XPL_KERNEL_INLINE void section_tangents(Vec tan_m, Vec tan_b, Vec weight_b, cons
                                         ShellSectionResultants& out) {
   const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
   out.tangent_membrane = simd::min(tan_m, one);
-  out.tangent_bending = simd::select(weight_b > 0.0, tan_b / simd::max(weight_b, tiny), one);
+  out.tangent_bending =
+      simd::select(simd::greater(weight_b, 0.0), tan_b / simd::max(weight_b, tiny), one);
   const Vec n_trial =
       von_mises_product(trial_n[0], trial_n[1], trial_n[2], trial_n[0], trial_n[1], trial_n[2]);
   const Vec n_returned = von_mises_product(returned_n[0], returned_n[1], returned_n[2],
                                            returned_n[0], returned_n[1], returned_n[2]);
-  out.membrane_return = simd::select(
-      n_trial > 0.0, simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
+  out.membrane_return =
+      simd::select(simd::greater(n_trial, 0.0),
+                   simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
   out.flow = flow;
 }
 
@@ -224,7 +226,7 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
       const Vec trial2 = shell4r_kernel::von_mises_product(trial[0], trial[1], trial[2], trial[0],
                                                            trial[1], trial[2]);
       const Vec ratio = simd::select(
-          trial2 > 0.0,
+          simd::greater(trial2, 0.0),
           simd::min(simd::max(along / simd::max(trial2, simd::splat(1e-300)), simd::splat(0.0)),
                     simd::splat(1.0)),
           simd::splat(1.0));
@@ -234,8 +236,8 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
       weight_b += wz2;
       const Vec vm =
           simd::sqrt(shell4r_kernel::von_mises_product(sxx_n, syy_n, sxy_n, sxx_n, syy_n, sxy_n));
-      flow += simd::select(weight > 0.0, weight * simd::max(m_plastic.static_yield(b, k), vm),
-                           simd::splat(0.0));
+      flow += simd::select(simd::greater(weight, 0.0),
+                           weight * simd::max(m_plastic.static_yield(b, k), vm), simd::splat(0.0));
     }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
