@@ -94,7 +94,7 @@ XPL_KERNEL_INLINE PlaneStressLanes plane_stress_lanes(Laws laws, simd::Mask acti
   r.dpeeq = p.dpeeq;
   r.yield = p.yield;
   r.dgamma = p.dgamma;
-  const simd::Mask crossed = linear & ~p.failed & (peeq + p.dpeeq > seg_end);
+  const simd::Mask crossed = linear & ~p.failed & simd::greater(peeq + p.dpeeq, seg_end);
   const simd::Mask rest = (active & ~linear) | p.failed | crossed;
   if (simd::any(rest)) [[unlikely]]
     newton_return_lanes(laws(), rest, p.failed, seg_stress, seg_slope, seg_end, q11, q12, shear,
@@ -122,12 +122,16 @@ class ShellPlasticState {
   /// (Pa) of the increment from the stresses `start` (σxx, σyy, σxy at t_n, Pa): one SIMD
   /// yield test, then the scalar return only in the lanes that yield. Returns the plastic
   /// work ½(σ_n + σ_{n+1}) : Δεᵖ (J/m^3) and adds Δε33ᵖ to `thickness_strain` weighted by
-  /// `weight`, both zero in the lanes that stay elastic. Inline (below): the S4R kernel's
-  /// common case, all lanes on a table segment, runs without a call.
+  /// `weight`, both zero in the lanes that stay elastic. `flow`, where given, receives the
+  /// lanes' flow stress at the end (Pa): σ_y with the rate factor where the point yields (its
+  /// σ_vM, to the return's tolerance), σ_y(ε̄ᵖ_n, 0) where it stays elastic (≥ its σ_vM to
+  /// SHELL_YIELD_TOLERANCE), +inf in elastic lanes. Inline (below): the S4R kernel's common
+  /// case, all lanes on a table segment, runs without a call.
   XPL_KERNEL_INLINE simd::Vec point_return(std::size_t b, int k, simd::Vec q11, simd::Vec q12,
                                            simd::Vec shear, Real dt, simd::Vec weight,
                                            const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy,
-                                           simd::Vec& sxy, simd::Vec& thickness_strain);
+                                           simd::Vec& sxy, simd::Vec& thickness_strain,
+                                           simd::Vec* flow = nullptr);
 
   /// σ_y(ε̄ᵖ, 0) (Pa) of section point k of batch b per lane after its last return (the next
   /// trial's yield test); +inf in elastic lanes.
@@ -176,19 +180,18 @@ class ShellPlasticState {
 XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
     std::size_t b, int k, simd::Vec q11, simd::Vec q12, simd::Vec shear, Real dt, simd::Vec weight,
     const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy, simd::Vec& sxy,
-    simd::Vec& thickness_strain) {
+    simd::Vec& thickness_strain, simd::Vec* flow) {
   using simd::Vec;
   const std::size_t r = row(b, k);
   const Vec y = simd::load(&m_yield[r]);
   const Vec vm2 = sxx * sxx - sxx * syy + syy * syy + 3.0 * (sxy * sxy);
-  const simd::Mask yielding = vm2 > (y * y) * (1.0 + SHELL_YIELD_TOLERANCE);
+  const simd::Mask yielding = simd::greater(vm2, (y * y) * (1.0 + SHELL_YIELD_TOLERANCE));
   Vec dissipation = simd::splat(0.0);
+  if (flow != nullptr) *flow = y;
   if (!simd::any(yielding)) return dissipation;
   // Rate-free tables on the segment of ε̄ᵖ_n: σ_y = y + slope Δε̄ᵖ (y = σ_y(ε̄ᵖ_n), kept up
   // by the returns) up to ε̄ᵖ = end, slope and end from the segment table.
-  simd::Mask linear;
-  for (std::size_t l = 0; l < W; ++l) linear[l] = m_lane_linear[b * W + l];
-  linear &= yielding;
+  const simd::Mask linear = simd::load_mask(&m_lane_linear[b * W]) & yielding;
   const Index* segment = &m_segment[r];
   const Vec slope = simd::gather(m_segment_slope.data(), segment);
   const Vec end = simd::gather(m_segment_end.data(), segment);
@@ -216,9 +219,11 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
   dissipation = simd::select(yielding, work, dissipation);
   // The next trial's test: σ_y(ε̄ᵖ_{n+1}, 0), the end yield stress itself without a rate law
   // (finish_point takes the rate factor out where there is one).
-  simd::store(&m_yield[r], simd::select(yielding, ret.yield, y));
+  const Vec end_yield = simd::select(yielding, ret.yield, y);
+  simd::store(&m_yield[r], end_yield);
+  if (flow != nullptr) *flow = end_yield;
   const simd::Mask other = yielding & ~linear;
-  const simd::Mask passed = linear & (peeq_end >= end);
+  const simd::Mask passed = linear & simd::greater_equal(peeq_end, end);
   if (simd::any(other | passed)) [[unlikely]]
     finish_point(b, r, other, passed, peeq_end);
   return dissipation;

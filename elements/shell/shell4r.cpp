@@ -101,7 +101,7 @@ XPL_KERNEL_INLINE void plastic_membrane_hourglass(Real* hstore, Vec r0, Vec r1, 
   const Vec o0 = simd::load(hstore), o1 = simd::load(hstore + simd::W);
   Vec n0 = relax * (o0 + (k * dt) * r0), n1 = relax * (o1 + (k * dt) * r1);
   const Vec norm = 4.0 * hourglass_field_norm(nat, poisson, area, n0, n1);
-  const simd::Mask over = norm > limit;
+  const simd::Mask over = simd::greater(norm, limit);
   if (simd::any(over)) {
     const Vec f = simd::select(over, limit / simd::max(norm, limit), simd::splat(1.0));
     n0 = f * n0;
@@ -187,8 +187,9 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   if constexpr (PLASTIC) {
     const Vec one = simd::splat(1.0);
     // The bound: +inf on lanes without HG_PLASTIC (and in elastic batches).
-    const Vec limit = simd::select(plastic_on > 0.0, (SHELL_HOURGLASS_PLASTIC_BOUND * t) * sr.flow,
-                                   simd::splat(std::numeric_limits<Real>::infinity()));
+    const Vec limit =
+        simd::select(simd::greater(plastic_on, 0.0), (SHELL_HOURGLASS_PLASTIC_BOUND * t) * sr.flow,
+                     simd::splat(std::numeric_limits<Real>::infinity()));
     plastic_membrane_hourglass(hg.stored, hourglass_rate(fm, ux), hourglass_rate(fm, uy),
                                c_plane * (one + plastic_on * (sr.tangent_membrane - one)),
                                one + plastic_on * (sr.membrane_return - one), limit,

@@ -32,7 +32,7 @@ struct ShellSectionResultants {
   Vec t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work;
   /// Plastic batches, the state the physical hourglass follows: the section's tangent ratios
   /// over the increment, membrane (weights w) and bending (weights w ζ²), each in [0, 1]; the
-  /// membrane return ratio |N| / |N_trial| (von Mises norms); the flow stress Σ w max(σ_y, σ_vM)
+  /// membrane return ratio |N| / |N_trial| (von Mises norms); the flow stress Σ w σ_y(end)
   /// (Pa). Elastic batches: 1, 1, 1 and +inf.
   Vec tangent_membrane = simd::splat(1.0), tangent_bending = simd::splat(1.0),
       membrane_return = simd::splat(1.0), flow = simd::splat(std::numeric_limits<Real>::infinity());
@@ -132,20 +132,22 @@ XPL_KERNEL_INLINE Vec von_mises_product(Vec axx, Vec ayy, Vec axy, Vec bxx, Vec 
 /// Plastic batches: the section's tangent ratios, membrane return ratio and flow stress
 /// (ShellSectionResultants) into `out`, from the sums over its points with weights w: Σ w r
 /// and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², the trial and returned membrane
-/// stresses Σ w σ, and Σ w max(σ_y, σ_vM). The weights of a batch's points sum to 1
-/// (Simpson, shell4r_setup.cpp).
+/// stresses Σ w σ, and Σ w σ_y (end of increment; max(σ_y, σ_vM) to the return's tolerance). The
+/// weights of a batch's points sum to 1 (Simpson, shell4r_setup.cpp).
 XPL_KERNEL_INLINE void section_tangents(Vec tan_m, Vec tan_b, Vec weight_b, const Vec trial_n[3],
                                         const Vec returned_n[3], Vec flow,
                                         ShellSectionResultants& out) {
   const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
   out.tangent_membrane = simd::min(tan_m, one);
-  out.tangent_bending = simd::select(weight_b > 0.0, tan_b / simd::max(weight_b, tiny), one);
+  out.tangent_bending =
+      simd::select(simd::greater(weight_b, 0.0), tan_b / simd::max(weight_b, tiny), one);
   const Vec n_trial =
       von_mises_product(trial_n[0], trial_n[1], trial_n[2], trial_n[0], trial_n[1], trial_n[2]);
   const Vec n_returned = von_mises_product(returned_n[0], returned_n[1], returned_n[2],
                                            returned_n[0], returned_n[1], returned_n[2]);
-  out.membrane_return = simd::select(
-      n_trial > 0.0, simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
+  out.membrane_return =
+      simd::select(simd::greater(n_trial, 0.0),
+                   simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
   out.flow = flow;
 }
 
@@ -212,8 +214,9 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
       trial_n[0] += weight * sxx_n;
       trial_n[1] += weight * syy_n;
       trial_n[2] += weight * sxy_n;
+      Vec point_flow;  // σ_y at the end: max(σ_y, σ_vM) to the return's tolerance, no root
       plastic_work += tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n,
-                                                  syy_n, sxy_n, thinning);
+                                                  syy_n, sxy_n, thinning, &point_flow);
       returned_n[0] += weight * sxx_n;
       returned_n[1] += weight * syy_n;
       returned_n[2] += weight * sxy_n;
@@ -224,7 +227,7 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
       const Vec trial2 = shell4r_kernel::von_mises_product(trial[0], trial[1], trial[2], trial[0],
                                                            trial[1], trial[2]);
       const Vec ratio = simd::select(
-          trial2 > 0.0,
+          simd::greater(trial2, 0.0),
           simd::min(simd::max(along / simd::max(trial2, simd::splat(1e-300)), simd::splat(0.0)),
                     simd::splat(1.0)),
           simd::splat(1.0));
@@ -232,10 +235,7 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
       tan_m += weight * ratio;
       tan_b += wz2 * ratio;
       weight_b += wz2;
-      const Vec vm =
-          simd::sqrt(shell4r_kernel::von_mises_product(sxx_n, syy_n, sxy_n, sxx_n, syy_n, sxy_n));
-      flow += simd::select(weight > 0.0, weight * simd::max(m_plastic.static_yield(b, k), vm),
-                           simd::splat(0.0));
+      flow += simd::select(simd::greater(weight, 0.0), weight * point_flow, simd::splat(0.0));
     }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
