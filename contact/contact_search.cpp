@@ -130,46 +130,6 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   return v;
 }
 
-bool ContactEngine::beside_next_face(Index f, const ClosestPoint& cp, const Vec3& point,
-                                     Real lateral, const NodalVectors& position,
-                                     std::span<const Real> node_thickness) const {
-  const ContactFace& face = m_domain.faces()[f];
-  if (face.shell) return false;
-  Vec3 corner[4];
-  face_corners(face, position, node_thickness, corner);
-  const Vec3 n_f = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
-  // In front of the next face by this much, the node is outside the body, not at the edge (a
-  // rim node level with the next face's plane to round-off, or pressed a little out of it by
-  // Poisson's ratio, still touches this face).
-  const Real outside = OUTSIDE_EDGE_FRACTION * m_domain.face_depth(f) / DEPTH_LIMIT_FRACTION;
-  // The edge of the closest point, or both edges at its corner.
-  const int edges[2] = {cp.feature, cp.region == QuadRegion::Corner ? (cp.feature + 3) % 4 : -1};
-  for (const int e : edges) {
-    if (e < 0) continue;
-    const Index g = m_domain.face_across(f, e);
-    if (g == NO_INDEX) continue;
-    Vec3 next[4];
-    face_corners(m_domain.faces()[g], position, node_thickness, next);
-    const Vec3 centre = 0.25 * (next[0] + next[1] + next[2] + next[3]);
-    const Vec3 towards = centre - 0.5 * (corner[e] + corner[(e + 1) % 4]);
-    const Real rise = towards.dot(n_f) / std::sqrt(towards.dot(towards) * n_f.dot(n_f));
-    // Concave: the next face rises in front of this one's plane; a node pushed into the
-    // corner is this face's while its offset is below its penetration (admissible()).
-    if (rise > CONCAVE_EDGE_SINE) continue;
-    // Flat: the node beside the edge lies over the next face, which takes it (level with
-    // the edge, within the same distance, both faces keep it: a node over a mesh line).
-    if (rise >= -CONCAVE_EDGE_SINE) {
-      if (lateral > outside) return true;
-      continue;
-    }
-    // Convex: outside the body in front of the next face's plane.
-    const Vec3 n_g = (next[2] - next[0]).cross(next[3] - next[1]);
-    const Real n_g_len = std::sqrt(n_g.dot(n_g));
-    if (n_g_len > 0.0 && (point - centre).dot(n_g) > outside * n_g_len) return true;
-  }
-  return false;
-}
-
 bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& position,
                                std::span<const Real> node_thickness, SlaveTouch& out,
                                Real& distance, Real nearer_than) const {
@@ -275,14 +235,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
     // still caught: for one of the two faces its offset is below its penetration.
     const Real lateral_sq = cp.distance * cp.distance - cp.gap * cp.gap;
     if (lateral_sq > gap * gap) return false;
-    // In an engine's first update (the overclosures of C2-C7), beyond an edge where the
-    // surface goes on flat or turns away (convex) the node is the next face's or outside the
-    // body, however far behind this face's plane: an S4R box's node 5 mm above a slab's top
-    // face and 10 mm in from its side face was taken 10 mm deep behind the side face (of the
-    // top layer's element, and of the layers' below) at t = 0, an overclosure that was not
-    // there, and its push inverted an element (stress sweep scenes 86, 120, 199). Not later:
-    // in the run, the rule above pushes a node beside a convex edge out smoothly (a puck's
-    // facets over a fold: dropping it there tripled the contact force's peak).
+    // The seeds of an engine's first update: beside a flat or convex edge (contact_edges.cpp).
     if (!m_updated &&
         beside_next_face(f, cp, v.point, std::sqrt(lateral_sq), position, node_thickness))
       return false;
