@@ -125,6 +125,11 @@ class FastS4R {
   std::vector<unsigned char> m_fold_exempt;  ///< [b][W]: corners not checked (none here)
 };
 
+/// `v` never fused into a later multiply-add (as shell4r_kernel::rounded()).
+inline Vec rounded(Vec v) {
+  return __builtin_assoc_barrier(v);
+}
+
 /// Whether every lane of `m` is set.
 inline bool all_set(simd::Mask m) {
   std::int64_t r = -1;
@@ -257,8 +262,9 @@ void FastS4R::batch(std::size_t b, const Real* const p[3], const Real* const v[3
     // The one-point shear carries nothing on physical lanes (its terms are exact zeros).
     const Vec fz = hz[a];
     const Vec za = GAMMA[a] * fe.warp;
-    Vec mx = area * (-b2 * myy - b1 * mxy);
-    Vec my = area * (b1 * mxx + b2 * mxy);
+    // Kept rounded as the production's (shell4r_kernel::rounded()): the same bits.
+    Vec mx = rounded(area * (-b2 * myy - b1 * mxy));
+    Vec my = rounded(area * (b1 * mxx + b2 * mxy));
     mx = mx + za * fby;
     my = my - za * fbx;
     const Vec quarter = 0.25 * gam[a];
@@ -411,6 +417,16 @@ int main(int argc, char** argv) {
         std::printf("increment %d: strain %.17g / %.17g, hourglass %.17g / %.17g\n", inc,
                     tp.strain_energy_increment, tf.strain_energy_increment,
                     tp.hourglass_energy_increment, tf.hourglass_energy_increment);
+    }
+  }
+  if (const char* dump = std::getenv("XPL_MICRO_DUMP")) {
+    // The last pass's forces and moments, raw, to compare builds bit for bit.
+    const NodalVectors& fd = prod ? fp : ff;
+    const NodalVectors& md = prod ? mp : mf;
+    if (std::FILE* out = std::fopen(dump, "wb")) {
+      std::fwrite(fd.data(), sizeof(Real), fd.size(), out);
+      std::fwrite(md.data(), sizeof(Real), md.size(), out);
+      std::fclose(out);
     }
   }
   if (prod && fast) {
