@@ -127,7 +127,12 @@ class FastS4R {
 
 /// `v` never fused into a later multiply-add (as shell4r_kernel::rounded()).
 inline Vec rounded(Vec v) {
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_assoc_barrier)
   return __builtin_assoc_barrier(v);
+#endif
+#endif
+  return v;
 }
 
 /// Whether every lane of `m` is set.
