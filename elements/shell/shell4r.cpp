@@ -215,8 +215,17 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
 
   // Forces and moments on x_{n+1}.
   V3<Vec> fn[4], mn[4];
-  corner_forces(fe, {sr.nxx, sr.nyy, sr.nxy, sr.mxx, sr.myy, sr.mxy, shear.qx, shear.qy}, hg.value,
-                shear.hz, shear.hbx, shear.hby, forms & FORM_OLD, forms & FORM_PHYS, fn, mn);
+  const shell4r_kernel::ShellResultants resultants{sr.nxx, sr.nyy, sr.nxy,   sr.mxx,
+                                                   sr.myy, sr.mxy, shear.qx, shear.qy};
+  // Elastic batches of the physical form alone: the corner loop without the forms' run-time
+  // branches (bitwise the same forces; plastic batches keep the general loop, whose products GCC
+  // contracts otherwise in that kernel).
+  if (!PLASTIC && forms == FORM_PHYS)
+    corner_forces<true>(fe, resultants, hg.value, shear.hz, shear.hbx, shear.hby, false, true, fn,
+                        mn);
+  else
+    corner_forces(fe, resultants, hg.value, shear.hz, shear.hbx, shear.hby, forms & FORM_OLD,
+                  forms & FORM_PHYS, fn, mn);
 
   finish_batch<PLASTIC>(batch, fe, fm.area, sr.work, sr.plastic_work, hg.work, fn, mn, f, m);
 }

@@ -53,14 +53,36 @@ struct ShellResultants {
   Vec nxx, nyy, nxy, mxx, myy, mxy, qx, qy;
 };
 
+/// `v` as computed: GCC contracts a product and a sum of later statements into one
+/// multiply-add (-ffp-contract=fast, its default for C++), and which product it keeps rounded
+/// depends on the code around them. Where a run-time branch used to stand between them (a φ of
+/// the two paths), this keeps the same product rounded, so the results keep their bits.
+XPL_KERNEL_INLINE Vec rounded(Vec v) {
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_assoc_barrier)
+  return __builtin_assoc_barrier(v);
+#endif
+#endif
+  return v;
+}
+
 /// Nodal forces `fn` and moments `mn` (global axes) of a batch on x_{n+1} (frame `fe`) from
 /// its resultants `r`, its hourglass resultants `hq` and, on physical-form lanes, the normal
 /// forces `hz` and β-forces `hbx`, `hby` of the edge shears; `old_form`, `phys_form`: whether
-/// a lane of the batch uses the stiffness or the physical hourglass form.
+/// a lane of the batch uses the stiffness or the physical hourglass form. PHYS_ONLY: every lane
+/// of the batch uses the physical form (`old_form` false, `phys_form` true), whose shear acts
+/// through the edge shears alone: the one-point shear terms, exact zeros there (r.qx = r.qy =
+/// 0, ShearForces), are left out (issue 38 item 3: with the run-time forms they kept GCC from
+/// holding the loop in registers, about a tenth of the elastic pass's instructions).
+template <bool PHYS_ONLY = false>
 XPL_KERNEL_INLINE void corner_forces(const QuadFrame<Vec>& fe, const ShellResultants& r,
                                      const Vec hq[], const Vec hz[4], const Vec hbx[4],
                                      const Vec hby[4], bool old_form, bool phys_form, V3<Vec> fn[4],
                                      V3<Vec> mn[4]) {
+  if constexpr (PHYS_ONLY) {
+    old_form = false;
+    phys_form = true;
+  }
   const Vec area = fe.area;
   const Vec ba[2] = {fe.b1a, fe.b1b}, bc[2] = {fe.b2a, fe.b2b};
   const Vec gam[4] = {1.0 - fe.sa, -1.0 - fe.sb, 1.0 + fe.sa, -1.0 + fe.sb};
@@ -68,10 +90,17 @@ XPL_KERNEL_INLINE void corner_forces(const QuadFrame<Vec>& fe, const ShellResult
     const Vec b1 = B_SIGN[a] * ba[a % 2], b2 = B_SIGN[a] * bc[a % 2];
     const Vec fbx = area * (b1 * r.nxx + b2 * r.nxy) + gam[a] * hq[0];
     const Vec fby = area * (b2 * r.nyy + b1 * r.nxy) + gam[a] * hq[1];
-    Vec fz = area * (b1 * r.qx + b2 * r.qy);
     const Vec za = GAMMA[a] * fe.warp;
-    Vec mx = area * (-b2 * r.myy - b1 * r.mxy - 0.25 * r.qy);
-    Vec my = area * (b1 * r.mxx + b2 * r.mxy + 0.25 * r.qx);
+    Vec fz, mx, my;
+    if constexpr (PHYS_ONLY) {
+      fz = simd::splat(0.0);
+      mx = rounded(area * (-b2 * r.myy - b1 * r.mxy));
+      my = rounded(area * (b1 * r.mxx + b2 * r.mxy));
+    } else {
+      fz = area * (b1 * r.qx + b2 * r.qy);
+      mx = area * (-b2 * r.myy - b1 * r.mxy - 0.25 * r.qy);
+      my = area * (b1 * r.mxx + b2 * r.mxy + 0.25 * r.qx);
+    }
     if (old_form) {
       fz = fz + gam[a] * hq[2];
       mx = mx + gam[a] * hq[3];
