@@ -15,6 +15,8 @@ set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
+# The disks, for the log: a full disk ends a rank alone (docs/dev/mpi.md, "When one rank fails").
+df -h . /tmp /dev/shm || true
 start=$(date +%s)
 XPL_WITH_MPI=1 bash scripts/build.sh mpi xpl
 built=$(date +%s)
