@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <compare>
 #include <map>
 #include <stdexcept>
 #include <unordered_map>
@@ -109,19 +110,30 @@ ContactDomain::ContactDomain(const DomainSpec& spec, const ElementTopology& topo
     m_face_depth[f] = DEPTH_LIMIT_FRACTION * std::sqrt(d.dot(d));
   }
 
-  // The surface's hex faces that share an edge: each is the other's face across it.
+  // The surface's hex faces that share an edge: each is the other's face across it (an edge
+  // of exactly two hex faces; sorted by the edge's nodes, then face and edge number).
   m_face_across.assign(m_faces.size(), {NO_INDEX, NO_INDEX, NO_INDEX, NO_INDEX});
-  std::map<std::pair<Index, Index>, std::vector<std::pair<Index, int>>> edge_faces;
+  struct FaceEdge {
+    Index low, high, face;
+    int edge;
+    auto operator<=>(const FaceEdge&) const = default;
+  };
+  std::vector<FaceEdge> edges;
   for (Index f = 0; f < n_faces; ++f)
     for (int k = 0; k < 4 && !m_faces[f].shell; ++k) {
       const Index a = m_faces[f].nodes[k], b = m_faces[f].nodes[(k + 1) % 4];
-      edge_faces[{std::min(a, b), std::max(a, b)}].emplace_back(f, k);
+      edges.push_back({std::min(a, b), std::max(a, b), f, k});
     }
-  for (const auto& [edge, list] : edge_faces)
-    if (list.size() == 2) {
-      m_face_across[list[0].first][list[0].second] = list[1].first;
-      m_face_across[list[1].first][list[1].second] = list[0].first;
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
+    if (j - i == 2) {
+      m_face_across[edges[i].face][edges[i].edge] = edges[i + 1].face;
+      m_face_across[edges[i + 1].face][edges[i + 1].edge] = edges[i].face;
     }
+    i = j;
+  }
 
   // Slave node masks: the surfaces of the faces around the node. A node is rigid when it
   // belongs to a rigid face, double sided when all its faces are shell sides.

@@ -17,14 +17,11 @@
 
 namespace xpl::contact {
 
-bool ContactEngine::beside_next_face(Index f, const ClosestPoint& cp, const Vec3& point,
-                                     Real lateral, const NodalVectors& position,
+bool ContactEngine::beside_next_face(Index f, const Vec3 (&corner)[4], const Vec3& n_f,
+                                     const ClosestPoint& cp, const Vec3& point, Real lateral,
+                                     const NodalVectors& position,
                                      std::span<const Real> node_thickness) const {
-  const ContactFace& face = m_domain.faces()[f];
-  if (face.shell) return false;
-  Vec3 corner[4];
-  face_corners(face, position, node_thickness, corner);
-  const Vec3 n_f = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+  if (m_domain.faces()[f].shell) return false;
   // In front of the next face by this much, the node is outside the body, not at the edge (a
   // rim node level with the next face's plane to round-off, or pressed a little out of it by
   // Poisson's ratio, still touches this face).

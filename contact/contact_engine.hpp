@@ -198,8 +198,10 @@ class ContactEngine {
   /// (`lateral` beyond it, m), is
   /// not f's to touch there: the surface goes on flat into its next face (which takes the
   /// point), or turns away convex and the point is outside the body in front of the next face.
-  bool beside_next_face(Index f, const ClosestPoint& cp, const Vec3& point, Real lateral,
-                        const NodalVectors& position, std::span<const Real> node_thickness) const;
+  /// `corner` and `n_f`: f's corners and its (unnormalised) normal, as admissible() has them.
+  bool beside_next_face(Index f, const Vec3 (&corner)[4], const Vec3& n_f, const ClosestPoint& cp,
+                        const Vec3& point, Real lateral, const NodalVectors& position,
+                        std::span<const Real> node_thickness) const;
 
   ContactDomain m_domain;
   std::vector<InteractionLaw> m_laws;

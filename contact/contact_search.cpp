@@ -236,8 +236,8 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
     const Real lateral_sq = cp.distance * cp.distance - cp.gap * cp.gap;
     if (lateral_sq > gap * gap) return false;
     // The seeds of an engine's first update: beside a flat or convex edge (contact_edges.cpp).
-    if (!m_updated &&
-        beside_next_face(f, cp, v.point, std::sqrt(lateral_sq), position, node_thickness))
+    if (!m_updated && beside_next_face(f, corner, n_f, cp, v.point, std::sqrt(lateral_sq), position,
+                                       node_thickness))
       return false;
   }
   if (!kept_side && -gap > depth + half_t + v.allowance) return false;
