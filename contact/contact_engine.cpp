@@ -52,6 +52,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_constraints.assign(n, ContactConstraint{});
   m_touch.assign(n, SlaveTouch{});
   m_lost_depth.assign(n, 0.0);
+  m_passed_depth.assign(n, 0.0);
   m_second.assign(n, ContactConstraint{});
   m_second_touch.assign(n, SlaveTouch{});
   m_second_force.assign(3 * n, 0.0);
@@ -99,6 +100,14 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       totals.lost_node = slaves.nodes()[s];
       totals.lost_element = face.element;
       totals.lost_element_depth = 2.0 * m_domain.face_depth(m_constraints[s].master_face);
+    }
+    for (Index s = 0; s < n_slave; ++s) {
+      if (!(m_passed_depth[s] > 0.0)) continue;
+      ++totals.passed;
+      if (m_passed_depth[s] <= totals.passed_depth) continue;
+      totals.passed_depth = m_passed_depth[s];
+      totals.passed_node = slaves.nodes()[s];
+      totals.passed_element = faces[m_constraints[s].master_face].element;
     }
   }
 

@@ -151,6 +151,11 @@ class ContactEngine {
   /// increment, when it lies behind its interior deeper than the whole element behind it
   /// (released: file comment); else 0.
   Real released_depth(const SlaveView& v, const NodalVectors& position) const;
+  /// How far (m) the node of view `v`, held on a side of a shell last increment, lies behind
+  /// the mid-surface of that wall (the held face, or the next elements continuing it) over its
+  /// interior, when the search found it no face (`touched` NO_INDEX) or only the wall's other
+  /// side: it has passed through the shell. Else 0.
+  Real passed_depth(const SlaveView& v, Index touched, const NodalVectors& position) const;
   /// What the force pass needs of one spring (a side of a slave slot), from the pass before
   /// it: stiffness (N/m, view weight included; capped by cap_default_springs), the interaction
   /// and its law, the relative velocity of the node to the face point (m/s), whether the spring
@@ -213,6 +218,7 @@ class ContactEngine {
   // was pressed on last increment when that was deeper than the element behind the face (it
   // was released there: file comment), else 0.
   std::vector<Real> m_lost_depth;
+  std::vector<Real> m_passed_depth;  ///< per slave slot: passed_depth() of the last search
   // The other side of a pinched node (file comment): its constraint, touch, force on the
   // slave node (n_slave × 3, N) and normal force (N), per slot.
   std::vector<ContactConstraint> m_second;

@@ -131,6 +131,11 @@ inline constexpr Real PINCH_COSINE = -0.5;
 /// grows unresisted while the other holds it (ContactEngine, from an engine's second update).
 inline constexpr Real CORNER_COSINE = 0.5;
 
+/// A shell element next to the one a node is held on (sharing a corner, not folded back over
+/// it) continues that wall when its normal is within 45° of the held face's: the node's side
+/// memory (no pass-through) covers it (ContactEngine::admissible).
+inline constexpr Real WALL_COSINE = 0.70710678118654752;
+
 /// A move is refused when an element corner keeps less than this share of its volume (hex) or
 /// area (shell) as read: half, well before an inversion, so the adjusted mesh stays usable.
 inline constexpr Real MIN_CORNER_RATIO = 0.5;

@@ -39,6 +39,13 @@ struct ContactTotals {
   Real lost_depth = 0.0;
   Index lost_element = NO_INDEX;
   Real lost_element_depth = 0.0;
+  /// Slave nodes pressed on a side of a shell last increment and now behind its mid-surface
+  /// with no face holding them on that side (ContactEngine::passed_depth): passed through it.
+  /// The deepest: its node index, depth behind the mid-surface (m) and the shell element index.
+  Index passed = 0;
+  Index passed_node = NO_INDEX;
+  Real passed_depth = 0.0;
+  Index passed_element = NO_INDEX;
   bool rebuilt = false;  ///< the broad phase was rebuilt
 };
 

@@ -211,6 +211,22 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
   state.energies.contact += -t.work - t.friction_dissipation + t.interference_work;
   state.energies.external_work += t.interference_work;
   m_stored_energy = t.stored_energy;
+  if (t.passed > 0) {
+    // A result with bodies passed through each other is wrong however balanced: the run ends.
+    const ExternalId element = m_model.element_ids[t.passed_element];
+    throw SolverError(
+        "contact lost at increment " + std::to_string(state.increment) + ", element " +
+            std::to_string(element) + ": node " + std::to_string(m_model.node_ids[t.passed_node]) +
+            " passed through the shell of element " + std::to_string(element) +
+            ": pressed on one side of it last increment, it is now " + format_real(t.passed_depth) +
+            " m behind its mid-surface" +
+            (t.passed > 1 ? " (with " + std::to_string(t.passed - 1) + " more nodes)" : "") +
+            ". The penalty could not stop it within half the shell's thickness: refine the "
+            "mesh where it hits (a corner or edge pressing between a coarse shell's nodes), "
+            "raise the penalty scale factor (*CONTACT CONTROLS ASSIGNMENT), or lower the time "
+            "scale factor",
+        element, state.increment, state.time);
+  }
   if (t.lost == 0) return;
   if (m_lost == 0)
     m_sink.message(

@@ -685,6 +685,60 @@ TEST_CASE(
   CHECK(t.lost_element_depth == Approx(1.0));
 }
 
+TEST_CASE(
+    "a node held on a shell's side stays held however deep on that element; behind the "
+    "mid-surface of the next element, with no face holding it, it has passed through",
+    "[contact][engine][speed]") {
+  // Plate: two shells (x in [0, 1] and [1, 2], y in [0, 1], z = 0), t = 0.2, SPOS at z = 0.1.
+  // Block: one hex of 0.4 whose bottom face starts on the plate's SPOS over the first element.
+  const Real t = 0.2, dt = 1e-3;
+  test::ContactMesh mesh;
+  test::add_shell_plate(mesh, 2, 1, 1.0);
+  const Index first_block = mesh.node_count();
+  test::add_hex_block(mesh, 1, 1, 1, 0.4, Vec3(0.3, 0.3, 0.1));
+  const Index n = mesh.node_count();
+  std::vector<Real> thickness(static_cast<std::size_t>(n), t);
+  for (Index i = first_block; i < n; ++i) thickness[i] = std::numeric_limits<Real>::quiet_NaN();
+  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  contact::ContactOptions options;
+  options.margin = 0.1;
+  NodalVectors x = mesh.coordinates;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, options, x,
+                                thickness);
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  NodalVectors v = NodalVectors::Zero(n, 3);
+  PhaseTimers timers;
+  engine.update(x, v, 0.0, dt, thickness, mass, inverse_mass, force, timers);
+  const auto step = [&](const Vec3& d) {
+    for (Index i = first_block; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        x(i, c) += d[c];
+        v(i, c) = d[c] / dt;
+      }
+    force.setZero();
+    return engine.update(x, v, dt, dt, thickness, mass, inverse_mass, force, timers);
+  };
+  const Index corner = first_block + 1;  // bottom corner at (0.7, 0.3): moves onto element 1
+  const Index s = engine.domain().slaves().slot(corner);
+  // Pressed 0.05 into the SPOS of element 0, then 0.15 (0.05 behind the mid-surface): held.
+  contact::ContactTotals totals = step(Vec3(0, 0, -0.05));
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(engine.normal_force(s) > 0.0);
+  totals = step(Vec3(0, 0, -0.1));
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(engine.domain().faces()[engine.touch(s).face].element == 0);
+  CHECK(engine.touch(s).gap == Approx(-0.15).margin(1e-12));
+  CHECK(totals.passed == 0);
+  // Moved over element 1's interior, still 0.05 behind the mid-surface: element 1's SPOS is a
+  // new touch deeper than its limit (half the thickness), its SNEG faces the wrong way, and
+  // element 0 is beside it: no face holds it, and it lies behind the plate.
+  totals = step(Vec3(0.6, 0, 0));
+  CHECK(engine.touch(s).face == NO_INDEX);
+  CHECK(totals.passed >= 1);
+  CHECK(totals.passed_depth == Approx(0.05).margin(1e-12));
+  CHECK(totals.passed_element == 0);
+}
+
 TEST_CASE("the springs that push a free rigid body are bounded with the body's mass",
           "[contact][engine][rigid]") {
   // The scene above: a rigid 2×2×1 block whose nine bottom nodes dip 0.01 into a deformable
