@@ -88,41 +88,6 @@ SlaveTouch corner_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>&
   return SlaveTouch{};
 }
 
-/// Which side of the shell a node held on shell face `held` (unit normal `held_normal`) may
-/// touch on shell face f: +1 the held side (the held face, or a face of a shell element next
-/// to it, sharing a corner, that continues the wall within 45° and faces the same way), −1
-/// the other side of the same wall, 0 when f is not part of the held wall (another element,
-/// or one folded back over the held one, whose faces a node may touch as any others).
-int shell_side(const std::vector<ContactFace>& faces, const ContactFace& held,
-               const Vec3& held_normal, Index f, const NodalVectors& position) {
-  const ContactFace& face = faces[f];
-  if (face.element == held.element) return face.face == held.face ? 1 : -1;
-  Vec3 shared = Vec3::Zero();
-  int n_shared = 0;
-  for (Index a : face.nodes)
-    for (Index b : held.nodes)
-      if (a == b) {
-        shared += node_point(position, a);
-        ++n_shared;
-      }
-  if (n_shared == 0) return 0;
-  shared /= static_cast<Real>(n_shared);
-  Vec3 centre_held = Vec3::Zero(), centre = Vec3::Zero(), corner[4];
-  for (int a = 0; a < 4; ++a) {
-    corner[a] = node_point(position, face.nodes[a]);
-    centre += 0.25 * corner[a];
-    centre_held += 0.25 * node_point(position, held.nodes[a]);
-  }
-  // Folded back over the held element (more than 90°): not the wall's continuation.
-  if (!((centre - shared).dot(shared - centre_held) > 0.0)) return 0;
-  const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
-  const Real n_len = std::sqrt(n.dot(n));
-  if (!(n_len > 0.0)) return 0;
-  const Real cosine = n.dot(held_normal) / n_len;
-  if (cosine > WALL_COSINE) return 1;
-  return cosine < -WALL_COSINE ? -1 : 0;
-}
-
 }  // namespace
 
 ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
@@ -381,36 +346,6 @@ Real ContactEngine::released_depth(const SlaveView& v, const NodalVectors& posit
   if (cp.region != QuadRegion::Interior) return 0.0;
   const Real depth = -cp.gap;
   return depth > 2.0 * m_domain.face_depth(v.continuing) + v.allowance ? depth : 0.0;
-}
-
-Real ContactEngine::passed_depth(const SlaveView& v, Index touched,
-                                 const NodalVectors& position) const {
-  if (v.held == nullptr || !m_updated) return 0.0;
-  const std::vector<ContactFace>& faces = m_domain.faces();
-  const ContactFace& held = *v.held;
-  Vec3 corner[4];
-  face_corners(held, position, {}, corner);
-  const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
-  const Real n_len = std::sqrt(n.dot(n));
-  if (!(n_len > 0.0)) return 0.0;
-  const Vec3 held_normal = n / n_len;
-  // Still held by this wall's side, or by anything that is not this wall's other side.
-  if (touched != NO_INDEX &&
-      !(faces[touched].shell && shell_side(faces, held, held_normal, touched, position) < 0))
-    return 0.0;
-  // Behind the mid-surface of the held face or of the wall's next elements, over its interior.
-  Real depth = 0.0;
-  const auto behind = [&](Index f) {
-    face_corners(faces[f], position, {}, corner);
-    const ClosestPoint cp = closest_point_on_quad(corner, v.point);
-    if (cp.region == QuadRegion::Interior && cp.gap < 0.0) depth = std::max(depth, -cp.gap);
-  };
-  behind(static_cast<Index>(&held - faces.data()));
-  for (Index f : m_broad.candidates(v.slot))
-    if (faces[f].shell && faces[f].element != held.element &&
-        shell_side(faces, held, held_normal, f, position) > 0)
-      behind(f);
-  return depth;
 }
 
 void ContactEngine::widen_search(Real extra) {

@@ -16,7 +16,11 @@ Real onset_offset(const ContactConstraint& before, Index face, Real gap, const V
                   const Vec3& relative_velocity, Real dt) {
   if (face == before.master_face) return 0.0;
   const bool same_side = before.master_face != NO_INDEX && before.normal.dot(normal) > 0.0;
-  const Real carried = same_side ? std::max(0.0, -before.gap) : 0.0;
+  // What the spring held (its penetration beyond the offset), not the whole penetration: the
+  // offset stays with the node (ContactConstraint), so carrying the offset part as well would
+  // start the new spring compressed by the old offset on top (energy from nowhere at every
+  // switch between two faces of a bent shell the node lies deep in).
+  const Real carried = same_side ? std::max(0.0, -before.gap - before.offset) : 0.0;
   const Real approach = std::max(0.0, -relative_velocity.dot(normal)) * dt;
   const Real excess = -gap - carried - approach;
   return excess > (ONSET_REACH_FACTOR - 1.0) * approach ? excess : 0.0;

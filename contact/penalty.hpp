@@ -82,14 +82,14 @@ Real normal_contact_update(ContactConstraint& constraint, Real gap, Real stiffne
 /// A touch on face `face` (gap `gap`, m, unit contact normal `normal`) that is not the face of
 /// last increment's constraint `before` is as deep as the relative approach of the increment
 /// along the normal, −v_rel·n Δt (relative velocity of the slave node to the face point
-/// `relative_velocity`, m/s, over the increment dt, s), plus the penetration `before` carried
-/// when its face is on the same side (normals less than 90° apart: sliding on to the next
-/// face). Deeper than that (more than ONSET_REACH_FACTOR times the approach), the node was
-/// already inside when the face turned admissible for it: a fold turning a face towards it,
-/// a node coming within the lateral rule of a face's edge, a node past a shell's mid-surface
-/// seeing the other side. The spring then holds only what the approach made (its energy is
-/// the work the approach took), and the rest becomes offset, so that a touch never starts
-/// with a force the motion did not build (energy from nowhere) and never pushes a node on
+/// `relative_velocity`, m/s, over the increment dt, s), plus the compression `before`'s spring
+/// held (its penetration beyond its offset) when its face is on the same side (normals less
+/// than 90° apart: sliding on to the next face). Deeper than that (more than ONSET_REACH_FACTOR
+/// times the approach), the node was already inside when the face turned admissible for it: a fold
+/// turning a face towards it, a node coming within the lateral rule of a face's edge, a node past a
+/// shell's mid-surface seeing the other side. The spring then holds only what the approach made
+/// (its energy is the work the approach took), and the rest becomes offset, so that a touch never
+/// starts with a force the motion did not build (energy from nowhere) and never pushes a node on
 /// through a wall it has crossed. Zero for the face of `before` (a continuing touch).
 Real onset_offset(const ContactConstraint& before, Index face, Real gap, const Vec3& normal,
                   const Vec3& relative_velocity, Real dt);

@@ -84,6 +84,18 @@ TEST_CASE("a touch on a new face keeps what the approach made and offsets the re
     const Real off = contact::onset_offset(before, 5, -1.4e-3, up, approaching, dt);
     CHECK(off == Approx(1.4e-3 - 2e-6 - 1e-6).epsilon(1e-12));
   }
+  SECTION("a node with an offset carries what its spring held, not its offset") {
+    // 2 µm deep with 1.5 µm of offset: the spring held 0.5 µm. On the next face (bent by a
+    // few degrees) 4 µm deep after 1 µm of approach: the spring may hold 0.5 + 1 µm (within
+    // ONSET_REACH_FACTOR of the approach, 2.5 µm), the rest is offset. Carrying the whole
+    // 2 µm would start it at 3 µm, six times what it held (a bent coarse shell switching a
+    // deep node between two faces created 15 J that way).
+    ContactConstraint offset = before;
+    offset.offset = 1.5e-6;
+    const Real off = contact::onset_offset(offset, 5, -4e-6, up, approaching, dt);
+    CHECK(off == Approx(4e-6 - 0.5e-6 - 1e-6).epsilon(1e-12));
+    CHECK(contact::onset_offset(offset, 5, -2.4e-6, up, approaching, dt) == 0.0);
+  }
   SECTION("the other side (a crossed mid-surface) carries nothing") {
     // Same depth as the carried one, but on a face looking the other way.
     const Real off = contact::onset_offset(before, 5, -1e-4, down, Vec3::Zero(), dt);

@@ -1,0 +1,90 @@
+// ContactEngine::passed_depth (contact_engine.hpp): whether a node held on one side of a
+// shell has passed through it (issue 32 item 4, SPEC C16).
+//
+// A node pressed on one side of a shell is held there: that element's other side may not take
+// it (admissible(), side memory). A node the penalty cannot stop within half the thickness (a
+// block's corner between the nodes of a coarse plate) goes behind the mid-surface; once no
+// face holds it on its side (it slid onto the next element, deeper than a new touch's limit
+// there, or only the wall's other side would take it) and it lies behind the mid-surface of the
+// held element or of the elements that continue that wall, over their interior, it has passed
+// through, and the run must not go on as if the bodies were where they belong (ContactStage
+// ends it). Sweep scenes 116 and 153 ended "completed" that way.
+#include <algorithm>
+#include <cmath>
+
+#include "contact/closest_point.hpp"
+#include "contact/contact_engine.hpp"
+#include "contact/contact_options.hpp"
+
+namespace xpl::contact {
+
+namespace {
+
+/// Where shell face f lies for a node held on shell face `held` (unit normal `held_normal`):
+/// +1 on the held side of the wall (the held face, or a face of a shell element next to it,
+/// sharing a corner, that continues the wall within 45° and faces the same way), −1 on the
+/// wall's other side, 0 when f is not part of the held wall (another element, or one folded
+/// back over the held one).
+int shell_side(const std::vector<ContactFace>& faces, const ContactFace& held,
+               const Vec3& held_normal, Index f, const NodalVectors& position) {
+  const ContactFace& face = faces[f];
+  if (face.element == held.element) return face.face == held.face ? 1 : -1;
+  Vec3 shared = Vec3::Zero();
+  int n_shared = 0;
+  for (Index a : face.nodes)
+    for (Index b : held.nodes)
+      if (a == b) {
+        shared += node_point(position, a);
+        ++n_shared;
+      }
+  if (n_shared == 0) return 0;
+  shared /= static_cast<Real>(n_shared);
+  Vec3 centre_held = Vec3::Zero(), centre = Vec3::Zero(), corner[4];
+  for (int a = 0; a < 4; ++a) {
+    corner[a] = node_point(position, face.nodes[a]);
+    centre += 0.25 * corner[a];
+    centre_held += 0.25 * node_point(position, held.nodes[a]);
+  }
+  // Folded back over the held element (more than 90°): not the wall's continuation.
+  if (!((centre - shared).dot(shared - centre_held) > 0.0)) return 0;
+  const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+  const Real n_len = std::sqrt(n.dot(n));
+  if (!(n_len > 0.0)) return 0;
+  const Real cosine = n.dot(held_normal) / n_len;
+  if (cosine > WALL_COSINE) return 1;
+  return cosine < -WALL_COSINE ? -1 : 0;
+}
+
+}  // namespace
+
+Real ContactEngine::passed_depth(const SlaveView& v, Index touched,
+                                 const NodalVectors& position) const {
+  if (v.held == nullptr || !m_updated) return 0.0;
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  const ContactFace& held = *v.held;
+  Vec3 corner[4];
+  face_corners(held, position, {}, corner);
+  const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+  const Real n_len = std::sqrt(n.dot(n));
+  if (!(n_len > 0.0)) return 0.0;
+  const Vec3 held_normal = n / n_len;
+  // Still held by this wall's side, or by anything that is not this wall's other side.
+  if (touched != NO_INDEX &&
+      !(faces[touched].shell && shell_side(faces, held, held_normal, touched, position) < 0))
+    return 0.0;
+  // Behind the mid-surface of the held face or of the wall's next elements, over its interior.
+  Real depth = 0.0;
+  const auto behind = [&](Index f) {
+    face_corners(faces[f], position, {}, corner);
+    const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+    if (cp.region == QuadRegion::Interior && cp.gap < 0.0) depth = std::max(depth, -cp.gap);
+  };
+  behind(static_cast<Index>(&held - faces.data()));
+  for (Index f : m_broad.candidates(v.slot))
+    if (faces[f].shell && faces[f].element != held.element &&
+        shell_side(faces, held, held_normal, f, position) > 0)
+      behind(f);
+  return depth;
+}
+
+}  // namespace xpl::contact
