@@ -53,6 +53,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_touch.assign(n, SlaveTouch{});
   m_lost_depth.assign(n, 0.0);
   m_passed_depth.assign(n, 0.0);
+  m_behind_depth.assign(n, 0.0);
   m_second.assign(n, ContactConstraint{});
   m_second_touch.assign(n, SlaveTouch{});
   m_second_force.assign(3 * n, 0.0);
@@ -108,6 +109,14 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       totals.passed_depth = m_passed_depth[s];
       totals.passed_node = slaves.nodes()[s];
       totals.passed_element = faces[m_constraints[s].master_face].element;
+    }
+    for (Index s = 0; s < n_slave; ++s) {
+      if (!(m_behind_depth[s] > 0.0)) continue;
+      ++totals.behind;
+      if (m_behind_depth[s] <= totals.behind_depth) continue;
+      totals.behind_depth = m_behind_depth[s];
+      totals.behind_node = slaves.nodes()[s];
+      totals.behind_element = faces[m_touch[s].face].element;
     }
   }
 

@@ -156,6 +156,11 @@ class ContactEngine {
   /// interior, when the search found it no face (`touched` NO_INDEX) or only the wall's other
   /// side: it has passed through the shell. Else 0.
   Real passed_depth(const SlaveView& v, Index touched, const NodalVectors& position) const;
+  /// How far (m) the node of view `v`, still held on the side of the shell it was pressed on
+  /// (`touch` on that element), lies behind the shell's mid-surface over the face's interior:
+  /// deeper than half the thickness, about to pass through. Else 0.
+  Real behind_depth(const SlaveView& v, const SlaveTouch& touch,
+                    std::span<const Real> node_thickness) const;
   /// What the force pass needs of one spring (a side of a slave slot), from the pass before
   /// it: stiffness (N/m, view weight included; capped by cap_default_springs), the interaction
   /// and its law, the relative velocity of the node to the face point (m/s), whether the spring
@@ -219,6 +224,7 @@ class ContactEngine {
   // was released there: file comment), else 0.
   std::vector<Real> m_lost_depth;
   std::vector<Real> m_passed_depth;  ///< per slave slot: passed_depth() of the last search
+  std::vector<Real> m_behind_depth;  ///< per slave slot: behind_depth() of the last search
   // The other side of a pinched node (file comment): its constraint, touch, force on the
   // slave node (n_slave × 3, N) and normal force (N), per slot.
   std::vector<ContactConstraint> m_second;

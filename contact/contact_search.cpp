@@ -256,6 +256,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
       SlaveTouch second;
       m_lost_depth[s] = 0.0;
       m_passed_depth[s] = 0.0;
+      m_behind_depth[s] = 0.0;
       if (!m_broad.candidates(s).empty() ||
           (m_updated && m_constraints[s].status == ContactStatus::Closed)) {
         Real best_distance = std::numeric_limits<Real>::max();
@@ -310,6 +311,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
           consider(view.continuing);
         m_lost_depth[s] = best.face == NO_INDEX ? released_depth(view, position) : 0.0;
         m_passed_depth[s] = passed_depth(view, best.face, position);
+        m_behind_depth[s] = behind_depth(view, best, node_thickness);
         // Pinched: penetrating its nearest face and one on its other side. A node outside its
         // nearest face is not pinched, however deep it lies behind a face across its own body
         // (a corner node of a squashed block behind the block's far side).

@@ -46,6 +46,12 @@ struct ContactTotals {
   Index passed_node = NO_INDEX;
   Real passed_depth = 0.0;
   Index passed_element = NO_INDEX;
+  /// Slave nodes still held on the side of a shell they were pressed on but behind its
+  /// mid-surface (ContactEngine::behind_depth), and the deepest: node, depth (m), element.
+  Index behind = 0;
+  Index behind_node = NO_INDEX;
+  Real behind_depth = 0.0;
+  Index behind_element = NO_INDEX;
   bool rebuilt = false;  ///< the broad phase was rebuilt
 };
 

@@ -87,4 +87,20 @@ Real ContactEngine::passed_depth(const SlaveView& v, Index touched,
   return depth;
 }
 
+Real ContactEngine::behind_depth(const SlaveView& v, const SlaveTouch& touch,
+                                 std::span<const Real> node_thickness) const {
+  if (v.held == nullptr || touch.face == NO_INDEX) return 0.0;
+  const ContactFace& face = m_domain.faces()[touch.face];
+  if (!face.shell || face.element != v.held->element) return 0.0;
+  // Over the face's interior only (beside its edge the gap is a distance, not a depth).
+  if (!(std::abs(touch.xi) < 1.0 && std::abs(touch.eta) < 1.0)) return 0.0;
+  Real half_t = 0.0;
+  for (int a = 0; a < 4; ++a)
+    half_t += touch.shape[a] * 0.5 * node_thickness_of(node_thickness, face.nodes[a]);
+  // The node's own mid-surface against the wall's: the touch's gap is from the wall's side
+  // (half its thickness out) less the node's own half thickness.
+  const Real from_mid = touch.gap + v.half_t + half_t;
+  return from_mid < 0.0 ? -from_mid : 0.0;
+}
+
 }  // namespace xpl::contact

@@ -227,6 +227,23 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
             "scale factor",
         element, state.increment, state.time);
   }
+  if (t.behind > 0) {
+    if (m_behind_increments == 0)
+      m_sink.message(
+          Severity::Warning,
+          "increment " + std::to_string(state.increment) + ", t = " + format_real(state.time) +
+              " s: contact too soft: node " + std::to_string(m_model.node_ids[t.behind_node]) +
+              " is " + format_real(t.behind_depth) +
+              " m behind the mid-surface of the shell of element " +
+              std::to_string(m_model.element_ids[t.behind_element]) +
+              " it is pressed on, deeper than half its thickness" +
+              (t.behind > 1 ? " (with " + std::to_string(t.behind - 1) + " more nodes)" : "") +
+              ": the bodies overlap by more than the shell and may pass through. Refine the mesh "
+              "where it hits, raise the penalty scale factor (*CONTACT CONTROLS ASSIGNMENT), or "
+              "lower the time scale factor");
+    ++m_behind_increments;
+    m_behind_deepest = std::max(m_behind_deepest, t.behind_depth);
+  }
   if (t.lost == 0) return;
   if (m_lost == 0)
     m_sink.message(
@@ -259,6 +276,15 @@ void ContactStage::end_step() {
                        std::to_string(m_lost_increments) + " increments of the step");
   m_lost = 0;
   m_lost_increments = 0;
+  if (m_behind_increments > 1)
+    m_sink.message(Severity::Warning,
+                   "contact too soft: nodes behind the mid-surface of the shell they are pressed "
+                   "on in " +
+                       std::to_string(m_behind_increments) +
+                       " increments of the step, the deepest " + format_real(m_behind_deepest) +
+                       " m");
+  m_behind_increments = 0;
+  m_behind_deepest = 0.0;
 }
 
 ContactIncrement ContactStage::penalty_increment(const ElementIncrement& elements, int step,

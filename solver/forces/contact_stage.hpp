@@ -134,8 +134,10 @@ class ContactStage {
   /// point nodes), ascending, and the run's positions and half-step velocities of them.
   std::vector<Index> m_shared_nodes;
   NodalVectors m_position, m_velocity;
-  long m_lost = 0;             ///< releases in the step (ContactTotals::lost)
-  long m_lost_increments = 0;  ///< increments with a release in the step
+  long m_lost = 0;               ///< releases in the step (ContactTotals::lost)
+  long m_lost_increments = 0;    ///< increments with a release in the step
+  long m_behind_increments = 0;  ///< increments with a node behind a held shell's mid-surface
+  Real m_behind_deepest = 0.0;   ///< the deepest such node in the step, m
 };
 
 }  // namespace xpl

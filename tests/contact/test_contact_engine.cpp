@@ -687,7 +687,8 @@ TEST_CASE(
 
 TEST_CASE(
     "a node held on a shell's side stays held however deep on that element; behind the "
-    "mid-surface of the next element, with no face holding it, it has passed through",
+    "mid-surface of the next element, with no face holding it, it has passed through; held "
+    "behind the mid-surface, it is reported",
     "[contact][engine][speed]") {
   // Plate: two shells (x in [0, 1] and [1, 2], y in [0, 1], z = 0), t = 0.2, SPOS at z = 0.1.
   // Block: one hex of 0.4 whose bottom face starts on the plate's SPOS over the first element.
@@ -729,6 +730,10 @@ TEST_CASE(
   CHECK(engine.domain().faces()[engine.touch(s).face].element == 0);
   CHECK(engine.touch(s).gap == Approx(-0.15).margin(1e-12));
   CHECK(totals.passed == 0);
+  // Still held, but behind the mid-surface: reported (contact too soft).
+  CHECK(totals.behind >= 1);
+  CHECK(totals.behind_depth == Approx(0.05).margin(1e-12));
+  CHECK(totals.behind_element == 0);
   // Moved over element 1's interior, still 0.05 behind the mid-surface: element 1's SPOS is a
   // new touch deeper than its limit (half the thickness), its SNEG faces the wrong way, and
   // element 0 is beside it: no face holds it, and it lies behind the plate.
