@@ -52,15 +52,14 @@ Real penetration_reach_sq(Real limit, Real half_t) {
   return std::max(half_t * half_t, limit * limit + (limit - half_t) * (limit - half_t));
 }
 
-/// Whether the face with these corners (m) is certainly irrelevant to a node at `p` (m): all
-/// of it farther than `nearer_than` (m) and than √`reach_sq` (penetration_reach_sq), after
-/// `round` (m: a shell face's largest half thickness where admissible() rounds its edges,
-/// which brings a node beside them nearer by at most that much; else 0). The face lies in the
-/// box of its corners, so the distance to that box bounds the distance to its closest point
-/// from below. A relative slack of 1e-9 covers the rounding of the closest point, so skipping
-/// such a face changes no bit of the search.
-bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real reach_sq,
-                     Real round) {
+/// A lower bound (m) of the distance from `p` (m) to the bilinear face with these corners
+/// (m): every point of the face is a convex combination of its corners (the bilinear weights
+/// are ≥ 0 and sum to 1 on the square), so it lies in their box and between the planes normal
+/// to `unit` (a unit vector) through the lowest and highest of them; the distance to the box
+/// and that to the slab between those planes both bound the distance from below. Less a
+/// relative slack of 1e-9 for the rounding of the closest point, so that a test against it
+/// changes no bit of the search.
+Real distance_below(const Vec3 corner[4], const Vec3& p, const Vec3& unit) {
   Real out_sq = 0.0, extent = 0.0, scale = 0.0;
   for (int d = 0; d < 3; ++d) {
     const Real lo = std::min({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
@@ -70,9 +69,33 @@ bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real
     extent = std::max(extent, hi - lo);
     scale = std::max(scale, std::abs(p[d]));
   }
-  const Real bound = std::sqrt(out_sq);
-  const Real below = bound - 1e-9 * (bound + extent) - 1e-12 * scale - round;
-  return below > nearer_than && below * below > reach_sq;
+  Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
+  for (int a = 0; a < 4; ++a) {
+    const Real h = corner[a].dot(unit);
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+  }
+  const Real height = p.dot(unit);
+  const Real bound = std::max(std::sqrt(out_sq), std::max({lo - height, height - hi, 0.0}));
+  return bound - 1e-9 * (bound + extent) - 1e-12 * scale;
+}
+
+/// Whether `p` (m) lies certainly behind every corner of the mid-surface `mid` (m) along
+/// `unit`, beyond the rounding of admissible()'s round-edge test: then for every point m of
+/// the mid-surface (a convex combination of its corners) (p − m)·unit < 0.
+bool behind_mid_surface(const Vec3 mid[4], const Vec3& p, const Vec3& unit) {
+  Real lo = std::numeric_limits<Real>::infinity(), extent = 0.0, scale = std::abs(p.dot(unit));
+  for (int a = 0; a < 4; ++a) {
+    const Real h = mid[a].dot(unit);
+    lo = std::min(lo, h);
+    for (int d = 0; d < 3; ++d) scale = std::max({scale, std::abs(mid[a][d]), std::abs(p[d])});
+  }
+  for (int d = 0; d < 3; ++d) {
+    const Real lo_d = std::min({mid[0][d], mid[1][d], mid[2][d], mid[3][d]});
+    const Real hi_d = std::max({mid[0][d], mid[1][d], mid[2][d], mid[3][d]});
+    extent = std::max(extent, hi_d - lo_d);
+  }
+  return p.dot(unit) < lo - 1e-9 * extent - 1e-12 * scale;
 }
 
 /// The nearest of the penetrated touches `penetrated` (nearest first) on a face of another
@@ -183,18 +206,40 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   // Beside its edges a shell face is round (below): a node there is nearer to it, and touches
   // it sooner, by at most the largest half thickness of its corners.
   const bool round_face = round_edges && faces[f].shell;
+  // A node certainly behind the mid-surface of a round face (along the face normal) is on the
+  // other side's half of every point of its round edge, which the test below rejects: only
+  // the face's interior can hold it, and the other side of its held shell not even that.
+  bool behind = false;
+  Vec3 mid_corner[4];
+  if (round_face) {
+    for (int a = 0; a < 4; ++a) mid_corner[a] = node_point(position, faces[f].nodes[a]);
+    behind = behind_mid_surface(mid_corner, v.point, n_f / n_len);
+    if (other_side && behind) return false;
+  }
   // A face within the search margin of the node can be skipped only when the penetration
   // reach is shorter than that margin (shells: about a thickness against a margin of a third
   // of a face; a solid face's depth reaches beyond it, and the test would only cost).
   if (!kept_side && m_try_skip) {
-    Real round = 0.0;
-    if (round_face)
-      for (Index c : faces[f].nodes)
-        round = std::max(round, 0.5 * node_thickness_of(node_thickness, c));
-    const Real reach_sq = penetration_reach_sq(depth + half_t + v.allowance, half_t);
-    if (reach_sq < m_broad.margin() * m_broad.margin() &&
-        beyond_face_box(corner, v.point, nearer_than, reach_sq, round))
-      return false;
+    // How far from the node an admissible penetration can lie: inside the face region, or
+    // beside it on a round edge or on the outside, the distance is |gap + half_t| ≤
+    // max(half_t, limit − half_t); beside a square edge below the face plane the lateral
+    // test bounds the offset beyond the edge by |gap| (penetration_reach_sq).
+    const Real limit = depth + half_t + v.allowance;
+    const Real reach = round_face ? std::max(half_t, limit - half_t)
+                                  : std::sqrt(penetration_reach_sq(limit, half_t));
+    if (reach < m_broad.margin()) {
+      const Vec3 unit = n_f / n_len;
+      Real below = distance_below(corner, v.point, unit);
+      if (round_face && !behind) {
+        // Beside the edge the distance is |reach − radius| to the mid-surface point, at least
+        // the mid-surface's distance less the largest half thickness of its corners.
+        Real round = 0.0;
+        for (Index c : faces[f].nodes)
+          round = std::max(round, 0.5 * node_thickness_of(node_thickness, c));
+        below = std::min(below, distance_below(mid_corner, v.point, unit) - round);
+      }
+      if (below > nearer_than && below > reach) return false;
+    }
   }
   const ClosestPoint cp = closest_point_on_quad(corner, v.point);
   if (other_side && cp.region == QuadRegion::Interior) return false;
