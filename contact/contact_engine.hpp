@@ -144,9 +144,21 @@ class ContactEngine {
     /// The solid face the node was pressed on last increment (NO_INDEX: none): it stays
     /// admissible down to the whole element behind it (file comment, contact at speed).
     Index continuing = NO_INDEX;
+    /// The faces come from listed_faces(): never_admissible() has been tried on them.
+    bool listed = false;
   };
-  SlaveView slave_view(Index s, const NodalVectors& position,
-                       std::span<const Real> node_thickness) const;
+  /// `all_faces` false: the view of a search over listed_faces(s) only, which never_admissible()
+  /// has sifted (no own nodes gathered).
+  SlaveView slave_view(Index s, const NodalVectors& position, std::span<const Real> node_thickness,
+                       bool all_faces = true) const;
+  /// Whether admissible() rejects face f for the node of `v` whatever the positions: a face of
+  /// its own hex, a shell face next to its own shell, or no pair includes the two.
+  bool never_admissible(const SlaveView& v, Index f) const;
+  /// Slot s's broad-phase candidates that never_admissible() leaves (refresh_broad_phase).
+  std::span<const Index> listed_faces(Index s) const {
+    return {m_listed.data() + m_listed_offset[s],
+            static_cast<std::size_t>(m_listed_offset[s + 1] - m_listed_offset[s])};
+  }
   /// How deep (m) the node of view `v` lies behind the solid face it was pressed on last
   /// increment, when it lies behind its interior deeper than the whole element behind it
   /// (released: file comment); else 0.
@@ -251,6 +263,8 @@ class ContactEngine {
   // ones its search reads; probe() refreshes all. Scratch masks for the force-carrying corners
   // outside them.
   std::vector<char> m_active_slot, m_active_face;
+  // listed_faces(): CSR offsets (n_slave + 1) into the faces.
+  std::vector<Index> m_listed_offset, m_listed;
   // Whether some face's depth is below the search margin at the last broad-phase build: only
   // then can admissible() skip a closest point by its box (penetration reach), and only then
   // does the search evaluate last increment's face first.

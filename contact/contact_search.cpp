@@ -114,7 +114,8 @@ SlaveTouch corner_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>&
 }  // namespace
 
 ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
-                                                   std::span<const Real> node_thickness) const {
+                                                   std::span<const Real> node_thickness,
+                                                   bool all_faces) const {
   const std::vector<ContactFace>& faces = m_domain.faces();
   SlaveView v;
   v.slot = s;
@@ -126,7 +127,8 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   v.free_edge = m_domain.slave_on_free_edge(s);
   v.point_node = m_domain.slave_point(s);
   v.half_t = v.double_sided ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
-  if (v.double_sided) {
+  v.listed = !all_faces;
+  if (v.double_sided && all_faces) {
     // The nodes of its own elements, once per node rather than once per candidate face.
     for (Index g : m_domain.slaves().faces_of(s))
       for (Index a : faces[g].nodes) {
@@ -153,6 +155,27 @@ ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& 
   return v;
 }
 
+bool ContactEngine::never_admissible(const SlaveView& v, Index f) const {
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  // A face of the node's own hex (file comment).
+  if (faces[f].behind(v.node)) return true;
+  // A shell face next to the shell node's own elements continues its own shell (file comment).
+  if (v.double_sided && faces[f].shell) {
+    bool own = false;
+    if (v.own_count >= 0) {
+      for (Index b : faces[f].nodes)
+        for (int k = 0; k < v.own_count; ++k) own = own || v.own[k] == b;
+    } else {
+      for (Index g : m_domain.slaves().faces_of(v.slot))
+        for (Index a : faces[g].nodes)
+          for (Index b : faces[f].nodes) own = own || a == b;
+    }
+    if (own) return true;
+  }
+  Index pair = NO_INDEX;
+  return m_domain.weight(v.slot, f, pair) == 0.0;
+}
+
 bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& position,
                                std::span<const Real> node_thickness, SlaveTouch& out,
                                Real& distance, Real nearer_than) const {
@@ -165,21 +188,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   const bool other_side = held != nullptr && faces[f].shell && faces[f].element == held->element &&
                           faces[f].face != held->face;
   if (other_side && !round_edges) return false;
-  // A face of the node's own hex (file comment).
-  if (faces[f].behind(v.node)) return false;
-  // A shell face next to the shell node's own elements continues its own shell (file comment).
-  if (double_sided && faces[f].shell) {
-    bool own = false;
-    if (v.own_count >= 0) {
-      for (Index b : faces[f].nodes)
-        for (int k = 0; k < v.own_count; ++k) own = own || v.own[k] == b;
-    } else {
-      for (Index g : m_domain.slaves().faces_of(s))
-        for (Index a : faces[g].nodes)
-          for (Index b : faces[f].nodes) own = own || a == b;
-    }
-    if (own) return false;
-  }
+  if (!v.listed && never_admissible(v, f)) return false;
   Index pair = NO_INDEX;
   const Real w = m_domain.weight(s, f, pair);
   if (w == 0.0) return false;
@@ -300,7 +309,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
       SlaveTouch best;
       SlaveTouch second;
       m_lost_depth[s] = 0.0;
-      if (!m_broad.candidates(s).empty() ||
+      if (!listed_faces(s).empty() ||
           (m_updated && m_constraints[s].status == ContactStatus::Closed)) {
         Real best_distance = std::numeric_limits<Real>::max();
         SlaveTouch candidate;
@@ -310,8 +319,14 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         std::array<Real, PENETRATED_KEPT> penetrated_distance{};
         int n_penetrated = 0;
         int n_seen = 0;
-        const SlaveView view = slave_view(s, position, node_thickness);
-        const std::span<const Index> listed = m_broad.candidates(s);
+        const SlaveView view = slave_view(s, position, node_thickness, false);
+        const std::span<const Index> listed = listed_faces(s);
+        // The face pressed last increment, when no static rule rejects it (the listed faces
+        // have been sifted by never_admissible(); a solid face has no own-shell test).
+        const Index continuing =
+            view.continuing != NO_INDEX && !never_admissible(view, view.continuing)
+                ? view.continuing
+                : NO_INDEX;
         // The face of last increment's touch first, when the loop below considers it: its
         // distance bounds that of the nearest face from the start, so that admissible() skips
         // the closest points of the faces beyond it (same result, the loop still takes the
@@ -321,7 +336,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         Real previous_distance = 0.0;
         bool previous_known = false, previous_admissible = false;
         if (m_try_skip && previous != NO_INDEX &&
-            (previous == view.continuing ||
+            (previous == continuing ||
              std::binary_search(listed.begin(), listed.end(), previous))) {
           previous_known = true;
           previous_admissible = admissible(view, previous, position, node_thickness, previous_touch,
@@ -349,9 +364,8 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         };
         for (Index f : listed) consider(f);
         // The face pressed last increment, deeper than the broad phase's slab (contact at speed).
-        if (view.continuing != NO_INDEX &&
-            !std::binary_search(listed.begin(), listed.end(), view.continuing))
-          consider(view.continuing);
+        if (continuing != NO_INDEX && !std::binary_search(listed.begin(), listed.end(), continuing))
+          consider(continuing);
         m_lost_depth[s] = best.face == NO_INDEX ? released_depth(view, position) : 0.0;
         // Pinched: penetrating its nearest face and one on its other side. A node outside its
         // nearest face is not pinched, however deep it lies behind a face across its own body
@@ -362,7 +376,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
           // More penetrated faces than kept (a node under the shared corner of many faces on
           // both sides): look for the other side among all of them.
           Real second_distance = std::numeric_limits<Real>::max();
-          for (Index f : m_broad.candidates(s))
+          for (Index f : listed)
             if (admissible(view, f, position, node_thickness, candidate, distance) &&
                 candidate.gap < 0.0 && candidate.face != best.face &&
                 candidate.normal.dot(best.normal) < PINCH_COSINE && distance < second_distance) {
@@ -414,6 +428,19 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
       depth = DEPTH_LIMIT_FRACTION * 0.25 * t;
     }
     m_try_skip = depth < m_broad.margin();
+  }
+  // Each slot's candidates less the faces never_admissible() rejects (topology and pairs,
+  // fixed for the step): the search's lists.
+  m_listed_offset.assign(static_cast<std::size_t>(n_slave) + 1, 0);
+  m_listed.clear();
+  for (Index s = 0; s < n_slave; ++s) {
+    const std::span<const Index> candidates = m_broad.candidates(s);
+    if (!candidates.empty()) {
+      const SlaveView view = slave_view(s, position, node_thickness);
+      for (Index f : candidates)
+        if (!never_admissible(view, f)) m_listed.push_back(f);
+    }
+    m_listed_offset[s + 1] = static_cast<Index>(m_listed.size());
   }
   for (Index s = 0; s < n_slave; ++s) {
     if (m_broad.candidates(s).empty()) continue;
