@@ -16,12 +16,14 @@
 /// slot; assembly and every sum run over slots in order, so results do not depend on the
 /// number of threads.
 
+#include <array>
 #include <limits>
 #include <span>
 #include <vector>
 
 #include "common/timer.hpp"
 #include "contact/broad_phase.hpp"
+#include "contact/closest_point.hpp"
 #include "contact/contact_domain.hpp"
 #include "contact/contact_options.hpp"
 #include "contact/force_assembly.hpp"
@@ -125,6 +127,24 @@ class ContactEngine {
   /// What the admissibility test needs of a slave node, gathered once per node and search
   /// (not once per candidate face): position, normal, sidedness, half thickness, and the shell
   /// face it is held on (side memory) or null.
+  /// Where the closest point of a face lay for a slave node (face, coordinates): last
+  /// increment's, a Newton start on a strongly warped face (closest_point_on_quad).
+  struct WarmStart {
+    Index face = NO_INDEX;
+    QuadStart at;
+  };
+  /// The closest points of the first WARM_KEPT faces a slot's search evaluates.
+  static constexpr int WARM_KEPT = 4;
+  struct WarmStarts {
+    std::array<WarmStart, WARM_KEPT> kept{};
+    int count = 0;
+    /// Keeps face f's closest point (ξ, η) unless f is there already or the list is full.
+    void keep(Index f, Real xi, Real eta) {
+      for (int k = 0; k < count; ++k)
+        if (kept[k].face == f) return;
+      if (count < WARM_KEPT) kept[count++] = {f, {xi, eta}};
+    }
+  };
   struct SlaveView {
     Index slot = NO_INDEX;
     Index node = NO_INDEX;
@@ -146,6 +166,10 @@ class ContactEngine {
     Index continuing = NO_INDEX;
     /// The faces come from listed_faces(): never_admissible() has been tried on them.
     bool listed = false;
+    /// Last increment's closest points of this slot (search(); null: none, five starts), and
+    /// where this search keeps its own for the next.
+    const WarmStarts* warm = nullptr;
+    WarmStarts* next = nullptr;
   };
   /// `all_faces` false: the view of a search over listed_faces(s) only, which never_admissible()
   /// has sifted (no own nodes gathered).
@@ -229,6 +253,9 @@ class ContactEngine {
   // slave node (n_slave × 3, N) and normal force (N), per slot.
   std::vector<ContactConstraint> m_second;
   std::vector<SlaveTouch> m_second_touch;
+  // Per slave slot, written by search(): the closest points its search evaluated, Newton's
+  // starts in the next search (SlaveView::warm).
+  std::vector<WarmStarts> m_warm;
   std::vector<Real> m_second_force;
   std::vector<Real> m_second_normal_force;
   std::vector<Real> m_second_dissipation;

@@ -250,7 +250,12 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
       if (below > nearer_than && below > reach) return false;
     }
   }
-  const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+  const QuadStart* start = nullptr;
+  if (v.warm != nullptr)
+    for (int k = 0; k < v.warm->count && start == nullptr; ++k)
+      if (v.warm->kept[k].face == f) start = &v.warm->kept[k].at;
+  const ClosestPoint cp = closest_point_on_quad(corner, v.point, start);
+  if (v.next != nullptr) v.next->keep(f, cp.xi, cp.eta);
   if (other_side && cp.region == QuadRegion::Interior) return false;
   Real gap = cp.gap - half_t;
   Vec3 normal = cp.normal;
@@ -308,6 +313,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
       SlaveTouch second;
+      WarmStarts next;
       m_lost_depth[s] = 0.0;
       if (!listed_faces(s).empty() ||
           (m_updated && m_constraints[s].status == ContactStatus::Closed)) {
@@ -319,7 +325,9 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         std::array<Real, PENETRATED_KEPT> penetrated_distance{};
         int n_penetrated = 0;
         int n_seen = 0;
-        const SlaveView view = slave_view(s, position, node_thickness, false);
+        SlaveView view = slave_view(s, position, node_thickness, false);
+        if (m_updated) view.warm = &m_warm[s];
+        view.next = &next;
         const std::span<const Index> listed = listed_faces(s);
         // The face pressed last increment, when no static rule rejects it (the listed faces
         // have been sifted by never_admissible(); a solid face has no own-shell test).
@@ -389,6 +397,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
       }
       m_touch[s] = best;
       m_second_touch[s] = second;
+      if (next.count > 0 || m_warm[s].count > 0) m_warm[s] = next;
     });
   errors.rethrow_if_any();
 }
