@@ -1,6 +1,6 @@
-// The search half of ContactEngine (contact_engine.hpp): the broad-phase refresh, the
-// admissible faces of a slave node and the nearest of them (with the touch on its other side),
-// and the probes of the start-of-step passes.
+// The search half of ContactEngine (contact_engine.hpp): the admissible faces of a slave node
+// and the nearest of them (with the touch on its other side), and the probes of the
+// start-of-step passes (the lists it walks: contact_lists.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -98,6 +98,33 @@ bool behind_mid_surface(const Vec3 mid[4], const Vec3& p, const Vec3& unit) {
   return p.dot(unit) < lo - 1e-9 * extent - 1e-12 * scale;
 }
 
+/// Whether the face with these corners (m; `unit` its unit normal) certainly matters to no
+/// search of the node at `p` (m): all of it farther than `nearer_than` (m), so not the
+/// nearest, and than any admissible penetration can lie, so not a penetrated one (what the
+/// search does with such a face is nothing). `limit` (m): the deepest penetration admissible()
+/// keeps (depth + half thickness `half_t` + allowance). Tried only when that reach is shorter
+/// than the search `margin` (m): shells, about a thickness against a margin of a third of a
+/// face; a solid face's depth reaches beyond it, and the test would only cost. A round face
+/// (admissible()) passes its mid-surface corners `mid` (else null), whether the node is
+/// `behind` that mid-surface, and `round` (m), the largest half thickness of its corners.
+bool out_of_reach(const Vec3 corner[4], const Vec3& unit, const Vec3& p, Real limit, Real half_t,
+                  Real margin, Real nearer_than, const Vec3* mid, bool behind, Real round) {
+  // How far from the node an admissible penetration can lie: inside the face region, or
+  // beside it on a round edge or on the outside, the distance is |gap + half_t| ≤
+  // max(half_t, limit − half_t); beside a square edge below the face plane the lateral
+  // test bounds the offset beyond the edge by |gap| (penetration_reach_sq).
+  const Real reach = mid != nullptr ? std::max(half_t, limit - half_t)
+                                    : std::sqrt(penetration_reach_sq(limit, half_t));
+  if (!(reach < margin)) return false;
+  Real below = distance_below(corner, p, unit);
+  if (mid != nullptr && !behind) {
+    // Beside the edge the distance is |reach − radius| to the mid-surface point, at least
+    // the mid-surface's distance less the largest half thickness of its corners.
+    below = std::min(below, distance_below(mid, p, unit) - round);
+  }
+  return below > nearer_than && below > reach;
+}
+
 /// The nearest of the penetrated touches `penetrated` (nearest first) on a face of another
 /// element than `best`'s whose normal is more than 60° from best's (CORNER_COSINE): the other
 /// face of a corner a shell node is pressed into; none when no such face.
@@ -112,69 +139,6 @@ SlaveTouch corner_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>&
 }
 
 }  // namespace
-
-ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
-                                                   std::span<const Real> node_thickness,
-                                                   bool all_faces) const {
-  const std::vector<ContactFace>& faces = m_domain.faces();
-  SlaveView v;
-  v.slot = s;
-  const Index node = m_domain.slaves().nodes()[s];
-  v.node = node;
-  v.point = node_point(position, node);
-  v.normal = m_domain.slaves().normal(s);
-  v.double_sided = m_domain.slave_double_sided(s);
-  v.free_edge = m_domain.slave_on_free_edge(s);
-  v.point_node = m_domain.slave_point(s);
-  v.half_t = v.double_sided ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
-  v.listed = !all_faces;
-  if (v.double_sided && all_faces) {
-    // The nodes of its own elements, once per node rather than once per candidate face.
-    for (Index g : m_domain.slaves().faces_of(s))
-      for (Index a : faces[g].nodes) {
-        if (v.own_count < 0) break;
-        bool seen = false;
-        for (int k = 0; k < v.own_count; ++k) seen = seen || v.own[k] == a;
-        if (seen) continue;
-        if (v.own_count == static_cast<int>(v.own.size()))
-          v.own_count = -1;  // more than fit: admissible() walks the faces instead
-        else
-          v.own[v.own_count++] = a;
-      }
-  }
-  const ContactConstraint& before = m_constraints[s];
-  if (before.offset_permanent) v.allowance = std::max(before.offset, 0.0);
-  // Side memory: a node pressed onto one side of a shell last increment may not be taken by
-  // the other side of that shell, however deep it has gone (no pass-through).
-  if (before.status == ContactStatus::Closed && before.master_face >= 0 &&
-      faces[before.master_face].shell)
-    v.held = &faces[before.master_face];
-  if (m_updated && before.status == ContactStatus::Closed && before.master_face >= 0 &&
-      !faces[before.master_face].shell)
-    v.continuing = before.master_face;
-  return v;
-}
-
-bool ContactEngine::never_admissible(const SlaveView& v, Index f) const {
-  const std::vector<ContactFace>& faces = m_domain.faces();
-  // A face of the node's own hex (file comment).
-  if (faces[f].behind(v.node)) return true;
-  // A shell face next to the shell node's own elements continues its own shell (file comment).
-  if (v.double_sided && faces[f].shell) {
-    bool own = false;
-    if (v.own_count >= 0) {
-      for (Index b : faces[f].nodes)
-        for (int k = 0; k < v.own_count; ++k) own = own || v.own[k] == b;
-    } else {
-      for (Index g : m_domain.slaves().faces_of(v.slot))
-        for (Index a : faces[g].nodes)
-          for (Index b : faces[f].nodes) own = own || a == b;
-    }
-    if (own) return true;
-  }
-  Index pair = NO_INDEX;
-  return m_domain.weight(v.slot, f, pair) == 0.0;
-}
 
 bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& position,
                                std::span<const Real> node_thickness, SlaveTouch& out,
@@ -225,30 +189,15 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
     behind = behind_mid_surface(mid_corner, v.point, n_f / n_len);
     if (other_side && behind) return false;
   }
-  // A face within the search margin of the node can be skipped only when the penetration
-  // reach is shorter than that margin (shells: about a thickness against a margin of a third
-  // of a face; a solid face's depth reaches beyond it, and the test would only cost).
   if (!kept_side && m_try_skip) {
-    // How far from the node an admissible penetration can lie: inside the face region, or
-    // beside it on a round edge or on the outside, the distance is |gap + half_t| ≤
-    // max(half_t, limit − half_t); beside a square edge below the face plane the lateral
-    // test bounds the offset beyond the edge by |gap| (penetration_reach_sq).
-    const Real limit = depth + half_t + v.allowance;
-    const Real reach = round_face ? std::max(half_t, limit - half_t)
-                                  : std::sqrt(penetration_reach_sq(limit, half_t));
-    if (reach < m_broad.margin()) {
-      const Vec3 unit = n_f / n_len;
-      Real below = distance_below(corner, v.point, unit);
-      if (round_face && !behind) {
-        // Beside the edge the distance is |reach − radius| to the mid-surface point, at least
-        // the mid-surface's distance less the largest half thickness of its corners.
-        Real round = 0.0;
-        for (Index c : faces[f].nodes)
-          round = std::max(round, 0.5 * node_thickness_of(node_thickness, c));
-        below = std::min(below, distance_below(mid_corner, v.point, unit) - round);
-      }
-      if (below > nearer_than && below > reach) return false;
-    }
+    Real round = 0.0;  // largest half thickness of a round face's corners
+    if (round_face)
+      for (Index c : faces[f].nodes)
+        round = std::max(round, 0.5 * node_thickness_of(node_thickness, c));
+    if (out_of_reach(corner, n_f / n_len, v.point, depth + half_t + v.allowance, half_t,
+                     m_broad.margin(), nearer_than, round_face ? mid_corner : nullptr, behind,
+                     round))
+      return false;
   }
   const QuadStart* start = nullptr;
   if (v.warm != nullptr)
@@ -412,58 +361,6 @@ Real ContactEngine::released_depth(const SlaveView& v, const NodalVectors& posit
   if (cp.region != QuadRegion::Interior) return 0.0;
   const Real depth = -cp.gap;
   return depth > 2.0 * m_domain.face_depth(v.continuing) + v.allowance ? depth : 0.0;
-}
-
-void ContactEngine::widen_search(Real extra) {
-  if (!(extra > 0.0)) return;
-  m_broad = BroadPhase(m_broad.margin() + extra, m_broad.rebuild_motion());
-}
-
-bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
-                                        std::span<const Real> node_thickness) {
-  SlaveNodes& slaves = m_domain.slaves();
-  if (!m_broad.needs_rebuild(position)) return false;
-  m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness, m_domain.face_depths());
-  const Index n_slave = slaves.size();
-  m_active_slot.assign(static_cast<std::size_t>(n_slave), 0);
-  m_active_face.assign(m_domain.faces().size(), 0);
-  m_try_skip = false;
-  for (Index f = 0; f < static_cast<Index>(m_domain.faces().size()) && !m_try_skip; ++f) {
-    const ContactFace& face = m_domain.faces()[f];
-    Real depth = m_domain.face_depth(f);
-    if (face.shell) {
-      Real t = 0.0;
-      for (Index c : face.nodes) t += node_thickness_of(node_thickness, c);
-      depth = DEPTH_LIMIT_FRACTION * 0.25 * t;
-    }
-    m_try_skip = depth < m_broad.margin();
-  }
-  // Each slot's candidates less the faces never_admissible() rejects (topology and pairs,
-  // fixed for the step): the search's lists.
-  m_listed_offset.assign(static_cast<std::size_t>(n_slave) + 1, 0);
-  m_listed.clear();
-  for (Index s = 0; s < n_slave; ++s) {
-    const std::span<const Index> candidates = m_broad.candidates(s);
-    if (!candidates.empty()) {
-      const SlaveView view = slave_view(s, position, node_thickness);
-      for (Index f : candidates)
-        if (!never_admissible(view, f)) m_listed.push_back(f);
-    }
-    m_listed_offset[s + 1] = static_cast<Index>(m_listed.size());
-  }
-  for (Index s = 0; s < n_slave; ++s) {
-    if (m_broad.candidates(s).empty()) continue;
-    m_active_slot[s] = 1;
-    for (Index f : slaves.faces_of(s)) m_active_face[f] = 1;
-  }
-  return true;
-}
-
-bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {
-  const bool rebuild = refresh_broad_phase(position, node_thickness);
-  m_domain.slaves().update_areas(m_domain.faces(), position);
-  search(position, node_thickness);
-  return rebuild;
 }
 
 std::vector<SlaveTouch> ContactEngine::penetrated_faces(Index s, const NodalVectors& position,
