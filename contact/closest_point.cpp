@@ -238,7 +238,7 @@ Vec3 quad_normal(const Vec3 corner[4], Real xi, Real eta) {
   return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
 }
 
-ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p) {
+ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p, const QuadStart* warm) {
   const Bilinear q(corner);
   ClosestPoint best;
   Real best_sq = std::numeric_limits<Real>::infinity();
@@ -253,7 +253,21 @@ ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p) {
   const Vec3 centre_normal = q.a1.cross(q.a2);
   const Real normal_len = length(centre_normal);
   const Real warp = std::abs(q.a3.dot(centre_normal)) / (normal_len * std::sqrt(normal_len));
-  const int starts = !(warp > STRONG_WARP) ? 1 : edge_point_is_minimum(q, p, edge) ? 0 : 5;
+  int starts = !(warp > STRONG_WARP) ? 1 : edge_point_is_minimum(q, p, edge) ? 0 : 5;
+  if (starts == 5 && warm != nullptr) {
+    // Last increment's point (header): one start instead of five.
+    Real xi = warm->xi, eta = warm->eta;
+    if (newton_interior(q, p, xi, eta)) {
+      const Vec3 c = q.at(xi, eta);
+      best_sq = (p - c).dot(p - c);
+      best.xi = xi;
+      best.eta = eta;
+      best.point = c;
+      starts = 0;
+    } else if (!(std::abs(warm->xi) < 1.0 && std::abs(warm->eta) < 1.0)) {
+      starts = 0;
+    }
+  }
   for (int s = 0; s < starts; ++s) {
     Real xi = START_XI[s], eta = START_ETA[s];
     if (!newton_interior(q, p, xi, eta)) continue;

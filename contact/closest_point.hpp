@@ -54,6 +54,11 @@ Vec3 quad_point(const Vec3 corner[4], Real xi, Real eta);
 /// the diagonals (x2 − x0) × (x3 − x1). Zero for a face collapsed to a line or point.
 Vec3 quad_normal(const Vec3 corner[4], Real xi, Real eta);
 
+/// Face coordinates of a Newton start (closest_point_on_quad).
+struct QuadStart {
+  Real xi = 0.0, eta = 0.0;
+};
+
 /// The closest point on the face with corners `corner` (m) to `p` (m).
 ///
 /// Newton on (ξ, η) for the squared distance, exact Hessian when it is positive definite and
@@ -63,7 +68,17 @@ Vec3 quad_normal(const Vec3 corner[4], Real xi, Real eta);
 /// (segments, corners included), and the nearest of them wins; so a projection leaving the
 /// square, a non-converged iteration or a warped face far from the point still give the right
 /// answer. No allocation; safe to call from any number of threads.
-ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p);
+///
+/// `warm` (may be null): where the closest point on this face lay last increment for the same
+/// node. On a strongly warped face it replaces the five starts by one: Newton from `warm`; an
+/// interior stationary point it finds is compared with the edges as above; when it ends on the
+/// boundary from a start on the boundary the edges' point is taken (the node stays beside the
+/// face); only a start inside the face that fails falls back on the five starts. The
+/// stationary point is the one the five starts find on all but a few faces where a fold makes
+/// several (contact tests, crash tube), in far fewer Newton iterations; its last bits depend
+/// on the start.
+ClosestPoint closest_point_on_quad(const Vec3 corner[4], const Vec3& p,
+                                   const QuadStart* warm = nullptr);
 
 /// What the contact search found for one slave node: the nearest admissible face and the
 /// closest point on it (ContactEngine).

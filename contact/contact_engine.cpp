@@ -56,6 +56,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_behind_depth.assign(n, 0.0);
   m_second.assign(n, ContactConstraint{});
   m_second_touch.assign(n, SlaveTouch{});
+  m_warm.assign(n, WarmStarts{});
   m_second_force.assign(3 * n, 0.0);
   m_second_normal_force.assign(n, 0.0);
   m_second_dissipation.assign(n, 0.0);

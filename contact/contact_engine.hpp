@@ -16,12 +16,14 @@
 /// slot; assembly and every sum run over slots in order, so results do not depend on the
 /// number of threads.
 
+#include <array>
 #include <limits>
 #include <span>
 #include <vector>
 
 #include "common/timer.hpp"
 #include "contact/broad_phase.hpp"
+#include "contact/closest_point.hpp"
 #include "contact/contact_domain.hpp"
 #include "contact/contact_options.hpp"
 #include "contact/force_assembly.hpp"
@@ -125,6 +127,24 @@ class ContactEngine {
   /// What the admissibility test needs of a slave node, gathered once per node and search
   /// (not once per candidate face): position, normal, sidedness, half thickness, and the shell
   /// face it is held on (side memory) or null.
+  /// Where the closest point of a face lay for a slave node (face, coordinates): last
+  /// increment's, a Newton start on a strongly warped face (closest_point_on_quad).
+  struct WarmStart {
+    Index face = NO_INDEX;
+    QuadStart at;
+  };
+  /// The closest points of the first WARM_KEPT faces a slot's search evaluates.
+  static constexpr int WARM_KEPT = 4;
+  struct WarmStarts {
+    std::array<WarmStart, WARM_KEPT> kept{};
+    int count = 0;
+    /// Keeps face f's closest point (ξ, η) unless f is there already or the list is full.
+    void keep(Index f, Real xi, Real eta) {
+      for (int k = 0; k < count; ++k)
+        if (kept[k].face == f) return;
+      if (count < WARM_KEPT) kept[count++] = {f, {xi, eta}};
+    }
+  };
   struct SlaveView {
     Index slot = NO_INDEX;
     Index node = NO_INDEX;
@@ -144,9 +164,25 @@ class ContactEngine {
     /// The solid face the node was pressed on last increment (NO_INDEX: none): it stays
     /// admissible down to the whole element behind it (file comment, contact at speed).
     Index continuing = NO_INDEX;
+    /// The faces come from listed_faces(): never_admissible() has been tried on them.
+    bool listed = false;
+    /// Last increment's closest points of this slot (search(); null: none, five starts), and
+    /// where this search keeps its own for the next.
+    const WarmStarts* warm = nullptr;
+    WarmStarts* next = nullptr;
   };
-  SlaveView slave_view(Index s, const NodalVectors& position,
-                       std::span<const Real> node_thickness) const;
+  /// `all_faces` false: the view of a search over listed_faces(s) only, which never_admissible()
+  /// has sifted (no own nodes gathered).
+  SlaveView slave_view(Index s, const NodalVectors& position, std::span<const Real> node_thickness,
+                       bool all_faces = true) const;
+  /// Whether admissible() rejects face f for the node of `v` whatever the positions: a face of
+  /// its own hex, a shell face next to its own shell, or no pair includes the two.
+  bool never_admissible(const SlaveView& v, Index f) const;
+  /// Slot s's broad-phase candidates that never_admissible() leaves (refresh_broad_phase).
+  std::span<const Index> listed_faces(Index s) const {
+    return {m_listed.data() + m_listed_offset[s],
+            static_cast<std::size_t>(m_listed_offset[s + 1] - m_listed_offset[s])};
+  }
   /// How deep (m) the node of view `v` lies behind the solid face it was pressed on last
   /// increment, when it lies behind its interior deeper than the whole element behind it
   /// (released: file comment); else 0.
@@ -229,6 +265,9 @@ class ContactEngine {
   // slave node (n_slave × 3, N) and normal force (N), per slot.
   std::vector<ContactConstraint> m_second;
   std::vector<SlaveTouch> m_second_touch;
+  // Per slave slot, written by search(): the closest points its search evaluated, Newton's
+  // starts in the next search (SlaveView::warm).
+  std::vector<WarmStarts> m_warm;
   std::vector<Real> m_second_force;
   std::vector<Real> m_second_normal_force;
   std::vector<Real> m_second_dissipation;
@@ -263,6 +302,8 @@ class ContactEngine {
   // ones its search reads; probe() refreshes all. Scratch masks for the force-carrying corners
   // outside them.
   std::vector<char> m_active_slot, m_active_face;
+  // listed_faces(): CSR offsets (n_slave + 1) into the faces.
+  std::vector<Index> m_listed_offset, m_listed;
   // Whether some face's depth is below the search margin at the last broad-phase build: only
   // then can admissible() skip a closest point by its box (penetration reach), and only then
   // does the search evaluate last increment's face first.

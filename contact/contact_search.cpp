@@ -1,6 +1,6 @@
-// The search half of ContactEngine (contact_engine.hpp): the broad-phase refresh, the
-// admissible faces of a slave node and the nearest of them (with the touch on its other side),
-// and the probes of the start-of-step passes.
+// The search half of ContactEngine (contact_engine.hpp): the admissible faces of a slave node
+// and the nearest of them (with the touch on its other side), and the probes of the
+// start-of-step passes (the lists it walks: contact_lists.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -52,15 +52,14 @@ Real penetration_reach_sq(Real limit, Real half_t) {
   return std::max(half_t * half_t, limit * limit + (limit - half_t) * (limit - half_t));
 }
 
-/// Whether the face with these corners (m) is certainly irrelevant to a node at `p` (m): all
-/// of it farther than `nearer_than` (m) and than √`reach_sq` (penetration_reach_sq), after
-/// `round` (m: a shell face's largest half thickness where admissible() rounds its edges,
-/// which brings a node beside them nearer by at most that much; else 0). The face lies in the
-/// box of its corners, so the distance to that box bounds the distance to its closest point
-/// from below. A relative slack of 1e-9 covers the rounding of the closest point, so skipping
-/// such a face changes no bit of the search.
-bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real reach_sq,
-                     Real round) {
+/// A lower bound (m) of the distance from `p` (m) to the bilinear face with these corners
+/// (m): every point of the face is a convex combination of its corners (the bilinear weights
+/// are ≥ 0 and sum to 1 on the square), so it lies in their box and between the planes normal
+/// to `unit` (a unit vector) through the lowest and highest of them; the distance to the box
+/// and that to the slab between those planes both bound the distance from below. Less a
+/// relative slack of 1e-9 for the rounding of the closest point, so that a test against it
+/// changes no bit of the search.
+Real distance_below(const Vec3 corner[4], const Vec3& p, const Vec3& unit) {
   Real out_sq = 0.0, extent = 0.0, scale = 0.0;
   for (int d = 0; d < 3; ++d) {
     const Real lo = std::min({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
@@ -70,9 +69,60 @@ bool beyond_face_box(const Vec3 corner[4], const Vec3& p, Real nearer_than, Real
     extent = std::max(extent, hi - lo);
     scale = std::max(scale, std::abs(p[d]));
   }
-  const Real bound = std::sqrt(out_sq);
-  const Real below = bound - 1e-9 * (bound + extent) - 1e-12 * scale - round;
-  return below > nearer_than && below * below > reach_sq;
+  Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
+  for (int a = 0; a < 4; ++a) {
+    const Real h = corner[a].dot(unit);
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+  }
+  const Real height = p.dot(unit);
+  const Real bound = std::max(std::sqrt(out_sq), std::max({lo - height, height - hi, 0.0}));
+  return bound - 1e-9 * (bound + extent) - 1e-12 * scale;
+}
+
+/// Whether `p` (m) lies certainly behind every corner of the mid-surface `mid` (m) along
+/// `unit`, beyond the rounding of admissible()'s round-edge test: then for every point m of
+/// the mid-surface (a convex combination of its corners) (p − m)·unit < 0.
+bool behind_mid_surface(const Vec3 mid[4], const Vec3& p, const Vec3& unit) {
+  Real lo = std::numeric_limits<Real>::infinity(), extent = 0.0, scale = std::abs(p.dot(unit));
+  for (int a = 0; a < 4; ++a) {
+    const Real h = mid[a].dot(unit);
+    lo = std::min(lo, h);
+    for (int d = 0; d < 3; ++d) scale = std::max({scale, std::abs(mid[a][d]), std::abs(p[d])});
+  }
+  for (int d = 0; d < 3; ++d) {
+    const Real lo_d = std::min({mid[0][d], mid[1][d], mid[2][d], mid[3][d]});
+    const Real hi_d = std::max({mid[0][d], mid[1][d], mid[2][d], mid[3][d]});
+    extent = std::max(extent, hi_d - lo_d);
+  }
+  return p.dot(unit) < lo - 1e-9 * extent - 1e-12 * scale;
+}
+
+/// Whether the face with these corners (m; `unit` its unit normal) certainly matters to no
+/// search of the node at `p` (m): all of it farther than `nearer_than` (m), so not the
+/// nearest, and than any admissible penetration can lie, so not a penetrated one (what the
+/// search does with such a face is nothing). `limit` (m): the deepest penetration admissible()
+/// keeps (depth + half thickness `half_t` + allowance). Tried only when that reach is shorter
+/// than the search `margin` (m): shells, about a thickness against a margin of a third of a
+/// face; a solid face's depth reaches beyond it, and the test would only cost. A round face
+/// (admissible()) passes its mid-surface corners `mid` (else null), whether the node is
+/// `behind` that mid-surface, and `round` (m), the largest half thickness of its corners.
+bool out_of_reach(const Vec3 corner[4], const Vec3& unit, const Vec3& p, Real limit, Real half_t,
+                  Real margin, Real nearer_than, const Vec3* mid, bool behind, Real round) {
+  // How far from the node an admissible penetration can lie: inside the face region, or
+  // beside it on a round edge or on the outside, the distance is |gap + half_t| ≤
+  // max(half_t, limit − half_t); beside a square edge below the face plane the lateral
+  // test bounds the offset beyond the edge by |gap| (penetration_reach_sq).
+  const Real reach = mid != nullptr ? std::max(half_t, limit - half_t)
+                                    : std::sqrt(penetration_reach_sq(limit, half_t));
+  if (!(reach < margin)) return false;
+  Real below = distance_below(corner, p, unit);
+  if (mid != nullptr && !behind) {
+    // Beside the edge the distance is |reach − radius| to the mid-surface point, at least
+    // the mid-surface's distance less the largest half thickness of its corners.
+    below = std::min(below, distance_below(mid, p, unit) - round);
+  }
+  return below > nearer_than && below > reach;
 }
 
 /// The nearest of the penetrated touches `penetrated` (nearest first) on a face of another
@@ -90,46 +140,6 @@ SlaveTouch corner_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>&
 
 }  // namespace
 
-ContactEngine::SlaveView ContactEngine::slave_view(Index s, const NodalVectors& position,
-                                                   std::span<const Real> node_thickness) const {
-  const std::vector<ContactFace>& faces = m_domain.faces();
-  SlaveView v;
-  v.slot = s;
-  const Index node = m_domain.slaves().nodes()[s];
-  v.node = node;
-  v.point = node_point(position, node);
-  v.normal = m_domain.slaves().normal(s);
-  v.double_sided = m_domain.slave_double_sided(s);
-  v.free_edge = m_domain.slave_on_free_edge(s);
-  v.point_node = m_domain.slave_point(s);
-  v.half_t = v.double_sided ? 0.5 * node_thickness_of(node_thickness, node) : 0.0;
-  if (v.double_sided) {
-    // The nodes of its own elements, once per node rather than once per candidate face.
-    for (Index g : m_domain.slaves().faces_of(s))
-      for (Index a : faces[g].nodes) {
-        if (v.own_count < 0) break;
-        bool seen = false;
-        for (int k = 0; k < v.own_count; ++k) seen = seen || v.own[k] == a;
-        if (seen) continue;
-        if (v.own_count == static_cast<int>(v.own.size()))
-          v.own_count = -1;  // more than fit: admissible() walks the faces instead
-        else
-          v.own[v.own_count++] = a;
-      }
-  }
-  const ContactConstraint& before = m_constraints[s];
-  if (before.offset_permanent) v.allowance = std::max(before.offset, 0.0);
-  // Side memory: a node pressed onto one side of a shell last increment may not be taken by
-  // the other side of that shell, however deep it has gone (no pass-through).
-  if (before.status == ContactStatus::Closed && before.master_face >= 0 &&
-      faces[before.master_face].shell)
-    v.held = &faces[before.master_face];
-  if (m_updated && before.status == ContactStatus::Closed && before.master_face >= 0 &&
-      !faces[before.master_face].shell)
-    v.continuing = before.master_face;
-  return v;
-}
-
 bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& position,
                                std::span<const Real> node_thickness, SlaveTouch& out,
                                Real& distance, Real nearer_than) const {
@@ -142,21 +152,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   const bool other_side = held != nullptr && faces[f].shell && faces[f].element == held->element &&
                           faces[f].face != held->face;
   if (other_side && !round_edges) return false;
-  // A face of the node's own hex (file comment).
-  if (faces[f].behind(v.node)) return false;
-  // A shell face next to the shell node's own elements continues its own shell (file comment).
-  if (double_sided && faces[f].shell) {
-    bool own = false;
-    if (v.own_count >= 0) {
-      for (Index b : faces[f].nodes)
-        for (int k = 0; k < v.own_count; ++k) own = own || v.own[k] == b;
-    } else {
-      for (Index g : m_domain.slaves().faces_of(s))
-        for (Index a : faces[g].nodes)
-          for (Index b : faces[f].nodes) own = own || a == b;
-    }
-    if (own) return false;
-  }
+  if (!v.listed && never_admissible(v, f)) return false;
   Index pair = NO_INDEX;
   const Real w = m_domain.weight(s, f, pair);
   if (w == 0.0) return false;
@@ -183,20 +179,32 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   // Beside its edges a shell face is round (below): a node there is nearer to it, and touches
   // it sooner, by at most the largest half thickness of its corners.
   const bool round_face = round_edges && faces[f].shell;
-  // A face within the search margin of the node can be skipped only when the penetration
-  // reach is shorter than that margin (shells: about a thickness against a margin of a third
-  // of a face; a solid face's depth reaches beyond it, and the test would only cost).
+  // A node certainly behind the mid-surface of a round face (along the face normal) is on the
+  // other side's half of every point of its round edge, which the test below rejects: only
+  // the face's interior can hold it, and the other side of its held shell not even that.
+  bool behind = false;
+  Vec3 mid_corner[4];
+  if (round_face) {
+    for (int a = 0; a < 4; ++a) mid_corner[a] = node_point(position, faces[f].nodes[a]);
+    behind = behind_mid_surface(mid_corner, v.point, n_f / n_len);
+    if (other_side && behind) return false;
+  }
   if (!kept_side && m_try_skip) {
-    Real round = 0.0;
+    Real round = 0.0;  // largest half thickness of a round face's corners
     if (round_face)
       for (Index c : faces[f].nodes)
         round = std::max(round, 0.5 * node_thickness_of(node_thickness, c));
-    const Real reach_sq = penetration_reach_sq(depth + half_t + v.allowance, half_t);
-    if (reach_sq < m_broad.margin() * m_broad.margin() &&
-        beyond_face_box(corner, v.point, nearer_than, reach_sq, round))
+    if (out_of_reach(corner, n_f / n_len, v.point, depth + half_t + v.allowance, half_t,
+                     m_broad.margin(), nearer_than, round_face ? mid_corner : nullptr, behind,
+                     round))
       return false;
   }
-  const ClosestPoint cp = closest_point_on_quad(corner, v.point);
+  const QuadStart* start = nullptr;
+  if (v.warm != nullptr)
+    for (int k = 0; k < v.warm->count && start == nullptr; ++k)
+      if (v.warm->kept[k].face == f) start = &v.warm->kept[k].at;
+  const ClosestPoint cp = closest_point_on_quad(corner, v.point, start);
+  if (v.next != nullptr) v.next->keep(f, cp.xi, cp.eta);
   if (other_side && cp.region == QuadRegion::Interior) return false;
   Real gap = cp.gap - half_t;
   Vec3 normal = cp.normal;
@@ -254,10 +262,11 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
       SlaveTouch second;
+      WarmStarts next;
       m_lost_depth[s] = 0.0;
       m_passed_depth[s] = 0.0;
       m_behind_depth[s] = 0.0;
-      if (!m_broad.candidates(s).empty() ||
+      if (!listed_faces(s).empty() ||
           (m_updated && m_constraints[s].status == ContactStatus::Closed)) {
         Real best_distance = std::numeric_limits<Real>::max();
         SlaveTouch candidate;
@@ -267,8 +276,16 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         std::array<Real, PENETRATED_KEPT> penetrated_distance{};
         int n_penetrated = 0;
         int n_seen = 0;
-        const SlaveView view = slave_view(s, position, node_thickness);
-        const std::span<const Index> listed = m_broad.candidates(s);
+        SlaveView view = slave_view(s, position, node_thickness, false);
+        if (m_updated) view.warm = &m_warm[s];
+        view.next = &next;
+        const std::span<const Index> listed = listed_faces(s);
+        // The face pressed last increment, when no static rule rejects it (the listed faces
+        // have been sifted by never_admissible(); a solid face has no own-shell test).
+        const Index continuing =
+            view.continuing != NO_INDEX && !never_admissible(view, view.continuing)
+                ? view.continuing
+                : NO_INDEX;
         // The face of last increment's touch first, when the loop below considers it: its
         // distance bounds that of the nearest face from the start, so that admissible() skips
         // the closest points of the faces beyond it (same result, the loop still takes the
@@ -278,7 +295,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         Real previous_distance = 0.0;
         bool previous_known = false, previous_admissible = false;
         if (m_try_skip && previous != NO_INDEX &&
-            (previous == view.continuing ||
+            (previous == continuing ||
              std::binary_search(listed.begin(), listed.end(), previous))) {
           previous_known = true;
           previous_admissible = admissible(view, previous, position, node_thickness, previous_touch,
@@ -306,9 +323,8 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         };
         for (Index f : listed) consider(f);
         // The face pressed last increment, deeper than the broad phase's slab (contact at speed).
-        if (view.continuing != NO_INDEX &&
-            !std::binary_search(listed.begin(), listed.end(), view.continuing))
-          consider(view.continuing);
+        if (continuing != NO_INDEX && !std::binary_search(listed.begin(), listed.end(), continuing))
+          consider(continuing);
         m_lost_depth[s] = best.face == NO_INDEX ? released_depth(view, position) : 0.0;
         m_passed_depth[s] = passed_depth(view, best.face, position);
         m_behind_depth[s] = behind_depth(view, best, node_thickness);
@@ -321,7 +337,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
           // More penetrated faces than kept (a node under the shared corner of many faces on
           // both sides): look for the other side among all of them.
           Real second_distance = std::numeric_limits<Real>::max();
-          for (Index f : m_broad.candidates(s))
+          for (Index f : listed)
             if (admissible(view, f, position, node_thickness, candidate, distance) &&
                 candidate.gap < 0.0 && candidate.face != best.face &&
                 candidate.normal.dot(best.normal) < PINCH_COSINE && distance < second_distance) {
@@ -334,6 +350,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
       }
       m_touch[s] = best;
       m_second_touch[s] = second;
+      if (next.count > 0 || m_warm[s].count > 0) m_warm[s] = next;
     });
   errors.rethrow_if_any();
 }
@@ -348,45 +365,6 @@ Real ContactEngine::released_depth(const SlaveView& v, const NodalVectors& posit
   if (cp.region != QuadRegion::Interior) return 0.0;
   const Real depth = -cp.gap;
   return depth > 2.0 * m_domain.face_depth(v.continuing) + v.allowance ? depth : 0.0;
-}
-
-void ContactEngine::widen_search(Real extra) {
-  if (!(extra > 0.0)) return;
-  m_broad = BroadPhase(m_broad.margin() + extra, m_broad.rebuild_motion());
-}
-
-bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
-                                        std::span<const Real> node_thickness) {
-  SlaveNodes& slaves = m_domain.slaves();
-  if (!m_broad.needs_rebuild(position)) return false;
-  m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness, m_domain.face_depths());
-  const Index n_slave = slaves.size();
-  m_active_slot.assign(static_cast<std::size_t>(n_slave), 0);
-  m_active_face.assign(m_domain.faces().size(), 0);
-  m_try_skip = false;
-  for (Index f = 0; f < static_cast<Index>(m_domain.faces().size()) && !m_try_skip; ++f) {
-    const ContactFace& face = m_domain.faces()[f];
-    Real depth = m_domain.face_depth(f);
-    if (face.shell) {
-      Real t = 0.0;
-      for (Index c : face.nodes) t += node_thickness_of(node_thickness, c);
-      depth = DEPTH_LIMIT_FRACTION * 0.25 * t;
-    }
-    m_try_skip = depth < m_broad.margin();
-  }
-  for (Index s = 0; s < n_slave; ++s) {
-    if (m_broad.candidates(s).empty()) continue;
-    m_active_slot[s] = 1;
-    for (Index f : slaves.faces_of(s)) m_active_face[f] = 1;
-  }
-  return true;
-}
-
-bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {
-  const bool rebuild = refresh_broad_phase(position, node_thickness);
-  m_domain.slaves().update_areas(m_domain.faces(), position);
-  search(position, node_thickness);
-  return rebuild;
 }
 
 std::vector<SlaveTouch> ContactEngine::penetrated_faces(Index s, const NodalVectors& position,
