@@ -198,7 +198,7 @@ void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
 }
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
-  gather_state();
+  if (!m_output.shared_frames()) gather_state();  // else each rank writes its own rows
   m_output.write_frame(m_state, what, m_elements, m_contact, m_nodes);
 }
 

@@ -38,6 +38,45 @@ ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions o
   if (m_options.distributed && DistributedRun::world_size() > 1) set_up_distribution();
 }
 
+namespace {
+
+/// The runs of consecutive indices i < n with writer[i] == rank.
+std::vector<std::pair<Index, Index>> runs_of(const std::vector<int>& writer, int rank) {
+  std::vector<std::pair<Index, Index>> runs;
+  const auto n = static_cast<Index>(writer.size());
+  for (Index i = 0; i < n;) {
+    if (writer[i] != rank) {
+      ++i;
+      continue;
+    }
+    const Index first = i;
+    while (i < n && writer[i] == rank) ++i;
+    runs.emplace_back(first, i - first);
+  }
+  return runs;
+}
+
+/// The rows this rank writes of each frame when every rank writes its own (FrameRows): the
+/// rows each node's owner and each element's rank gather_to_root() and
+/// gather_elements_to_root() send to rank 0, which writes those of the rest (rigid bodies'
+/// elements and nodes no rank owns: every rank holds them alike).
+FrameRows frame_rows(const Model& model, const DistributedRun& run) {
+  std::vector<int> node_writer(static_cast<std::size_t>(model.node_count()), 0);
+  std::vector<int> element_writer(static_cast<std::size_t>(model.element_count()), 0);
+  for (int r = 1; r < run.size(); ++r) {
+    const partition::PartPlan& p = run.exchange_plan().part[r];
+    for (const Index n : p.owned) node_writer[n] = r;
+    for (const Index e : p.elements) element_writer[e] = r;
+  }
+  FrameRows rows;
+  rows.collective = true;
+  rows.nodes = runs_of(node_writer, run.rank());
+  rows.elements = runs_of(element_writer, run.rank());
+  return rows;
+}
+
+}  // namespace
+
 void ExplicitSolver::Impl::set_up_distribution() {
   if (const std::vector<std::string> refused =
           DistributedRun::refusals(m_model, m_options.initial_state != nullptr);
@@ -104,6 +143,7 @@ void ExplicitSolver::Impl::set_up_distribution() {
   };
   m_nodes.set_distribution(share, std::move(counted), integrated);
   share_features(run);
+  if (m_options.shared_frames) m_output.set_frame_rows(frame_rows(m_model, run));
 
   // The report (rank 0's sink writes it).
   const double seconds =

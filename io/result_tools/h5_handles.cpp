@@ -147,6 +147,39 @@ void write_real(hid_t parent, const std::string& name, std::span<const double> d
   write_dataset(parent, name, H5T_NATIVE_DOUBLE, data.data(), data.size(), dims);
 }
 
+void write_real_rows(hid_t parent, const std::string& name, std::span<const double> data,
+                     const std::vector<hsize_t>& dims, const RowRuns& runs) {
+  hsize_t expected = 1;
+  for (hsize_t d : dims) expected *= d;
+  if (expected != data.size()) {
+    throw Error("HDF5: dataset " + name + ": " + std::to_string(data.size()) +
+                " values do not fill the requested shape");
+  }
+  const Handle space = make_space(dims);
+  const Handle dataset{check_id(H5Dcreate2(parent, name.c_str(), H5T_NATIVE_DOUBLE, space.get(),
+                                           H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                "cannot create dataset " + name),
+                       H5Dclose};
+  // The same selection in memory (the whole shape) and in the file: the rows stay where they
+  // are; an empty selection still takes part in the collective write.
+  check(H5Sselect_none(space.get()), "cannot select rows of " + name);
+  const hsize_t width = dims.size() > 1 ? dims[1] : 1;
+  for (const auto& [first, count] : runs) {
+    const std::array<hsize_t, 2> start{first, 0}, block{count, width};
+    check(H5Sselect_hyperslab(space.get(), H5S_SELECT_OR, start.data(), nullptr, block.data(),
+                              nullptr),
+          "cannot select rows of " + name);
+  }
+  const Handle transfer{check_id(H5Pcreate(H5P_DATASET_XFER), "cannot create properties"),
+                        H5Pclose};
+#ifdef H5_HAVE_PARALLEL
+  check(H5Pset_dxpl_mpio(transfer.get(), H5FD_MPIO_COLLECTIVE), "cannot set collective writes");
+#endif
+  check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, space.get(), space.get(), transfer.get(),
+                 data.data()),
+        "cannot write dataset " + name);
+}
+
 void set_string_attribute(hid_t object, const std::string& name, const std::string& value) {
   const Handle type{check_id(H5Tcopy(H5T_C_S1), "cannot create a string type"), H5Tclose};
   check(H5Tset_size(type.get(), H5T_VARIABLE), "cannot create a string type");
