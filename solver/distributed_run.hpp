@@ -132,8 +132,10 @@ class DistributedRun {
   int row_source(Index node) const { return m_row_source[node]; }
 
   /// Wall time spent in this rank's exchanges and collectives, s: with the neighbours (the
-  /// interface forces), shipping the chunks' forces, and gathers and reductions.
-  enum Timing { NEIGHBOURS, SHIP, GATHERS, TIMINGS };
+  /// interface forces), shipping the chunks' forces, and gathers and reductions; WAITS: the
+  /// part of them spent waiting for the other ranks (for a message to arrive, a collective
+  /// to complete), included in the three.
+  enum Timing { NEIGHBOURS, SHIP, GATHERS, WAITS, TIMINGS };
   double exchange_seconds(Timing t) const { return m_seconds[t]; }
   double exchange_seconds() const { return m_seconds[0] + m_seconds[1] + m_seconds[2]; }
   /// Nodes rank r receives forces of each increment for the chunks it counts.

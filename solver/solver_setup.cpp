@@ -96,6 +96,11 @@ void ExplicitSolver::Impl::set_up_distribution() {
         run.size(), m_options.partition_method, element_part,
         m_contact.start_candidates(m_state.position, m_elements, m_rigid));
   run.broadcast(element_part);
+  m_distribution.method = partition::method_name(metis.method);
+  m_distribution.imbalance = metis.imbalance;
+  m_distribution.interface_nodes = static_cast<Index>(metis.interface_nodes.size());
+  m_distribution.cut_edges = metis.cut_edges;
+  m_distribution.shared_frames = m_options.shared_frames;
   run.set_partition(m_model, element_part, m_elements.element_order(),
                     CentralDifference::NODE_CHUNK, m_rigid.element_body());
   m_elements.distribute(run);
@@ -152,8 +157,11 @@ void ExplicitSolver::Impl::set_up_distribution() {
                  "mpi: " + std::to_string(run.size()) +
                      " ranks, distributed time loop (issue 37 item 3): each rank computes the "
                      "forces of its elements, interface forces go to the neighbours as "
-                     "per-corner contributions summed in the one-rank order; rank 0 writes "
-                     "the results");
+                     "per-corner contributions summed in the one-rank order; " +
+                     (m_options.shared_frames
+                          ? std::string("every rank writes its nodes' and elements' rows of "
+                                        "each frame into JOB.h5 (parallel HDF5), rank 0 the rest")
+                          : std::string("rank 0 writes the results")));
   if (run.rank() == 0) {
     m_sink.message(Severity::Info,
                    "mpi: the partition below is of the SIMD batches (each up to 8 elements of one "
