@@ -27,7 +27,9 @@
 ///   ones; the chunk sums are then gathered and added in chunk order. The prescribed DOFs'
 ///   terms are gathered with them (share_chunks()) and folded in DOF order. A rank's nodal
 ///   passes visit only the nodes it moves (CentralDifference::set_distribution()).
-/// Output: rank 0 writes; before a frame or history row it gathers the owners' rows.
+/// Output: every rank writes its rows of each frame into JOB.h5 (FrameRows, parallel HDF5);
+/// rank 0 writes everything else, and gathers the owners' rows before a history row that
+/// reads nodes (and before a frame with --gather-frames).
 
 #include <memory>
 #include <string>

@@ -203,7 +203,11 @@ void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
 }
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
-  if (!m_output.shared_frames()) gather_state();  // else each rank writes its own rows
+  if (m_run && !m_output.shared_frames()) {
+    // Rank 0 writes the frame alone (--gather-frames): gathering it is part of its output.
+    ScopedTimer timer(m_timers, Phase::Output);
+    gather_state();
+  }
   m_output.write_frame(m_state, what, m_elements, m_contact, m_nodes);
 }
 

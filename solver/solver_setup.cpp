@@ -56,11 +56,11 @@ std::vector<std::pair<Index, Index>> runs_of(const std::vector<int>& writer, int
   return runs;
 }
 
-/// The rows this rank writes of each frame when every rank writes its own (FrameRows): the
-/// rows each node's owner and each element's rank gather_to_root() and
+/// The rows each rank writes of each frame when every rank writes its own (FrameRows), by
+/// rank: the rows each node's owner and each element's rank gather_to_root() and
 /// gather_elements_to_root() send to rank 0, which writes those of the rest (rigid bodies'
 /// elements and nodes no rank owns: every rank holds them alike).
-FrameRows frame_rows(const Model& model, const DistributedRun& run) {
+std::vector<FrameRows> frame_rows(const Model& model, const DistributedRun& run) {
   std::vector<int> node_writer(static_cast<std::size_t>(model.node_count()), 0);
   std::vector<int> element_writer(static_cast<std::size_t>(model.element_count()), 0);
   for (int r = 1; r < run.size(); ++r) {
@@ -68,11 +68,20 @@ FrameRows frame_rows(const Model& model, const DistributedRun& run) {
     for (const Index n : p.owned) node_writer[n] = r;
     for (const Index e : p.elements) element_writer[e] = r;
   }
-  FrameRows rows;
-  rows.collective = true;
-  rows.nodes = runs_of(node_writer, run.rank());
-  rows.elements = runs_of(element_writer, run.rank());
+  std::vector<FrameRows> rows(static_cast<std::size_t>(run.size()));
+  for (int r = 0; r < run.size(); ++r) {
+    rows[r].collective = true;
+    rows[r].nodes = runs_of(node_writer, r);
+    rows[r].elements = runs_of(element_writer, r);
+  }
   return rows;
+}
+
+/// Rows in `runs`.
+Index row_count(const std::vector<std::pair<Index, Index>>& runs) {
+  Index n = 0;
+  for (const auto& run : runs) n += run.second;
+  return n;
 }
 
 }  // namespace
@@ -148,7 +157,8 @@ void ExplicitSolver::Impl::set_up_distribution() {
   };
   m_nodes.set_distribution(share, std::move(counted), integrated);
   share_features(run);
-  if (m_options.shared_frames) m_output.set_frame_rows(frame_rows(m_model, run));
+  std::vector<FrameRows> rows;
+  if (m_options.shared_frames) rows = frame_rows(m_model, run);
 
   // The report (rank 0's sink writes it).
   const double seconds =
@@ -180,7 +190,15 @@ void ExplicitSolver::Impl::set_up_distribution() {
                        " neighbour(s), " + std::to_string(p.send_slots()) +
                        " corner contributions sent per increment, the forces of " +
                        std::to_string(run.ship_count(r)) + " nodes received for its nodal chunks");
+    if (!rows.empty())
+      m_sink.message(Severity::Info,
+                     "mpi: rank " + std::to_string(r) + " writes the rows of " +
+                         std::to_string(row_count(rows[r].nodes)) + " nodes (" +
+                         std::to_string(rows[r].nodes.size()) + " runs of consecutive rows) and " +
+                         std::to_string(row_count(rows[r].elements)) + " elements (" +
+                         std::to_string(rows[r].elements.size()) + " runs) of each frame");
   }
+  if (!rows.empty()) m_output.set_frame_rows(std::move(rows[run.rank()]));
 }
 
 void ExplicitSolver::Impl::share_features(DistributedRun& run) {
