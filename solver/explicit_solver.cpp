@@ -203,12 +203,15 @@ void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
 }
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
+  const double exchanged = m_run ? m_run->exchange_seconds() : 0.0;
   if (m_run && !m_output.shared_frames()) {
     // Rank 0 writes the frame alone (--gather-frames): gathering it is part of its output.
     ScopedTimer timer(m_timers, Phase::Output);
     gather_state();
   }
   m_output.write_frame(m_state, what, m_elements, m_contact, m_nodes);
+  // The frame's gathers count as exchanges (and waits) in the summary, not as output too.
+  if (m_run) m_output_exchange += m_run->exchange_seconds() - exchanged;
 }
 
 void ExplicitSolver::Impl::write_history() {
@@ -257,7 +260,7 @@ RunSummary ExplicitSolver::Impl::run() {
 
 ExplicitSolver::Impl::LoopShares ExplicitSolver::Impl::loop_shares() const {
   LoopShares s;
-  s.output = m_timers.seconds(Phase::Output);
+  s.output = m_timers.seconds(Phase::Output) - m_output_exchange;
   if (m_run) {
     s.exchange = m_run->exchange_seconds();
     s.wait = m_run->exchange_seconds(DistributedRun::WAITS);

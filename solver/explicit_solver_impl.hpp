@@ -128,6 +128,9 @@ struct ExplicitSolver::Impl {
   };
   LoopShares loop_shares() const;
   LoopShares m_loop_shares;
+  /// Seconds of exchanges made within the output timer (the frame gathers of a distributed
+  /// run with --gather-frames), which loop_shares() counts as exchanges only.
+  double m_output_exchange = 0.0;
   bool m_started = false;  ///< t = 0 has been taken
   int m_stopped_by = 0;    ///< the signal that stopped the run, 0 while it runs
   /// Distributed runs: the largest stop signal of the ranks, read and shared with the kinetic

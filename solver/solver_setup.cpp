@@ -191,12 +191,13 @@ void ExplicitSolver::Impl::set_up_distribution() {
                        " corner contributions sent per increment, the forces of " +
                        std::to_string(run.ship_count(r)) + " nodes received for its nodal chunks");
     if (!rows.empty())
-      m_sink.message(Severity::Info,
-                     "mpi: rank " + std::to_string(r) + " writes the rows of " +
-                         std::to_string(row_count(rows[r].nodes)) + " nodes (" +
-                         std::to_string(rows[r].nodes.size()) + " runs of consecutive rows) and " +
-                         std::to_string(row_count(rows[r].elements)) + " elements (" +
-                         std::to_string(rows[r].elements.size()) + " runs) of each frame");
+      m_sink.message(Severity::Info, "mpi: rank " + std::to_string(r) + " writes the rows of " +
+                                         std::to_string(row_count(rows[r].nodes)) + " nodes (" +
+                                         std::to_string(rows[r].nodes.size()) +
+                                         " run(s) of consecutive rows) and " +
+                                         std::to_string(row_count(rows[r].elements)) +
+                                         " elements (" + std::to_string(rows[r].elements.size()) +
+                                         " run(s)) of each frame");
   }
   if (!rows.empty()) m_output.set_frame_rows(std::move(rows[run.rank()]));
 }
