@@ -16,6 +16,7 @@
 #include "common/error.hpp"
 #include "io/deck/deck_reader.hpp"
 #include "io/result_tools/import_state.hpp"
+#include "io/results/frame_rows_sink.hpp"
 #include "io/results/job_lock.hpp"
 #include "io/results/result_files.hpp"
 #include "solver/distributed_run.hpp"
@@ -27,7 +28,8 @@ namespace xpl::apps {
 
 namespace {
 
-/// The sink of the ranks other than 0 in a distributed run: rank 0 writes everything.
+/// The sink of the ranks other than 0 in a distributed run whose rank 0 gathers every frame
+/// (--gather-frames): rank 0 writes everything.
 class NullSink final : public OutputSink {
  public:
   void begin_run(const Model&) override {}
@@ -169,8 +171,10 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     io::ResultOptions ropts;
     ropts.progress = !args.quiet;
     ropts.threads = threads;
-    // Distributed runs: rank 0 writes; the others go on only when it could open its files.
+    // Distributed runs: rank 0 writes (the others their rows of each frame, unless
+    // --gather-frames); the others go on only when it could open its files.
     NullSink discard;
+    std::optional<io::FrameRowsSink> frame_rows;
     if (!args.distributed || args.rank == 0) {
       int opened = EXIT_INTERNAL;
       try {
@@ -184,7 +188,11 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     } else if (const int opened = DistributedRun::world_max(EXIT_DONE); opened != EXIT_DONE) {
       return opened;
     }
-    OutputSink& sink = files ? static_cast<OutputSink&>(*files) : discard;
+    const bool shared_frames = args.distributed && !args.gather_frames;
+    if (!files && shared_frames) frame_rows.emplace(args.out_dir / (model.job_name + ".h5"));
+    OutputSink& sink = files        ? static_cast<OutputSink&>(*files)
+                       : frame_rows ? static_cast<OutputSink&>(*frame_rows)
+                                    : discard;
     SolverOptions sopts;
     sopts.threads = args.threads;
     sopts.energy_limit = args.energy_limit / 100.0;
@@ -192,6 +200,7 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     sopts.partition_parts = args.partition;
     sopts.partition_note = args.partition_note;
     sopts.distributed = args.distributed;
+    sopts.shared_frames = shared_frames;
     if (!args.import.empty()) sopts.initial_state = &initial;
     ExplicitSolver solver(model, sink, sopts);
     if (args.check) {

@@ -35,6 +35,9 @@ struct JobArguments {
   /// `xpl run` on every MPI rank, the model distributed (SolverOptions::distributed): rank 0
   /// writes the result files, the other ranks write nothing.
   bool distributed = false;
+  /// --gather-frames: in a distributed run rank 0 gathers every frame's rows and writes them
+  /// alone, instead of every rank writing its own into JOB.h5 (parallel HDF5).
+  bool gather_frames = false;
   int rank = 0;
 };
 

@@ -49,6 +49,9 @@ constexpr const char* RUN_USAGE =
     "  --partition N  report in JOB.msg how the model would be split into N parts for a\n"
     "               distributed run (elements, owned and interface nodes, imbalance per\n"
     "               part); the run itself is unchanged\n"
+    "  --gather-frames  under mpirun -np N > 1: rank 0 gathers each frame and writes it\n"
+    "               alone (default: every rank writes its nodes and elements into JOB.h5,\n"
+    "               parallel HDF5)\n"
     "Under mpirun -np N > 1 (a build with XPL_MPI=ON) the run is distributed over the N\n"
     "ranks, its results bitwise those of one rank; decks with contact, rigid bodies, ties\n"
     "or loads are refused there (docs/dev/mpi.md).\n"
@@ -228,6 +231,8 @@ bool parse(int argc, char** argv, Arguments& args) {
       args.import = *v;
     } else if (w == "--quiet" || w == "-q") {
       args.quiet = true;
+    } else if (w == "--gather-frames" && args.command == "run") {
+      args.gather_frames = true;
     } else if (!w.empty() && w[0] == '-') {
       std::cerr << "xpl " << args.command << ": unknown option '" << w << "'\n"
                 << (args.command == "check" ? CHECK_USAGE : RUN_USAGE);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <utility>
 
 #if XPL_HAVE_MPI
 #include <mpi.h>
@@ -14,19 +15,28 @@ namespace xpl {
 
 namespace {
 
-/// Times one exchange or collective into `seconds`.
+/// Where wait_all() adds the time it waits: the waits of the exchange an ExchangeTimer
+/// times (only the main thread calls MPI), or nowhere outside one.
+double* g_waits = nullptr;
+
+/// Times one exchange or collective into `seconds`, and its waits for the other ranks
+/// (wait_all()) also into `waits`.
 class ExchangeTimer {
  public:
-  explicit ExchangeTimer(double& seconds)
-      : m_seconds(seconds), m_start(std::chrono::steady_clock::now()) {}
+  ExchangeTimer(double& seconds, double& waits)
+      : m_seconds(seconds),
+        m_outer(std::exchange(g_waits, &waits)),
+        m_start(std::chrono::steady_clock::now()) {}
   ~ExchangeTimer() {
     m_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    g_waits = m_outer;
   }
   ExchangeTimer(const ExchangeTimer&) = delete;
   ExchangeTimer& operator=(const ExchangeTimer&) = delete;
 
  private:
   double& m_seconds;
+  double* m_outer;
   std::chrono::steady_clock::time_point m_start;
 };
 
@@ -46,13 +56,18 @@ constexpr int FORCE_TAG = 37;
 /// shared machine the spinning rank takes the core from the rank it waits for (2 ranks on 2
 /// loaded cores spent 70-85 % of the loop waiting). Tests for 50 us, then sleeps between
 /// tests, 10 us at first, doubling up to 200 us.
+/// The time from the first test to the last goes to g_waits.
 void wait_all(int n, MPI_Request* requests) {
   using namespace std::chrono_literals;
   const auto start = std::chrono::steady_clock::now();
   auto pause = 10us;
   for (int done = 0;;) {
     MPI_Testall(n, requests, &done, MPI_STATUSES_IGNORE);
-    if (done != 0) return;
+    if (done != 0) {
+      if (g_waits != nullptr)
+        *g_waits += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return;
+    }
     if (std::chrono::steady_clock::now() - start < 50us) continue;
     std::this_thread::sleep_for(pause);
     pause = std::min<std::chrono::microseconds>(2 * pause, 200us);
@@ -188,7 +203,7 @@ void DistributedRun::broadcast(std::vector<int>& values) const {
 }
 
 void DistributedRun::broadcast_estimate(Real& value, int& count) const {
-  ExchangeTimer timer(m_seconds[GATHERS]);
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   Real both[2] = {value, static_cast<Real>(count)};  // an int is exact in a double
   MPI_Request request = MPI_REQUEST_NULL;
   MPI_Ibcast(both, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD, &request);
@@ -198,7 +213,7 @@ void DistributedRun::broadcast_estimate(Real& value, int& count) const {
 }
 
 void DistributedRun::post_receives(int width) {
-  ExchangeTimer timer(m_seconds[NEIGHBOURS]);
+  ExchangeTimer timer(m_seconds[NEIGHBOURS], m_seconds[WAITS]);
   const auto& neighbours = plan().neighbours;
   m_receive.resize(neighbours.size());
   m_send.resize(neighbours.size());
@@ -212,7 +227,7 @@ void DistributedRun::post_receives(int width) {
 }
 
 void DistributedRun::send() {
-  ExchangeTimer timer(m_seconds[NEIGHBOURS]);
+  ExchangeTimer timer(m_seconds[NEIGHBOURS], m_seconds[WAITS]);
   const auto& neighbours = plan().neighbours;
   m_requests->send.assign(neighbours.size(), MPI_REQUEST_NULL);
   for (std::size_t j = 0; j < neighbours.size(); ++j)
@@ -221,7 +236,7 @@ void DistributedRun::send() {
 }
 
 const std::vector<std::vector<Real>>& DistributedRun::receive() {
-  ExchangeTimer timer(m_seconds[NEIGHBOURS]);
+  ExchangeTimer timer(m_seconds[NEIGHBOURS], m_seconds[WAITS]);
   wait_all(static_cast<int>(m_requests->receive.size()), m_requests->receive.data());
   wait_all(static_cast<int>(m_requests->send.size()), m_requests->send.data());
   return m_receive;
@@ -229,7 +244,7 @@ const std::vector<std::vector<Real>>& DistributedRun::receive() {
 
 std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::vector<int>& counts,
                                             bool counts_known) const {
-  ExchangeTimer timer(m_seconds[GATHERS]);
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   const int n = static_cast<int>(mine.size());
   if (!counts_known) {
     counts.assign(static_cast<std::size_t>(m_size), 0);
@@ -248,7 +263,7 @@ std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::
 }
 
 void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<int>& counts) {
-  ExchangeTimer timer(m_seconds[GATHERS]);
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   m_posted_mine = std::move(mine);
   m_posted_counts = counts;
   m_posted_displacement.assign(static_cast<std::size_t>(m_size), 0);
@@ -261,7 +276,7 @@ void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<in
 }
 
 const std::vector<Real>& DistributedRun::wait_allgather() {
-  ExchangeTimer timer(m_seconds[GATHERS]);
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   wait(m_requests->gather);
   return m_posted_all;
 }
@@ -308,7 +323,7 @@ GatherLayout gather_layout(int size, std::size_t width, Items items) {
 
 void DistributedRun::gather_to_root(NodalVectors& rows) const {
   if (rows.rows() == 0) return;
-  ExchangeTimer timer(m_seconds[GATHERS]);
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   const std::vector<Real> mine = pack_rows(rows, plan().owned);
   const GatherLayout g = gather_layout(
       m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
@@ -322,7 +337,7 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
 
 void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
   if (rows.empty()) return;
-  ExchangeTimer timer(m_seconds[GATHERS]);
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   const auto w = static_cast<std::size_t>(width);
   std::vector<Real> mine;
   mine.reserve(plan().elements.size() * w);
@@ -344,7 +359,7 @@ void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width)
 }
 
 void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
-  ExchangeTimer timer(m_seconds[SHIP]);
+  ExchangeTimer timer(m_seconds[SHIP], m_seconds[WAITS]);
   const int width = moment != nullptr ? 6 : 3;
   constexpr int SHIP_TAG = 38;
   m_ship_send_buffer.resize(static_cast<std::size_t>(m_size));
@@ -414,7 +429,7 @@ void DistributedRun::share_chunks(std::vector<Real>& values, int width, int bloc
 void DistributedRun::share_rows(const std::vector<Index>& nodes,
                                 const std::vector<const NodalVectors*>& from,
                                 const std::vector<NodalVectors*>& to) const {
-  ExchangeTimer timer(m_seconds[GATHERS]);
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   const std::size_t width = 3 * from.size();
   std::vector<std::vector<Index>> of_rank(static_cast<std::size_t>(m_size));
   for (const Index n : nodes) of_rank[m_row_source[n]].push_back(n);

@@ -27,7 +27,9 @@
 ///   ones; the chunk sums are then gathered and added in chunk order. The prescribed DOFs'
 ///   terms are gathered with them (share_chunks()) and folded in DOF order. A rank's nodal
 ///   passes visit only the nodes it moves (CentralDifference::set_distribution()).
-/// Output: rank 0 writes; before a frame or history row it gathers the owners' rows.
+/// Output: every rank writes its rows of each frame into JOB.h5 (FrameRows, parallel HDF5);
+/// rank 0 writes everything else, and gathers the owners' rows before a history row that
+/// reads nodes (and before a frame with --gather-frames).
 
 #include <memory>
 #include <string>
@@ -132,8 +134,10 @@ class DistributedRun {
   int row_source(Index node) const { return m_row_source[node]; }
 
   /// Wall time spent in this rank's exchanges and collectives, s: with the neighbours (the
-  /// interface forces), shipping the chunks' forces, and gathers and reductions.
-  enum Timing { NEIGHBOURS, SHIP, GATHERS, TIMINGS };
+  /// interface forces), shipping the chunks' forces, and gathers and reductions; WAITS: the
+  /// part of them spent waiting for the other ranks (for a message to arrive, a collective
+  /// to complete), included in the three.
+  enum Timing { NEIGHBOURS, SHIP, GATHERS, WAITS, TIMINGS };
   double exchange_seconds(Timing t) const { return m_seconds[t]; }
   double exchange_seconds() const { return m_seconds[0] + m_seconds[1] + m_seconds[2]; }
   /// Nodes rank r receives forces of each increment for the chunks it counts.

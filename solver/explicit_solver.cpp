@@ -104,6 +104,7 @@ void ExplicitSolver::Impl::run_step(int step) {
   write_status();
 
   const auto loop_start = std::chrono::steady_clock::now();
+  const LoopShares shares_start = loop_shares();
   Real next_status = 0.01 * period;
   while (m_state.step_time < period) {
     // x_{n+1} = x_n + dt_{n+1/2} v_{n+1/2}; t_{n+1} = t_n + dt_{n+1/2}.
@@ -157,6 +158,10 @@ void ExplicitSolver::Impl::run_step(int step) {
   m_increment.report_step(step);
   m_loop_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+  const LoopShares shares_end = loop_shares();
+  m_loop_shares.output += shares_end.output - shares_start.output;
+  m_loop_shares.exchange += shares_end.exchange - shares_start.exchange;
+  m_loop_shares.wait += shares_end.wait - shares_start.wait;
 }
 
 int ExplicitSolver::Impl::local_signal() const {
@@ -198,8 +203,15 @@ void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
 }
 
 void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
-  gather_state();
+  const double exchanged = m_run ? m_run->exchange_seconds() : 0.0;
+  if (m_run && !m_output.shared_frames()) {
+    // Rank 0 writes the frame alone (--gather-frames): gathering it is part of its output.
+    ScopedTimer timer(m_timers, Phase::Output);
+    gather_state();
+  }
   m_output.write_frame(m_state, what, m_elements, m_contact, m_nodes);
+  // The frame's gathers count as exchanges (and waits) in the summary, not as output too.
+  if (m_run) m_output_exchange += m_run->exchange_seconds() - exchanged;
 }
 
 void ExplicitSolver::Impl::write_history() {
@@ -246,18 +258,48 @@ RunSummary ExplicitSolver::Impl::run() {
   return s;
 }
 
+ExplicitSolver::Impl::LoopShares ExplicitSolver::Impl::loop_shares() const {
+  LoopShares s;
+  s.output = m_timers.seconds(Phase::Output) - m_output_exchange;
+  if (m_run) {
+    s.exchange = m_run->exchange_seconds();
+    s.wait = m_run->exchange_seconds(DistributedRun::WAITS);
+  }
+  return s;
+}
+
 void ExplicitSolver::Impl::report_exchange() {
   if (!m_run) return;
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
   std::vector<int> counts;
   const DistributedRun& run = *m_run;
+  constexpr std::size_t WIDTH = 9;
   const std::vector<Real> all = m_run->allgather(
       {run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
        run.exchange_seconds(DistributedRun::SHIP), run.exchange_seconds(DistributedRun::GATHERS),
-       m_loop_seconds, static_cast<Real>(m_nodes.integrated_count())},
+       m_loop_seconds, static_cast<Real>(m_nodes.integrated_count()), m_loop_shares.exchange,
+       m_loop_shares.wait, m_loop_shares.output},
       counts);
+  // The summary's partition and times (rank 0's sink keeps them).
+  DistributionSummary d = m_distribution;
+  d.ranks.resize(static_cast<std::size_t>(run.size()));
+  for (int r = 0; r < run.size(); ++r) {
+    const partition::PartPlan& p = run.exchange_plan().part[r];
+    const Real* t = &all[WIDTH * static_cast<std::size_t>(r)];
+    DistributionSummary::Rank& k = d.ranks[static_cast<std::size_t>(r)];
+    k.elements = static_cast<Index>(p.elements.size());
+    k.owned_nodes = static_cast<Index>(p.owned.size());
+    k.interface_nodes = static_cast<Index>(p.interface_nodes.size());
+    k.neighbours = static_cast<Index>(p.neighbours.size());
+    k.time_loop = t[4];
+    k.exchange = t[6] - t[7];
+    k.wait = t[7];
+    k.output = t[8];
+    k.compute = std::max(0.0, t[4] - t[6] - t[8]);
+  }
+  m_sink.distribution(d);
   for (int r = 0; r < m_run->size(); ++r) {
-    const Real* t = &all[6 * static_cast<std::size_t>(r)];
+    const Real* t = &all[WIDTH * static_cast<std::size_t>(r)];
     m_sink.message(Severity::Info,
                    "mpi: rank " + std::to_string(r) + ": exchanges and collectives " +
                        format_real(t[0]) + " s of " + format_real(t[4]) + " s in the time loop (" +

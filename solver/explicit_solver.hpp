@@ -71,6 +71,10 @@ struct SolverOptions {
   /// rank computes the forces of its part of the model; every rank must run the solver, rank
   /// 0's sink writes. The model must have no feature DistributedRun::refusals() names.
   bool distributed = false;
+  /// Distributed: every rank writes its rows of each frame (its nodes and elements) into
+  /// JOB.h5 together with the others (parallel HDF5, FrameRows; the sink of every rank must
+  /// write frames); else rank 0 gathers every row and writes alone.
+  bool shared_frames = false;
 };
 
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.

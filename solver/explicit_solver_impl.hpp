@@ -88,7 +88,8 @@ struct ExplicitSolver::Impl {
   void end_failed(const std::string& cause) noexcept;
   /// The largest ETOTAL drift of the run in the .msg and .sta files (before end_run).
   void report_drift();
-  /// Distributed runs: each rank's exchange time in the .msg (collective).
+  /// Distributed runs: each rank's exchange time in the .msg, and the partition and each
+  /// rank's times for the summary (OutputSink::distribution) (collective).
   void report_exchange();
   /// The end message of an interrupted run: the signal and the time reached.
   std::string interrupted_text() const;
@@ -113,11 +114,25 @@ struct ExplicitSolver::Impl {
   ContactEnergyCheck m_contact_energy;  ///< energy created by the contact springs
   OutputDriver m_output;
   std::unique_ptr<DistributedRun> m_run;  ///< distributed runs only
-  IncrementDecision m_next;               ///< dt_{n+1/2}: the increment about to be taken, and why
-  ExternalId m_critical_id = 0;           ///< deck id of the element that limits it
-  double m_loop_seconds = 0.0;            ///< wall time of the time loops
-  bool m_started = false;                 ///< t = 0 has been taken
-  int m_stopped_by = 0;                   ///< the signal that stopped the run, 0 while it runs
+  /// Distributed runs: the partition for the summary (rank 0's; the summary's rank
+  /// entries come from the exchange plan and the ranks' timers).
+  DistributionSummary m_distribution;
+  IncrementDecision m_next;      ///< dt_{n+1/2}: the increment about to be taken, and why
+  ExternalId m_critical_id = 0;  ///< deck id of the element that limits it
+  double m_loop_seconds = 0.0;   ///< wall time of the time loops
+  /// Seconds so far in output, and in a distributed run's exchanges and their waits
+  /// (DistributedRun::exchange_seconds()), of the whole run or (m_loop_shares) of the time
+  /// loops only, for the summary's per-rank times.
+  struct LoopShares {
+    double output = 0.0, exchange = 0.0, wait = 0.0;
+  };
+  LoopShares loop_shares() const;
+  LoopShares m_loop_shares;
+  /// Seconds of exchanges made within the output timer (the frame gathers of a distributed
+  /// run with --gather-frames), which loop_shares() counts as exchanges only.
+  double m_output_exchange = 0.0;
+  bool m_started = false;  ///< t = 0 has been taken
+  int m_stopped_by = 0;    ///< the signal that stopped the run, 0 while it runs
   /// Distributed runs: the largest stop signal of the ranks, read and shared with the kinetic
   /// sums of the last nodal update (one collective less per increment).
   int m_shared_signal = 0;

@@ -38,6 +38,54 @@ ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions o
   if (m_options.distributed && DistributedRun::world_size() > 1) set_up_distribution();
 }
 
+namespace {
+
+/// The runs of consecutive indices i < n with writer[i] == rank.
+std::vector<std::pair<Index, Index>> runs_of(const std::vector<int>& writer, int rank) {
+  std::vector<std::pair<Index, Index>> runs;
+  const auto n = static_cast<Index>(writer.size());
+  for (Index i = 0; i < n;) {
+    if (writer[i] != rank) {
+      ++i;
+      continue;
+    }
+    const Index first = i;
+    while (i < n && writer[i] == rank) ++i;
+    runs.emplace_back(first, i - first);
+  }
+  return runs;
+}
+
+/// The rows each rank writes of each frame when every rank writes its own (FrameRows), by
+/// rank: the rows each node's owner and each element's rank gather_to_root() and
+/// gather_elements_to_root() send to rank 0, which writes those of the rest (rigid bodies'
+/// elements and nodes no rank owns: every rank holds them alike).
+std::vector<FrameRows> frame_rows(const Model& model, const DistributedRun& run) {
+  std::vector<int> node_writer(static_cast<std::size_t>(model.node_count()), 0);
+  std::vector<int> element_writer(static_cast<std::size_t>(model.element_count()), 0);
+  for (int r = 1; r < run.size(); ++r) {
+    const partition::PartPlan& p = run.exchange_plan().part[r];
+    for (const Index n : p.owned) node_writer[n] = r;
+    for (const Index e : p.elements) element_writer[e] = r;
+  }
+  std::vector<FrameRows> rows(static_cast<std::size_t>(run.size()));
+  for (int r = 0; r < run.size(); ++r) {
+    rows[r].collective = true;
+    rows[r].nodes = runs_of(node_writer, r);
+    rows[r].elements = runs_of(element_writer, r);
+  }
+  return rows;
+}
+
+/// Rows in `runs`.
+Index row_count(const std::vector<std::pair<Index, Index>>& runs) {
+  Index n = 0;
+  for (const auto& run : runs) n += run.second;
+  return n;
+}
+
+}  // namespace
+
 void ExplicitSolver::Impl::set_up_distribution() {
   if (const std::vector<std::string> refused =
           DistributedRun::refusals(m_model, m_options.initial_state != nullptr);
@@ -57,6 +105,11 @@ void ExplicitSolver::Impl::set_up_distribution() {
         run.size(), m_options.partition_method, element_part,
         m_contact.start_candidates(m_state.position, m_elements, m_rigid));
   run.broadcast(element_part);
+  m_distribution.method = partition::method_name(metis.method);
+  m_distribution.imbalance = metis.imbalance;
+  m_distribution.interface_nodes = static_cast<Index>(metis.interface_nodes.size());
+  m_distribution.cut_edges = metis.cut_edges;
+  m_distribution.shared_frames = m_options.shared_frames;
   run.set_partition(m_model, element_part, m_elements.element_order(),
                     CentralDifference::NODE_CHUNK, m_rigid.element_body());
   m_elements.distribute(run);
@@ -104,6 +157,8 @@ void ExplicitSolver::Impl::set_up_distribution() {
   };
   m_nodes.set_distribution(share, std::move(counted), integrated);
   share_features(run);
+  std::vector<FrameRows> rows;
+  if (m_options.shared_frames) rows = frame_rows(m_model, run);
 
   // The report (rank 0's sink writes it).
   const double seconds =
@@ -112,8 +167,11 @@ void ExplicitSolver::Impl::set_up_distribution() {
                  "mpi: " + std::to_string(run.size()) +
                      " ranks, distributed time loop (issue 37 item 3): each rank computes the "
                      "forces of its elements, interface forces go to the neighbours as "
-                     "per-corner contributions summed in the one-rank order; rank 0 writes "
-                     "the results");
+                     "per-corner contributions summed in the one-rank order; " +
+                     (m_options.shared_frames
+                          ? std::string("every rank writes its nodes' and elements' rows of "
+                                        "each frame into JOB.h5 (parallel HDF5), rank 0 the rest")
+                          : std::string("rank 0 writes the results")));
   if (run.rank() == 0) {
     m_sink.message(Severity::Info,
                    "mpi: the partition below is of the SIMD batches (each up to 8 elements of one "
@@ -132,7 +190,16 @@ void ExplicitSolver::Impl::set_up_distribution() {
                        " neighbour(s), " + std::to_string(p.send_slots()) +
                        " corner contributions sent per increment, the forces of " +
                        std::to_string(run.ship_count(r)) + " nodes received for its nodal chunks");
+    if (!rows.empty())
+      m_sink.message(Severity::Info, "mpi: rank " + std::to_string(r) + " writes the rows of " +
+                                         std::to_string(row_count(rows[r].nodes)) + " nodes (" +
+                                         std::to_string(rows[r].nodes.size()) +
+                                         " run(s) of consecutive rows) and " +
+                                         std::to_string(row_count(rows[r].elements)) +
+                                         " elements (" + std::to_string(rows[r].elements.size()) +
+                                         " run(s)) of each frame");
   }
+  if (!rows.empty()) m_output.set_frame_rows(std::move(rows[run.rank()]));
 }
 
 void ExplicitSolver::Impl::share_features(DistributedRun& run) {

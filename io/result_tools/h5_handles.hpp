@@ -8,6 +8,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace xpl::io::h5 {
@@ -76,6 +77,17 @@ void write_uint8(hid_t parent, const std::string& name, std::span<const std::uin
 /// Writes a new float64 dataset `name` below `parent` with shape `dims` (row-major data).
 void write_real(hid_t parent, const std::string& name, std::span<const double> data,
                 const std::vector<hsize_t>& dims);
+
+/// Runs of consecutive rows of a dataset, [first, first + count), in ascending order.
+using RowRuns = std::vector<std::pair<hsize_t, hsize_t>>;
+
+/// write_real of the rows `runs` only: `data` holds the whole shape `dims` (row-major; the
+/// other rows are not read), and the rows go where they belong in the new dataset. In a file
+/// opened with MPI-IO (parallel HDF5) a collective write: every process of the file calls it
+/// with the same name and dims and its own runs (the runs of the processes apart, together
+/// every row), an empty `runs` included.
+void write_real_rows(hid_t parent, const std::string& name, std::span<const double> data,
+                     const std::vector<hsize_t>& dims, const RowRuns& runs);
 
 /// Sets (creates or overwrites) a variable-length UTF-8 string attribute.
 void set_string_attribute(hid_t object, const std::string& name, const std::string& value);

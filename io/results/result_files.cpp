@@ -284,6 +284,10 @@ void ResultFiles::message(Severity severity, const std::string& text) {
   m_impl->msg_file.message(severity, text);
 }
 
+void ResultFiles::distribution(const DistributionSummary& summary) {
+  m_impl->summary.distribution = summary;
+}
+
 void ResultFiles::energy_drift(const BalanceDrift& drift) {
   m_impl->summary.set_drift(drift);
 }

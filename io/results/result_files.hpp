@@ -39,6 +39,7 @@ class ResultFiles final : public OutputSink {
   void message(Severity severity, const std::string& text) override;
   void status_note(const std::string& text) override;
   void energy_drift(const BalanceDrift& drift) override;
+  void distribution(const DistributionSummary& summary) override;
   void write_table(const ResultTable& table) override;
   void end_run(RunStatus status, const std::string& error, const PhaseTimers& timers,
                double element_cycles_per_second) override;

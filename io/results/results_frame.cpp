@@ -73,16 +73,42 @@ void check_contact(const FrameFields& fields, const FrameRequest& what, Index n_
   }
 }
 
+/// Which rows of a dataset are rows of nodes or of elements (FrameRows).
+enum class RowsOf { Nodes, Elements };
+
+/// Writes the datasets of a frame: whole, or, when the ranks of a distributed run write the
+/// file together, each rank its rows (FrameRows) where they belong.
+class RowWriter {
+ public:
+  explicit RowWriter(const FrameRows& rows) : m_collective(rows.collective) {
+    for (const auto& [first, count] : rows.nodes)
+      m_nodes.emplace_back(static_cast<hsize_t>(first), static_cast<hsize_t>(count));
+    for (const auto& [first, count] : rows.elements)
+      m_elements.emplace_back(static_cast<hsize_t>(first), static_cast<hsize_t>(count));
+  }
+  void write(hid_t group, const std::string& name, const std::vector<Real>& values,
+             const std::vector<hsize_t>& dims, RowsOf rows) const {
+    if (!m_collective) return h5::write_real(group, name, values, dims);
+    h5::write_real_rows(group, name, values, dims, rows == RowsOf::Nodes ? m_nodes : m_elements);
+  }
+
+ private:
+  bool m_collective;
+  h5::RowRuns m_nodes, m_elements;
+};
+
 /// Writes the values of `v` (rows × v.width, row-major; width 1: one-dimensional).
-void write_values(hid_t group, const OutputVariable& v, const std::vector<Real>& values) {
+void write_values(const RowWriter& out, hid_t group, const OutputVariable& v,
+                  const std::vector<Real>& values, RowsOf rows) {
   const auto width = static_cast<std::size_t>(v.width);
   std::vector<hsize_t> dims{values.size() / width};
   if (width > 1) dims.push_back(width);
-  h5::write_real(group, std::string(v.name), values, dims);
+  out.write(group, std::string(v.name), values, dims, rows);
 }
 
-void write_nodal(hid_t group, const OutputVariable& v, const NodalVectors& field) {
-  write_values(group, v, row_major(field));
+void write_nodal(const RowWriter& out, hid_t group, const OutputVariable& v,
+                 const NodalVectors& field) {
+  write_values(out, group, v, row_major(field), RowsOf::Nodes);
 }
 
 /// Von Mises stress of every stress row of `stress` (rows of 6; NaN rows give NaN).
@@ -103,35 +129,38 @@ const std::vector<Real>& element_rows(const Model& model, const FrameFields& fie
 }
 
 /// Writes the frame dataset of `v` from the state and the frame fields.
-void write_variable(hid_t group, const OutputVariable& v, const Model& model, const State& state,
-                    const FrameFields& fields) {
+void write_variable(const RowWriter& out, hid_t group, const OutputVariable& v, const Model& model,
+                    const State& state, const FrameFields& fields) {
   switch (v.id) {
     case OutputId::U:
-      return write_nodal(group, v, state.position - state.reference);
+      return write_nodal(out, group, v, state.position - state.reference);
     case OutputId::V:
-      return write_nodal(group, v, state.velocity);
+      return write_nodal(out, group, v, state.velocity);
     case OutputId::A:
-      return write_nodal(group, v, state.acceleration);
+      return write_nodal(out, group, v, state.acceleration);
     case OutputId::RF:
-      return write_nodal(group, v, state.reaction);
+      return write_nodal(out, group, v, state.reaction);
     case OutputId::UR:
-      return write_nodal(group, v, state.rotation);
+      return write_nodal(out, group, v, state.rotation);
     case OutputId::VR:
-      return write_nodal(group, v, state.angular_velocity);
+      return write_nodal(out, group, v, state.angular_velocity);
     case OutputId::RM:
-      return write_nodal(group, v, state.reaction_moment);
+      return write_nodal(out, group, v, state.reaction_moment);
     case OutputId::EVOL: {
       std::vector<Real> buffer;
-      return write_values(group, v,
-                          element_rows(model, fields, ElementField::Volume, 1, "volume", buffer));
+      return write_values(out, group, v,
+                          element_rows(model, fields, ElementField::Volume, 1, "volume", buffer),
+                          RowsOf::Elements);
     }
     case OutputId::STH: {
       std::vector<Real> buffer;
       return write_values(
-          group, v, element_rows(model, fields, ElementField::Thickness, 1, "thickness", buffer));
+          out, group, v,
+          element_rows(model, fields, ElementField::Thickness, 1, "thickness", buffer),
+          RowsOf::Elements);
     }
     case OutputId::PEEQ:
-      return write_values(group, v, fields.peeq);
+      return write_values(out, group, v, fields.peeq, RowsOf::Elements);
     case OutputId::S:
     case OutputId::MISES:
     case OutputId::S_SNEG:
@@ -141,21 +170,21 @@ void write_variable(hid_t group, const OutputVariable& v, const Model& model, co
     case OutputId::MISES_MAX:
       break;  // write_stresses
     case OutputId::PEEQ_SNEG:
-      return write_values(group, v, fields.peeq_bottom);
+      return write_values(out, group, v, fields.peeq_bottom, RowsOf::Elements);
     case OutputId::PEEQ_SMID:
-      return write_values(group, v, fields.peeq_middle);
+      return write_values(out, group, v, fields.peeq_middle, RowsOf::Elements);
     case OutputId::PEEQ_SPOS:
-      return write_values(group, v, fields.peeq_top);
+      return write_values(out, group, v, fields.peeq_top, RowsOf::Elements);
     case OutputId::CPRESS:
-      return write_values(group, v, fields.contact_pressure);
+      return write_values(out, group, v, fields.contact_pressure, RowsOf::Nodes);
     case OutputId::CSHEAR:
-      return write_nodal(group, v, fields.contact_shear);
+      return write_nodal(out, group, v, fields.contact_shear);
     case OutputId::CSTATUS:
-      return write_values(group, v, fields.contact_status);
+      return write_values(out, group, v, fields.contact_status, RowsOf::Nodes);
     case OutputId::CNORMF:
-      return write_nodal(group, v, fields.contact_normal_force);
+      return write_nodal(out, group, v, fields.contact_normal_force);
     case OutputId::CSHEARF:
-      return write_nodal(group, v, fields.contact_shear_force);
+      return write_nodal(out, group, v, fields.contact_shear_force);
     case OutputId::CFN:
     case OutputId::CFS:
       break;
@@ -191,9 +220,9 @@ bool written(const std::vector<const OutputVariable*>& variables, OutputId id) {
 }
 
 /// Writes `v` (`values`) into `group` and describes it.
-void write_described(hid_t group, const OutputVariable& v, const std::vector<Real>& values,
-                     const ModelUnits& units) {
-  write_values(group, v, values);
+void write_described(const RowWriter& out, hid_t group, const OutputVariable& v,
+                     const std::vector<Real>& values, const ModelUnits& units) {
+  write_values(out, group, v, values, RowsOf::Elements);
   describe(group, std::string(v.name), component_list(v), units.label(v.unit), v.description);
 }
 
@@ -206,8 +235,8 @@ void write_described(hid_t group, const OutputVariable& v, const std::vector<Rea
 /// (element_rows, pulled from the elements in a one-process run) and written with its von
 /// Mises stress and its XDMF copies (global_axis_rows at `position`, one buffer) before the
 /// next, so that a frame holds one tensor, one copy and MISES_MAX at a time.
-void write_stresses(hid_t file, hid_t g, const std::string& path, const Model& model,
-                    const NodalVectors& position, const FrameFields& fields,
+void write_stresses(const RowWriter& out, hid_t file, hid_t g, const std::string& path,
+                    const Model& model, const NodalVectors& position, const FrameFields& fields,
                     const std::vector<const OutputVariable*>& variables, const ModelUnits& units) {
   const h5::Handle group = h5::require_group(file, path);
   const bool shells = model.has_shells();
@@ -230,10 +259,11 @@ void write_stresses(hid_t file, hid_t g, const std::string& path, const Model& m
   for (const Tensor& t : tensors) {
     if (!shells && t.field != ElementField::Stress) continue;
     const std::vector<Real>& rows = element_rows(model, fields, t.field, 6, t.field_name, buffer);
-    if (written(variables, t.rows)) write_described(g, output_variable(t.rows), rows, units);
+    if (written(variables, t.rows)) write_described(out, g, output_variable(t.rows), rows, units);
     if (written(variables, t.mises) || maximum) {
       std::vector<double> mises = mises_rows(rows);
-      if (written(variables, t.mises)) write_described(g, output_variable(t.mises), mises, units);
+      if (written(variables, t.mises))
+        write_described(out, g, output_variable(t.mises), mises, units);
       if (maximum && t.field == ElementField::Stress) {
         mises_max = std::move(mises);
       } else if (maximum) {
@@ -243,20 +273,20 @@ void write_stresses(hid_t file, hid_t g, const std::string& path, const Model& m
     }
     const std::string name(output_variable(t.rows).name);
     global_axis_rows(model, position, rows, copy);
-    h5::write_real(group.get(), name, copy, {n, 6});
+    out.write(group.get(), name, copy, {n, 6}, RowsOf::Elements);
     describe(group.get(), name, global_names, "Pa",
              "copy of " + name + " for the XDMF file: global axes, VTK order");
     if (!shells) continue;
     copy.assign(n * 6, std::nan(""));
     for (std::size_t e = 0; e < n; ++e)
       if (is_shell(model.element_types[e])) to_vtk(&rows[e * 6], &copy[e * 6]);
-    h5::write_real(group.get(), name + "_LOCAL", copy, {n, 6});
+    out.write(group.get(), name + "_LOCAL", copy, {n, 6}, RowsOf::Elements);
     describe(group.get(), name + "_LOCAL", "11,22,33,12,23,13", "Pa",
              "copy of " + name +
                  " for the XDMF file: shells only (NaN rows for solids), local shell axes, VTK "
                  "order");
   }
-  if (maximum) write_described(g, output_variable(OutputId::MISES_MAX), mises_max, units);
+  if (maximum) write_described(out, g, output_variable(OutputId::MISES_MAX), mises_max, units);
 }
 
 }  // namespace
@@ -280,13 +310,14 @@ void write_frame_datasets(hid_t file, hid_t g, const std::string& name, const Mo
                           const State& state, const FrameFields& fields, const FrameRequest& what,
                           const ModelUnits& units) {
   const std::vector<const OutputVariable*> variables = frame_variables(what, output_scope(model));
+  const RowWriter out(fields.rows);
   for (const OutputVariable* v : variables) {
     if (v->frame == &FrameRequest::stress) continue;  // write_stresses
-    write_variable(g, *v, model, state, fields);
+    write_variable(out, g, *v, model, state, fields);
     describe(g, std::string(v->name), component_list(*v), units.label(v->unit), v->description);
   }
   if (what.stress)
-    write_stresses(file, g, "xdmf/" + name, model, state.position, fields, variables, units);
+    write_stresses(out, file, g, "xdmf/" + name, model, state.position, fields, variables, units);
   std::vector<Real> buffer;
   if (what.stress) {
     const std::vector<Real>& hourglass = fields.element_rows(ElementField::HourglassState, buffer);
@@ -296,7 +327,7 @@ void write_frame_datasets(hid_t file, hid_t g, const std::string& name, const Mo
       const auto n_elements = static_cast<std::size_t>(model.element_count());
       const auto width = static_cast<std::size_t>(FrameFields::HOURGLASS_WIDTH);
       check_size(hourglass, n_elements * width, "hourglass_state");
-      h5::write_real(g, "HGSTATE", hourglass, {n_elements, width});
+      out.write(g, "HGSTATE", hourglass, {n_elements, width}, RowsOf::Elements);
     }
   }
 }

@@ -30,6 +30,14 @@ void write_status(hid_t file, const std::string& status, const std::string& erro
 
 }  // namespace
 
+ResultsH5::ResultsH5(const std::filesystem::path& path, FramesOnly) : m_path(path.string()) {
+  h5::silence_errors();
+}
+
+void ResultsH5::set_units(const ModelUnits& units) {
+  m_units = units;
+}
+
 ResultsH5::ResultsH5(const std::filesystem::path& path, const std::string& job)
     : m_path(path.string()) {
   h5::silence_errors();
@@ -132,9 +140,7 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
   check_frame(model, state, fields, what);
   char name[16];
   std::snprintf(name, sizeof name, "%06d", m_frames);
-  with_file([&](hid_t file) {
-    // The history rows up to the frame go with it: a reader sees both up to the same time.
-    m_history.write_pending(file);
+  const auto write = [&](hid_t file) {
     const h5::Handle group = h5::require_group(file, std::string("frames/") + name);
     const hid_t g = group.get();
     h5::set_real_attribute(g, "time", state.time);
@@ -146,9 +152,43 @@ std::string ResultsH5::write_frame(const Model& model, const State& state,
     h5::set_int64_attribute(g, "increment", state.increment);
 
     write_frame_datasets(file, g, name, model, state, fields, what, m_units);
-  });
+  };
+  if (fields.rows.collective) {
+    // Every rank its rows, together; the history rows up to the frame first, by this rank
+    // alone (the others hold none).
+    if (m_history.pending()) with_file([&](hid_t file) { m_history.write_pending(file); });
+    with_shared_file(write);
+  } else {
+    with_file([&](hid_t file) {
+      // The history rows up to the frame go with it: a reader sees both up to the same time.
+      m_history.write_pending(file);
+      write(file);
+    });
+  }
   ++m_frames;
   return name;
+}
+
+void ResultsH5::with_shared_file(const std::function<void(hid_t)>& write) {
+#ifdef H5_HAVE_PARALLEL
+  // Every rank of MPI_COMM_WORLD opens the file with MPI-IO, makes the same metadata calls
+  // (groups, datasets, attributes: collective in parallel HDF5) and writes its rows
+  // (h5::write_real_rows). No lock to wait for: the MPI-IO driver takes none.
+  const h5::Handle access{h5::check_id(H5Pcreate(H5P_FILE_ACCESS), "cannot create properties"),
+                          H5Pclose};
+  h5::check(H5Pset_fapl_mpio(access.get(), MPI_COMM_WORLD, MPI_INFO_NULL),
+            "cannot set MPI-IO access");
+  h5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST),
+            "cannot set the file format");
+  h5::Handle file{h5::check_id(H5Fopen(m_path.c_str(), H5F_ACC_RDWR, access.get()),
+                               "cannot open " + m_path + " for writing with MPI-IO"),
+                  H5Fclose};
+  write(file.get());
+  h5::check(H5Fclose(file.release()), "cannot close " + m_path);
+#else
+  (void)write;
+  throw std::logic_error("a frame written by every rank needs the parallel HDF5 (XPL_MPI=ON)");
+#endif
 }
 
 std::string ResultsH5::with_length_unit(const std::string& text) const {

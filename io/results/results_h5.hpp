@@ -34,6 +34,13 @@ class ResultsH5 {
 
   /// Creates (truncates) `path` with status "running".
   ResultsH5(const std::filesystem::path& path, const std::string& job);
+  /// The file `path` that another rank of a distributed run created and writes, of which
+  /// this rank writes its rows of each frame with the others (write_frame with
+  /// FrameRows::collective) and nothing else. The model's units come with set_units.
+  struct FramesOnly {};
+  ResultsH5(const std::filesystem::path& path, FramesOnly);
+  /// How the model's numbers are labelled (write_mesh sets them too).
+  void set_units(const ModelUnits& units);
 
   /// Writes /mesh (results_mesh.hpp) and the heading attribute; returns how the XDMF file
   /// finds the mesh.
@@ -44,7 +51,10 @@ class ResultsH5 {
   void declare_history(const std::vector<HistorySeries>& series);
   /// Buffers one history row (written every HistoryWriter::ROWS_PER_WRITE rows).
   void append_history(Real time, std::span<const Real> values);
-  /// Writes /frames/NNNNNN and returns its name ("000000"). On shell models U, V, RF, S come
+  /// Writes /frames/NNNNNN and returns its name ("000000"). With fields.rows.collective
+  /// every rank of the distributed run calls it for the frame, each writing its rows, in one
+  /// opening of the file with MPI-IO (with_shared_file); rank 0 writes the pending history
+  /// rows before, alone. On shell models U, V, RF, S come
   /// with UR, VR, RM, S_SNEG + S_SPOS; STH is written only on shell models.
   std::string write_frame(const Model& model, const State& state, const FrameFields& fields,
                           const FrameRequest& what);
@@ -77,6 +87,9 @@ class ResultsH5 {
   /// `write` with the file id, then flushes and closes the file; on an exception the file is
   /// closed too and the exception passes on.
   void with_file(const std::function<void(hid_t)>& write);
+  /// with_file() on every rank of MPI_COMM_WORLD together (collective): JOB.h5 opened with
+  /// MPI-IO (parallel HDF5; XPL_MPI=ON builds only, else std::logic_error).
+  void with_shared_file(const std::function<void(hid_t)>& write);
 
   h5::Handle m_access;  ///< file access properties (a property list, not an open file)
   HistoryWriter m_history;

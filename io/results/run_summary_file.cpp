@@ -133,6 +133,31 @@ JsonValue SummaryRecord::json() const {
   balance.set("relative_error", relative_error);
   balance.set("time", energy_error_time);
   balance.set("energy_scale", energy_scale);
+  if (distribution) {
+    const DistributionSummary& d = *distribution;
+    JsonValue& mpi = out.set("mpi", JsonValue::object());
+    mpi.set("ranks", static_cast<long>(d.ranks.size()));
+    mpi.set("method", d.method);
+    mpi.set("imbalance", d.imbalance);
+    mpi.set("interface_nodes", static_cast<long>(d.interface_nodes));
+    mpi.set("cut_edges", d.cut_edges);
+    mpi.set("frames", d.shared_frames ? "every rank its rows" : "gathered to rank 0");
+    // One object per rank, keyed by its number: /summary stores objects only.
+    JsonValue& ranks = mpi.set("rank", JsonValue::object());
+    for (std::size_t r = 0; r < d.ranks.size(); ++r) {
+      const DistributionSummary::Rank& k = d.ranks[r];
+      JsonValue& rank = ranks.set(std::to_string(r), JsonValue::object());
+      rank.set("elements", static_cast<long>(k.elements));
+      rank.set("owned_nodes", static_cast<long>(k.owned_nodes));
+      rank.set("interface_nodes", static_cast<long>(k.interface_nodes));
+      rank.set("neighbours", static_cast<long>(k.neighbours));
+      rank.set("time_loop", k.time_loop);
+      rank.set("compute", k.compute);
+      rank.set("exchange", k.exchange);
+      rank.set("wait", k.wait);
+      rank.set("output", k.output);
+    }
+  }
   return out;
 }
 

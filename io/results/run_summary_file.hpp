@@ -5,6 +5,7 @@
 /// described by apps/summary.schema.json.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "common/timer.hpp"
@@ -48,6 +49,9 @@ struct SummaryRecord {
   Real energy_error_time = 0.0;
   Real energy_scale = 0.0;
   Real relative_error = 0.0;  ///< energy_error / energy_scale
+  /// The partition and the ranks' times of a run distributed over MPI ranks ("mpi"), else
+  /// none (no key).
+  std::optional<DistributionSummary> distribution;
 
   /// Takes in one .sta line: increments, time, energies, the balance error.
   void add_status(const StatusLine& line);

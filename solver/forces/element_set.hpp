@@ -112,6 +112,9 @@ class ElementSet {
   /// Element output requested by `what` (stress, section stresses, volume, thickness, PEEQ) into
   /// `state`; the arrays are allocated on first use (n_elements rows).
   void gather_output(const State& state, const FrameRequest& what, FrameFields& frame) const;
+  /// gather_output() of this rank's elements only (the rows of the others' elements left at
+  /// their initial 0 or NaN): what a rank writes when every rank writes its rows of a frame.
+  void gather_local_output(const State& state, const FrameRequest& what, FrameFields& frame) const;
   /// Whether fill_output can make a frame's element fields one at a time: runs in one
   /// process. A distributed run gathers them all to rank 0 at once (gather_output), since
   /// every rank takes part in each gather.
@@ -173,8 +176,6 @@ class ElementSet {
   void build_block(const RigidBodies& rigid, State& state);
   /// Allocates the rotational fields of `state` at zero (models with rotational DOFs, P2).
   void add_rotations(State& state);
-  /// gather_output() of this rank's elements.
-  void gather_local_output(const State& state, const FrameRequest& what, FrameFields& frame) const;
   /// The `*FIXED MASS SCALING` factor of element e (1 without scaling).
   Real mass_factor(Index e) const;
   /// Calls `f(block)` for the block of every kind present, in ElementKinds order or in the

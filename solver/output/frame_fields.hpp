@@ -5,6 +5,7 @@
 /// or lets the writer pull the element fields one at a time from the element blocks
 /// (ElementFieldSource); the time loop never reads them.
 
+#include <utility>
 #include <vector>
 
 #include "common/types.hpp"
@@ -26,6 +27,16 @@ class ElementFieldSource {
   /// of the same name (stress, stress_bottom, stress_top, thickness, volume, hourglass_state);
   /// empty where the frame would leave that member empty (no shells, no hourglass state).
   virtual void fill(ElementField field, std::vector<Real>& rows) const = 0;
+};
+
+/// The rows one rank writes of a frame in a run distributed over MPI ranks whose ranks write
+/// JOB.h5 together (parallel HDF5, issue 37 item 5): runs [first, first + count) of node rows
+/// (the nodes the rank owns; rank 0 also every node no other rank owns) and of element rows
+/// (the rank's elements; rank 0 also every element of no rank, e.g. of rigid bodies). Every
+/// row is written by exactly one rank. Not `collective`: one process writes every row.
+struct FrameRows {
+  bool collective = false;
+  std::vector<std::pair<Index, Index>> nodes, elements;
 };
 
 /// The output-only fields of a field frame. Element fields: rows in the model's element order;
@@ -69,6 +80,9 @@ struct FrameFields {
   std::vector<Real> contact_status;    ///< CSTATUS (n_nodes): 0 open, 1 slipping, 2 sticking
   NodalVectors contact_normal_force;   ///< CNORMF (n_nodes × 3), N
   NodalVectors contact_shear_force;    ///< CSHEARF (n_nodes × 3), N
+
+  /// Which rows of each dataset this process writes (FrameRows).
+  FrameRows rows;
 
   /// When set, the element fields stress, stress_bottom, stress_top, thickness, volume and
   /// hourglass_state are not held (empty) and come from `source` on request; the writer reads

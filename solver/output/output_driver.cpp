@@ -59,11 +59,14 @@ void OutputDriver::write_frame(State& state, const FrameRequest& requested,
   m_displacement_written = what.displacement;
   // One process: the writer pulls the element fields one at a time (nothing of them is kept
   // between frames, and a frame holds one field at a time: issue 38). Distributed: every
-  // field gathered to rank 0 first.
+  // field gathered to rank 0 first, or, when every rank writes its rows, the rank's own.
   const ElementFieldPull pull(elements, state);
   if (elements.fills_fields_alone()) {
     elements.gather_plastic_strain(what, m_frame);
     m_frame.source = &pull;
+  } else if (m_frame.rows.collective) {
+    elements.gather_local_output(state, what, m_frame);
+    m_frame.source = nullptr;
   } else {
     elements.gather_output(state, what, m_frame);
     m_frame.source = nullptr;

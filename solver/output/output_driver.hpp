@@ -56,6 +56,12 @@ class OutputDriver {
   /// would be drawn undeformed in ParaView).
   void write_frame(State& state, const FrameRequest& what, const ElementSet& elements,
                    const ContactStage& contact, CentralDifference& nodes);
+  /// A distributed run whose ranks write each frame together (issue 37 item 5): this rank's
+  /// rows of the frame datasets (FrameRows). From then on write_frame gathers nothing: each
+  /// rank's sink writes the rows of its nodes and elements.
+  void set_frame_rows(FrameRows rows) { m_frame.rows = std::move(rows); }
+  /// Whether every rank writes its rows of a frame (set_frame_rows).
+  bool shared_frames() const { return m_frame.rows.collective; }
   /// One history row (requests, then contact pair forces) at state.time.
   void write_history(State& state, const ContactStage& contact, CentralDifference& nodes);
   /// One .sta line: the increment `dt_next` (s) about to be taken, what governs it

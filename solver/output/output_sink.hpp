@@ -96,6 +96,28 @@ struct BalanceDrift {
   Real time = 0.0;      ///< total time, s
 };
 
+/// A run distributed over MPI ranks (issue 37, docs/dev/mpi.md): its partition and each
+/// rank's share and time, for the run summary.
+struct DistributionSummary {
+  /// One rank's part and its time loop, s: compute = time_loop − exchange − wait − output
+  /// (the element and nodal passes, contact), exchange = the exchanges' and collectives' own
+  /// work (packing, posting, unpacking), wait = waiting in them for the other ranks, output =
+  /// frames, history and status lines (this rank's rows of a frame, or rank 0 everything).
+  struct Rank {
+    Index elements = 0;         ///< elements of its SIMD batches
+    Index owned_nodes = 0;      ///< nodes it owns (and writes)
+    Index interface_nodes = 0;  ///< its nodes that other ranks use too
+    Index neighbours = 0;       ///< ranks it exchanges interface forces with
+    double time_loop = 0.0, compute = 0.0, exchange = 0.0, wait = 0.0, output = 0.0;
+  };
+  std::string method;          ///< the partitioner ("METIS", "bisection")
+  Real imbalance = 1.0;        ///< largest part weight over the mean
+  Index interface_nodes = 0;   ///< nodes used by two or more ranks
+  long cut_edges = 0;          ///< graph edges across ranks (of the SIMD batch graph)
+  bool shared_frames = false;  ///< every rank writes its rows of a frame (else rank 0 all)
+  std::vector<Rank> ranks;
+};
+
 /// Severity of a .msg entry.
 enum class Severity { Info, Note, Warning, Error };
 
@@ -131,6 +153,9 @@ class OutputSink {
   /// The largest energy-balance drift of the run (called before end_run, also after an
   /// error; sinks that keep no summary ignore it).
   virtual void energy_drift(const BalanceDrift& drift) { (void)drift; }
+  /// The partition and the ranks' times of a distributed run (called at its end, before
+  /// end_run, on every rank; sinks that keep no summary ignore it).
+  virtual void distribution(const DistributionSummary& summary) { (void)summary; }
   /// A table of setup results (written once; sinks that keep no files ignore it).
   virtual void write_table(const ResultTable& table) { (void)table; }
   /// Called when the run ends, also after an error (`error` then says what happened),
