@@ -9,38 +9,11 @@
 #include <mpi.h>
 
 #include <thread>
+
+#include "solver/distributed_detail.hpp"
 #endif
 
 namespace xpl {
-
-namespace {
-
-/// Where wait_all() adds the time it waits: the waits of the exchange an ExchangeTimer
-/// times (only the main thread calls MPI), or nowhere outside one.
-double* g_waits = nullptr;
-
-/// Times one exchange or collective into `seconds`, and its waits for the other ranks
-/// (wait_all()) also into `waits`.
-class ExchangeTimer {
- public:
-  ExchangeTimer(double& seconds, double& waits)
-      : m_seconds(seconds),
-        m_outer(std::exchange(g_waits, &waits)),
-        m_start(std::chrono::steady_clock::now()) {}
-  ~ExchangeTimer() {
-    m_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
-    g_waits = m_outer;
-  }
-  ExchangeTimer(const ExchangeTimer&) = delete;
-  ExchangeTimer& operator=(const ExchangeTimer&) = delete;
-
- private:
-  double& m_seconds;
-  double* m_outer;
-  std::chrono::steady_clock::time_point m_start;
-};
-
-}  // namespace
 
 #if XPL_HAVE_MPI
 struct DistributedRun::Requests {
@@ -51,6 +24,12 @@ struct DistributedRun::Requests {
 namespace {
 
 constexpr int FORCE_TAG = 37;
+
+}  // namespace
+
+namespace distributed_detail {
+
+double* g_waits = nullptr;
 
 /// Waits for `n` requests. Not MPI_Waitall: OpenMPI spins in it, and on an oversubscribed or
 /// shared machine the spinning rank takes the core from the rank it waits for (2 ranks on 2
@@ -78,7 +57,13 @@ void wait(MPI_Request& request) {
   wait_all(1, &request);
 }
 
-}  // namespace
+}  // namespace distributed_detail
+
+using distributed_detail::ExchangeTimer;
+using distributed_detail::gather_layout;
+using distributed_detail::GatherLayout;
+using distributed_detail::wait;
+using distributed_detail::wait_all;
 
 int DistributedRun::world_rank() {
   int initialized = 0;
@@ -279,83 +264,6 @@ const std::vector<Real>& DistributedRun::wait_allgather() {
   ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   wait(m_requests->gather);
   return m_posted_all;
-}
-
-namespace {
-
-/// The owned rows of `rows` packed node by node (3 values each).
-std::vector<Real> pack_rows(const NodalVectors& rows, const std::vector<Index>& nodes) {
-  std::vector<Real> packed;
-  packed.reserve(nodes.size() * 3);
-  for (const Index n : nodes)
-    for (int c = 0; c < 3; ++c) packed.push_back(rows(n, c));
-  return packed;
-}
-
-/// The inverse of pack_rows over every rank: `all` holds each rank's owned rows in rank order
-/// (`part[r].owned`), written into `rows`.
-void unpack_owned_rows(const std::vector<Real>& all, const std::vector<partition::PartPlan>& part,
-                       NodalVectors& rows) {
-  std::size_t k = 0;
-  for (const auto& rank : part)
-    for (const Index n : rank.owned)
-      for (int c = 0; c < 3; ++c) rows(n, c) = all[k++];
-}
-
-/// Receive counts and displacements of a gather of `width` values per item of every rank
-/// (`items(r)`: rank r's items), in rank order; `total` is their sum.
-struct GatherLayout {
-  std::vector<int> counts, displacement;
-  std::size_t total = 0;
-};
-template <class Items>
-GatherLayout gather_layout(int size, std::size_t width, Items items) {
-  GatherLayout g;
-  g.counts.resize(static_cast<std::size_t>(size));
-  g.displacement.assign(g.counts.size(), 0);
-  for (int r = 0; r < size; ++r) g.counts[r] = static_cast<int>(items(r).size() * width);
-  for (int r = 1; r < size; ++r) g.displacement[r] = g.displacement[r - 1] + g.counts[r - 1];
-  g.total = static_cast<std::size_t>(g.displacement.back() + g.counts.back());
-  return g;
-}
-
-}  // namespace
-
-void DistributedRun::gather_to_root(NodalVectors& rows) const {
-  if (rows.rows() == 0) return;
-  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
-  const std::vector<Real> mine = pack_rows(rows, plan().owned);
-  const GatherLayout g = gather_layout(
-      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
-  std::vector<Real> all(m_rank == 0 ? g.total : 0);
-  MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
-               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
-  wait(gathered);
-  if (m_rank == 0) unpack_owned_rows(all, m_plan.part, rows);
-}
-
-void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
-  if (rows.empty()) return;
-  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
-  const auto w = static_cast<std::size_t>(width);
-  std::vector<Real> mine;
-  mine.reserve(plan().elements.size() * w);
-  for (const Index e : plan().elements)
-    mine.insert(mine.end(), rows.begin() + static_cast<std::ptrdiff_t>(e * w),
-                rows.begin() + static_cast<std::ptrdiff_t>((e + 1) * w));
-  const GatherLayout g = gather_layout(
-      m_size, w, [this](int r) -> const auto& { return m_plan.part[r].elements; });
-  std::vector<Real> all(m_rank == 0 ? g.total : 0);
-  MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
-               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
-  wait(gathered);
-  if (m_rank != 0) return;
-  std::size_t k = 0;
-  for (int r = 0; r < m_size; ++r)
-    for (const Index e : m_plan.part[r].elements)
-      for (std::size_t c = 0; c < w; ++c) rows[e * w + c] = all[k++];
 }
 
 void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {

@@ -1,0 +1,79 @@
+// The gathers of a frame's rows to rank 0 (DistributedRun::gather_to_root,
+// gather_elements_to_root): the nodal rows from each node's owner, the element rows from each
+// element's rank, in rank order (`--gather-frames`, and the history's nodal rows).
+#include "solver/distributed_run.hpp"
+
+#if XPL_HAVE_MPI
+#include <mpi.h>
+
+#include "solver/distributed_detail.hpp"
+
+namespace xpl {
+
+using distributed_detail::ExchangeTimer;
+using distributed_detail::gather_layout;
+using distributed_detail::GatherLayout;
+using distributed_detail::wait;
+
+namespace {
+
+/// The owned rows of `rows` packed node by node (3 values each).
+std::vector<Real> pack_rows(const NodalVectors& rows, const std::vector<Index>& nodes) {
+  std::vector<Real> packed;
+  packed.reserve(nodes.size() * 3);
+  for (const Index n : nodes)
+    for (int c = 0; c < 3; ++c) packed.push_back(rows(n, c));
+  return packed;
+}
+
+/// The inverse of pack_rows over every rank: `all` holds each rank's owned rows in rank order
+/// (`part[r].owned`), written into `rows`.
+void unpack_owned_rows(const std::vector<Real>& all, const std::vector<partition::PartPlan>& part,
+                       NodalVectors& rows) {
+  std::size_t k = 0;
+  for (const auto& rank : part)
+    for (const Index n : rank.owned)
+      for (int c = 0; c < 3; ++c) rows(n, c) = all[k++];
+}
+
+}  // namespace
+
+void DistributedRun::gather_to_root(NodalVectors& rows) const {
+  if (rows.rows() == 0) return;
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  const std::vector<Real> mine = pack_rows(rows, plan().owned);
+  const GatherLayout g = gather_layout(
+      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
+  std::vector<Real> all(m_rank == 0 ? g.total : 0);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
+               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  if (m_rank == 0) unpack_owned_rows(all, m_plan.part, rows);
+}
+
+void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
+  if (rows.empty()) return;
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  const auto w = static_cast<std::size_t>(width);
+  std::vector<Real> mine;
+  mine.reserve(plan().elements.size() * w);
+  for (const Index e : plan().elements)
+    mine.insert(mine.end(), rows.begin() + static_cast<std::ptrdiff_t>(e * w),
+                rows.begin() + static_cast<std::ptrdiff_t>((e + 1) * w));
+  const GatherLayout g = gather_layout(
+      m_size, w, [this](int r) -> const auto& { return m_plan.part[r].elements; });
+  std::vector<Real> all(m_rank == 0 ? g.total : 0);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
+               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  if (m_rank != 0) return;
+  std::size_t k = 0;
+  for (int r = 0; r < m_size; ++r)
+    for (const Index e : m_plan.part[r].elements)
+      for (std::size_t c = 0; c < w; ++c) rows[e * w + c] = all[k++];
+}
+
+}  // namespace xpl
+#endif
