@@ -33,7 +33,8 @@ class SharedBlocks {
     }
   }
 
-  /// Value i of the plain array.
+  /// Value i of the plain array. A batch's block is contiguous: &(*this)[b · block] + j is
+  /// value b · block + j for j < block.
   const T& operator[](std::size_t i) const {
     return m_table[m_of_batch[i / m_block] * m_block + i % m_block];
   }

@@ -102,6 +102,13 @@ XPL_KERNEL_INLINE PlaneStressLanes plane_stress_lanes(Laws laws, simd::Mask acti
   return r;
 }
 
+/// The von Mises product of two plane stresses a, b (Pa²): a·b = a_xx b_xx − ½(a_xx b_yy +
+/// a_yy b_xx) + a_yy b_yy + 3 a_xy b_xy, so a·a = σ_vM(a)².
+XPL_KERNEL_INLINE simd::Vec von_mises_product(simd::Vec axx, simd::Vec ayy, simd::Vec axy,
+                                              simd::Vec bxx, simd::Vec byy, simd::Vec bxy) {
+  return axx * bxx - 0.5 * (axx * byy + ayy * bxx) + ayy * byy + 3.0 * (axy * bxy);
+}
+
 /// Plastic state of the section points of a batched shell block: equivalent plastic strain,
 /// the static yield stress per point, and the laws of the plastic lanes.
 /// Empty (no arrays, no work) when no element of the block is plastic.
@@ -125,13 +132,18 @@ class ShellPlasticState {
   /// `weight`, both zero in the lanes that stay elastic. `flow`, where given, receives the
   /// lanes' flow stress at the end (Pa): σ_y with the rate factor where the point yields (its
   /// σ_vM, to the return's tolerance), σ_y(ε̄ᵖ_n, 0) where it stays elastic (≥ its σ_vM to
-  /// SHELL_YIELD_TOLERANCE), +inf in elastic lanes. Inline (below): the S4R kernel's common
-  /// case, all lanes on a table segment, runs without a call.
+  /// SHELL_YIELD_TOLERANCE), +inf in elastic lanes. `tangent`, where given, receives the
+  /// points' tangent ratio: the returned stress increment along the elastic one in the von
+  /// Mises product, over the elastic one's square, in [0, 1]; 1 where the point stays elastic
+  /// (the S4R physical hourglass follows it). Returns whether a lane yields through `yielded`
+  /// where given. Inline (below): the S4R kernel's common case, all lanes on a table segment,
+  /// runs without a call.
   XPL_KERNEL_INLINE simd::Vec point_return(std::size_t b, int k, simd::Vec q11, simd::Vec q12,
                                            simd::Vec shear, Real dt, simd::Vec weight,
                                            const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy,
                                            simd::Vec& sxy, simd::Vec& thickness_strain,
-                                           simd::Vec* flow = nullptr);
+                                           simd::Vec* flow = nullptr, simd::Vec* tangent = nullptr,
+                                           bool* yielded = nullptr);
 
   /// σ_y(ε̄ᵖ, 0) (Pa) of section point k of batch b per lane after its last return (the next
   /// trial's yield test); +inf in elastic lanes.
@@ -180,7 +192,7 @@ class ShellPlasticState {
 XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
     std::size_t b, int k, simd::Vec q11, simd::Vec q12, simd::Vec shear, Real dt, simd::Vec weight,
     const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy, simd::Vec& sxy,
-    simd::Vec& thickness_strain, simd::Vec* flow) {
+    simd::Vec& thickness_strain, simd::Vec* flow, simd::Vec* tangent, bool* yielded) {
   using simd::Vec;
   const std::size_t r = row(b, k);
   const Vec y = simd::load(&m_yield[r]);
@@ -188,13 +200,26 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
   const simd::Mask yielding = simd::greater(vm2, (y * y) * (1.0 + SHELL_YIELD_TOLERANCE));
   Vec dissipation = simd::splat(0.0);
   if (flow != nullptr) *flow = y;
-  if (!simd::any(yielding)) return dissipation;
+  if (tangent != nullptr) *tangent = simd::splat(1.0);
+  const bool any_yielding = simd::any(yielding);
+  if (yielded != nullptr) *yielded = any_yielding;
+  if (!any_yielding) return dissipation;
+  // The elastic stress increment of the tangent ratio.
+  const Vec trial[3] = {sxx - start[0], syy - start[1], sxy - start[2]};
   // Rate-free tables on the segment of ε̄ᵖ_n: σ_y = y + slope Δε̄ᵖ (y = σ_y(ε̄ᵖ_n), kept up
   // by the returns) up to ε̄ᵖ = end, slope and end from the segment table.
   const simd::Mask linear = simd::load_mask(&m_lane_linear[b * W]) & yielding;
   const Index* segment = &m_segment[r];
-  const Vec slope = simd::gather(m_segment_slope.data(), segment);
-  const Vec end = simd::gather(m_segment_end.data(), segment);
+  Vec slope, end;
+  bool uniform = true;  // the lanes on one segment (one law on one part of it): no gather
+  for (std::size_t l = 1; l < W; ++l) uniform &= segment[l] == segment[0];
+  if (uniform) [[likely]] {
+    slope = simd::splat(m_segment_slope[static_cast<std::size_t>(segment[0])]);
+    end = simd::splat(m_segment_end[static_cast<std::size_t>(segment[0])]);
+  } else {
+    slope = simd::gather(m_segment_slope.data(), segment);
+    end = simd::gather(m_segment_end.data(), segment);
+  }
   const Vec peeq = simd::load(&m_peeq[r]);
   const Plasticity* laws[W];
   const PlaneStressLanes ret = plane_stress_lanes(
@@ -222,6 +247,16 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
   const Vec end_yield = simd::select(yielding, ret.yield, y);
   simd::store(&m_yield[r], end_yield);
   if (flow != nullptr) *flow = end_yield;
+  if (tangent != nullptr) {
+    const Vec along = von_mises_product(sxx - start[0], syy - start[1], sxy - start[2], trial[0],
+                                        trial[1], trial[2]);
+    const Vec trial2 =
+        von_mises_product(trial[0], trial[1], trial[2], trial[0], trial[1], trial[2]);
+    const Vec ratio =
+        simd::min(simd::max(along / simd::max(trial2, simd::splat(1e-300)), simd::splat(0.0)),
+                  simd::splat(1.0));
+    *tangent = simd::select(yielding & simd::greater(trial2, 0.0), ratio, simd::splat(1.0));
+  }
   const simd::Mask other = yielding & ~linear;
   const simd::Mask passed = linear & simd::greater_equal(peeq_end, end);
   if (simd::any(other | passed)) [[unlikely]]

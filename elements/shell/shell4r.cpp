@@ -217,10 +217,10 @@ void Shell4rBlock::compute_batch(Index batch, const Real* const p[3], const Real
   V3<Vec> fn[4], mn[4];
   const shell4r_kernel::ShellResultants resultants{sr.nxx, sr.nyy, sr.nxy,   sr.mxx,
                                                    sr.myy, sr.mxy, shear.qx, shear.qy};
-  // Elastic batches of the physical form alone: the corner loop without the forms' run-time
-  // branches (bitwise the same forces; plastic batches keep the general loop, whose products GCC
-  // contracts otherwise in that kernel).
-  if (!PLASTIC && forms == FORM_PHYS)
+  // Batches of the physical form alone: the corner loop without the forms' run-time branches
+  // (bitwise the same forces in elastic batches; in plastic ones GCC contracts the products
+  // otherwise, a round-off change).
+  if (forms == FORM_PHYS)
     corner_forces<true>(fe, resultants, hg.value, shear.hz, shear.hbx, shear.hby, false, true, fn,
                         mn);
   else

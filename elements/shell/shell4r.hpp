@@ -376,6 +376,15 @@ class Shell4rBlock {
   /// through-thickness integration of batch b with its plasticity and thickness update, the
   /// physical hourglass, and the stable increment, fold check, scatter and per-batch
   /// reductions.
+  ///
+  /// section_resultants: plane stress, the thickness follows the in-plane dilatation of the
+  /// reference surface, ε̇_zz = −ν/(1−ν)(d_xx + d_yy + z_ref(κ_xx + κ_yy)). It is advanced
+  /// before the resultants: the strain increments see the mid-increment thickness (as the rates
+  /// see the mid-increment geometry) and the resultants at t_{n+1} the end thickness, so N and M
+  /// are functions of the state at t_{n+1}. Resultants taken with the thickness of t_n lag the
+  /// stresses by one increment; in compressed walls (tr N < 0) that lag does negative work on
+  /// every membrane vibration, ∝ ν/(1−ν)·|σ|/E·ωΔt per cycle, and a crushed tube gains energy
+  /// until it fails.
   template <bool PLASTIC>
   [[gnu::always_inline]] inline ShellSectionResultants section_resultants(
       std::size_t b, Real dt, const ShellPlaneRates& rates);

@@ -152,24 +152,22 @@ struct ShearForces {
   Vec hz[4] = {}, hbx[4] = {}, hby[4] = {};
 };
 
-/// The von Mises product of two plane stresses a, b (Pa²): a·b = a_xx b_xx − ½(a_xx b_yy +
-/// a_yy b_xx) + a_yy b_yy + 3 a_xy b_xy, so a·a = σ_vM(a)².
-XPL_KERNEL_INLINE Vec von_mises_product(Vec axx, Vec ayy, Vec axy, Vec bxx, Vec byy, Vec bxy) {
-  return axx * bxx - 0.5 * (axx * byy + ayy * bxx) + ayy * byy + 3.0 * (axy * bxy);
-}
-
 /// Plastic batches: the section's tangent ratios, membrane return ratio and flow stress
 /// (ShellSectionResultants) into `out`, from the sums over its points with weights w: Σ w r
 /// and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², the trial and returned membrane
-/// stresses Σ w σ, and Σ w σ_y (end of increment; max(σ_y, σ_vM) to the return's tolerance). The
-/// weights of a batch's points sum to 1 (Simpson, shell4r_setup.cpp).
+/// resultants Σ t w σ (the same end thickness t), and Σ w σ_y (end of increment; max(σ_y,
+/// σ_vM) to the return's tolerance). The weights of a batch's points sum to 1 (Simpson,
+/// shell4r_setup.cpp). `yielded`: whether a point of the batch yielded; where none did, the
+/// membrane return ratio is 1 without its root and divisions (the trial is the return).
 XPL_KERNEL_INLINE void section_tangents(Vec tan_m, Vec tan_b, Vec weight_b, const Vec trial_n[3],
-                                        const Vec returned_n[3], Vec flow,
+                                        const Vec returned_n[3], Vec flow, bool yielded,
                                         ShellSectionResultants& out) {
   const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
   out.tangent_membrane = simd::min(tan_m, one);
   out.tangent_bending =
       simd::select(simd::greater(weight_b, 0.0), tan_b / simd::max(weight_b, tiny), one);
+  out.flow = flow;
+  if (!yielded) return;
   const Vec n_trial =
       von_mises_product(trial_n[0], trial_n[1], trial_n[2], trial_n[0], trial_n[1], trial_n[2]);
   const Vec n_returned = von_mises_product(returned_n[0], returned_n[1], returned_n[2],
@@ -177,7 +175,6 @@ XPL_KERNEL_INLINE void section_tangents(Vec tan_m, Vec tan_b, Vec weight_b, cons
   out.membrane_return =
       simd::select(simd::greater(n_trial, 0.0),
                    simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
-  out.flow = flow;
 }
 
 /// Positions `x`, velocities `vel` and angular velocities `om` of the 4 corners of a batch
@@ -203,12 +200,8 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   const Vec dxx = r.dxx, dyy = r.dyy, gxy = r.gxy, kxx = r.kxx, kyy = r.kyy, kxy = r.kxy;
   const Vec gxz = r.gxz, gyz = r.gyz;
   // Plane stress: the thickness follows the in-plane dilatation of the reference surface,
-  // ε̇_zz = −ν/(1−ν)(d_xx + d_yy + z_ref(κ_xx + κ_yy)). It is advanced before the resultants:
-  // the strain increments see the mid-increment thickness (as the rates see the mid-increment
-  // geometry) and the resultants at t_{n+1} the end thickness, so N and M are functions of the
-  // state at t_{n+1}. Resultants taken with the thickness of t_n lag the stresses by one
-  // increment; in compressed walls (tr N < 0) that lag does negative work on every membrane
-  // vibration, ∝ ν/(1−ν)·|σ|/E·ωΔt per cycle, and a crushed tube gains energy until it fails.
+  // advanced before the resultants (strains at the mid-increment thickness, N and M at the end
+  // one: shell4r.hpp, section_resultants).
   const Vec q11 = constant(Q11), q12 = constant(Q12), g = constant(SHEAR);
   const Vec offset = constant(OFFSET);
   const Vec t_old = simd::load(&m_thickness[b * W]);
@@ -221,13 +214,20 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   Vec work = simd::splat(0.0);  // strain energy increment per unit area
   // Plastic batches: dissipation per unit area and Σ weight · Δε33ᵖ over the section points.
   Vec plastic_work = simd::splat(0.0), thinning = simd::splat(0.0);
-  // Plastic batches: Σ w r and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², the trial and
-  // returned membrane stresses Σ w σ, and the flow stress.
+  ShellSectionResultants out;  // the tangents of plastic batches below, the rest at the end
+  // Plastic batches: Σ w r and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², what the
+  // returns took off the membrane resultants, Σ t w (σ_trial − σ) (the returned ones are N),
+  // the flow stress and whether a point yielded.
   [[maybe_unused]] Vec tan_m = simd::splat(0.0), tan_b = tan_m, weight_b = tan_m, flow = tan_m;
-  [[maybe_unused]] Vec trial_n[3] = {tan_m, tan_m, tan_m}, returned_n[3] = {tan_m, tan_m, tan_m};
+  [[maybe_unused]] Vec returned_off[3] = {tan_m, tan_m, tan_m};
+  [[maybe_unused]] bool batch_yielded = false;
+  // The batch's section rows ([m_points][W], contiguous in their SharedBlocks): one look-up
+  // each (an integer division) rather than one per point.
+  const Real* zetas = &m_zeta[b * m_points * W];
+  const Real* weights = &m_weight[b * m_points * W];
   for (int k = 0; k < m_points; ++k) {
-    const Vec zeta = 0.5 * simd::load(&m_zeta[(b * m_points + k) * W]) - offset;
-    const Vec weight = simd::load(&m_weight[(b * m_points + k) * W]);
+    const Vec zeta = 0.5 * simd::load(zetas + k * W) - offset;
+    const Vec weight = simd::load(weights + k * W);
     const Vec zk = t_mid * zeta, tw = t_mid * weight;  // mid-increment: strain and work
     const Vec zk_n = t * zeta, tw_n = t * weight;      // end of increment: resultants
     const Vec exx = dt * (dxx + zk * kxx), eyy = dt * (dyy + zk * kyy);
@@ -239,27 +239,19 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
     Vec sxy_n = sxy + g * exy;
     if constexpr (PLASTIC) {
       const Vec start[3] = {sxx, syy, sxy};
-      const Vec trial[3] = {sxx_n - sxx, syy_n - syy, sxy_n - sxy};
-      trial_n[0] += weight * sxx_n;
-      trial_n[1] += weight * syy_n;
-      trial_n[2] += weight * sxy_n;
+      const Vec trial[3] = {sxx_n, syy_n, sxy_n};
       Vec point_flow;  // σ_y at the end: max(σ_y, σ_vM) to the return's tolerance, no root
-      plastic_work += tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n,
-                                                  syy_n, sxy_n, thinning, &point_flow);
-      returned_n[0] += weight * sxx_n;
-      returned_n[1] += weight * syy_n;
-      returned_n[2] += weight * sxy_n;
-      // Tangent ratio of the point: the returned stress increment along the elastic one, in
-      // the von Mises product; 1 where the point stays elastic, about 0 where it flows.
-      const Vec along = shell4r_kernel::von_mises_product(sxx_n - sxx, syy_n - syy, sxy_n - sxy,
-                                                          trial[0], trial[1], trial[2]);
-      const Vec trial2 = shell4r_kernel::von_mises_product(trial[0], trial[1], trial[2], trial[0],
-                                                           trial[1], trial[2]);
-      const Vec ratio = simd::select(
-          simd::greater(trial2, 0.0),
-          simd::min(simd::max(along / simd::max(trial2, simd::splat(1e-300)), simd::splat(0.0)),
-                    simd::splat(1.0)),
-          simd::splat(1.0));
+      Vec ratio;       // tangent ratio: 1 where the point stays elastic, about 0 where it flows
+      bool yielded;
+      plastic_work +=
+          tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n, syy_n, sxy_n,
+                                      thinning, &point_flow, &ratio, &yielded);
+      if (yielded) {
+        returned_off[0] += tw_n * (trial[0] - sxx_n);
+        returned_off[1] += tw_n * (trial[1] - syy_n);
+        returned_off[2] += tw_n * (trial[2] - sxy_n);
+        batch_yielded = true;
+      }
       const Vec wz2 = weight * zeta * zeta;
       tan_m += weight * ratio;
       tan_b += wz2 * ratio;
@@ -278,6 +270,10 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
     work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
   }
   if constexpr (PLASTIC) {
+    const Vec returned_n[3] = {nxx, nyy, nxy};
+    const Vec trial_n[3] = {nxx + returned_off[0], nyy + returned_off[1], nxy + returned_off[2]};
+    shell4r_kernel::section_tangents(tan_m, tan_b, weight_b, trial_n, returned_n, flow,
+                                     batch_yielded, out);
     // Plastic incompressibility: Δε33 = −ν/(1−ν)(Δε11ᵉ + Δε22ᵉ) − (Δε11ᵖ + Δε22ᵖ). The update
     // above took the elastic term on the total strain Δεᵉ + Δεᵖ, so the plastic part adds
     // (1 − ν/(1−ν)) Δε33ᵖ, Δε33ᵖ averaged through the thickness with the weights. N scales with
@@ -300,10 +296,17 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   simd::store(shear, txz_n);
   simd::store(shear + W, tyz_n);
   work += (0.5 * dt) * t_mid * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
-  const Vec qx = t * txz_n, qy = t * tyz_n;
-  ShellSectionResultants out{t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work};
-  if constexpr (PLASTIC)
-    shell4r_kernel::section_tangents(tan_m, tan_b, weight_b, trial_n, returned_n, flow, out);
+  out.t = t;
+  out.nxx = nxx;
+  out.nyy = nyy;
+  out.nxy = nxy;
+  out.mxx = mxx;
+  out.myy = myy;
+  out.mxy = mxy;
+  out.qx = t * txz_n;
+  out.qy = t * tyz_n;
+  out.work = work;
+  out.plastic_work = plastic_work;
   return out;
 }
 
