@@ -93,31 +93,29 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     else
       slaves.update_areas(faces, position, m_active_slot, m_active_face);
     search(position, node_thickness);
+    // The releases, pass-throughs and nodes behind a held shell's mid-surface, each counted
+    // and its deepest kept (the first in slot order on a tie), in one pass over the slots.
+    const auto deeper = [](Real depth, Index& count, Real& deepest) {
+      if (!(depth > 0.0)) return false;
+      ++count;
+      if (depth <= deepest) return false;
+      deepest = depth;
+      return true;
+    };
     for (Index s = 0; s < n_slave; ++s) {
-      if (!(m_lost_depth[s] > 0.0)) continue;
-      ++totals.lost;
-      if (m_lost_depth[s] <= totals.lost_depth) continue;
-      const ContactFace& face = faces[m_constraints[s].master_face];
-      totals.lost_depth = m_lost_depth[s];
-      totals.lost_node = slaves.nodes()[s];
-      totals.lost_element = face.element;
-      totals.lost_element_depth = 2.0 * m_domain.face_depth(m_constraints[s].master_face);
-    }
-    for (Index s = 0; s < n_slave; ++s) {
-      if (!(m_passed_depth[s] > 0.0)) continue;
-      ++totals.passed;
-      if (m_passed_depth[s] <= totals.passed_depth) continue;
-      totals.passed_depth = m_passed_depth[s];
-      totals.passed_node = slaves.nodes()[s];
-      totals.passed_element = faces[m_constraints[s].master_face].element;
-    }
-    for (Index s = 0; s < n_slave; ++s) {
-      if (!(m_behind_depth[s] > 0.0)) continue;
-      ++totals.behind;
-      if (m_behind_depth[s] <= totals.behind_depth) continue;
-      totals.behind_depth = m_behind_depth[s];
-      totals.behind_node = slaves.nodes()[s];
-      totals.behind_element = faces[m_touch[s].face].element;
+      if (deeper(m_lost_depth[s], totals.lost, totals.lost_depth)) {
+        totals.lost_node = slaves.nodes()[s];
+        totals.lost_element = faces[m_constraints[s].master_face].element;
+        totals.lost_element_depth = 2.0 * m_domain.face_depth(m_constraints[s].master_face);
+      }
+      if (deeper(m_passed_depth[s], totals.passed, totals.passed_depth)) {
+        totals.passed_node = slaves.nodes()[s];
+        totals.passed_element = faces[m_constraints[s].master_face].element;
+      }
+      if (deeper(m_behind_depth[s], totals.behind, totals.behind_depth)) {
+        totals.behind_node = slaves.nodes()[s];
+        totals.behind_element = faces[m_touch[s].face].element;
+      }
     }
   }
 

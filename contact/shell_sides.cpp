@@ -62,15 +62,17 @@ Real ContactEngine::passed_depth(const SlaveView& v, Index touched,
   if (v.held == nullptr || !m_updated) return 0.0;
   const std::vector<ContactFace>& faces = m_domain.faces();
   const ContactFace& held = *v.held;
+  // Still held on the same face, or by a solid face: nothing to measure (most held nodes, every
+  // increment), before the held face's normal is computed.
+  if (touched != NO_INDEX && (!faces[touched].shell || touched == &held - faces.data())) return 0.0;
   Vec3 corner[4];
   face_corners(held, position, {}, corner);
   const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
   const Real n_len = std::sqrt(n.dot(n));
   if (!(n_len > 0.0)) return 0.0;
   const Vec3 held_normal = n / n_len;
-  // Still held by this wall's side, or by anything that is not this wall's other side.
-  if (touched != NO_INDEX &&
-      !(faces[touched].shell && shell_side(faces, held, held_normal, touched, position) < 0))
+  // Held by another shell face on this wall's side, or by one that is not part of the wall.
+  if (touched != NO_INDEX && shell_side(faces, held, held_normal, touched, position) >= 0)
     return 0.0;
   // Behind the mid-surface of the held face or of the wall's next elements, over its interior.
   Real depth = 0.0;

@@ -11,29 +11,19 @@ Usage: check_pass_through.py XPL WORK_DIR [ID ...]   (default IDs: 116 153)
 Standard library only.
 """
 
-import json
-import pathlib
-import subprocess
 import sys
 
-HERE = pathlib.Path(__file__).resolve().parent
+from scene_run import arguments, run_scene
 
 
 def main():
-    if len(sys.argv) < 3:
-        print(__doc__)
+    args = arguments(__doc__, [116, 153])
+    if args is None:
         return 2
-    xpl, work = sys.argv[1], pathlib.Path(sys.argv[2])
-    ids = [int(a) for a in sys.argv[3:]] or [116, 153]
+    xpl, work, ids = args
     failures = 0
     for scene in ids:
-        # impact_check.py writes, runs and checks the scene; its verdict on the other criteria
-        # (hourglass share) is not this test's.
-        out = subprocess.run([sys.executable, str(HERE / "impact_check.py"), "run", xpl,
-                              str(scene), "--work", str(work), "--no-threads"],
-                             capture_output=True, text=True, check=False).stdout
-        folder = work / f"scene_{scene}"
-        summary = json.loads((folder / f"scene_{scene}.summary.json").read_text())
+        out, _, summary = run_scene(xpl, work, scene)
         status, reason = summary["status"], summary.get("exit_reason", "")
         crossed = [line.strip() for line in out.splitlines() if "passed through" in line]
         if status == "completed":

@@ -10,30 +10,21 @@ Usage: check_seed_overclosures.py XPL WORK_DIR [ID ...]   (default IDs: 86 120 1
 Standard library only.
 """
 
-import json
-import pathlib
-import subprocess
 import sys
 
-HERE = pathlib.Path(__file__).resolve().parent
+from scene_run import arguments, run_scene
 
 
 def main():
-    if len(sys.argv) < 3:
-        print(__doc__)
+    args = arguments(__doc__, [86, 120, 199])
+    if args is None:
         return 2
-    xpl, work = sys.argv[1], pathlib.Path(sys.argv[2])
-    ids = [int(a) for a in sys.argv[3:]] or [86, 120, 199]
+    xpl, work, ids = args
     failures = 0
     for scene in ids:
-        # impact_check.py writes and runs the scene; its own verdict (all criteria) is not
-        # this test's.
-        subprocess.run([sys.executable, str(HERE / "impact_check.py"), "run", xpl, str(scene),
-                        "--work", str(work), "--no-threads"], capture_output=True, text=True,
-                       check=False)
-        folder = work / f"scene_{scene}"
+        _, folder, summary = run_scene(xpl, work, scene)
         msg = (folder / f"scene_{scene}.msg").read_text()
-        status = json.loads((folder / f"scene_{scene}.summary.json").read_text())["status"]
+        status = summary["status"]
         seeded = [line for line in msg.splitlines() if "initial overclosure: node" in line]
         ok = status == "completed" and not seeded
         print(f"scene {scene}: {'ok' if ok else 'FAILED'}: status {status}, "
