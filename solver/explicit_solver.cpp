@@ -196,6 +196,12 @@ void ExplicitSolver::Impl::end_failed(const std::string& cause) noexcept {
   } catch (...) {  // NOLINT(bugprone-empty-catch): the failure itself matters more
   }
   try {
+    // The partition still goes to the summary; the ranks' times would need a collective,
+    // which a rank failing alone would never join.
+    if (m_run) m_sink.distribution(partition_summary());
+  } catch (...) {  // NOLINT(bugprone-empty-catch): the failure itself matters more
+  }
+  try {
     const RunSummary s = summary();
     m_sink.end_run(RunStatus::Failed, cause, s.timers, s.element_cycles_per_second);
   } catch (...) {  // NOLINT(bugprone-empty-catch): the first error is the one to report
@@ -268,6 +274,20 @@ ExplicitSolver::Impl::LoopShares ExplicitSolver::Impl::loop_shares() const {
   return s;
 }
 
+DistributionSummary ExplicitSolver::Impl::partition_summary() const {
+  DistributionSummary d = m_distribution;
+  d.ranks.resize(static_cast<std::size_t>(m_run->size()));
+  for (int r = 0; r < m_run->size(); ++r) {
+    const partition::PartPlan& p = m_run->exchange_plan().part[r];
+    DistributionSummary::Rank& k = d.ranks[static_cast<std::size_t>(r)];
+    k.elements = static_cast<Index>(p.elements.size());
+    k.owned_nodes = static_cast<Index>(p.owned.size());
+    k.interface_nodes = static_cast<Index>(p.interface_nodes.size());
+    k.neighbours = static_cast<Index>(p.neighbours.size());
+  }
+  return d;
+}
+
 void ExplicitSolver::Impl::report_exchange() {
   if (!m_run) return;
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
@@ -281,16 +301,11 @@ void ExplicitSolver::Impl::report_exchange() {
        m_loop_shares.wait, m_loop_shares.output},
       counts);
   // The summary's partition and times (rank 0's sink keeps them).
-  DistributionSummary d = m_distribution;
-  d.ranks.resize(static_cast<std::size_t>(run.size()));
+  DistributionSummary d = partition_summary();
+  d.times_gathered = true;
   for (int r = 0; r < run.size(); ++r) {
-    const partition::PartPlan& p = run.exchange_plan().part[r];
     const Real* t = &all[WIDTH * static_cast<std::size_t>(r)];
     DistributionSummary::Rank& k = d.ranks[static_cast<std::size_t>(r)];
-    k.elements = static_cast<Index>(p.elements.size());
-    k.owned_nodes = static_cast<Index>(p.owned.size());
-    k.interface_nodes = static_cast<Index>(p.interface_nodes.size());
-    k.neighbours = static_cast<Index>(p.neighbours.size());
     k.time_loop = t[4];
     k.exchange = t[6] - t[7];
     k.wait = t[7];

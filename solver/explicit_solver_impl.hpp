@@ -91,6 +91,8 @@ struct ExplicitSolver::Impl {
   /// Distributed runs: each rank's exchange time in the .msg, and the partition and each
   /// rank's times for the summary (OutputSink::distribution) (collective).
   void report_exchange();
+  /// The partition of a distributed run, each rank's share without times (no collective).
+  DistributionSummary partition_summary() const;
   /// The end message of an interrupted run: the signal and the time reached.
   std::string interrupted_text() const;
   /// Output through the driver, with the parts that fill the state for it.

@@ -142,6 +142,7 @@ JsonValue SummaryRecord::json() const {
     mpi.set("interface_nodes", static_cast<long>(d.interface_nodes));
     mpi.set("cut_edges", d.cut_edges);
     mpi.set("frames", d.shared_frames ? "every rank its rows" : "gathered to rank 0");
+    mpi.set("times", d.times_gathered ? "gathered" : "not gathered: the run failed");
     // One object per rank, keyed by its number: /summary stores objects only.
     JsonValue& ranks = mpi.set("rank", JsonValue::object());
     for (std::size_t r = 0; r < d.ranks.size(); ++r) {
@@ -151,6 +152,7 @@ JsonValue SummaryRecord::json() const {
       rank.set("owned_nodes", static_cast<long>(k.owned_nodes));
       rank.set("interface_nodes", static_cast<long>(k.interface_nodes));
       rank.set("neighbours", static_cast<long>(k.neighbours));
+      if (!d.times_gathered) continue;
       rank.set("time_loop", k.time_loop);
       rank.set("compute", k.compute);
       rank.set("exchange", k.exchange);

@@ -115,6 +115,9 @@ struct DistributionSummary {
   Index interface_nodes = 0;   ///< nodes used by two or more ranks
   long cut_edges = 0;          ///< graph edges across ranks (of the SIMD batch graph)
   bool shared_frames = false;  ///< every rank writes its rows of a frame (else rank 0 all)
+  /// The ranks' times were gathered at the end of the run (not for a failed run, which ends
+  /// without the collective): each Rank's times are then zero and not reported.
+  bool times_gathered = false;
   std::vector<Rank> ranks;
 };
 

@@ -71,6 +71,8 @@ def check_mpi_summary(summary, ranks, frames):
         problems.append(f"mpi.ranks {mpi['ranks']}, {len(mpi['rank'])} rank entries; expected {ranks}")
     if mpi["frames"] != frames:
         problems.append(f"mpi.frames {mpi['frames']!r}; expected {frames!r}")
+    if mpi["times"] != "gathered":
+        problems.append(f"mpi.times {mpi['times']!r}; expected 'gathered'")
     elements = sum(r["elements"] for r in mpi["rank"].values())
     if elements != summary["model"]["elements"]:
         problems.append(f"the ranks' elements add up to {elements}, the model has "
