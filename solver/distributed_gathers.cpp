@@ -6,6 +6,8 @@
 #if XPL_HAVE_MPI
 #include <mpi.h>
 
+#include <algorithm>
+
 #include "solver/distributed_detail.hpp"
 
 namespace xpl {
@@ -73,6 +75,44 @@ void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width)
   for (int r = 0; r < m_size; ++r)
     for (const Index e : m_plan.part[r].elements)
       for (std::size_t c = 0; c < w; ++c) rows[e * w + c] = all[k++];
+}
+
+void DistributedRun::gather_nodes_to_root(const std::vector<Index>& nodes,
+                                          const std::vector<NodalVectors*>& rows) const {
+  std::vector<NodalVectors*> arrays;
+  for (NodalVectors* a : rows)
+    if (a->rows() > 0) arrays.push_back(a);
+  if (nodes.empty() || arrays.empty()) return;
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  // Each rank's share of `nodes`, in the order of `nodes` (every rank finds the same lists).
+  std::vector<std::vector<Index>> share(static_cast<std::size_t>(m_size));
+  for (const Index n : nodes)
+    for (int r = 0; r < m_size; ++r) {
+      const std::vector<Index>& owned = m_plan.part[r].owned;
+      if (std::binary_search(owned.begin(), owned.end(), n)) {
+        share[static_cast<std::size_t>(r)].push_back(n);
+        break;
+      }
+    }
+  const std::size_t width = 3 * arrays.size();
+  std::vector<Real> mine;
+  mine.reserve(share[static_cast<std::size_t>(m_rank)].size() * width);
+  for (const Index n : share[static_cast<std::size_t>(m_rank)])
+    for (const NodalVectors* a : arrays)
+      for (int c = 0; c < 3; ++c) mine.push_back((*a)(n, c));
+  const GatherLayout g = gather_layout(
+      m_size, width, [&share](int r) -> const auto& { return share[r]; });
+  std::vector<Real> all(m_rank == 0 ? g.total : 0);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
+               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  if (m_rank != 0) return;
+  std::size_t k = 0;
+  for (const auto& nodes_of_rank : share)
+    for (const Index n : nodes_of_rank)
+      for (NodalVectors* a : arrays)
+        for (int c = 0; c < 3; ++c) (*a)(n, c) = all[k++];
 }
 
 }  // namespace xpl

@@ -123,6 +123,12 @@ class DistributedRun {
   void gather_to_root(NodalVectors& rows) const;
   /// Element rows (`width` values per element) from each element's rank to rank 0.
   void gather_elements_to_root(std::vector<Real>& rows, int width) const;
+  /// The rows of `nodes` (ascending, the same list on every rank) in every array of `rows`
+  /// (n_nodes × 3 each, empty ones skipped), from each node's owner to rank 0 in one
+  /// collective; rows of nodes no rank owns are left as rank 0 holds them (as in
+  /// gather_to_root()).
+  void gather_nodes_to_root(const std::vector<Index>& nodes,
+                            const std::vector<NodalVectors*>& rows) const;
   /// The rows (n_nodes × 3 each) of `nodes` (the same list on every rank) from the rank that
   /// integrates each node (row_source())
   /// onto every rank, from `from[k]` into `to[k]` (MPI_Allgatherv; rows not listed are left

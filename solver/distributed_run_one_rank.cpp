@@ -40,6 +40,8 @@ const std::vector<Real>& DistributedRun::wait_allgather() {
 }
 void DistributedRun::gather_to_root(NodalVectors&) const {}
 void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
+void DistributedRun::gather_nodes_to_root(const std::vector<Index>&,
+                                          const std::vector<NodalVectors*>&) const {}
 void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
 void DistributedRun::share_chunks(std::vector<Real>&, int, int, int&, std::vector<Real>&,
                                   std::vector<int>&, bool) const {}

@@ -221,7 +221,14 @@ void ExplicitSolver::Impl::write_frame(const FrameRequest& what) {
 }
 
 void ExplicitSolver::Impl::write_history() {
-  if (m_output.history_reads_nodes()) gather_state();  // energies alone are everyone's
+  // Energies alone are everyone's; the nodes a row reads come from their owners.
+  if (m_run && !m_output.history_nodes().empty()) {
+    m_nodes.sync_rotation(m_state);
+    m_run->gather_nodes_to_root(
+        m_output.history_nodes(),
+        {&m_state.position, &m_state.velocity, &m_state.acceleration, &m_state.reaction,
+         &m_state.rotation, &m_state.angular_velocity, &m_state.reaction_moment});
+  }
   m_output.write_history(m_state, m_contact, m_nodes);
 }
 

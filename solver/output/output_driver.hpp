@@ -38,7 +38,8 @@ class OutputDriver {
   /// Whether the step has field / history output at all.
   bool has_field() const { return m_schedule.has_field(); }
   bool has_history() const { return m_schedule.has_history(); }
-  bool history_reads_nodes() const { return m_schedule.history_reads_nodes(); }
+  /// The nodes a history row reads, ascending (OutputSchedule::history_nodes()).
+  const std::vector<Index>& history_nodes() const { return m_schedule.history_nodes(); }
   /// Frame 0: every field variable any request of the step asks for.
   FrameRequest field_all() const { return m_schedule.field_all(); }
   /// The field variables due at `step_time` (none set: no frame); `last` forces all.

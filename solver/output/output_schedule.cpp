@@ -161,6 +161,12 @@ void OutputSchedule::begin_step(const Model& model, int step) {
                       "): each is written once, in every history row (rows fall due at the "
                       "times of every request, so at the finer interval)");
   merge_field_requests(step);
+  m_history_nodes.clear();
+  for (const Column& c : m_columns)
+    if (c.energy < 0) m_history_nodes.push_back(c.node);
+  std::sort(m_history_nodes.begin(), m_history_nodes.end());
+  m_history_nodes.erase(std::unique(m_history_nodes.begin(), m_history_nodes.end()),
+                        m_history_nodes.end());
 }
 
 bool OutputSchedule::first_series(const std::string& path, std::size_t request) {

@@ -65,12 +65,9 @@ class OutputSchedule {
   /// Whether any field/history output exists in the step (P2: nothing to do otherwise).
   bool has_field() const { return !m_field.empty(); }
   bool has_history() const { return !m_history.empty(); }
-  /// Whether a history row reads nodal values of the state (not only the energies).
-  bool history_reads_nodes() const {
-    for (const Column& c : m_columns)
-      if (c.energy < 0) return true;
-    return false;
-  }
+  /// The nodes whose values of the state a history row reads, ascending (none: the row
+  /// holds energies alone).
+  const std::vector<Index>& history_nodes() const { return m_history_nodes; }
 
   /// Field variables due at `step_time` (any flag set means a frame is due); advances the
   /// due times of the requests that fire. `last` forces every request to fire.
@@ -125,6 +122,7 @@ class OutputSchedule {
   std::vector<Timed> m_history;
   std::vector<HistorySeries> m_series;
   std::vector<Column> m_columns;
+  std::vector<Index> m_history_nodes;  ///< history_nodes()
 };
 
 }  // namespace xpl
