@@ -8,6 +8,7 @@
 #include "common/parallel_error.hpp"
 #include "contact/closest_point.hpp"
 #include "contact/contact_engine.hpp"
+#include "contact/parallel_size.hpp"
 
 namespace xpl::contact {
 
@@ -257,7 +258,8 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
 void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
   const Index n_slave = m_domain.slaves().size();
   ParallelErrors errors;
-#pragma omp parallel for schedule(dynamic, 256)
+  const bool on_team = static_cast<Index>(m_listed.size()) >= PARALLEL_MIN_CANDIDATES;
+#pragma omp parallel for schedule(dynamic, 256) if (on_team)
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
