@@ -257,7 +257,8 @@ const ContactEngine::FaceGeometry& ContactEngine::face_geometry(
   face_corners(face, position, node_thickness, g.corner);
   g.normal = (g.corner[2] - g.corner[0]).cross(g.corner[3] - g.corner[1]);
   g.normal_len = std::sqrt(g.normal.dot(g.normal));
-  g.unit = g.normal / g.normal_len;
+  // The unit normal is read by the reach test (m_try_skip) and a round face's behind test only.
+  if (face.shell || m_try_skip) g.unit = g.normal / g.normal_len;
   g.shell_depth = 0.0;
   g.round = 0.0;
   if (face.shell) {
