@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/parallel_error.hpp"
+#include "contact/parallel_size.hpp"
 
 namespace xpl::contact {
 
@@ -201,7 +202,8 @@ bool BroadPhase::needs_rebuild(const NodalVectors& position) const {
   if (m_builds == 0) return true;
   const auto n_tracked = static_cast<Index>(m_tracked.size());
   Real max_sq = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_sq)
+  const bool on_team = n_tracked >= PARALLEL_MIN_SLOTS;
+#pragma omp parallel for schedule(static) reduction(max : max_sq) if (on_team)
   for (Index i = 0; i < n_tracked; ++i) {
     const Index n = m_tracked[i];
     Real sq = 0.0;

@@ -17,6 +17,7 @@
 /// number of threads.
 
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <vector>
@@ -145,6 +146,30 @@ class ContactEngine {
       if (count < WARM_KEPT) kept[count++] = {f, {xi, eta}};
     }
   };
+  /// What admissible() derives from face f's nodes alone: its corners (a shell face's on its
+  /// side, offset by half the thickness), the normal of their diagonals (unnormalised, m²), its
+  /// length and direction, a shell face's depth limit (m) and the largest half thickness of its
+  /// corners (m).
+  struct FaceGeometry {
+    Vec3 corner[4];
+    Vec3 normal = Vec3::Zero();
+    Real normal_len = 0.0;
+    Vec3 unit = Vec3::Zero();
+    Real shell_depth = 0.0;
+    Real round = 0.0;
+  };
+  /// The geometry of the faces a serial search has evaluated (search(): a face is a candidate
+  /// of several slots): valid where `stamp` equals `current`, the number of that search.
+  struct FaceCache {
+    std::vector<FaceGeometry> geometry;
+    std::vector<std::uint32_t> stamp;
+    std::uint32_t current = 0;
+  };
+  /// Face f's geometry at `position`: from `cache` when it holds it (and into it when not),
+  /// else computed into `local`.
+  const FaceGeometry& face_geometry(Index f, const NodalVectors& position,
+                                    std::span<const Real> node_thickness, FaceCache* cache,
+                                    FaceGeometry& local) const;
   struct SlaveView {
     Index slot = NO_INDEX;
     Index node = NO_INDEX;
@@ -170,6 +195,8 @@ class ContactEngine {
     /// where this search keeps its own for the next.
     const WarmStarts* warm = nullptr;
     WarmStarts* next = nullptr;
+    /// The face geometry of a search on the calling thread (null: computed per face).
+    FaceCache* faces = nullptr;
   };
   /// `all_faces` false: the view of a search over listed_faces(s) only, which never_admissible()
   /// has sifted (no own nodes gathered).
@@ -268,6 +295,7 @@ class ContactEngine {
   // Per slave slot, written by search(): the closest points its search evaluated, Newton's
   // starts in the next search (SlaveView::warm).
   std::vector<WarmStarts> m_warm;
+  FaceCache m_face_cache;  // search(), when it runs on the calling thread
   std::vector<Real> m_second_force;
   std::vector<Real> m_second_normal_force;
   std::vector<Real> m_second_dissipation;

@@ -6,6 +6,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "contact/parallel_size.hpp"
+
 namespace xpl::contact {
 
 namespace {
@@ -209,7 +211,7 @@ void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVec
     throw std::invalid_argument("SlaveNodes::update_areas: not the faces it was built from");
   const auto n_faces = static_cast<Index>(faces.size());
   const bool all_faces = face_needed.empty();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n_faces >= PARALLEL_MIN_SLOTS)
   for (Index i = 0; i < n_faces; ++i) {
     if (!all_faces && !face_needed[i]) continue;
     Vec3 corner[4];
@@ -220,7 +222,7 @@ void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVec
   }
   const Index n_slave = size();
   const bool all_slots = slot_needed.empty();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n_slave >= PARALLEL_MIN_SLOTS)
   for (Index s = 0; s < n_slave; ++s) {
     if (!all_slots && !slot_needed[s]) continue;
     Real a = 0.0;

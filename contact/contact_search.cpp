@@ -8,6 +8,7 @@
 #include "common/parallel_error.hpp"
 #include "contact/closest_point.hpp"
 #include "contact/contact_engine.hpp"
+#include "contact/parallel_size.hpp"
 
 namespace xpl::contact {
 
@@ -156,10 +157,11 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   Index pair = NO_INDEX;
   const Real w = m_domain.weight(s, f, pair);
   if (w == 0.0) return false;
-  Vec3 corner[4];
-  face_corners(faces[f], position, node_thickness, corner);
-  const Vec3 n_f = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
-  const Real n_len = std::sqrt(n_f.dot(n_f));
+  FaceGeometry local;
+  const FaceGeometry& geometry = face_geometry(f, position, node_thickness, v.faces, local);
+  const Vec3(&corner)[4] = geometry.corner;
+  const Vec3& n_f = geometry.normal;
+  const Real n_len = geometry.normal_len;
   if (!(n_len > 0.0)) return false;
   // A shell node is double sided (either orientation), and one on a free edge may touch a
   // face edge-on (a tube end on a plate). A point node has no orientation: any face.
@@ -168,12 +170,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
                                      : cosine > -OPPOSING_COSINE))
     return false;
   const Real half_t = v.half_t;
-  Real depth = m_domain.face_depth(f);
-  if (faces[f].shell) {
-    Real t = 0.0;
-    for (Index c : faces[f].nodes) t += node_thickness_of(node_thickness, c);
-    depth = DEPTH_LIMIT_FRACTION * 0.25 * t;  // of the mean thickness
-  }
+  Real depth = faces[f].shell ? geometry.shell_depth : m_domain.face_depth(f);
   const bool kept_side = held != nullptr && faces[f].shell && faces[f].element == held->element;
   if (f == v.continuing) depth *= 2.0;  // contact at speed (file comment)
   // Beside its edges a shell face is round (below): a node there is nearer to it, and touches
@@ -186,15 +183,12 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   Vec3 mid_corner[4];
   if (round_face) {
     for (int a = 0; a < 4; ++a) mid_corner[a] = node_point(position, faces[f].nodes[a]);
-    behind = behind_mid_surface(mid_corner, v.point, n_f / n_len);
+    behind = behind_mid_surface(mid_corner, v.point, geometry.unit);
     if (other_side && behind) return false;
   }
   if (!kept_side && m_try_skip) {
-    Real round = 0.0;  // largest half thickness of a round face's corners
-    if (round_face)
-      for (Index c : faces[f].nodes)
-        round = std::max(round, 0.5 * node_thickness_of(node_thickness, c));
-    if (out_of_reach(corner, n_f / n_len, v.point, depth + half_t + v.allowance, half_t,
+    const Real round = round_face ? geometry.round : 0.0;
+    if (out_of_reach(corner, geometry.unit, v.point, depth + half_t + v.allowance, half_t,
                      m_broad.margin(), nearer_than, round_face ? mid_corner : nullptr, behind,
                      round))
       return false;
@@ -254,10 +248,49 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   return true;
 }
 
+const ContactEngine::FaceGeometry& ContactEngine::face_geometry(
+    Index f, const NodalVectors& position, std::span<const Real> node_thickness, FaceCache* cache,
+    FaceGeometry& local) const {
+  if (cache != nullptr && cache->stamp[f] == cache->current) return cache->geometry[f];
+  FaceGeometry& g = cache != nullptr ? cache->geometry[f] : local;
+  const ContactFace& face = m_domain.faces()[f];
+  face_corners(face, position, node_thickness, g.corner);
+  g.normal = (g.corner[2] - g.corner[0]).cross(g.corner[3] - g.corner[1]);
+  g.normal_len = std::sqrt(g.normal.dot(g.normal));
+  // The unit normal is read by the reach test (m_try_skip) and a round face's behind test only.
+  if (face.shell || m_try_skip) g.unit = g.normal / g.normal_len;
+  g.shell_depth = 0.0;
+  g.round = 0.0;
+  if (face.shell) {
+    Real t = 0.0;
+    for (Index c : face.nodes) {
+      t += node_thickness_of(node_thickness, c);
+      g.round = std::max(g.round, 0.5 * node_thickness_of(node_thickness, c));
+    }
+    g.shell_depth = DEPTH_LIMIT_FRACTION * 0.25 * t;  // of the mean thickness
+  }
+  if (cache != nullptr) cache->stamp[f] = cache->current;
+  return g;
+}
+
 void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
   const Index n_slave = m_domain.slaves().size();
   ParallelErrors errors;
-#pragma omp parallel for schedule(dynamic, 256)
+  const bool on_team = static_cast<Index>(m_listed.size()) >= PARALLEL_MIN_CANDIDATES;
+  // On the calling thread, each face's geometry is worked out once for all the slots that
+  // list it; on the team, per slot and face (no writes shared between threads).
+  FaceCache* cache = nullptr;
+  if (!on_team) {
+    const std::size_t n_faces = m_domain.faces().size();
+    if (m_face_cache.stamp.size() != n_faces || m_face_cache.current == UINT32_MAX) {
+      m_face_cache.geometry.assign(n_faces, FaceGeometry{});
+      m_face_cache.stamp.assign(n_faces, 0);
+      m_face_cache.current = 0;
+    }
+    ++m_face_cache.current;
+    cache = &m_face_cache;
+  }
+#pragma omp parallel for schedule(dynamic, 256) if (on_team)
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
@@ -279,6 +312,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         SlaveView view = slave_view(s, position, node_thickness, false);
         if (m_updated) view.warm = &m_warm[s];
         view.next = &next;
+        view.faces = cache;
         const std::span<const Index> listed = listed_faces(s);
         // The face pressed last increment, when no static rule rejects it (the listed faces
         // have been sifted by never_admissible(); a solid face has no own-shell test).

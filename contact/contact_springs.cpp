@@ -6,6 +6,7 @@
 
 #include "common/parallel_error.hpp"
 #include "contact/contact_engine.hpp"
+#include "contact/parallel_size.hpp"
 
 namespace xpl::contact {
 
@@ -14,7 +15,7 @@ void ContactEngine::prepare_springs(const NodalVectors& position, const NodalVec
                                     std::span<const Real> inverse_mass) {
   const Index n_slave = m_domain.slaves().size();
   ParallelErrors errors;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n_slave >= PARALLEL_MIN_SLOTS)
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactForces, s, [&] {
       ContactConstraint& c = m_constraints[s];
@@ -63,7 +64,7 @@ void ContactEngine::prepare_springs(const NodalVectors& position, const NodalVec
 void ContactEngine::spring_forces(Real dt, Real dt_penalty) {
   const Index n_slave = m_domain.slaves().size();
   ParallelErrors errors;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n_slave >= PARALLEL_MIN_SLOTS)
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactForces, s, [&] {
       m_dissipation[s] = 0.0;
