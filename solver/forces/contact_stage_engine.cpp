@@ -2,10 +2,47 @@
 // described from the deck's *CONTACT and *CONTACT PAIR definitions, the engine built on it, and
 // the t = 0 candidate pairs of a distributed run's partition.
 #include <algorithm>
+#include <chrono>
 
+#include "solver/distributed_run.hpp"
 #include "solver/forces/contact_stage.hpp"
 
 namespace xpl {
+
+namespace {
+
+/// The slot rows of the ranks of a distributed run, gathered in rank order.
+class RankSlotSharing final : public contact::SlotSharing {
+ public:
+  explicit RankSlotSharing(const DistributedRun& run) : m_run(run) {}
+  std::vector<Real> gather(const std::vector<Real>& mine, std::vector<int>& counts,
+                           bool counts_known) override {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<Real> all = m_run.allgather(mine, counts, counts_known);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return all;
+  }
+  double seconds = 0.0;  ///< in gather(), waits for the other ranks included
+
+ private:
+  const DistributedRun& m_run;
+};
+
+}  // namespace
+
+void ContactStage::share_slots() {
+  if (m_run->size() < 2) return;
+  const contact::SlaveNodes& slaves = m_engine->domain().slaves();
+  std::vector<char> owned(static_cast<std::size_t>(slaves.size()), 0);
+  for (Index s = 0; s < slaves.size(); ++s)
+    owned[s] = m_run->row_source(slaves.nodes()[s]) == m_run->rank() ? 1 : 0;
+  if (!m_sharing) m_sharing = std::make_unique<RankSlotSharing>(*m_run);
+  m_engine->share_slots(std::move(owned), m_sharing.get());
+}
+
+double ContactStage::sharing_seconds() const {
+  return m_sharing ? static_cast<const RankSlotSharing&>(*m_sharing).seconds : 0.0;
+}
 
 std::vector<std::pair<Index, Index>> ContactStage::start_candidates(const NodalVectors& position,
                                                                     const ElementSet& elements,
