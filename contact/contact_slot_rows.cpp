@@ -108,8 +108,14 @@ void ContactEngine::share_springs() {
   std::vector<Real> mine;
   m_sent.clear();
   Real row[SPRING_WIDTH];
+  const bool ramps = !m_interference.empty();
   for (Index s = 0; s < m_domain.slaves().size(); ++s) {
     if (m_owned[s] == 0) continue;
+    // Most slots touch nothing: their row would be zero (no touch: no counted spring).
+    if (m_touch[s].face == NO_INDEX && m_second_touch[s].face == NO_INDEX &&
+        !(m_lost_depth[s] != 0.0 || m_passed_depth[s] != 0.0 || m_behind_depth[s] != 0.0) &&
+        !(ramps && m_interference[s].amount > 0.0) && m_event_face[s] == NO_INDEX)
+      continue;
     put_touch(m_touch[s], row);
     put_touch(m_second_touch[s], row + TOUCH_WIDTH);
     Real* r = row + 2 * TOUCH_WIDTH;
@@ -123,7 +129,7 @@ void ContactEngine::share_springs() {
       const bool counted = spring.k > 0.0 && spring.acts && !(spring.law.pressure_slope > 0.0);
       r[4 + side] = counted ? spring.k : 0.0;
     }
-    r[6] = !m_interference.empty() && m_interference[s].amount > 0.0 ? 1.0 : 0.0;
+    r[6] = ramps && m_interference[s].amount > 0.0 ? 1.0 : 0.0;
     if (append_row(s, row, SPRING_WIDTH, mine)) m_sent.push_back(s);
   }
   const std::vector<Real> all = m_sharing->gather(mine, m_counts, false);

@@ -47,8 +47,12 @@ class ContactStage {
   /// them; it searches and computes the springs of the slave slots whose node it integrates
   /// (DistributedRun::row_source()) and takes the other slots' results from their ranks, then
   /// adds to the nodes it integrates the one-rank contact forces in the one-rank order. The
-  /// start-of-step passes run whole on every rank. `run` must outlive the stage.
-  void set_distribution(const DistributedRun* run) { m_run = run; }
+  /// start-of-step passes run whole on every rank. `shared` false: every rank runs the whole
+  /// contact pass instead (the first, redundant design). `run` must outlive the stage.
+  void set_distribution(const DistributedRun* run, bool shared) {
+    m_run = run;
+    m_shared = shared;
+  }
   /// Distributed runs, for the partition's graph (issue 37 item 2): the (slave node, element
   /// of a master face) pairs the broad phase of step 1's contact lists on `position`, from an
   /// engine of its own (nothing of the run changes); empty without contact in step 1.
@@ -138,6 +142,7 @@ class ContactStage {
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
   std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
   const DistributedRun* m_run = nullptr;  ///< distributed runs only
+  bool m_shared = true;                   ///< set_distribution()
   std::unique_ptr<contact::SlotSharing> m_sharing;  ///< share_slots(), its collectives
   /// Distributed runs: the nodes the engine reads (its slave nodes: every face node and the
   /// point nodes), ascending, and the run's positions and half-step velocities of them.
