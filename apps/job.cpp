@@ -201,6 +201,7 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     sopts.partition_note = args.partition_note;
     sopts.distributed = args.distributed;
     sopts.shared_frames = shared_frames;
+    sopts.shared_contact = !args.contact_redundant;
     if (!args.import.empty()) sopts.initial_state = &initial;
     ExplicitSolver solver(model, sink, sopts);
     if (args.check) {

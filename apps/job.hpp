@@ -38,6 +38,8 @@ struct JobArguments {
   /// --gather-frames: in a distributed run rank 0 gathers every frame's rows and writes them
   /// alone, instead of every rank writing its own into JOB.h5 (parallel HDF5).
   bool gather_frames = false;
+  /// --contact-redundant: in a distributed run every rank runs the whole contact pass.
+  bool contact_redundant = false;
   int rank = 0;
 };
 

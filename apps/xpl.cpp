@@ -52,9 +52,11 @@ constexpr const char* RUN_USAGE =
     "  --gather-frames  under mpirun -np N > 1: rank 0 gathers each frame and writes it\n"
     "               alone (default: every rank writes its nodes and elements into JOB.h5,\n"
     "               parallel HDF5)\n"
+    "  --contact-redundant  under mpirun -np N > 1: every rank runs the whole contact\n"
+    "               pass (default: each rank searches the contact nodes it integrates and\n"
+    "               the ranks exchange the results, two collectives more per increment)\n"
     "Under mpirun -np N > 1 (a build with XPL_MPI=ON) the run is distributed over the N\n"
-    "ranks, its results bitwise those of one rank; decks with contact, rigid bodies, ties\n"
-    "or loads are refused there (docs/dev/mpi.md).\n"
+    "ranks, its results bitwise those of one rank (docs/dev/mpi.md).\n"
     "A run holds DIR/JOB.lck; a second run of the job in DIR is refused. SIGINT/SIGTERM end\n"
     "the run after the current increment with its last frame written (status interrupted).\n"
     "OpenMP threads wait passively (OMP_WAIT_POLICY=PASSIVE: they sleep instead of\n"
@@ -233,6 +235,8 @@ bool parse(int argc, char** argv, Arguments& args) {
       args.quiet = true;
     } else if (w == "--gather-frames" && args.command == "run") {
       args.gather_frames = true;
+    } else if (w == "--contact-redundant" && args.command == "run") {
+      args.contact_redundant = true;
     } else if (!w.empty() && w[0] == '-') {
       std::cerr << "xpl " << args.command << ": unknown option '" << w << "'\n"
                 << (args.command == "check" ? CHECK_USAGE : RUN_USAGE);

@@ -66,6 +66,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_dissipation.assign(n, 0.0);
   m_stored.assign(n, 0.0);
   m_output_status.assign(n, OutputStatus::Open);
+  m_event_face.assign(n, NO_INDEX);
   m_assembly = ForceAssembly(m_domain.slaves().size(), m_domain.pair_count());
   for (const InteractionLaw& law : m_laws)
     m_user_stiffness = m_user_stiffness || law.pressure_slope > 0.0;
@@ -85,6 +86,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   const Index n_slave = slaves.size();
   {
     ScopedTimer timer(timers, Phase::ContactSearch);
+    m_shared_pass = m_sharing != nullptr;
     totals.rebuilt = refresh_broad_phase(position, node_thickness);
     // Only the search of a slot with candidates reads its area and normal, and so does a
     // user-stiffness law's spring (same slots); a LINEAR law's increment estimate reads all.
@@ -93,36 +95,22 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     else
       slaves.update_areas(faces, position, m_active_slot, m_active_face);
     search(position, node_thickness);
-    // The releases, pass-throughs and nodes behind a held shell's mid-surface, each counted
-    // and its deepest kept (the first in slot order on a tie), in one pass over the slots.
-    const auto deeper = [](Real depth, Index& count, Real& deepest) {
-      if (!(depth > 0.0)) return false;
-      ++count;
-      if (depth <= deepest) return false;
-      deepest = depth;
-      return true;
-    };
-    for (Index s = 0; s < n_slave; ++s) {
-      if (deeper(m_lost_depth[s], totals.lost, totals.lost_depth)) {
-        totals.lost_node = slaves.nodes()[s];
-        totals.lost_element = faces[m_constraints[s].master_face].element;
-        totals.lost_element_depth = 2.0 * m_domain.face_depth(m_constraints[s].master_face);
-      }
-      if (deeper(m_passed_depth[s], totals.passed, totals.passed_depth)) {
-        totals.passed_node = slaves.nodes()[s];
-        totals.passed_element = faces[m_constraints[s].master_face].element;
-      }
-      if (deeper(m_behind_depth[s], totals.behind, totals.behind_depth)) {
-        totals.behind_node = slaves.nodes()[s];
-        totals.behind_element = faces[m_touch[s].face].element;
-      }
-    }
+    // The face a released or passed node was pressed on, before the springs move on.
+    for (Index s = 0; s < n_slave; ++s)
+      if (owned(s))
+        m_event_face[s] = m_lost_depth[s] > 0.0 || m_passed_depth[s] > 0.0
+                              ? m_constraints[s].master_face
+                              : NO_INDEX;
   }
 
   ScopedTimer timer(timers, Phase::ContactForce);
   prepare_springs(position, velocity_half, dt, dt_penalty, mass, inverse_mass);
+  if (m_shared_pass) share_springs();
+  count_events(totals);
   cap_default_springs(dt_penalty, mass, inverse_mass);
   spring_forces(dt, dt_penalty);
+  if (m_shared_pass) share_forces();
+  m_shared_pass = false;
 
   // Assembly, sums and work, in slot order (independent of the thread count).
   m_assembly.assemble(
@@ -179,6 +167,33 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     m_penalty_limit = m_penalty_sum.largest(inverse_mass);
   }
   return totals;
+}
+
+void ContactEngine::count_events(ContactTotals& totals) const {
+  const SlaveNodes& slaves = m_domain.slaves();
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  const auto deeper = [](Real depth, Index& count, Real& deepest) {
+    if (!(depth > 0.0)) return false;
+    ++count;
+    if (depth <= deepest) return false;
+    deepest = depth;
+    return true;
+  };
+  for (Index s = 0; s < slaves.size(); ++s) {
+    if (deeper(m_lost_depth[s], totals.lost, totals.lost_depth)) {
+      totals.lost_node = slaves.nodes()[s];
+      totals.lost_element = faces[m_event_face[s]].element;
+      totals.lost_element_depth = 2.0 * m_domain.face_depth(m_event_face[s]);
+    }
+    if (deeper(m_passed_depth[s], totals.passed, totals.passed_depth)) {
+      totals.passed_node = slaves.nodes()[s];
+      totals.passed_element = faces[m_event_face[s]].element;
+    }
+    if (deeper(m_behind_depth[s], totals.behind, totals.behind_depth)) {
+      totals.behind_node = slaves.nodes()[s];
+      totals.behind_element = faces[m_touch[s].face].element;
+    }
+  }
 }
 
 void ContactEngine::set_interference(Index s, Real amount, Real base, Real duration) {

@@ -30,6 +30,7 @@
 #include "contact/force_assembly.hpp"
 #include "contact/penalty.hpp"
 #include "contact/penalty_increment.hpp"
+#include "contact/slot_sharing.hpp"
 
 namespace xpl::contact {
 
@@ -117,8 +118,25 @@ class ContactEngine {
   void set_step_time(Real step_time) { m_step_time = step_time; }
   /// Whether some slave slot's interference is still ramping.
   bool interference_ramping() const { return m_ramping > 0; }
+  /// Distributed runs (slot_sharing.hpp): from the next update() on, this process searches
+  /// and computes the springs of the slave slots `owned` marks (n_slave) only, and takes every
+  /// other slot's results from its owner through `sharing` (which must outlive the engine);
+  /// a slot's state (offset, constraint, friction spring, ramp) is kept by its owner alone.
+  /// The broad phase and the node areas stay whole on every process; probe() searches all.
+  void share_slots(std::vector<char> owned, SlotSharing* sharing);
 
  private:
+  /// Whether this process computes slot s in the current update() (share_slots()).
+  bool owned(Index s) const { return !m_shared_pass || m_owned[s] != 0; }
+  /// After prepare_springs() (share_slots()): every slot's touches, release and pass-through
+  /// depths and counted default springs from its owner (contact_slot_rows.cpp).
+  void share_springs();
+  /// After spring_forces(): every slot's forces, energies, status and friction forces from
+  /// its owner, all the assembly and the sums read.
+  void share_forces();
+  /// The releases, pass-throughs and nodes behind a held shell's mid-surface into `totals`,
+  /// each counted and its deepest kept (the first in slot order on a tie).
+  void count_events(ContactTotals& totals) const;
   /// Closest admissible face of every slave node (parallel over slots); a slot without
   /// candidate faces has none, without a look at the node.
   void search(const NodalVectors& position, std::span<const Real> node_thickness);
@@ -339,6 +357,18 @@ class ContactEngine {
   std::vector<char> m_extra_slot, m_extra_face;
   PenaltyStiffnessSum m_penalty_sum;
   PenaltyLimit m_penalty_limit;
+  // Per slave slot: the face a node released or passed through was pressed on, as the search
+  // found it (count_events()), NO_INDEX otherwise.
+  std::vector<Index> m_event_face;
+  // share_slots(): the slots this process computes, the exchange, whether the running
+  // update() shares, and the other processes' slots the last exchanges set here (reset to
+  // "nothing" before the next ones).
+  std::vector<char> m_owned;
+  SlotSharing* m_sharing = nullptr;
+  bool m_shared_pass = false;
+  std::vector<Index> m_received_springs, m_received_forces;
+  std::vector<Index> m_sent;  ///< the slots whose rows share_springs() sent
+  std::vector<int> m_counts;  ///< values each process sent in the last exchange
 };
 
 }  // namespace xpl::contact

@@ -102,7 +102,7 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
   m_listed.clear();
   for (Index s = 0; s < n_slave; ++s) {
     const std::span<const Index> candidates = m_broad.candidates(s);
-    if (!candidates.empty()) {
+    if (!candidates.empty() && owned(s)) {  // another process searches the others
       const SlaveView view = slave_view(s, position, node_thickness);
       for (Index f : candidates)
         if (!never_admissible(view, f)) m_listed.push_back(f);

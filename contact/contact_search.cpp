@@ -293,6 +293,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
 #pragma omp parallel for schedule(dynamic, 256) if (on_team)
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactSearch, s, [&] {
+      if (!owned(s)) return;
       SlaveTouch best;
       SlaveTouch second;
       WarmStarts next;

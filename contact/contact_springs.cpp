@@ -18,6 +18,7 @@ void ContactEngine::prepare_springs(const NodalVectors& position, const NodalVec
 #pragma omp parallel for schedule(static) if (n_slave >= PARALLEL_MIN_SLOTS)
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactForces, s, [&] {
+      if (!owned(s)) return;
       ContactConstraint& c = m_constraints[s];
       ContactConstraint& c2 = m_second[s];
       const SlaveTouch& t = m_touch[s];
@@ -67,6 +68,7 @@ void ContactEngine::spring_forces(Real dt, Real dt_penalty) {
 #pragma omp parallel for schedule(static) if (n_slave >= PARALLEL_MIN_SLOTS)
   for (Index s = 0; s < n_slave; ++s)
     errors.guard(ParallelSite::ContactForces, s, [&] {
+      if (!owned(s)) return;
       m_dissipation[s] = 0.0;
       m_second_dissipation[s] = 0.0;
       m_stored[s] = 0.0;
@@ -184,6 +186,7 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
     }
   }
   for (Index j = 0; j < 2 * n_slave; ++j) {
+    if (!owned(j / 2)) continue;  // the other slots' springs are their owners' (share_slots)
     Spring& spring = m_spring[j];
     ContactConstraint& c = j % 2 == 0 ? m_constraints[j / 2] : m_second[j / 2];
     Real factor = 1.0;

@@ -75,6 +75,10 @@ struct SolverOptions {
   /// JOB.h5 together with the others (parallel HDF5, FrameRows; the sink of every rank must
   /// write frames); else rank 0 gathers every row and writes alone.
   bool shared_frames = false;
+  /// Distributed: each rank searches and computes the contact springs of the slave nodes it
+  /// integrates, the ranks exchanging the results (ContactStage::set_distribution); else
+  /// every rank runs the whole contact pass (fewer collectives per increment).
+  bool shared_contact = true;
 };
 
 /// Owns the state and runs the steps of a Model, reporting to an OutputSink.

@@ -158,6 +158,9 @@ JsonValue SummaryRecord::json() const {
       rank.set("exchange", k.exchange);
       rank.set("wait", k.wait);
       rank.set("output", k.output);
+      rank.set("contact_search", k.contact_search);
+      rank.set("contact_force", k.contact_force);
+      rank.set("contact_exchange", k.contact_exchange);
     }
   }
   return out;

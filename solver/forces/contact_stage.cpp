@@ -62,6 +62,7 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
                          m_shared_nodes.end());
     m_position = state.position;
     m_velocity = state.velocity_half;
+    share_slots();
   }
 }
 

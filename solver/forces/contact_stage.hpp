@@ -42,17 +42,26 @@ class ContactStage {
   /// Nodes of ties (Ties::tied_nodes, n_nodes): held by the overclosure pass, their
   /// penetration an offset with reason "tie".
   void set_tied_nodes(std::vector<char> tied) { m_tied = std::move(tied); }
-  /// Distributed runs (docs/dev/mpi.md, "Contact under N ranks"): every rank runs the whole
-  /// contact pass, redundantly, on the positions and velocities of the contact nodes gathered
-  /// from the ranks that integrate them, so that each rank adds to the nodes it integrates
-  /// the one-rank contact forces in the one-rank order. `run` must outlive the stage.
-  void set_distribution(const DistributedRun* run) { m_run = run; }
+  /// Distributed runs (docs/dev/mpi.md, "Contact under N ranks"): every rank reads the
+  /// positions and velocities of the contact nodes gathered from the ranks that integrate
+  /// them; it searches and computes the springs of the slave slots whose node it integrates
+  /// (DistributedRun::row_source()) and takes the other slots' results from their ranks, then
+  /// adds to the nodes it integrates the one-rank contact forces in the one-rank order. The
+  /// start-of-step passes run whole on every rank. `shared` false: every rank runs the whole
+  /// contact pass instead (the first, redundant design). `run` must outlive the stage.
+  void set_distribution(const DistributedRun* run, bool shared) {
+    m_run = run;
+    m_shared = shared;
+  }
   /// Distributed runs, for the partition's graph (issue 37 item 2): the (slave node, element
   /// of a master face) pairs the broad phase of step 1's contact lists on `position`, from an
   /// engine of its own (nothing of the run changes); empty without contact in step 1.
   std::vector<std::pair<Index, Index>> start_candidates(const NodalVectors& position,
                                                         const ElementSet& elements,
                                                         const RigidBodies& rigid);
+  /// Distributed runs: wall time in the exchanges of the slots' results (waits for the other
+  /// ranks included; a part of the contact force phase), s.
+  double sharing_seconds() const;
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
   /// The engine of the current step (null without contact): its t = 0 candidate pairs feed
@@ -108,6 +117,9 @@ class ContactStage {
   /// The rigid bodies' nodes and masses of the current step to the engine (its bound on the
   /// springs that push a body).
   void set_rigid_bodies(const RigidBodies& rigid);
+  /// Distributed runs on more than one rank: the engine's slots shared out among the ranks
+  /// by the rank integrating each slave node (ContactEngine::share_slots()).
+  void share_slots();
   /// Initial overclosures of a newly built engine (SPEC C2–C6): adjusts (step 1) or stores
   /// offsets (later step, import); with an engine of an earlier step, carries its offsets
   /// over instead.
@@ -130,6 +142,8 @@ class ContactStage {
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
   std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
   const DistributedRun* m_run = nullptr;  ///< distributed runs only
+  bool m_shared = true;                   ///< set_distribution()
+  std::unique_ptr<contact::SlotSharing> m_sharing;  ///< share_slots(), its collectives
   /// Distributed runs: the nodes the engine reads (its slave nodes: every face node and the
   /// point nodes), ascending, and the run's positions and half-step velocities of them.
   std::vector<Index> m_shared_nodes;

@@ -2,10 +2,94 @@
 // described from the deck's *CONTACT and *CONTACT PAIR definitions, the engine built on it, and
 // the t = 0 candidate pairs of a distributed run's partition.
 #include <algorithm>
+#include <chrono>
 
+#include "solver/distributed_run.hpp"
 #include "solver/forces/contact_stage.hpp"
 
 namespace xpl {
+
+namespace {
+
+/// The slot rows of the ranks of a distributed run, gathered in rank order. Without the
+/// counts, one collective where it can: each rank sends a block of a capacity every rank
+/// knows, its count first (the rows padded, or nothing but the count when they do not fit);
+/// only when some rank's rows do not fit does a second gather follow, with the counts the
+/// first gave, and the capacity grows to twice the largest count.
+class RankSlotSharing final : public contact::SlotSharing {
+ public:
+  explicit RankSlotSharing(const DistributedRun& run) : m_run(run) {}
+  std::vector<Real> gather(const std::vector<Real>& mine, std::vector<int>& counts,
+                           bool counts_known) override {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<Real> all =
+        counts_known ? m_run.allgather(mine, counts, true) : gather_found(mine, counts);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return all;
+  }
+  double seconds = 0.0;  ///< in gather(), waits for the other ranks included
+
+ private:
+  std::vector<Real> gather_found(const std::vector<Real>& mine, std::vector<int>& counts) {
+    const auto block = static_cast<std::size_t>(m_capacity) + 1;
+    std::vector<Real> padded(block, 0.0);
+    padded[0] = static_cast<Real>(mine.size());
+    if (mine.size() <= static_cast<std::size_t>(m_capacity))
+      std::copy(mine.begin(), mine.end(), padded.begin() + 1);
+    std::vector<int> blocks(static_cast<std::size_t>(m_run.size()), static_cast<int>(block));
+    const std::vector<Real> gathered = m_run.allgather(padded, blocks, true);
+    counts.assign(blocks.size(), 0);
+    int largest = 0;
+    for (std::size_t r = 0; r < blocks.size(); ++r) {
+      counts[r] = static_cast<int>(gathered[r * block]);
+      largest = std::max(largest, counts[r]);
+    }
+    if (largest > m_capacity) {
+      m_capacity = 2 * largest;
+      return m_run.allgather(mine, counts, true);
+    }
+    std::vector<Real> all;
+    for (std::size_t r = 0; r < blocks.size(); ++r) {
+      const auto first = gathered.begin() + static_cast<std::ptrdiff_t>(r * block + 1);
+      all.insert(all.end(), first, first + counts[r]);
+    }
+    return all;
+  }
+
+  const DistributedRun& m_run;
+  int m_capacity = 1024;  ///< values per rank the one-collective gather carries
+};
+
+}  // namespace
+
+void ContactStage::share_slots() {
+  if (m_run->size() < 2) return;
+  const std::string ranks = std::to_string(m_run->size()) + " ranks";
+  if (!m_shared) {
+    m_sink.message(Severity::Info, "mpi: contact: every rank runs the whole contact pass of the " +
+                                       ranks + " (--contact-redundant)");
+    return;
+  }
+  const contact::SlaveNodes& slaves = m_engine->domain().slaves();
+  std::vector<char> owned(static_cast<std::size_t>(slaves.size()), 0);
+  Index mine = 0;
+  for (Index s = 0; s < slaves.size(); ++s) {
+    owned[s] = m_run->row_source(slaves.nodes()[s]) == m_run->rank() ? 1 : 0;
+    mine += owned[s];
+  }
+  m_sink.message(Severity::Info,
+                 "mpi: contact shared out among the " + ranks +
+                     ": each searches and computes the springs of the slave nodes it integrates "
+                     "(rank 0: " +
+                     std::to_string(mine) + " of " + std::to_string(slaves.size()) +
+                     "), the results exchanged and assembled in the one-rank order");
+  if (!m_sharing) m_sharing = std::make_unique<RankSlotSharing>(*m_run);
+  m_engine->share_slots(std::move(owned), m_sharing.get());
+}
+
+double ContactStage::sharing_seconds() const {
+  return m_sharing ? static_cast<const RankSlotSharing&>(*m_sharing).seconds : 0.0;
+}
 
 std::vector<std::pair<Index, Index>> ContactStage::start_candidates(const NodalVectors& position,
                                                                     const ElementSet& elements,

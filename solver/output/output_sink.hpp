@@ -109,6 +109,9 @@ struct DistributionSummary {
     Index interface_nodes = 0;  ///< its nodes that other ranks use too
     Index neighbours = 0;       ///< ranks it exchanges interface forces with
     double time_loop = 0.0, compute = 0.0, exchange = 0.0, wait = 0.0, output = 0.0;
+    /// Its contact phases (whole run, Phase::ContactSearch and ContactForce), and the part of
+    /// the force phase spent exchanging the slots' results (waits included), s.
+    double contact_search = 0.0, contact_force = 0.0, contact_exchange = 0.0;
   };
   std::string method;          ///< the partitioner ("METIS", "bisection")
   Real imbalance = 1.0;        ///< largest part weight over the mean

@@ -5,6 +5,7 @@
 energies included). Only in the XPL_MPI=ON build (ctest label mpi).
 
 Usage: mpi_bitwise.py XPL DECK OUT_DIR [--ranks 2,3] [--threads 1,2] [--time-period T]
+                      [--run-option=OPTION]... [--msg-has TEXT]...
        mpi_bitwise.py XPL DECK OUT_DIR --refused TEXT   (the deck must be refused on 2 ranks
                                                           with TEXT in the message)
        mpi_bitwise.py XPL DECK OUT_DIR --blocked-output (an error of rank 0 alone must end
@@ -109,6 +110,10 @@ def main():
                         help="rank 0 cannot write JOB.xdmf: every rank must end, none hang")
     parser.add_argument("--import-state", default=None,
                         help="with --refused: run with --import of this result file")
+    parser.add_argument("--run-option", action="append", default=[],
+                        help="an option of the N-rank runs, e.g. --run-option=--contact-redundant")
+    parser.add_argument("--msg-has", action="append", default=[],
+                        help="a text each N-rank run's JOB.msg must hold")
     args = parser.parse_args()
     out = pathlib.Path(args.out)
     shutil.rmtree(out, ignore_errors=True)
@@ -163,7 +168,8 @@ def main():
         for threads in [int(t) for t in args.threads.split(",")]:
             case = out / f"np{ranks}_t{threads}"
             code, text = run(mpirun(ranks) + [args.xpl, "run", args.deck, "-o", str(case),
-                                              "--quiet", "--threads", str(threads)], out)
+                                              "--quiet", "--threads", str(threads)]
+                             + args.run_option, out)
             if code is None:
                 print(f"{ranks} ranks x {threads} threads: hung; the runs after it were not made:\n{text}")
                 return 1
@@ -172,6 +178,10 @@ def main():
                 failures += 1
                 continue
             msg = (case / f"{job}.msg").read_text()
+            for expected in args.msg_has:
+                if expected not in msg:
+                    print(f"{ranks} ranks x {threads} threads: '{expected}' not in {job}.msg")
+                    failures += 1
             if f"mpi: {ranks} ranks, distributed time loop" not in msg:
                 print(f"{ranks} ranks x {threads} threads: the .msg does not report a distributed run")
                 failures += 1

@@ -1,0 +1,209 @@
+// The exchanges of ContactEngine::share_slots() (contact_engine.hpp, slot_sharing.hpp): each
+// process packs the results of the slots it owns, one row per slot whose row is not all zero
+// bits (a slot that touches nothing and released nothing sends nothing), the rows of every
+// process are gathered, and each process writes the others' rows into its per-slot arrays.
+// Rows carry the values bit for bit, so that the assembly and the sums that follow, over all
+// slots in slot order, are the one-process ones.
+#include <bit>
+#include <cstdint>
+
+#include "contact/contact_engine.hpp"
+
+namespace xpl::contact {
+
+namespace {
+
+constexpr int TOUCH_WIDTH = 13;
+/// share_springs(): two touches, three depths, the event face, two counted stiffnesses, and
+/// whether the slot's interference ramps (so that a slot touching nothing sends its row).
+constexpr int SPRING_WIDTH = 2 * TOUCH_WIDTH + 7;
+/// share_forces(): two slave forces, two normal forces, two dissipations, the stored energy,
+/// the ramp's work, the status, two user stiffnesses and their laws, two friction forces and
+/// the contact normal.
+constexpr int FORCE_WIDTH = 26;
+
+/// An index as a row value: NO_INDEX is 0.
+Real index_value(Index i) {
+  return static_cast<Real>(i + 1);
+}
+Index value_index(Real v) {
+  return static_cast<Index>(v) - 1;
+}
+
+void put_touch(const SlaveTouch& t, Real* row) {
+  row[0] = index_value(t.face);
+  row[1] = index_value(t.pair);
+  row[2] = t.weight;
+  row[3] = t.gap;
+  for (int d = 0; d < 3; ++d) row[4 + d] = t.normal[d];
+  for (int a = 0; a < 4; ++a) row[7 + a] = t.shape[a];
+  row[11] = t.xi;
+  row[12] = t.eta;
+}
+
+SlaveTouch get_touch(const Real* row) {
+  SlaveTouch t;
+  t.face = value_index(row[0]);
+  if (t.face == NO_INDEX) return t;
+  t.pair = value_index(row[1]);
+  t.weight = row[2];
+  t.gap = row[3];
+  for (int d = 0; d < 3; ++d) t.normal[d] = row[4 + d];
+  for (int a = 0; a < 4; ++a) t.shape[a] = row[7 + a];
+  t.xi = row[11];
+  t.eta = row[12];
+  return t;
+}
+
+void put_vector(const Vec3& v, Real* row) {
+  for (int d = 0; d < 3; ++d) row[d] = v[d];
+}
+
+Vec3 get_vector(const Real* row) {
+  return Vec3(row[0], row[1], row[2]);
+}
+
+/// Appends slot s and its row to `out` unless every value of the row is +0; whether it did.
+bool append_row(Index s, const Real* row, int width, std::vector<Real>& out) {
+  bool any = false;
+  for (int k = 0; k < width && !any; ++k) any = std::bit_cast<std::uint64_t>(row[k]) != 0;
+  if (!any) return false;
+  out.push_back(static_cast<Real>(s));
+  out.insert(out.end(), row, row + width);
+  return true;
+}
+
+/// Calls take(s, row) for every row of `all` (slot, then `width` values) of a slot `owned`
+/// does not mark, after take(s, zeros) for every slot of `received` (the last exchange's),
+/// which it then lists anew.
+template <class Take>
+void take_rows(const std::vector<Real>& all, int width, const std::vector<char>& owned,
+               std::vector<Index>& received, Take take) {
+  const std::vector<Real> zeros(static_cast<std::size_t>(width), 0.0);
+  for (const Index s : received) take(s, zeros.data());
+  received.clear();
+  for (std::size_t k = 0; k < all.size(); k += 1 + static_cast<std::size_t>(width)) {
+    const auto s = static_cast<Index>(all[k]);
+    if (owned[s] != 0) continue;
+    take(s, &all[k + 1]);
+    received.push_back(s);
+  }
+}
+
+}  // namespace
+
+void ContactEngine::share_slots(std::vector<char> owned, SlotSharing* sharing) {
+  m_owned = std::move(owned);
+  m_sharing = sharing;
+  // Whatever the whole passes before left in the other processes' slots is reset at the
+  // first exchanges.
+  m_received_springs.clear();
+  if (m_sharing != nullptr)
+    for (Index s = 0; s < m_domain.slaves().size(); ++s)
+      if (m_owned[s] == 0) m_received_springs.push_back(s);
+  m_received_forces = m_received_springs;
+}
+
+void ContactEngine::share_springs() {
+  std::vector<Real> mine;
+  m_sent.clear();
+  Real row[SPRING_WIDTH];
+  const bool ramps = !m_interference.empty();
+  for (Index s = 0; s < m_domain.slaves().size(); ++s) {
+    if (m_owned[s] == 0) continue;
+    // Most slots touch nothing: their row would be zero (no touch: no counted spring).
+    if (m_touch[s].face == NO_INDEX && m_second_touch[s].face == NO_INDEX &&
+        !(m_lost_depth[s] != 0.0 || m_passed_depth[s] != 0.0 || m_behind_depth[s] != 0.0) &&
+        !(ramps && m_interference[s].amount > 0.0) && m_event_face[s] == NO_INDEX)
+      continue;
+    put_touch(m_touch[s], row);
+    put_touch(m_second_touch[s], row + TOUCH_WIDTH);
+    Real* r = row + 2 * TOUCH_WIDTH;
+    r[0] = m_lost_depth[s];
+    r[1] = m_passed_depth[s];
+    r[2] = m_behind_depth[s];
+    r[3] = index_value(m_event_face[s]);
+    // The default springs cap_default_springs() counts in its sums (their stiffness).
+    for (int side = 0; side < 2; ++side) {
+      const Spring& spring = m_spring[2 * s + side];
+      const bool counted = spring.k > 0.0 && spring.acts && !(spring.law.pressure_slope > 0.0);
+      r[4 + side] = counted ? spring.k : 0.0;
+    }
+    r[6] = ramps && m_interference[s].amount > 0.0 ? 1.0 : 0.0;
+    if (append_row(s, row, SPRING_WIDTH, mine)) m_sent.push_back(s);
+  }
+  const std::vector<Real> all = m_sharing->gather(mine, m_counts, false);
+  take_rows(all, SPRING_WIDTH, m_owned, m_received_springs, [&](Index s, const Real* row) {
+    m_touch[s] = get_touch(row);
+    m_second_touch[s] = get_touch(row + TOUCH_WIDTH);
+    const Real* r = row + 2 * TOUCH_WIDTH;
+    m_lost_depth[s] = r[0];
+    m_passed_depth[s] = r[1];
+    m_behind_depth[s] = r[2];
+    m_event_face[s] = value_index(r[3]);
+    for (int side = 0; side < 2; ++side) {
+      Spring& spring = m_spring[2 * s + side];
+      spring = Spring{};
+      spring.k = r[4 + side];
+      spring.acts = spring.k > 0.0;
+    }
+  });
+}
+
+void ContactEngine::share_forces() {
+  std::vector<Real> mine;
+  Real row[FORCE_WIDTH];
+  const bool ramps = !m_interference.empty();
+  // The slots share_springs() sent: a slot whose springs row was zero touches nothing and
+  // ramps nothing, so its forces row is zero too; each process's count is then known.
+  for (const Index s : m_sent) {
+    const bool first = m_touch[s].face != NO_INDEX, second = m_second_touch[s].face != NO_INDEX;
+    for (int d = 0; d < 3; ++d) {
+      row[d] = m_slave_force[3 * s + d];
+      row[3 + d] = m_second_force[3 * s + d];
+    }
+    row[6] = m_normal_force[s];
+    row[7] = second ? m_second_normal_force[s] : 0.0;  // read only with a second touch
+    row[8] = m_dissipation[s];
+    row[9] = m_second_dissipation[s];
+    row[10] = m_stored[s];
+    row[11] = ramps ? m_ramp_work[s] : 0.0;
+    row[12] = static_cast<Real>(static_cast<int>(m_output_status[s]));
+    for (int side = 0; side < 2; ++side) {
+      const bool user = m_user_stiffness && m_user_k[2 * s + side] > 0.0;
+      row[13 + side] = user ? m_user_k[2 * s + side] : 0.0;
+      row[15 + side] = user ? index_value(m_user_law[2 * s + side]) : 0.0;
+    }
+    put_vector(m_constraints[s].tangential_force, row + 17);
+    put_vector(m_second[s].tangential_force, row + 20);
+    // The contact normal of a touching slot (a point node's output direction).
+    put_vector(first ? m_constraints[s].normal : Vec3::Zero(), row + 23);
+    mine.push_back(static_cast<Real>(s));
+    mine.insert(mine.end(), row, row + FORCE_WIDTH);
+  }
+  for (int& count : m_counts) count = count / (1 + SPRING_WIDTH) * (1 + FORCE_WIDTH);
+  const std::vector<Real> all = m_sharing->gather(mine, m_counts, true);
+  take_rows(all, FORCE_WIDTH, m_owned, m_received_forces, [&](Index s, const Real* r) {
+    for (int d = 0; d < 3; ++d) {
+      m_slave_force[3 * s + d] = r[d];
+      m_second_force[3 * s + d] = r[3 + d];
+    }
+    m_normal_force[s] = r[6];
+    m_second_normal_force[s] = r[7];
+    m_dissipation[s] = r[8];
+    m_second_dissipation[s] = r[9];
+    m_stored[s] = r[10];
+    if (ramps) m_ramp_work[s] = r[11];
+    m_output_status[s] = static_cast<OutputStatus>(static_cast<int>(r[12]));
+    if (m_user_stiffness)
+      for (int side = 0; side < 2; ++side) {
+        m_user_k[2 * s + side] = r[13 + side];
+        m_user_law[2 * s + side] = value_index(r[15 + side]);
+      }
+    m_constraints[s].tangential_force = get_vector(r + 17);
+    m_second[s].tangential_force = get_vector(r + 20);
+    m_constraints[s].normal = get_vector(r + 23);
+  });
+}
+
+}  // namespace xpl::contact
