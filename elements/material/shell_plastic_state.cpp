@@ -2,6 +2,7 @@
 /// copy each, and the per-point arrays) and its accessors; the return is in shell_plasticity.cpp.
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <utility>
 
@@ -51,9 +52,31 @@ ShellPlasticState::ShellPlasticState(std::span<const Plasticity* const> lane_law
   }
   m_lane_linear.assign(lane_law.size(), 0);
   const std::size_t n = n_batches * static_cast<std::size_t>(points) * W;
-  m_segment.assign(n, 0);
   m_peeq.assign(n, 0.0);
-  m_yield.assign(n, std::numeric_limits<Real>::infinity());
+  // Batches perfectly plastic at one yield stress in every lane (padding lanes carry lane 0's
+  // law) need no yield stress or segment rows; the arrays exist when another batch needs them.
+  m_constant_yield.assign(n_batches, std::numeric_limits<Real>::quiet_NaN());
+  bool rows = false;
+  for (std::size_t b = 0; b < n_batches; ++b) {
+    Real constant = std::numeric_limits<Real>::quiet_NaN();
+    for (std::size_t l = 0; l < W; ++l) {
+      const int law = m_lane_law[b * W + l];
+      const Plasticity* p = law < 0 ? nullptr : &m_laws[static_cast<std::size_t>(law)];
+      const bool perfect = p != nullptr && p->hardening == Hardening::Tabular &&
+                           p->rate == RateDependence::None && p->yield_stress.size() == 1;
+      if (!perfect || (l > 0 && !(p->yield_stress[0] == constant))) {
+        constant = std::numeric_limits<Real>::quiet_NaN();
+        break;
+      }
+      constant = p->yield_stress[0];
+    }
+    m_constant_yield[b] = constant;
+    rows |= m_batch_plastic[b] != 0 && std::isnan(constant);
+  }
+  if (rows) {
+    m_segment.assign(n, 0);
+    m_yield.assign(n, std::numeric_limits<Real>::infinity());
+  }
   for (std::size_t b = 0; b < n_batches; ++b)
     for (std::size_t l = 0; l < W; ++l) {
       const int law = m_lane_law[b * W + l];
@@ -61,6 +84,7 @@ ShellPlasticState::ShellPlasticState(std::span<const Plasticity* const> lane_law
       const Plasticity& p = m_laws[static_cast<std::size_t>(law)];
       if (p.hardening == Hardening::Tabular && p.rate == RateDependence::None)
         m_lane_linear[b * W + l] = -1;
+      if (!rows) continue;
       const Real y = p.initial_yield();
       for (int k = 0; k < points; ++k) {
         m_yield[row(b, k) + l] = y;

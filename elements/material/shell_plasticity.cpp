@@ -339,6 +339,7 @@ void ShellPlasticState::set_peeq(std::size_t b, int k, std::size_t l, Real value
   if (empty() || m_lane_law[b * W + l] < 0) return;
   const Plasticity& law = m_laws[static_cast<std::size_t>(m_lane_law[b * W + l])];
   m_peeq[row(b, k) + l] = value;
+  if (batch_constant(b)) return;  // σ_y does not follow ε̄ᵖ, and the batch has no rows
   m_yield[row(b, k) + l] = flow_stress(law, value, 0.0).stress;
   if (law.hardening == Hardening::Tabular)
     m_segment[row(b, k) + l] =

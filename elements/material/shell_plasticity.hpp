@@ -16,7 +16,9 @@
 /// The transverse shear stresses stay elastic (as in Belytschko–Tsay codes): they are not
 /// part of the yield condition.
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -124,6 +126,11 @@ class ShellPlasticState {
   bool empty() const { return m_laws.empty(); }
   /// Whether any lane of batch b is plastic.
   bool batch_plastic(std::size_t b) const { return !empty() && m_batch_plastic[b] != 0; }
+  /// Whether the lanes of batch b are all perfectly plastic at one yield stress (rate-free
+  /// tables of one point: a segment of slope 0 that never ends). Their points keep ε̄ᵖ alone:
+  /// no stored yield stress, no segment index (issue 38 item 1: a third of the bytes a
+  /// yielding batch read and wrote).
+  bool batch_constant(std::size_t b) const { return !std::isnan(m_constant_yield[b]); }
 
   /// Plane-stress return of section point k of batch b, in place on the trial stresses
   /// (Pa) of the increment from the stresses `start` (σxx, σyy, σxy at t_n, Pa): one SIMD
@@ -147,7 +154,9 @@ class ShellPlasticState {
 
   /// σ_y(ε̄ᵖ, 0) (Pa) of section point k of batch b per lane after its last return (the next
   /// trial's yield test); +inf in elastic lanes.
-  simd::Vec static_yield(std::size_t b, int k) const { return simd::load(&m_yield[row(b, k)]); }
+  simd::Vec static_yield(std::size_t b, int k) const {
+    return batch_constant(b) ? simd::splat(m_constant_yield[b]) : simd::load(&m_yield[row(b, k)]);
+  }
   /// ε̄ᵖ (-) of section point k of batch b, lane l; 0 where elastic.
   Real peeq(std::size_t b, int k, std::size_t l) const;
   /// Sets ε̄ᵖ (≥ 0) of section point k of batch b, lane l (an imported state); the static
@@ -175,12 +184,17 @@ class ShellPlasticState {
   std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, −1 elastic
   std::vector<unsigned char> m_batch_plastic;  ///< [b] any lane plastic
   std::vector<Real> m_peeq;                    ///< [b][points][W] ε̄ᵖ, -
-  std::vector<Real> m_yield;  ///< [b][points][W] σ_y(ε̄ᵖ, 0), Pa; +inf elastic
+  /// [b] σ_y (Pa) of the batches whose lanes are all perfectly plastic at it (batch_constant);
+  /// NaN in the others.
+  std::vector<Real> m_constant_yield;
+  /// [b][points][W] σ_y(ε̄ᵖ, 0), Pa; +inf elastic. Empty when every plastic batch is
+  /// batch_constant (its rows unused: the other batches' are all the arrays below need).
+  std::vector<Real> m_yield;
   /// [b][W] −1 where the lane's law is a rate-free table (its flow stress piecewise linear in
   /// ε̄ᵖ: the polynomial return), else 0.
   std::vector<std::int64_t> m_lane_linear;
-  /// [b][points][W] tabular laws: index into the segment table of the segment holding ε̄ᵖ
-  /// (the last point ε_i ≤ ε̄ᵖ), kept up as ε̄ᵖ grows so that a return does not search the
+  /// [b][points][W] (empty with m_yield) tabular laws: index into the segment table of the segment
+  /// holding ε̄ᵖ (the last point ε_i ≤ ε̄ᵖ), kept up as ε̄ᵖ grows so that a return does not search the
   /// table; 0 (a segment of slope 0 that never ends) for the other laws.
   std::vector<Index> m_segment;
   /// The segments of the tabular laws one after the other, after the entry 0 above: slope
@@ -195,7 +209,10 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
     simd::Vec& thickness_strain, simd::Vec* flow, simd::Vec* tangent, bool* yielded) {
   using simd::Vec;
   const std::size_t r = row(b, k);
-  const Vec y = simd::load(&m_yield[r]);
+  // Perfectly plastic batches (the common case of crash decks) read no state but ε̄ᵖ, and that
+  // only where a lane yields.
+  const bool constant = batch_constant(b);
+  const Vec y = constant ? simd::splat(m_constant_yield[b]) : simd::load(&m_yield[r]);
   const Vec vm2 = sxx * sxx - sxx * syy + syy * syy + 3.0 * (sxy * sxy);
   const simd::Mask yielding = simd::greater(vm2, (y * y) * (1.0 + SHELL_YIELD_TOLERANCE));
   Vec dissipation = simd::splat(0.0);
@@ -208,12 +225,15 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
   const Vec trial[3] = {sxx - start[0], syy - start[1], sxy - start[2]};
   // Rate-free tables on the segment of ε̄ᵖ_n: σ_y = y + slope Δε̄ᵖ (y = σ_y(ε̄ᵖ_n), kept up
   // by the returns) up to ε̄ᵖ = end, slope and end from the segment table.
-  const simd::Mask linear = simd::load_mask(&m_lane_linear[b * W]) & yielding;
-  const Index* segment = &m_segment[r];
+  const simd::Mask linear = constant ? yielding : simd::load_mask(&m_lane_linear[b * W]) & yielding;
+  const Index* segment = constant ? nullptr : &m_segment[r];
   Vec slope, end;
   bool uniform = true;  // the lanes on one segment (one law on one part of it): no gather
-  for (std::size_t l = 1; l < W; ++l) uniform &= segment[l] == segment[0];
-  if (uniform) [[likely]] {
+  for (std::size_t l = 1; l < W && !constant; ++l) uniform &= segment[l] == segment[0];
+  if (constant) [[likely]] {
+    slope = simd::splat(0.0);
+    end = simd::splat(std::numeric_limits<Real>::infinity());
+  } else if (uniform) [[likely]] {
     slope = simd::splat(m_segment_slope[static_cast<std::size_t>(segment[0])]);
     end = simd::splat(m_segment_end[static_cast<std::size_t>(segment[0])]);
   } else {
@@ -245,7 +265,7 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
   // The next trial's test: σ_y(ε̄ᵖ_{n+1}, 0), the end yield stress itself without a rate law
   // (finish_point takes the rate factor out where there is one).
   const Vec end_yield = simd::select(yielding, ret.yield, y);
-  simd::store(&m_yield[r], end_yield);
+  if (!constant) simd::store(&m_yield[r], end_yield);
   if (flow != nullptr) *flow = end_yield;
   if (tangent != nullptr) {
     const Vec along = von_mises_product(sxx - start[0], syy - start[1], sxy - start[2], trial[0],
@@ -257,6 +277,7 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
                   simd::splat(1.0));
     *tangent = simd::select(yielding & simd::greater(trial2, 0.0), ratio, simd::splat(1.0));
   }
+  if (constant) return dissipation;  // every lane linear, on a segment that never ends
   const simd::Mask other = yielding & ~linear;
   const simd::Mask passed = linear & simd::greater_equal(peeq_end, end);
   if (simd::any(other | passed)) [[unlikely]]

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "elements/material/shell_plasticity.hpp"
@@ -183,6 +184,60 @@ TEST_CASE("shell plastic state: one SIMD test, the return only in yielding plast
     CHECK_FALSE(empty.batch_plastic(0));
     CHECK(empty.peeq(0, 0, 0) == 0.0);
   }
+}
+
+TEST_CASE(
+    "shell plastic state: a perfectly plastic batch keeps only its plastic strain and returns "
+    "bitwise as a batch with stored yield stresses",
+    "[elements][plasticity][shell]") {
+  // Issue 38 item 1: batches perfectly plastic at one yield stress in every lane read and write
+  // no yield stress or segment rows. Batch 0 is one (and a block of such batches has no rows at
+  // all); batch 1 has the same law in lanes 0–6 and a hardening law in lane 7, so it keeps the
+  // rows. Lanes 0–6 of both batches, given the same trials, must agree to the bit.
+  const Plasticity perfect = perfectly_plastic(), other_perfect = perfectly_plastic(),
+                   hardening = linear_hardening();
+  std::vector<const Plasticity*> lanes(2 * simd::W, &perfect);
+  lanes[simd::W + 1] = &other_perfect;  // a second copy of the same law is the same
+  lanes[2 * simd::W - 1] = &hardening;
+  constexpr int POINTS = 2;
+  ShellPlasticState state(lanes, POINTS);
+  REQUIRE(state.batch_constant(0));
+  REQUIRE_FALSE(state.batch_constant(1));
+  CHECK(state.static_yield(0, 1)[3] == SY);
+  const ShellPlasticState all_perfect(std::span<const Plasticity* const>(lanes).first(simd::W),
+                                      POINTS);
+  CHECK(all_perfect.batch_constant(0));
+  std::mt19937 rng(381);
+  std::normal_distribution<Real> normal(0.0, 1.0);
+  simd::Vec stress[2][POINTS][3] = {};
+  int yielded = 0;
+  for (int increment = 0; increment < 200; ++increment)
+    for (int k = 0; k < POINTS; ++k) {
+      simd::Vec strain[3];
+      for (simd::Vec& e : strain)
+        for (std::size_t l = 0; l < simd::W; ++l) e[l] = 4e-4 * normal(rng);
+      simd::Vec work[2], thick[2] = {simd::splat(0.0), simd::splat(0.0)};
+      for (std::size_t b = 0; b < 2; ++b) {
+        simd::Vec* s = stress[b][k];
+        const simd::Vec start[3] = {s[0], s[1], s[2]};
+        s[0] = start[0] + Q11 * strain[0] + Q12 * strain[1];
+        s[1] = start[1] + Q12 * strain[0] + Q11 * strain[1];
+        s[2] = start[2] + G * strain[2];
+        work[b] = state.point_return(b, k, simd::splat(Q11), simd::splat(Q12), simd::splat(G), 1e-6,
+                                     simd::splat(0.5), start, s[0], s[1], s[2], thick[b]);
+      }
+      for (std::size_t l = 0; l + 1 < simd::W; ++l) {
+        INFO("increment " << increment << " point " << k << " lane " << l);
+        for (int c = 0; c < 3; ++c) REQUIRE(stress[0][k][c][l] == stress[1][k][c][l]);
+        REQUIRE(state.peeq(0, k, l) == state.peeq(1, k, l));
+        REQUIRE(work[0][l] == work[1][l]);
+        REQUIRE(thick[0][l] == thick[1][l]);
+        yielded += work[0][l] > 0.0;
+      }
+    }
+  CHECK(yielded > 1000);  // most increments yield
+  CHECK(std::sqrt(mises2(stress[0][1][0][2], stress[0][1][1][2], stress[0][1][2][2])) <=
+        SY * (1.0 + 1e-12));
 }
 
 TEST_CASE(
