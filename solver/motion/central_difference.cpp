@@ -271,7 +271,7 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
       sums.kinetic += bodies.kinetic;
       sums.work = bodies.work;
     }
-    m_motion.finish(translation, rotation, inc, bodies.jumps, m_previous_force, rows, sums);
+    m_motion.finish(inc, bodies.jumps, m_previous_force, rows, sums);
   }
   if (tied) {  // slaves after their masters (prescribed and rigid too)
     if (m_share_tie_motion) {

@@ -111,7 +111,7 @@ void PrescribedMotion::update(State& state, const NodalField& translation,
                               NodalSums& sums) {
   book_jumps(rigid_jumps, sums);
   update_prescribed(state, translation, rotation, inc, previous_force, sums, nullptr);
-  end_update(translation, rotation, inc, rigid_jumps, previous_force, sums);
+  end_update(inc, rigid_jumps, previous_force, sums);
 }
 
 std::vector<Real> PrescribedMotion::prescribe(State& state, const NodalField& translation,
@@ -123,13 +123,12 @@ std::vector<Real> PrescribedMotion::prescribe(State& state, const NodalField& tr
   return rows;
 }
 
-void PrescribedMotion::finish(const NodalField& translation, const NodalField& rotation,
-                              const NodalIncrement& inc, const RigidJumps& rigid_jumps,
+void PrescribedMotion::finish(const NodalIncrement& inc, const RigidJumps& rigid_jumps,
                               NodalVectors& previous_force, const std::vector<Real>& all,
                               NodalSums& sums) {
   book_jumps(rigid_jumps, sums);
   fold_rows(all, inc, sums);
-  end_update(translation, rotation, inc, rigid_jumps, previous_force, sums);
+  end_update(inc, rigid_jumps, previous_force, sums);
 }
 
 void PrescribedMotion::book_jumps(const RigidJumps& rigid_jumps, NodalSums& sums) {
@@ -147,13 +146,12 @@ void PrescribedMotion::book_jumps(const RigidJumps& rigid_jumps, NodalSums& sums
   }
 }
 
-void PrescribedMotion::end_update(const NodalField& translation, const NodalField& rotation,
-                                  const NodalIncrement& inc, const RigidJumps& rigid_jumps,
+void PrescribedMotion::end_update(const NodalIncrement& inc, const RigidJumps& rigid_jumps,
                                   NodalVectors& previous_force, NodalSums& sums) {
   // The DOFs that jumped pair the states before and after the jump, not the mirror-time
   // velocity: their spread is no Δt(n+½)² a² and takes no part in the increment shift.
   sums.jump_spread = rigid_jumps.spread;
-  if (!m_jumps.empty()) count_jump_work(translation, rotation, inc, previous_force, sums);
+  if (!m_jumps.empty()) count_jump_work(inc, previous_force, sums);
   m_first_update = false;
 }
 
@@ -189,8 +187,7 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     const Real v_new = velocity_half(d, current, inc);
     Real& f_before = (turn ? m_previous_moment : previous_force)(i, c);
     const bool count = m_counted.empty() || m_counted[i] != 0;
-    if (m_first_update && count && v_new != v_old && is_jump(d, inc, v_old, v_new))
-      m_jumps.push_back({k, f_before});
+    const bool jump = m_first_update && count && v_new != v_old && is_jump(d, inc, v_old, v_new);
     const Real m = field.mass[i];
     // ALLKE: what the free update counted for the DOF, replaced by the prescribed motion's.
     const Real v_free = field.velocity_half[at];
@@ -216,12 +213,14 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
     field.velocity_half[at] = v_new;
     field.velocity[at] = v_whole;
     const Real f_now = f_ext + r;
+    const Real f_internal = field.force_internal[at];
     if (rows != nullptr) {
       if (count)
         rows->insert(rows->end(), {static_cast<Real>(k), m, free_before, v_free, new_before, v_new,
-                                   f_before, f_now, v_old});
+                                   f_before, f_now, v_old, jump ? 1.0 : 0.0, f_internal});
     } else {
       sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
+      if (jump) m_jumps.push_back({k, m, v_old, v_new, f_before, f_now, f_internal});
     }
     f_before = f_now;
   }
@@ -231,26 +230,29 @@ void PrescribedMotion::update_prescribed(State& state, const NodalField& transla
 }
 
 void PrescribedMotion::fold_rows(const std::vector<Real>& all, const NodalIncrement& inc,
-                                 NodalSums& sums) const {
+                                 NodalSums& sums) {
   // Every rank's DOFs, folded in DOF order as update_prescribed() does on one rank.
   KineticSums counted, kinetic;
   std::vector<const Real*> by_dof(m_prescribed.size(), nullptr);
   for (std::size_t r = 0; r + FOLD_WIDTH <= all.size(); r += FOLD_WIDTH)
     by_dof[static_cast<std::size_t>(all[r])] = &all[r + 1];
-  for (const Real* d : by_dof) {
+  for (std::size_t k = 0; k < by_dof.size(); ++k) {
+    const Real* d = by_dof[k];
     if (d == nullptr) continue;
     const Real m = d[0], free_before = d[1], v_free = d[2], new_before = d[3], v_new = d[4];
     const Real f_before = d[5], f_now = d[6], v_old = d[7];
     counted.add(m, free_before, v_free);
     kinetic.add(m, new_before, v_new);
     sums.work += 0.5 * (f_before + f_now) * inc.dt_prev * v_old;
+    // Every rank books every jump (the counting rank alone finds it): the same work, the
+    // same pending half and the same warning on all.
+    if (d[8] != 0.0) m_jumps.push_back({k, m, v_old, v_new, f_before, f_now, d[9]});
   }
   kinetic -= counted;
   sums.kinetic += kinetic;
 }
 
-void PrescribedMotion::count_jump_work(const NodalField& translation, const NodalField& rotation,
-                                       const NodalIncrement& inc, NodalVectors& previous_force,
+void PrescribedMotion::count_jump_work(const NodalIncrement& inc, NodalVectors& previous_force,
                                        NodalSums& sums) {
   // The BC's force at a jump is the impulse J = m (v_new - v_old) plus the internal force the
   // node passes on to the elements. The impulse does J (v_old + v_new) / 2 = ½m(v_new² -
@@ -262,32 +264,26 @@ void PrescribedMotion::count_jump_work(const NodalField& translation, const Noda
   // J by (dt_prev v_old + dt_next v_new) / 2 over dt_avg: off by ¼ m (v_new - v_old)²
   // (dt_next - dt_prev) / dt_avg, ½mΔv² at t = 0. Its term is replaced; the internal force
   // keeps the trapezoidal rule, the impulse leaves f_before.
-  const Index n = m_model.node_count();
   KineticSums counted, paired;
   for (const PendingJump& j : m_jumps) {
     const PrescribedDof& d = m_prescribed[j.dof];
     const bool turn = d.component >= 3;
     const int c = d.component % 3;
-    const NodalField& field = turn ? rotation : translation;
-    const Index at = c * n + d.node;
-    const Real m = field.mass[d.node];
-    const Real v_old = m_v_old_prescribed[j.dof];
-    const Real v_new = field.velocity_half[at];
+    const Real m = j.mass, v_old = j.v_old, v_new = j.v_new;
     counted.add(m, v_old + inc.w_before * (v_new - v_old), v_new);
     const Real after = inc.dt_prev > 0.0 ? v_new : v_old;
     paired.add(m, v_old, after);
     sums.jump_spread += m * (after - v_old) * (after - v_old);
     const Real kinetic = 0.5 * m * v_old * after;
-    Real& f_before = (turn ? m_previous_moment : previous_force)(d.node, c);
-    const Real f_now = f_before;  // what update_prescribed stored: f_ext + reaction
-    const Real f_smooth = field.force_internal[at];
+    const Real f_now = j.f_now;  // what update_prescribed stored: f_ext + reaction
+    const Real f_smooth = j.f_internal;
     const Real trapezoid = 0.5 * (j.f_before + f_now) * inc.dt_prev * v_old;
     const Real smooth = 0.5 * (j.f_before + f_smooth) * inc.dt_prev * v_old;
     const Real now = kinetic - 0.5 * m * v_old * v_old;
     const Real later = 0.5 * m * v_new * v_new - kinetic;
     sums.work += (smooth + now) - trapezoid;
     m_jump_work_pending += later;
-    f_before = f_smooth;
+    (turn ? m_previous_moment : previous_force)(d.node, c) = f_smooth;
     ++m_jump.dofs;
     m_jump.energy += now + later;
     m_jump.largest = std::max(m_jump.largest, std::abs(v_new - v_old));

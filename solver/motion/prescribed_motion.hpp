@@ -45,9 +45,10 @@ class PrescribedMotion {
   void report_step(int step, OutputSink& sink) const;
   /// Distributed runs (distributed_run.hpp): what one prescribed DOF adds to the sums, as
   /// FOLD_WIDTH values (its index, mass, the velocities before and after of the counted and
-  /// of the prescribed motion, f_before, f_now, v_old): prescribe() gives the rank's rows,
-  /// finish() folds every rank's.
-  static constexpr int FOLD_WIDTH = 9;
+  /// of the prescribed motion, f_before, f_now, v_old, 1 if it jumps at this update else 0,
+  /// and its internal force): prescribe() gives the rank's rows, finish() folds every rank's,
+  /// the jumps' work too, so that every rank books every jump.
+  static constexpr int FOLD_WIDTH = 11;
   /// `counted`: 1 for the nodes whose DOFs this rank counts (exactly one rank counts each);
   /// `moved`: 1 for the nodes this rank moves (prescribe() leaves the others' DOFs alone).
   void set_distribution(std::vector<unsigned char> counted, std::vector<unsigned char> moved) {
@@ -87,18 +88,22 @@ class PrescribedMotion {
   std::vector<Real> prescribe(State& state, const NodalField& translation,
                               const NodalField& rotation, const NodalIncrement& inc,
                               NodalVectors& previous_force);
-  void finish(const NodalField& translation, const NodalField& rotation, const NodalIncrement& inc,
-              const RigidJumps& rigid_jumps, NodalVectors& previous_force,
-              const std::vector<Real>& all, NodalSums& sums);
+  void finish(const NodalIncrement& inc, const RigidJumps& rigid_jumps,
+              NodalVectors& previous_force, const std::vector<Real>& all, NodalSums& sums);
   /// A warning to the sink when the last update() met a jump of the prescribed motion, with
   /// the energy the impulse put in; then forgets the jump.
   void report_jump(int step, OutputSink& sink);
 
  private:
-  /// A prescribed DOF that jumps at this update, with f_before of the trapezoidal rule.
+  /// A prescribed DOF that jumps at this update, with what its work as an impulse reads.
   struct PendingJump {
     std::size_t dof;  ///< index into m_prescribed
+    Real mass;        ///< of its node, kg (or its rotary inertia)
+    Real v_old;       ///< v(n−½) before the jump
+    Real v_new;       ///< v(n+½) the BC sets
     Real f_before;    ///< its force at the previous increment, N or N m
+    Real f_now;       ///< f_ext + reaction of this increment
+    Real f_internal;  ///< its internal force, which keeps the trapezoidal rule
   };
   /// Velocities from the BCs at the prescribed DOFs (and, at the first update, the DOFs that
   /// jump with their previous force, into m_jumps), their reactions and work; adds to `sums`
@@ -111,21 +116,19 @@ class PrescribedMotion {
                          const NodalIncrement& inc, NodalVectors& previous_force, NodalSums& sums,
                          std::vector<Real>* rows);
   /// Distributed runs: every rank's rows (`all`) into `sums` in DOF order, as
-  /// update_prescribed() adds them on one rank.
-  void fold_rows(const std::vector<Real>& all, const NodalIncrement& inc, NodalSums& sums) const;
+  /// update_prescribed() adds them on one rank, and the DOFs that jump into m_jumps.
+  void fold_rows(const std::vector<Real>& all, const NodalIncrement& inc, NodalSums& sums);
   /// Before the prescribed DOFs: the pending work of the impulses and the bodies' jumps.
   void book_jumps(const RigidJumps& rigid_jumps, NodalSums& sums);
   /// After them: the jumps' spread and work; the update is no longer the step's first.
-  void end_update(const NodalField& translation, const NodalField& rotation,
-                  const NodalIncrement& inc, const RigidJumps& rigid_jumps,
+  void end_update(const NodalIncrement& inc, const RigidJumps& rigid_jumps,
                   NodalVectors& previous_force, NodalSums& sums);
   /// After update_prescribed: the work of the jumps in m_jumps counted as impulses (their
   /// trapezoidal term replaced), into `sums.work` and the pending work of the next increment;
   /// adds the correction of the kinetic sums (a DOF that jumps pairs its states before and
   /// after the jump; at t = 0 it counts its state before the jump) and the jumping DOFs'
   /// spread to `sums`.
-  void count_jump_work(const NodalField& translation, const NodalField& rotation,
-                       const NodalIncrement& inc, NodalVectors& previous_force, NodalSums& sums);
+  void count_jump_work(const NodalIncrement& inc, NodalVectors& previous_force, NodalSums& sums);
 
   const Model& m_model;
   const BoundaryState& m_boundary;
