@@ -111,6 +111,11 @@ bool read_import(const JobArguments& args, Model& model, InitialState& initial) 
   return true;
 }
 
+/// How long a rank that stopped on a SolverError waits for the others to stop too, s: they
+/// reach the same stop in the same increment and end within a second (rank 0 writes the
+/// files); a rank still stepping after this long will not stop there (every_rank_ends()).
+constexpr double RANKS_END_WITHIN = 20.0;
+
 /// A failure of this rank of a distributed run alone (its files, its memory): the solver's own
 /// stops (SolverError) come from reduced values and reach every rank together, but the other
 /// ranks would wait for this one in their next collective for ever, so the job ends here on
@@ -234,6 +239,10 @@ int run_job_unguarded(const JobArguments& args, volatile std::sig_atomic_t* stop
     // The solver records its own failures; one outside the time loop (the data check, the
     // setup) is recorded here, so the file never says less than the terminal.
     if (files) files->fail(e.what());
+    if (args.distributed && !DistributedRun::every_rank_ends(RANKS_END_WITHIN)) {
+      files.reset();  // closed before MPI_Abort, which runs no destructor
+      end_every_rank(args.rank, std::string(e.what()) + " (this rank alone stopped there)");
+    }
     std::cerr << "xpl: " << escape_control(e.what()) << "\n"
               << "xpl: the run stopped; frames written so far are in the results file, "
                  "which records the error\n";

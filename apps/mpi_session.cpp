@@ -1,5 +1,7 @@
 #include "mpi_session.hpp"
 
+#include "solver/distributed_run.hpp"
+
 #if XPL_HAVE_MPI
 #include <mpi.h>
 
@@ -35,6 +37,7 @@ MpiSession::MpiSession(int* argc, char*** argv) {
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &m_size);
+  DistributedRun::open_end_channel();
 }
 
 MpiSession::~MpiSession() {

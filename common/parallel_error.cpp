@@ -5,13 +5,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/error.hpp"
+
 namespace xpl {
 
 namespace {
 
 constexpr std::array<std::string_view, static_cast<int>(ParallelSite::COUNT)> SITE_NAMES = {
     "none",           "element-forces", "element-boundary", "hex-stiffness", "contact-search",
-    "contact-forces", "broad-phase",    "overclosure",      "clearance"};
+    "contact-forces", "broad-phase",    "overclosure",      "clearance",     "solver-stop"};
 
 struct FaultPoint {
   ParallelSite site = ParallelSite::None;
@@ -51,6 +53,13 @@ void throw_at(ParallelSite site, Index index) {
   if (site == FAULT.site && index == FAULT.index)
     throw std::runtime_error("injected fault at " + std::string(parallel_site_name(site)) + ":" +
                              std::to_string(index) + " (XPL_TEST_FAULT)");
+}
+
+void stop_at(long increment, Real time) {
+  if (FAULT.site == ParallelSite::SolverStop && increment == FAULT.index)
+    throw SolverError(
+        "injected stop at increment " + std::to_string(increment) + " (XPL_TEST_FAULT)", 0,
+        increment, time);
 }
 
 }  // namespace fault_injection

@@ -31,6 +31,9 @@ enum class ParallelSite : int {
   BroadPhase,       ///< candidate faces per slave node (contact/broad_phase.cpp)
   Overclosure,      ///< initial overclosure moves and crossed edges (initial_overclosure.cpp)
   Clearance,        ///< contact clearance moves (contact/clearance_moves.cpp)
+  /// Not a region: the time loop's checks at increment INDEX stop the run with a SolverError
+  /// (solver/explicit_solver.cpp), on the ranks whose environment sets it.
+  SolverStop,
   COUNT
 };
 
@@ -46,6 +49,8 @@ namespace fault_injection {
 extern const ParallelSite SITE;
 /// Throws the injected fault when `index` is the INDEX of XPL_TEST_FAULT.
 void throw_at(ParallelSite site, Index index);
+/// Throws a SolverError when `increment` is the INDEX of XPL_TEST_FAULT=solver-stop:INDEX.
+void stop_at(long increment, Real time);
 }  // namespace fault_injection
 
 /// The first exception (lowest iteration index, so the message does not depend on the number

@@ -96,6 +96,28 @@ int DistributedRun::world_max(int value) {
 void DistributedRun::abort_world(int code) {
   if (world_size() > 1) MPI_Abort(MPI_COMM_WORLD, code);
 }
+
+namespace {
+MPI_Comm end_channel = MPI_COMM_NULL;  ///< DistributedRun::open_end_channel()
+}  // namespace
+
+void DistributedRun::open_end_channel() {
+  if (world_size() > 1 && end_channel == MPI_COMM_NULL) MPI_Comm_dup(MPI_COMM_WORLD, &end_channel);
+}
+
+bool DistributedRun::every_rank_ends(double seconds) {
+  if (end_channel == MPI_COMM_NULL) return true;
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ibarrier(end_channel, &request);
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int done = 0;
+  // Testing and sleeping, not OpenMPI's spinning MPI_Wait (it would take a shared core).
+  while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && done == 0) {
+    if (std::chrono::steady_clock::now() > limit) return false;  // the caller ends the job
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return true;
+}
 #else
 struct DistributedRun::Requests {};  // the one-rank functions: distributed_run_one_rank.cpp
 #endif

@@ -58,6 +58,15 @@ class DistributedRun {
   /// rank alone, which the others would wait for in their next collective. Returns only when
   /// there is no other rank to end.
   static void abort_world(int code);
+  /// A communicator of its own for ending a run (every_rank_ends()); collective, once, right
+  /// after MPI_Init (apps/mpi_session.cpp).
+  static void open_end_channel();
+  /// After a stop of the solver (a SolverError), which comes from reduced values and so
+  /// reaches every rank together: whether every rank gets here within `seconds` (a
+  /// non-blocking barrier on the end channel, which no collective of the run can match). A
+  /// rank that stopped alone, which is a bug, would otherwise enter the end-of-run collective
+  /// while the others wait in the time loop's; false tells it to end every rank.
+  static bool every_rank_ends(double seconds);
 
   DistributedRun();
   ~DistributedRun();

@@ -40,6 +40,10 @@ const std::vector<Real>& DistributedRun::wait_allgather() {
 }
 void DistributedRun::gather_to_root(NodalVectors&) const {}
 void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
+void DistributedRun::open_end_channel() {}
+bool DistributedRun::every_rank_ends(double) {
+  return true;
+}
 void DistributedRun::gather_nodes_to_root(const std::vector<Index>&,
                                           const std::vector<NodalVectors*>&) const {}
 void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "common/parallel_error.hpp"
 #include "solver/explicit_solver_impl.hpp"
 #include "solver/increment/increment_control.hpp"
 #include "solver/message_text.hpp"
@@ -135,6 +136,8 @@ void ExplicitSolver::Impl::run_step(int step) {
     }
     m_energy.check(m_state, totals, dt_next, m_nodes.largest_speed(), m_critical_id, m_sink);
     m_increment.check_floor(m_state, dt_next, m_critical_id);
+    if (fault_injection::SITE == ParallelSite::SolverStop) [[unlikely]]
+      fault_injection::stop_at(m_state.increment, m_state.time);
 
     // Output as it falls due; a status line every 1 % of the step.
     const FrameRequest frame = m_output.field_due(m_state.step_time, last);

@@ -8,6 +8,13 @@ must validate against apps/summary.schema.json with an `mpi` block that holds th
 (the ranks' elements adding up to the model's) and says that the ranks' times were not
 gathered.
 
+Then a stop on one rank alone, which the solver never makes (its stops come from reduced
+values) but a bug could: the stop injected on rank 1, then on rank 0 (XPL_TEST_FAULT=
+solver-stop:20 in that rank's environment). The job must end on every rank within the wait
+for the others (apps/job.cpp), exit 4 with the rank's reason, and no MPI error (before, the
+rank went on to the end-of-run collective while the others waited in the time loop's, and
+the job died in MPI_ERR_TRUNCATE without saying why); with rank 0 alone, JOB.h5 says failed.
+
 Usage: mpi_failed.py XPL BAR_IMPACT_DECK OUT_DIR [--ranks 2,3]
 OUT_DIR is removed when every check passed and kept otherwise.
 """
@@ -17,6 +24,8 @@ import json
 import pathlib
 import shutil
 import sys
+
+import h5py
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
@@ -28,6 +37,7 @@ SCHEMA = HERE.parents[1] / "apps" / "summary.schema.json"
 BITWISE = HERE.parents[1] / "scripts" / "dev" / "h5_bitwise.py"
 VELOCITY_LINE = "MOVING, 1, -10"
 FAILED_CODE = 3  # xpl's exit code of a run that stopped on an error
+ALONE_CODE = 4  # a failure of one rank alone: every rank ended (MPI_Abort)
 
 
 def check_mpi_block(summary, ranks):
@@ -104,10 +114,42 @@ def main():
         for p in problems:
             print(f"  {p}")
         failures += bool(problems)
+    failures += stops_alone(args.xpl, pathlib.Path(args.deck), out)
     if failures:
         return 1
     shutil.rmtree(out, ignore_errors=True)
     return 0
+
+
+def stops_alone(xpl, deck, out):
+    """A stop of one rank alone ends the job with its reason; returns the failures."""
+    failures = 0
+    for alone in (1, 0):
+        case = out / f"alone{alone}"
+        command = []
+        for rank in (0, 1):
+            env = ["env", "XPL_TEST_FAULT=solver-stop:20"] if rank == alone else []
+            command += (["-np", "1"] + env + [xpl, "run", str(deck), "-o", str(case), "--quiet",
+                                             "--threads", "1"] + ([":"] if rank == 0 else []))
+        code, output = run(mpirun(1)[:-2] + command, out)
+        problems = []
+        if code != ALONE_CODE:
+            problems.append(f"exit {code}, expected {ALONE_CODE}")
+        reason = f"error on rank {alone}: injected stop at increment 20"
+        if reason not in output or "this rank alone" not in output:
+            problems.append(f"no {reason!r} in the output")
+        if "MPI_ERR" in output:
+            problems.append("an MPI error")
+        if alone == 0:
+            with h5py.File(case / f"{deck.stem}.h5", "r") as f:
+                if f.attrs["status"] != "failed":
+                    problems.append(f"JOB.h5 status {f.attrs['status']!r}")
+        print(f"stop on rank {alone} alone: " + ("the job ended with its reason"
+                                                 if not problems else "FAILED"))
+        for p in problems:
+            print(f"  {p}\n{output}" if p.startswith("exit") else f"  {p}")
+        failures += bool(problems)
+    return failures
 
 
 if __name__ == "__main__":
