@@ -31,12 +31,12 @@ BroadPhase::BroadPhase(Real margin, Real rebuild_motion)
 
 void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
                        const NodalVectors& position, std::span<const Real> node_thickness,
-                       std::span<const Real> back_depth) {
+                       std::span<const Real> back_depth, std::span<const char> scanned) {
   ++m_builds;
   const JointBox joint = box_faces(faces, position, node_thickness, back_depth);
   size_grid(joint, static_cast<Index>(faces.size()));
   bin_faces(static_cast<Index>(faces.size()));
-  find_candidates(faces, slave_nodes, position);
+  find_candidates(faces, slave_nodes, position, scanned);
   track_nodes(faces, slave_nodes, position);
 }
 
@@ -131,7 +131,8 @@ void BroadPhase::bin_faces(Index n_faces) {
 
 /// Candidates: count per slave node, prefix sum, fill (both passes parallel, no races).
 void BroadPhase::find_candidates(std::span<const ContactFace> faces,
-                                 std::span<const Index> slave_nodes, const NodalVectors& position) {
+                                 std::span<const Index> slave_nodes, const NodalVectors& position,
+                                 std::span<const char> scanned) {
   const auto n_slave = static_cast<Index>(slave_nodes.size());
   m_offsets.resize(static_cast<std::size_t>(n_slave) + 1);
   m_offsets[0] = 0;
@@ -140,8 +141,10 @@ void BroadPhase::find_candidates(std::span<const ContactFace> faces,
   for (Index s = 0; s < n_slave; ++s)
     count_errors.guard(ParallelSite::BroadPhase, s, [&] {
       const Index n = slave_nodes[s];
-      m_offsets[s + 1] =
-          scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)), faces, nullptr);
+      m_offsets[s + 1] = !scanned.empty() && scanned[s] == 0
+                             ? 0
+                             : scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)),
+                                           faces, nullptr);
     });
   count_errors.rethrow_if_any();
   for (Index s = 0; s < n_slave; ++s) m_offsets[s + 1] += m_offsets[s];
@@ -150,6 +153,7 @@ void BroadPhase::find_candidates(std::span<const ContactFace> faces,
 #pragma omp parallel for schedule(dynamic, 256)
   for (Index s = 0; s < n_slave; ++s)
     fill_errors.guard(ParallelSite::BroadPhase, s, [&] {
+      if (m_offsets[s + 1] == m_offsets[s]) return;  // none, or not scanned
       const Index n = slave_nodes[s];
       scan_bucket(n, Vec3(position(n, 0), position(n, 1), position(n, 2)), faces,
                   m_candidates.data() + m_offsets[s]);

@@ -36,9 +36,11 @@ class BroadPhase {
   /// it, so a node that went that deep within one increment (a fast impact) is a candidate
   /// however small the margin. A face is never a candidate of its own corner nodes.
   /// Remembers the positions of every face node and slave node for needs_rebuild().
+  /// `scanned` (one per slave node, empty: all): the slave nodes whose candidates are found;
+  /// the others get none (a distributed run's process scans the slots it searches).
   void build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
              const NodalVectors& position, std::span<const Real> node_thickness,
-             std::span<const Real> back_depth = {});
+             std::span<const Real> back_depth = {}, std::span<const char> scanned = {});
 
   /// Whether any node tracked at the last build has moved more than the rebuild motion since it
   /// (true before the first build). Parallel max-reduction, no allocation.
@@ -72,7 +74,7 @@ class BroadPhase {
   void size_grid(const JointBox& joint, Index n_faces);
   void bin_faces(Index n_faces);
   void find_candidates(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
-                       const NodalVectors& position);
+                       const NodalVectors& position, std::span<const char> scanned);
   void track_nodes(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
                    const NodalVectors& position);
   /// Counts the candidate faces of `node` at `p` and, when `out` is not null, writes them there.

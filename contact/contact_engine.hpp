@@ -128,6 +128,9 @@ class ContactEngine {
  private:
   /// Whether this process computes slot s in the current update() (share_slots()).
   bool owned(Index s) const { return !m_shared_pass || m_owned[s] != 0; }
+  /// After a shared pass's broad-phase build (share_slots()): marks in m_active_slot the
+  /// slots with candidates that the other processes found (one exchange, at rebuilds only).
+  void share_active_slots();
   /// After prepare_springs() (share_slots()): every slot's touches, release and pass-through
   /// depths and counted default springs from its owner (contact_slot_rows.cpp).
   void share_springs();
@@ -366,6 +369,7 @@ class ContactEngine {
   std::vector<char> m_owned;
   SlotSharing* m_sharing = nullptr;
   bool m_shared_pass = false;
+  bool m_broad_owned_only = false;  ///< the last broad-phase build scanned m_owned's slots only
   std::vector<Index> m_received_springs, m_received_forces;
   std::vector<Index> m_sent;  ///< the slots whose rows share_springs() sent
   std::vector<int> m_counts;  ///< values each process sent in the last exchange

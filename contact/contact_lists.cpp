@@ -80,8 +80,13 @@ void ContactEngine::widen_search(Real extra) {
 bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
                                         std::span<const Real> node_thickness) {
   SlaveNodes& slaves = m_domain.slaves();
-  if (!m_broad.needs_rebuild(position)) return false;
-  m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness, m_domain.face_depths());
+  // A shared pass scans only this process's slots; a whole one (probe(), the step's
+  // overclosure passes) needs every slot's candidates, so it does not reuse such a build.
+  const bool whole_needed = !m_shared_pass && m_broad_owned_only;
+  if (!m_broad.needs_rebuild(position) && !whole_needed) return false;
+  m_broad_owned_only = m_shared_pass;
+  m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness, m_domain.face_depths(),
+                m_shared_pass ? std::span<const char>(m_owned) : std::span<const char>());
   const Index n_slave = slaves.size();
   m_active_slot.assign(static_cast<std::size_t>(n_slave), 0);
   m_active_face.assign(m_domain.faces().size(), 0);
@@ -109,9 +114,13 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
     }
     m_listed_offset[s + 1] = static_cast<Index>(m_listed.size());
   }
+  for (Index s = 0; s < n_slave; ++s)
+    if (!m_broad.candidates(s).empty()) m_active_slot[s] = 1;
+  // The other processes' slots with candidates, so that every process updates the same node
+  // areas (the output's contact pressures read them) and every slot's faces.
+  if (m_shared_pass) share_active_slots();
   for (Index s = 0; s < n_slave; ++s) {
-    if (m_broad.candidates(s).empty()) continue;
-    m_active_slot[s] = 1;
+    if (m_active_slot[s] == 0) continue;
     for (Index f : slaves.faces_of(s)) m_active_face[f] = 1;
   }
   return true;

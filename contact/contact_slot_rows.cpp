@@ -92,6 +92,15 @@ void take_rows(const std::vector<Real>& all, int width, const std::vector<char>&
 
 }  // namespace
 
+void ContactEngine::share_active_slots() {
+  std::vector<Real> mine;
+  for (Index s = 0; s < static_cast<Index>(m_active_slot.size()); ++s)
+    if (m_owned[s] != 0 && m_active_slot[s] != 0) mine.push_back(static_cast<Real>(s));
+  std::vector<int> counts;
+  for (const Real s : m_sharing->gather(mine, counts, false))
+    m_active_slot[static_cast<std::size_t>(s)] = 1;
+}
+
 void ContactEngine::share_slots(std::vector<char> owned, SlotSharing* sharing) {
   m_owned = std::move(owned);
   m_sharing = sharing;
