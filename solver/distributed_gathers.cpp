@@ -38,6 +38,17 @@ void unpack_owned_rows(const std::vector<Real>& all, const std::vector<partition
       for (int c = 0; c < 3; ++c) rows(n, c) = all[k++];
 }
 
+/// Every rank's `mine` to rank 0 in rank order, laid out as `g` (MPI_Igatherv, waited for by
+/// testing and sleeping); empty on the other ranks.
+std::vector<Real> gather_on_root(const std::vector<Real>& mine, const GatherLayout& g, int rank) {
+  std::vector<Real> all(rank == 0 ? g.total : 0);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
+               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  return all;
+}
+
 }  // namespace
 
 void DistributedRun::gather_to_root(NodalVectors& rows) const {
@@ -46,11 +57,7 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
   const std::vector<Real> mine = pack_rows(rows, plan().owned);
   const GatherLayout g = gather_layout(
       m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
-  std::vector<Real> all(m_rank == 0 ? g.total : 0);
-  MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
-               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
-  wait(gathered);
+  const std::vector<Real> all = gather_on_root(mine, g, m_rank);
   if (m_rank == 0) unpack_owned_rows(all, m_plan.part, rows);
 }
 
@@ -65,11 +72,7 @@ void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width)
                 rows.begin() + static_cast<std::ptrdiff_t>((e + 1) * w));
   const GatherLayout g = gather_layout(
       m_size, w, [this](int r) -> const auto& { return m_plan.part[r].elements; });
-  std::vector<Real> all(m_rank == 0 ? g.total : 0);
-  MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
-               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
-  wait(gathered);
+  const std::vector<Real> all = gather_on_root(mine, g, m_rank);
   if (m_rank != 0) return;
   std::size_t k = 0;
   for (int r = 0; r < m_size; ++r)
@@ -102,11 +105,7 @@ void DistributedRun::gather_nodes_to_root(const std::vector<Index>& nodes,
       for (int c = 0; c < 3; ++c) mine.push_back((*a)(n, c));
   const GatherLayout g = gather_layout(
       m_size, width, [&share](int r) -> const auto& { return share[r]; });
-  std::vector<Real> all(m_rank == 0 ? g.total : 0);
-  MPI_Request gathered = MPI_REQUEST_NULL;
-  MPI_Igatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), g.counts.data(),
-               g.displacement.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD, &gathered);
-  wait(gathered);
+  const std::vector<Real> all = gather_on_root(mine, g, m_rank);
   if (m_rank != 0) return;
   std::size_t k = 0;
   for (const auto& nodes_of_rank : share)
