@@ -29,6 +29,14 @@ struct ContactMesh {
     coordinates.row(n) << x, y, z;
     return n;
   }
+  /// Room for `count` more nodes at once, their rows set by the caller in order (one
+  /// resize: a node at a time copies the whole array each time).
+  Index add_nodes(Index count) {
+    const Index first = node_count();
+    coordinates.conservativeResize(first + count, 3);
+    return first;
+  }
+  void set_node(Index a, Real x, Real y, Real z) { coordinates.row(a) << x, y, z; }
 };
 
 /// A block of nx×ny×nz hexes of size h starting at `origin`, node (i,j,k) appended in
@@ -38,13 +46,13 @@ inline void add_hex_block(ContactMesh& mesh, int nx, int ny, int nz, Real h,
                           Real distortion = 0.0, unsigned seed = 3) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<Real> jitter(-distortion * h, distortion * h);
-  const Index first = mesh.node_count();
+  const Index first = mesh.add_nodes(Index{nx + 1} * (ny + 1) * (nz + 1));
   auto node = [&](int i, int j, int k) { return first + i + (nx + 1) * (j + (ny + 1) * k); };
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j <= ny; ++j)
       for (int i = 0; i <= nx; ++i)
-        mesh.add_node(origin[0] + i * h + jitter(rng), origin[1] + j * h + jitter(rng),
-                      origin[2] + k * h + jitter(rng));
+        mesh.set_node(node(i, j, k), origin[0] + i * h + jitter(rng),
+                      origin[1] + j * h + jitter(rng), origin[2] + k * h + jitter(rng));
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
