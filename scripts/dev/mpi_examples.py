@@ -2,7 +2,8 @@
 """Every example deck on one rank and on N ranks (an XPL_MPI=ON build), compared bitwise:
 the check of the whole example set that the MPI tests (tests/mpi) make on a few decks.
 
-Usage: mpi_examples.py XPL OUT_DIR [--ranks 2] [--threads 1] [--only SUBSTRING]
+Usage: mpi_examples.py XPL OUT_DIR [--ranks 2] [--threads 1] [--only SUBSTRING] [--decks DIR]
+(--decks: the decks of DIR, e.g. tests/fuzz/generate_decks.py's, instead of examples/)
 Prints one line per deck: bitwise, differs, refused under MPI (the deck's feature is not
 distributed yet: a clear message, nothing run), or the two runs' exit codes when they end
 differently. A run that fails on one rank must fail the same way on N (same exit code; its
@@ -31,9 +32,10 @@ def main():
     parser.add_argument("--ranks", default="2")
     parser.add_argument("--threads", default="1")
     parser.add_argument("--only", default="")
+    parser.add_argument("--decks", type=lambda d: pathlib.Path(d).resolve(), default=REPO / "examples")
     args = parser.parse_args()
     out = pathlib.Path(args.out)
-    decks = sorted(p for p in (REPO / "examples").rglob("*.inp") if args.only in str(p))
+    decks = sorted(p for p in args.decks.rglob("*.inp") if args.only in str(p))
     bad = 0
     for deck in decks:
         name = deck.stem
@@ -61,7 +63,7 @@ def main():
                                capture_output=True, text=True).returncode
             line = f"fails on both (exit {code1}), " + ("bitwise" if c == 0 else "FILES DIFFER")
             bad += c != 0
-        print(f"{deck.relative_to(REPO)}: {line}", flush=True)
+        print(f"{deck.relative_to(args.decks)}: {line}", flush=True)
     return 1 if bad else 0
 
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "solver/distributed_run.hpp"
 #include "solver/increment/mass_scaling.hpp"
@@ -140,9 +141,19 @@ Index ElementSet::size() const {
   return n;
 }
 
-bool ElementSet::has_hourglass_state() const {
+bool ElementSet::has_shells() const {
   bool any = false;
-  for_each_block([&](const auto& block) {
+  for_each_whole_block([&](const auto& block) {
+    any = any || std::is_same_v<std::decay_t<decltype(block)>, elements::Shell4rBlock>;
+  });
+  return any;
+}
+
+bool ElementSet::has_hourglass_state() const {
+  // The whole model's kinds: every rank of a distributed run writes (and gathers) the same
+  // fields, also one whose part holds no element of a kind with the state.
+  bool any = false;
+  for_each_whole_block([&](const auto& block) {
     if constexpr (requires(std::vector<Real> & rows) { block.gather_hourglass_state(rows); })
       any = true;
   });

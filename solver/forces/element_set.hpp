@@ -61,8 +61,9 @@ class ElementSet {
   /// the set.
   ElementSet(const Model& model, const RigidBodies& rigid, State& state, PhaseTimers& timers);
 
-  /// Whether the model has S4R elements (and so nodes with rotational DOFs).
-  bool has_shells() const { return shells() != nullptr; }
+  /// Whether the model has S4R elements (and so nodes with rotational DOFs); in a distributed
+  /// run the whole model's answer on every rank, whatever this rank's batches hold.
+  bool has_shells() const;
   /// Number of deformable elements (the element cycles of the run summary), of every rank in
   /// a distributed run.
   Index size() const;
@@ -186,7 +187,8 @@ class ElementSet {
   void for_each_block(F&& f);
   template <std::size_t... I, class F>
   void for_each_block(std::index_sequence<I...>, F&& f);
-  /// The S4R block, or nullptr.
+  /// The S4R block (this rank's batches in a distributed run), or nullptr: nullptr on a rank
+  /// whose part holds no shell even when the model has shells (has_shells()).
   const elements::Shell4rBlock* shells() const {
     return std::get<std::unique_ptr<elements::Shell4rBlock>>(m_blocks).get();
   }

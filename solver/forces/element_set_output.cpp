@@ -65,8 +65,9 @@ void ElementSet::gather_local_output(const State& state, const FrameRequest& wha
         block.gather_hourglass_state(frame.hourglass_state);
     });
   }
-  if (shells()) {
-    // Section output: NaN rows for the solids and rigid elements (P2: only on shell models).
+  if (has_shells()) {
+    // Section output: NaN rows for the solids and rigid elements (P2: only on shell models;
+    // in a distributed run on every rank, also one whose part holds no shell).
     const Real nan = std::numeric_limits<Real>::quiet_NaN();
     frame.stress_bottom.resize(n_elements * 6, nan);
     frame.stress_top.resize(n_elements * 6, nan);
@@ -104,13 +105,13 @@ void ElementSet::fill_output(const State& state, ElementField field,
       break;
     case ElementField::StressBottom:
     case ElementField::StressTop:
-      if (shells())
+      if (has_shells())
         rows.assign(n_elements * 6, nan);
       else
         rows.clear();
       break;
     case ElementField::Thickness:
-      if (shells())
+      if (has_shells())
         rows.assign(n_elements, nan);
       else
         rows.clear();
