@@ -204,12 +204,19 @@ Index BroadPhase::scan_bucket(Index node, const Vec3& p, std::span<const Contact
 
 bool BroadPhase::needs_rebuild(const NodalVectors& position) const {
   if (m_builds == 0) return true;
+  return exceeds_rebuild_motion(largest_motion_sq(position));
+}
+
+Real BroadPhase::largest_motion_sq(const NodalVectors& position,
+                                   std::span<const char> node_mask) const {
   const auto n_tracked = static_cast<Index>(m_tracked.size());
+  const bool masked = !node_mask.empty();
   Real max_sq = 0.0;
   const bool on_team = n_tracked >= PARALLEL_MIN_SLOTS;
 #pragma omp parallel for schedule(static) reduction(max : max_sq) if (on_team)
   for (Index i = 0; i < n_tracked; ++i) {
     const Index n = m_tracked[i];
+    if (masked && node_mask[n] == 0) continue;
     Real sq = 0.0;
     for (int d = 0; d < 3; ++d) {
       const Real u = position(n, d) - m_tracked_position[3 * i + d];
@@ -217,8 +224,7 @@ bool BroadPhase::needs_rebuild(const NodalVectors& position) const {
     }
     max_sq = std::max(max_sq, sq);
   }
-  const Real limit = m_rebuild_motion;
-  return max_sq > limit * limit;
+  return max_sq;
 }
 
 }  // namespace xpl::contact

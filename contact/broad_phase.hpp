@@ -45,6 +45,15 @@ class BroadPhase {
   /// Whether any node tracked at the last build has moved more than the rebuild motion since it
   /// (true before the first build). Parallel max-reduction, no allocation.
   bool needs_rebuild(const NodalVectors& position) const;
+  /// The largest squared motion (m²) since the last build of the tracked nodes that
+  /// `node_mask` marks (n_nodes; empty: all), 0 before the first build. A distributed run's
+  /// processes each take the nodes whose rows they hold and reduce (max is exact), so that
+  /// the decision is needs_rebuild()'s on the whole positions, bit for bit.
+  Real largest_motion_sq(const NodalVectors& position, std::span<const char> node_mask = {}) const;
+  /// Whether a largest squared motion `max_sq` (m²) calls for a rebuild (after a first build).
+  bool exceeds_rebuild_motion(Real max_sq) const {
+    return max_sq > m_rebuild_motion * m_rebuild_motion;
+  }
 
   /// Candidate faces of slave slot s (index into the `slave_nodes` of the last build).
   std::span<const Index> candidates(Index s) const {

@@ -124,6 +124,12 @@ class ContactEngine {
   /// a slot's state (offset, constraint, friction spring, ramp) is kept by its owner alone.
   /// The broad phase and the node areas stay whole on every process; probe() searches all.
   void share_slots(std::vector<char> owned, SlotSharing* sharing);
+  /// Distributed runs, after an update() of shared slots (contact_reads.cpp): sets in `mark`
+  /// (n_nodes) the nodes whose positions and velocities the search and springs of this
+  /// process's slots read until the broad phase is next built: each slot's node, the corners
+  /// of its candidate faces and of the faces its state holds. False when the whole pass reads
+  /// more than the slots' neighbourhoods (a law of its own stiffness: every node area).
+  bool mark_read_nodes(std::vector<char>& mark) const;
 
  private:
   /// Whether this process computes slot s in the current update() (share_slots()).

@@ -303,13 +303,14 @@ void ExplicitSolver::Impl::report_exchange() {
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
   std::vector<int> counts;
   const DistributedRun& run = *m_run;
-  constexpr std::size_t WIDTH = 12;
+  constexpr std::size_t WIDTH = 14;
   const std::vector<Real> all = m_run->allgather(
       {run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
        run.exchange_seconds(DistributedRun::SHIP), run.exchange_seconds(DistributedRun::GATHERS),
        m_loop_seconds, static_cast<Real>(m_nodes.integrated_count()), m_loop_shares.exchange,
        m_loop_shares.wait, m_loop_shares.output, m_timers.seconds(Phase::ContactSearch),
-       m_timers.seconds(Phase::ContactForce), m_contact.sharing_seconds()},
+       m_timers.seconds(Phase::ContactForce), m_contact.sharing_seconds(),
+       m_contact.rows_received().first, m_contact.rows_received().second},
       counts);
   // The summary's partition and times (rank 0's sink keeps them).
   DistributionSummary d = partition_summary();
@@ -325,6 +326,8 @@ void ExplicitSolver::Impl::report_exchange() {
     k.contact_search = t[9];
     k.contact_force = t[10];
     k.contact_exchange = t[11];
+    k.contact_values = t[12];
+    k.contact_values_whole = t[13];
   }
   m_sink.distribution(d);
   for (int r = 0; r < m_run->size(); ++r) {

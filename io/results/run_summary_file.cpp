@@ -161,6 +161,8 @@ JsonValue SummaryRecord::json() const {
       rank.set("contact_search", k.contact_search);
       rank.set("contact_force", k.contact_force);
       rank.set("contact_exchange", k.contact_exchange);
+      rank.set("contact_values", k.contact_values);
+      rank.set("contact_values_whole", k.contact_values_whole);
     }
   }
   return out;

@@ -63,6 +63,8 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
     m_position = state.position;
     m_velocity = state.velocity_half;
     share_slots();
+    m_rows_shared = m_shared && m_run->size() > 1;
+    if (m_rows_shared) m_rows.reset(*m_run, m_shared_nodes, m_model.node_count());
   }
 }
 
@@ -198,7 +200,9 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
   m_stored_energy = 0.0;
   if (!m_engine) return;
   if (m_engine->interference_ramping()) m_engine->set_step_time(state.step_time);
-  if (m_run != nullptr)
+  if (m_rows_shared)
+    m_rows.gather(*m_engine, state, m_position, m_velocity);
+  else if (m_run != nullptr)
     m_run->share_rows(m_shared_nodes, {&state.position, &state.velocity_half},
                       {&m_position, &m_velocity});
   const contact::ContactTotals t =
@@ -206,6 +210,7 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
                        m_run != nullptr ? m_velocity : state.velocity_half, dt_taken, dt_penalty,
                        elements.node_thickness(), state.mass, elements.inverse_mass(),
                        elements.force_internal(), m_timers);
+  if (m_rows_shared) m_rows.update_lists(*m_engine, t.rebuilt);
   state.energies.friction += t.friction_dissipation;
   // The interference ramp's energy is an input, as the work of a load: in ALLWK, and in
   // ALLPW, which then holds what the springs hold (ContactEnergyCheck).

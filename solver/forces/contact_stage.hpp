@@ -5,11 +5,13 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/timer.hpp"
 #include "contact/contact_clearance.hpp"
 #include "contact/contact_engine.hpp"
+#include "solver/forces/contact_rows.hpp"
 #include "solver/forces/element_set.hpp"
 #include "solver/forces/overclosure_report.hpp"
 #include "solver/increment/penalty_increment_limit.hpp"
@@ -62,6 +64,11 @@ class ContactStage {
   /// Distributed runs: wall time in the exchanges of the slots' results (waits for the other
   /// ranks included; a part of the contact force phase), s.
   double sharing_seconds() const;
+  /// Distributed runs with shared slots: the contact nodes' values this rank received per
+  /// increment (ContactRows), and what gathering every contact node would have been.
+  std::pair<double, double> rows_received() const {
+    return {m_rows.values_per_gather(), m_rows.whole_values_per_gather()};
+  }
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
   /// The engine of the current step (null without contact): its t = 0 candidate pairs feed
@@ -148,6 +155,9 @@ class ContactStage {
   /// point nodes), ascending, and the run's positions and half-step velocities of them.
   std::vector<Index> m_shared_nodes;
   NodalVectors m_position, m_velocity;
+  /// Shared slots on more than one rank: which of those rows travel each increment.
+  ContactRows m_rows;
+  bool m_rows_shared = false;
   long m_lost = 0;               ///< releases in the step (ContactTotals::lost)
   long m_lost_increments = 0;    ///< increments with a release in the step
   long m_behind_increments = 0;  ///< increments with a node behind a held shell's mid-surface

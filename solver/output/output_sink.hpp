@@ -112,6 +112,9 @@ struct DistributionSummary {
     /// Its contact phases (whole run, Phase::ContactSearch and ContactForce), and the part of
     /// the force phase spent exchanging the slots' results (waits included), s.
     double contact_search = 0.0, contact_force = 0.0, contact_exchange = 0.0;
+    /// Contact nodes' values (positions, v(n+½)) it received per increment with contact, and
+    /// what gathering every contact node each increment would have been (shared slots only).
+    double contact_values = 0.0, contact_values_whole = 0.0;
   };
   std::string method;          ///< the partitioner ("METIS", "bisection")
   Real imbalance = 1.0;        ///< largest part weight over the mean

@@ -2,7 +2,9 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "contact/broad_phase.hpp"
 #include "contact_fixtures.hpp"
@@ -135,6 +137,30 @@ TEST_CASE("broad phase rebuilds after half a margin of motion", "[contact][broad
   moved(219, 0) += 0.6 * margin;
   CHECK(bp.needs_rebuild(moved));
   CHECK(bp.build_count() == 2);
+}
+
+TEST_CASE("the rebuild decision is the max of the parts' largest motions",
+          "[contact][broad_phase]") {
+  // A distributed run's ranks each take the nodes they integrate and reduce by max: the same
+  // number, so the same decision, as the whole positions give.
+  const Real margin = 0.02;
+  const Cloud c = make_cloud(60, 40, 8);
+  BroadPhase bp(margin);
+  CHECK(bp.largest_motion_sq(c.position) == 0.0);  // never built
+  bp.build(c.faces, c.slaves, c.position, c.thickness);
+  NodalVectors moved = c.position;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<Real> u(-0.3 * margin, 0.3 * margin);
+  for (Index n = 0; n < moved.rows(); ++n)
+    for (int d = 0; d < 3; ++d) moved(n, d) += u(rng);
+  std::vector<char> part[3];
+  for (auto& p : part) p.assign(static_cast<std::size_t>(moved.rows()), 0);
+  for (Index n = 0; n < moved.rows(); ++n) part[(n * 7) % 3][n] = 1;
+  Real largest = 0.0;
+  for (const auto& p : part) largest = std::max(largest, bp.largest_motion_sq(moved, p));
+  CHECK(largest == bp.largest_motion_sq(moved));
+  CHECK(bp.exceeds_rebuild_motion(largest) == bp.needs_rebuild(moved));
+  CHECK(bp.largest_motion_sq(moved, std::vector<char>(part[0].size(), 0)) == 0.0);
 }
 
 TEST_CASE("candidates stay complete until the rebuild criterion trips", "[contact][broad_phase]") {

@@ -1,0 +1,62 @@
+#pragma once
+/// \file The contact nodes' rows a rank of a distributed run gathers each increment before
+/// the contact pass (docs/dev/mpi.md, "Contact shared out among the ranks"). When the broad
+/// phase is built (and before a first shared pass has run), every contact node's position
+/// and v(n+½) from the rank integrating it; between two builds only the rows some rank's
+/// pass reads: its slots' nodes, their candidate faces' corners and the faces their state
+/// holds (ContactEngine::mark_read_nodes), and the faces around each of those nodes (the
+/// node areas and normals updated on every rank). The rebuild decision rides along: each
+/// rank's largest motion of the contact nodes it integrates, reduced by max (exact), so every
+/// rank decides as one rank does on the whole positions and gathers everything before a build.
+
+#include <vector>
+
+#include "contact/contact_engine.hpp"
+#include "solver/model/state.hpp"
+
+namespace xpl {
+
+class DistributedRun;
+
+/// Which contact rows travel each increment, rebuilt with the broad phase.
+class ContactRows {
+ public:
+  /// The engine's contact nodes (ascending, every face node and point node) on `run`, whose
+  /// ranks share the slots out (share_slots()); the next gather is whole.
+  void reset(const DistributedRun& run, std::vector<Index> nodes, Index n_nodes);
+  /// Every contact node (reset()).
+  const std::vector<Index>& nodes() const { return m_all; }
+  /// Before the contact pass (collective): the rows `state` holds of the nodes each rank
+  /// integrates into `position` and `velocity` (n_nodes × 3, copies the engine reads) on
+  /// every rank: every contact node's, or, while the broad phase stays, the read ones only.
+  void gather(const contact::ContactEngine& engine, const State& state, NodalVectors& position,
+              NodalVectors& velocity);
+  /// After the pass (collective when it builds the lists): the lists of read rows made anew
+  /// when the broad phase was built (`rebuilt`) or when there are none yet.
+  void update_lists(const contact::ContactEngine& engine, bool rebuilt);
+  /// Values this rank received per gather, on average (0 before the first), and what
+  /// every contact node's rows would have been.
+  double values_per_gather() const {
+    return m_gathers > 0 ? m_values / static_cast<double>(m_gathers) : 0.0;
+  }
+  double whole_values_per_gather() const {
+    return static_cast<double>(6 * (m_all.size() - static_cast<std::size_t>(m_integrated_count)));
+  }
+
+ private:
+  /// Every contact node's rows (share_rows()).
+  void gather_all(const State& state, NodalVectors& position, NodalVectors& velocity);
+
+  const DistributedRun* m_run = nullptr;
+  std::vector<Index> m_all;                   ///< every contact node, ascending
+  std::vector<char> m_integrated;             ///< the contact nodes this rank integrates
+  Index m_integrated_count = 0;               ///< of m_all
+  std::vector<std::vector<Index>> m_of_rank;  ///< the read rows between builds, by source
+  std::vector<int> m_counts;                  ///< values each rank sends (rows and motion)
+  bool m_lists = false;                       ///< m_of_rank holds the lists of the build
+  bool m_partial = false;                     ///< the last gather was of the read rows only
+  double m_values = 0.0;
+  long m_gathers = 0;
+};
+
+}  // namespace xpl
