@@ -221,6 +221,10 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   [[maybe_unused]] Vec tan_m = simd::splat(0.0), tan_b = tan_m, weight_b = tan_m, flow = tan_m;
   [[maybe_unused]] Vec returned_off[3] = {tan_m, tan_m, tan_m};
   [[maybe_unused]] bool batch_yielded = false;
+  // Perfectly plastic batches (ShellPlasticState::batch_constant): every point's flow stress
+  // is the batch's one yield stress, yielding or not, so Σ w σ_y is summed after the loop
+  // (the same sum in the same order) instead of live through the returns.
+  [[maybe_unused]] const bool constant_flow = PLASTIC && m_plastic.batch_constant(b);
   // The batch's section rows ([m_points][W], contiguous in their SharedBlocks): one look-up
   // each (an integer division) rather than one per point.
   const Real* zetas = &m_zeta[b * m_points * W];
@@ -256,7 +260,8 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
       tan_m += weight * ratio;
       tan_b += wz2 * ratio;
       weight_b += wz2;
-      flow += simd::select(simd::greater(weight, 0.0), weight * point_flow, simd::splat(0.0));
+      if (!constant_flow)
+        flow += simd::select(simd::greater(weight, 0.0), weight * point_flow, simd::splat(0.0));
     }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
@@ -270,6 +275,13 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
     work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
   }
   if constexpr (PLASTIC) {
+    if (constant_flow) {
+      const Vec yield = m_plastic.static_yield(b, 0);
+      for (int k = 0; k < m_points; ++k) {
+        const Vec weight = simd::load(weights + k * W);
+        flow += simd::select(simd::greater(weight, 0.0), weight * yield, simd::splat(0.0));
+      }
+    }
     const Vec returned_n[3] = {nxx, nyy, nxy};
     const Vec trial_n[3] = {nxx + returned_off[0], nyy + returned_off[1], nxy + returned_off[2]};
     shell4r_kernel::section_tangents(tan_m, tan_b, weight_b, trial_n, returned_n, flow,
