@@ -14,29 +14,12 @@
 #include "elements/shell/shell4r.hpp"
 #include "elements/shell/shell4r_hourglass.hpp"
 #include "elements/shell/shell4r_increment.hpp"
+#include "elements/shell/shell4r_section.hpp"
 #include "elements/vec3.hpp"
 
 namespace xpl::elements {
 
 using simd::Vec;
-
-/// Strain rates of a batch's reference surface on the mid-increment geometry (1/s): membrane
-/// d, curvature κ (1/(m·s)), transverse shear γ.
-struct ShellPlaneRates {
-  Vec dxx, dyy, gxy, kxx, kyy, kxy, gxz, gyz;
-};
-
-/// What the through-thickness integration of a batch leaves: the end thickness (m), the
-/// resultants per unit length (N/m, N), the strain and plastic work per unit area (J/m²).
-struct ShellSectionResultants {
-  Vec t, nxx, nyy, nxy, mxx, myy, mxy, qx, qy, work, plastic_work;
-  /// Plastic batches, the state the physical hourglass follows: the section's tangent ratios
-  /// over the increment, membrane (weights w) and bending (weights w ζ²), each in [0, 1]; the
-  /// membrane return ratio |N| / |N_trial| (von Mises norms); the flow stress Σ w σ_y(end)
-  /// (Pa). Elastic batches: 1, 1, 1 and +inf.
-  Vec tangent_membrane = simd::splat(1.0), tangent_bending = simd::splat(1.0),
-      membrane_return = simd::splat(1.0), flow = simd::splat(std::numeric_limits<Real>::infinity());
-};
 
 namespace shell4r_kernel {
 
@@ -152,31 +135,6 @@ struct ShearForces {
   Vec hz[4] = {}, hbx[4] = {}, hby[4] = {};
 };
 
-/// Plastic batches: the section's tangent ratios, membrane return ratio and flow stress
-/// (ShellSectionResultants) into `out`, from the sums over its points with weights w: Σ w r
-/// and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², the trial and returned membrane
-/// resultants Σ t w σ (the same end thickness t), and Σ w σ_y (end of increment; max(σ_y,
-/// σ_vM) to the return's tolerance). The weights of a batch's points sum to 1 (Simpson,
-/// shell4r_setup.cpp). `yielded`: whether a point of the batch yielded; where none did, the
-/// membrane return ratio is 1 without its root and divisions (the trial is the return).
-XPL_KERNEL_INLINE void section_tangents(Vec tan_m, Vec tan_b, Vec weight_b, const Vec trial_n[3],
-                                        const Vec returned_n[3], Vec flow, bool yielded,
-                                        ShellSectionResultants& out) {
-  const Vec one = simd::splat(1.0), tiny = simd::splat(1e-300);
-  out.tangent_membrane = simd::min(tan_m, one);
-  out.tangent_bending =
-      simd::select(simd::greater(weight_b, 0.0), tan_b / simd::max(weight_b, tiny), one);
-  out.flow = flow;
-  if (!yielded) return;
-  const Vec n_trial =
-      von_mises_product(trial_n[0], trial_n[1], trial_n[2], trial_n[0], trial_n[1], trial_n[2]);
-  const Vec n_returned = von_mises_product(returned_n[0], returned_n[1], returned_n[2],
-                                           returned_n[0], returned_n[1], returned_n[2]);
-  out.membrane_return =
-      simd::select(simd::greater(n_trial, 0.0),
-                   simd::sqrt(simd::min(n_returned / simd::max(n_trial, tiny), one)), one);
-}
-
 /// Positions `x`, velocities `vel` and angular velocities `om` of the 4 corners of a batch
 /// (component arrays p, v, w; corner node indices `conn`, [corner 4][W]).
 XPL_KERNEL_INLINE void gather_nodes(const Index* conn, const Real* const p[3],
@@ -217,10 +175,11 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   ShellSectionResultants out;  // the tangents of plastic batches below, the rest at the end
   // Plastic batches: Σ w r and Σ w ζ² r of the points' tangent ratios r, Σ w ζ², what the
   // returns took off the membrane resultants, Σ t w (σ_trial − σ) (the returned ones are N),
-  // the flow stress and whether a point yielded.
+  // the flow stress (after the loop in perfectly plastic batches) and whether a point yielded.
   [[maybe_unused]] Vec tan_m = simd::splat(0.0), tan_b = tan_m, weight_b = tan_m, flow = tan_m;
   [[maybe_unused]] Vec returned_off[3] = {tan_m, tan_m, tan_m};
   [[maybe_unused]] bool batch_yielded = false;
+  [[maybe_unused]] const bool one_yield = PLASTIC && m_plastic.batch_constant(b);
   // The batch's section rows ([m_points][W], contiguous in their SharedBlocks): one look-up
   // each (an integer division) rather than one per point.
   const Real* zetas = &m_zeta[b * m_points * W];
@@ -256,7 +215,8 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
       tan_m += weight * ratio;
       tan_b += wz2 * ratio;
       weight_b += wz2;
-      flow += simd::select(simd::greater(weight, 0.0), weight * point_flow, simd::splat(0.0));
+      if (!one_yield)
+        flow += simd::select(simd::greater(weight, 0.0), weight * point_flow, simd::splat(0.0));
     }
     simd::store(s, sxx_n);
     simd::store(s + W, syy_n);
@@ -270,6 +230,7 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
     work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
   }
   if constexpr (PLASTIC) {
+    if (one_yield) flow = shell4r_kernel::one_yield_flow(weights, m_points, m_plastic, b);
     const Vec returned_n[3] = {nxx, nyy, nxy};
     const Vec trial_n[3] = {nxx + returned_off[0], nyy + returned_off[1], nxy + returned_off[2]};
     shell4r_kernel::section_tangents(tan_m, tan_b, weight_b, trial_n, returned_n, flow,
