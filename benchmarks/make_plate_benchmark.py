@@ -57,7 +57,8 @@ def build_deck(args):
     out.append("*HEADING")
     load = {"pressure": f"sudden pressure {args.pressure:g} Pa",
             "velocity": f"initial velocity {args.velocity:g} m/s",
-            "stretch": f"initial stretch {args.stretch_rate:g}/s"}[args.load]
+            "stretch": f"initial stretch {args.stretch_rate:g}/s",
+            "drive": f"edges driven at stretch {args.stretch_rate:g}/s"}[args.load]
     if args.plastic is not None:
         load += f", yield stress {args.plastic:g} Pa"
     out.append(f"Simply supported steel plate, {n} x {n} S4R elements, {load}, "
@@ -106,7 +107,7 @@ def build_deck(args):
         held = set(edges)
         out += [f"{node}, 3, {args.velocity:g}" for node in range(1, row * row + 1)
                 if node not in held]
-    elif args.load == "stretch":
+    elif args.load in ("stretch", "drive"):
         # Every node starts with the in-plane velocity of a uniform equibiaxial stretch at
         # --stretch-rate about the plate's centre: every element strains from the first
         # increment (with a low --plastic yield stress, every section point yields).
@@ -116,13 +117,30 @@ def build_deck(args):
                 node = node_id(i, j)
                 out.append(f"{node}, 1, {args.stretch_rate * (i * h - 0.5 * args.side):.6g}")
                 out.append(f"{node}, 2, {args.stretch_rate * (j * h - 0.5 * args.side):.6g}")
+    if args.load == "drive":
+        out.append("*AMPLITUDE, NAME=CONSTANT")
+        out.append(f"0., 1., {period:.6g}, 1.")
     out.append("*STEP, NAME=BENCHMARK")
     out.append("*DYNAMIC, EXPLICIT")
     out.append(f", {period:.6g}")
     out.append("*BOUNDARY")
     out.append("EDGES, 3, 3")
-    out.append("CORNER_XY, 1, 2")
-    out.append("CORNER_Y, 2, 2")
+    if args.load == "drive":
+        # The edge nodes keep the in-plane velocity of the stretch for the whole step: the
+        # uniform stretch is then the motion of every node (no release waves from free edges),
+        # and with a low --plastic yield stress every section point of every element yields in
+        # every increment once the strain passes the yield strain. The edges fix the in-plane
+        # rigid motion, so the corner conditions are left out.
+        out.append("*BOUNDARY, TYPE=VELOCITY, AMPLITUDE=CONSTANT")
+        for j in range(row):
+            for i in range(row):
+                if i in (0, n) or j in (0, n):
+                    node = node_id(i, j)
+                    out.append(f"{node}, 1, 1, {args.stretch_rate * (i * h - 0.5 * args.side):.6g}")
+                    out.append(f"{node}, 2, 2, {args.stretch_rate * (j * h - 0.5 * args.side):.6g}")
+    else:
+        out.append("CORNER_XY, 1, 2")
+        out.append("CORNER_Y, 2, 2")
     if args.load == "pressure":
         out.append("*DSLOAD")
         out.append(f"TOP, P, {args.pressure:g}")
@@ -142,13 +160,17 @@ def parse_args(argv=None):
     parser.add_argument("--side", type=float, default=SIDE, help="plate side, m (default 1)")
     parser.add_argument("--pressure", type=float, default=1000.0,
                         help="pressure on the SPOS face, Pa (default 1000)")
-    parser.add_argument("--load", choices=["pressure", "velocity", "stretch"],
+    parser.add_argument("--load", choices=["pressure", "velocity", "stretch", "drive"],
                         default="pressure",
                         help="pressure on the plate (default); to time the run without loads, "
                              "an initial velocity --velocity along z of the free nodes; or an "
-                             "initial equibiaxial in-plane stretch at --stretch-rate")
+                             "initial equibiaxial in-plane stretch at --stretch-rate; or "
+                             "that stretch with the edges driven at its velocity for the "
+                             "whole step (drive: the stretch goes on everywhere, every "
+                             "section point yields with a low --plastic)")
     parser.add_argument("--stretch-rate", type=float, default=20.0,
-                        help="in-plane stretching rate with --load stretch, 1/s (default 20)")
+                        help="in-plane stretching rate with --load stretch or drive, 1/s "
+                             "(default 20)")
     parser.add_argument("--plastic", type=float, default=None, metavar="YIELD",
                         help="make the steel elastic-perfectly plastic with this yield "
                              "stress, Pa (*PLASTIC); default elastic")
