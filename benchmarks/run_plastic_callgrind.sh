@@ -10,8 +10,11 @@
 # Environment: XPL (build/avx2/apps/xpl), LOAD (drive: the edges driven at the stretch rate,
 # every section point yields in every increment after the first 19; stretch: the initial
 # stretch alone, which yields in ~12 % of the batch-increments), N (64), SIDE (0.2025),
-# INCREMENTS (400: 95 % of them return everywhere with LOAD drive), YIELD (50e6). Prints instructions per element-increment and the elastic /
-# plastic ratio (the plastic / elastic element rate at equal instructions per second).
+# INCREMENTS (400: 95 % of them return everywhere with LOAD drive), YIELD (50e6), DECKS (the
+# decks to count: elastic nothing_yielding plastic), CALLGRIND_ARGS (more valgrind options, e.g.
+# --dump-instr=yes for per-instruction counts; the totals do not change), WORK (the output
+# directory, build/bench/plastic_callgrind). Prints instructions per element-increment and the
+# elastic / plastic ratio (the plastic / elastic element rate at equal instructions per second).
 set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
@@ -22,7 +25,7 @@ n=${N:-64}
 side=${SIDE:-0.2025}
 increments=${INCREMENTS:-400}
 yield=${YIELD:-50e6}
-work=build/bench/plastic_callgrind
+work=${WORK:-build/bench/plastic_callgrind}
 mkdir -p "$work"
 
 count() { # name [--plastic value]
@@ -32,7 +35,7 @@ count() { # name [--plastic value]
     --load "$load" "$@" --out "$deck" >/dev/null
   OMP_WAIT_POLICY=PASSIVE OMP_NUM_THREADS=1 valgrind --tool=callgrind \
     --callgrind-out-file="$work/callgrind_$name.out" \
-    --toggle-collect='*Shell4rBlock::forces_of_part*' \
+    --toggle-collect='*Shell4rBlock::forces_of_part*' ${CALLGRIND_ARGS:-} \
     "$xpl" run "$deck" -o "$work/out_$name" --threads 1 >"$work/log_$name" 2>&1
   local instructions steps
   instructions=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$work/callgrind_$name.out")
@@ -41,12 +44,20 @@ count() { # name [--plastic value]
 print(f'$name: {i} instructions, {s} increments, {i / (s * e):.1f} per element-increment')" \
     "$instructions" "$steps" "$((n * n))"
 }
-count elastic | tee "$work/summary"
-count nothing_yielding --plastic 1e12 | tee -a "$work/summary"
-count plastic --plastic "$yield" | tee -a "$work/summary"
+: >"$work/summary"
+for deck in ${DECKS:-elastic nothing_yielding plastic}; do
+  case $deck in
+    elastic) count elastic | tee -a "$work/summary" ;;
+    nothing_yielding) count nothing_yielding --plastic 1e12 | tee -a "$work/summary" ;;
+    plastic) count plastic --plastic "$yield" | tee -a "$work/summary" ;;
+    *) echo "unknown deck $deck" >&2; exit 2 ;;
+  esac
+done
 "$python" - "$work/summary" <<'PY'
 import re, sys
-per = {m[1]: float(m[2]) for m in re.finditer(r"^(\w+): .* ([0-9.]+) per element", open(sys.argv[1]).read(), re.M)}
+text = open(sys.argv[1]).read()
+per = {m[1]: float(m[2]) for m in re.finditer(r"^(\w+): .* ([0-9.]+) per element", text, re.M)}
 for name in ("nothing_yielding", "plastic"):
-    print(f"elastic / {name}: {per['elastic'] / per[name]:.3f}")
+    if "elastic" in per and name in per:
+        print(f"elastic / {name}: {per['elastic'] / per[name]:.3f}")
 PY
