@@ -130,6 +130,12 @@ class ContactEngine {
   /// of its candidate faces and of the faces its state holds. False when the whole pass reads
   /// more than the slots' neighbourhoods (a law of its own stiffness: every node area).
   bool mark_read_nodes(std::vector<char>& mark) const;
+  /// Distributed runs, before an update() of shared slots on a built broad phase: whether the
+  /// broad phase is to be built, decided by the caller as the max over the processes of each
+  /// one's largest motion of the nodes it integrates (BroadPhase::exceeds_rebuild_motion(),
+  /// exact, so the one-process decision); that update() then does not measure the motion
+  /// again on its copies. For the next update() only.
+  void decide_rebuild(bool due) { m_rebuild_decision = due ? 1 : 0; }
 
  private:
   /// Whether this process computes slot s in the current update() (share_slots()).
@@ -375,7 +381,8 @@ class ContactEngine {
   std::vector<char> m_owned;
   SlotSharing* m_sharing = nullptr;
   bool m_shared_pass = false;
-  bool m_broad_owned_only = false;  ///< the last broad-phase build scanned m_owned's slots only
+  bool m_broad_owned_only = false;      ///< the last broad-phase build scanned m_owned's slots only
+  signed char m_rebuild_decision = -1;  ///< decide_rebuild() for the next update(); -1: none
   std::vector<Index> m_received_springs, m_received_forces;
   std::vector<Index> m_sent;  ///< the slots whose rows share_springs() sent
   std::vector<int> m_counts;  ///< values each process sent in the last exchange

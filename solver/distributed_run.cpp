@@ -269,6 +269,18 @@ std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::
   return all;
 }
 
+void DistributedRun::allgather_into(const std::vector<Real>& mine, const std::vector<int>& counts,
+                                    std::vector<Real>& all) const {
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  m_displacement.assign(static_cast<std::size_t>(m_size), 0);
+  for (int r = 1; r < m_size; ++r) m_displacement[r] = m_displacement[r - 1] + counts[r - 1];
+  all.resize(static_cast<std::size_t>(m_displacement.back() + counts.back()));
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(), counts.data(),
+                  m_displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+}
+
 void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<int>& counts) {
   ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   m_posted_mine = std::move(mine);

@@ -123,6 +123,10 @@ class DistributedRun {
   /// number of values of each rank: found, or with `counts_known` given (one collective less).
   std::vector<Real> allgather(const std::vector<Real>& mine, std::vector<int>& counts,
                               bool counts_known = false) const;
+  /// allgather() with every rank's count known, into `all` (resized; a buffer the caller
+  /// keeps, so that nothing is allocated once the counts settle).
+  void allgather_into(const std::vector<Real>& mine, const std::vector<int>& counts,
+                      std::vector<Real>& all) const;
   /// allgather() in two halves, so that it travels while the rank does other work (one at a
   /// time): post_allgather() starts it with every rank's count known, wait_allgather() waits
   /// and returns every rank's values in rank order.
@@ -174,6 +178,7 @@ class DistributedRun {
   std::vector<std::vector<Real>> m_send, m_receive;
   std::vector<Real> m_posted_mine, m_posted_all;  ///< post_allgather()
   std::vector<int> m_posted_counts, m_posted_displacement;
+  mutable std::vector<int> m_displacement;  ///< allgather_into()
   struct Requests;
   std::unique_ptr<Requests> m_requests;
   mutable double m_seconds[TIMINGS] = {};

@@ -34,8 +34,8 @@ void ContactRows::gather_all(const State& state, NodalVectors& position, NodalVe
   ++m_gathers;
 }
 
-void ContactRows::gather(const contact::ContactEngine& engine, const State& state,
-                         NodalVectors& position, NodalVectors& velocity) {
+void ContactRows::gather(contact::ContactEngine& engine, const State& state, NodalVectors& position,
+                         NodalVectors& velocity) {
   m_partial = false;
   const contact::BroadPhase& broad = engine.broad_phase();
   if (!m_lists || broad.build_count() == 0) {
@@ -43,29 +43,30 @@ void ContactRows::gather(const contact::ContactEngine& engine, const State& stat
     return;
   }
   const int rank = m_run->rank();
-  std::vector<Real> mine;
-  mine.reserve(static_cast<std::size_t>(m_counts[rank]));
+  m_mine.clear();
   for (const Index n : m_of_rank[rank])
     for (const NodalVectors* rows : {&state.position, &state.velocity_half})
-      for (int c = 0; c < 3; ++c) mine.push_back((*rows)(n, c));
+      for (int c = 0; c < 3; ++c) m_mine.push_back((*rows)(n, c));
   // The rows this rank integrates are current in `state`: their largest motion since the
   // build, every rank's reduced by max below.
-  mine.push_back(broad.largest_motion_sq(state.position, m_integrated));
-  const std::vector<Real> all = m_run->allgather(mine, m_counts, true);
+  m_mine.push_back(broad.largest_motion_sq(state.position, m_integrated));
+  m_run->allgather_into(m_mine, m_counts, m_all_values);
   std::size_t k = 0;
   Real largest = 0.0;
   for (int r = 0; r < m_run->size(); ++r) {
     for (const Index n : m_of_rank[r])
       for (NodalVectors* rows : {&position, &velocity})
-        for (int c = 0; c < 3; ++c) (*rows)(n, c) = all[k++];
-    largest = std::max(largest, all[k++]);
+        for (int c = 0; c < 3; ++c) (*rows)(n, c) = m_all_values[k++];
+    largest = std::max(largest, m_all_values[k++]);
     if (r != rank) m_values += static_cast<double>(m_counts[r]);
   }
   ++m_gathers;
-  // A build is due: it reads every contact node (the rows not sent above are as the last
-  // whole gather left them, at most the rebuild motion from the build's positions, so the
-  // engine's own check on the copies agrees: it sees no motion beyond the limit either).
-  if (broad.exceeds_rebuild_motion(largest))
+  // The one-rank decision, bit for bit: the engine takes it rather than measure the motion
+  // again on its copies. A build reads every contact node (the rows not sent above are as the
+  // last whole gather left them).
+  const bool due = broad.exceeds_rebuild_motion(largest);
+  engine.decide_rebuild(due);
+  if (due)
     gather_all(state, position, velocity);
   else
     m_partial = true;

@@ -28,8 +28,9 @@ class ContactRows {
   const std::vector<Index>& nodes() const { return m_all; }
   /// Before the contact pass (collective): the rows `state` holds of the nodes each rank
   /// integrates into `position` and `velocity` (n_nodes × 3, copies the engine reads) on
-  /// every rank: every contact node's, or, while the broad phase stays, the read ones only.
-  void gather(const contact::ContactEngine& engine, const State& state, NodalVectors& position,
+  /// every rank: every contact node's, or, while the broad phase stays, the read ones only;
+  /// then gives `engine` the rebuild decision of its next update() (decide_rebuild()).
+  void gather(contact::ContactEngine& engine, const State& state, NodalVectors& position,
               NodalVectors& velocity);
   /// After the pass (collective when it builds the lists): the lists of read rows made anew
   /// when the broad phase was built (`rebuilt`) or when there are none yet.
@@ -53,6 +54,7 @@ class ContactRows {
   Index m_integrated_count = 0;               ///< of m_all
   std::vector<std::vector<Index>> m_of_rank;  ///< the read rows between builds, by source
   std::vector<int> m_counts;                  ///< values each rank sends (rows and motion)
+  std::vector<Real> m_mine, m_all_values;     ///< gather()'s buffers, kept between increments
   bool m_lists = false;                       ///< m_of_rank holds the lists of the build
   bool m_partial = false;                     ///< the last gather was of the read rows only
   double m_values = 0.0;
