@@ -245,15 +245,19 @@ void ContactEngine::share_forces(const NodalVectors& velocity_half) {
     m_constraints[s].normal = get_vector(r + 23);
   };
   reset_rows(FORCE_WIDTH, m_received_forces, take);
+  // Each process's block: its force rows, then its velocities in slot order (one cursor each).
+  std::vector<const Real*> velocity_at(n_processes);
   const Real* block = all.data();
   for (std::size_t p = 0; p < n_processes; ++p) {
     take_rows(block, block + force_rows[p], FORCE_WIDTH, m_owned, m_received_forces, take);
-    const Real* v = block + force_rows[p];
+    velocity_at[p] = block + force_rows[p];
     if (static_cast<int>(p) != m_process) m_received_velocities += velocities[p];
-    for (Index s = 0; s < static_cast<Index>(m_force_slot.size()); ++s)
-      if (m_force_slot[s] != 0 && m_slot_process[s] == static_cast<int>(p))
-        for (int d = 0; d < 3; ++d) m_work_velocity[3 * s + d] = *v++;
     block += m_counts[p];
+  }
+  for (Index s = 0; s < static_cast<Index>(m_force_slot.size()); ++s) {
+    if (m_force_slot[s] == 0) continue;
+    const Real*& v = velocity_at[m_slot_process[s]];
+    for (int d = 0; d < 3; ++d) m_work_velocity[3 * s + d] = *v++;
   }
 }
 
