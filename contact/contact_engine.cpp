@@ -109,14 +109,14 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   count_events(totals);
   cap_default_springs(dt_penalty, mass, inverse_mass);
   spring_forces(dt, dt_penalty);
-  if (m_shared_pass) share_forces();
+  if (m_shared_pass) share_forces(velocity_half);
   m_shared_pass = false;
 
   // Assembly, sums and work, in slot order (independent of the thread count).
   m_assembly.assemble(
       slaves, faces, {m_touch, m_slave_force, m_normal_force, m_constraints, m_dissipation},
       {m_second_touch, m_second_force, m_second_normal_force, m_second, m_second_dissipation},
-      velocity_half, dt, force_internal, totals);
+      velocity_half, m_work_velocity, dt, force_internal, totals);
   for (Index s = 0; s < n_slave; ++s) totals.stored_energy += m_stored[s];
   if (m_ramping > 0) {
     // In slot order; a ramp that has reached zero ends (its offset stays permanent only

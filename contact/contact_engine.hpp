@@ -118,18 +118,29 @@ class ContactEngine {
   void set_step_time(Real step_time) { m_step_time = step_time; }
   /// Whether some slave slot's interference is still ramping.
   bool interference_ramping() const { return m_ramping > 0; }
-  /// Distributed runs (slot_sharing.hpp): from the next update() on, this process searches
-  /// and computes the springs of the slave slots `owned` marks (n_slave) only, and takes every
-  /// other slot's results from its owner through `sharing` (which must outlive the engine);
-  /// a slot's state (offset, constraint, friction spring, ramp) is kept by its owner alone.
-  /// The broad phase and the node areas stay whole on every process; probe() searches all.
-  void share_slots(std::vector<char> owned, SlotSharing* sharing);
+  /// Distributed runs (slot_sharing.hpp): from the next update() on, process `process`
+  /// searches and computes the springs of the slave slots whose `slot_process` (n_slave) it
+  /// is only, and takes every other slot's results from its owner through `sharing` (which
+  /// must outlive the engine); a slot's state (offset, constraint, friction spring, ramp) is
+  /// kept by its owner alone, and so is the velocity of its node, which the owner sends to
+  /// every process when the node carries a force (the work terms). The broad phase's grid
+  /// stays whole on every process; probe() searches all.
+  void share_slots(std::vector<int> slot_process, int process, SlotSharing* sharing);
   /// Distributed runs, after an update() of shared slots (contact_reads.cpp): sets in `mark`
   /// (n_nodes) the nodes whose positions and velocities the search and springs of this
   /// process's slots read until the broad phase is next built: each slot's node, the corners
   /// of its candidate faces and of the faces its state holds. False when the whole pass reads
   /// more than the slots' neighbourhoods (a law of its own stiffness: every node area).
   bool mark_read_nodes(std::vector<char>& mark) const;
+  /// Distributed runs: the node velocities this process has received with the other
+  /// processes' slot forces (share_forces()) since share_slots().
+  double received_velocities() const { return m_received_velocities; }
+  /// Distributed runs, before an update() of shared slots on a built broad phase: whether the
+  /// broad phase is to be built, decided by the caller as the max over the processes of each
+  /// one's largest motion of the nodes it integrates (BroadPhase::exceeds_rebuild_motion(),
+  /// exact, so the one-process decision); that update() then does not measure the motion
+  /// again on its copies. For the next update() only.
+  void decide_rebuild(bool due) { m_rebuild_decision = due ? 1 : 0; }
 
  private:
   /// Whether this process computes slot s in the current update() (share_slots()).
@@ -141,8 +152,13 @@ class ContactEngine {
   /// depths and counted default springs from its owner (contact_slot_rows.cpp).
   void share_springs();
   /// After spring_forces(): every slot's forces, energies, status and friction forces from
-  /// its owner, all the assembly and the sums read.
-  void share_forces();
+  /// its owner, all the assembly and the sums read, and into m_work_velocity the velocity
+  /// (`velocity_half`, n_nodes × 3, current for this process's slots) of every slot whose
+  /// node may carry a force now or carried one before (the work terms).
+  void share_forces(const NodalVectors& velocity_half);
+  /// Into m_force_slot (n_slave): the slots whose node may carry a contact force in this
+  /// update() or carried one in the last (share_forces()).
+  void mark_force_slots();
   /// The releases, pass-throughs and nodes behind a held shell's mid-surface into `totals`,
   /// each counted and its deepest kept (the first in slot order on a tie).
   void count_events(ContactTotals& totals) const;
@@ -373,9 +389,17 @@ class ContactEngine {
   // update() shares, and the other processes' slots the last exchanges set here (reset to
   // "nothing" before the next ones).
   std::vector<char> m_owned;
+  std::vector<int> m_slot_process;  ///< the process of each slot (share_slots())
+  int m_process = 0;                ///< this process (share_slots())
+  /// (n_slave × 3) the velocity of each slot's node that may carry a force (share_forces();
+  /// empty outside a shared pass: the assembly reads the velocities it is given).
+  std::vector<Real> m_work_velocity;
+  std::vector<char> m_force_slot;      ///< share_forces(): the slots whose velocity travels
+  double m_received_velocities = 0.0;  ///< received_velocities()
   SlotSharing* m_sharing = nullptr;
   bool m_shared_pass = false;
-  bool m_broad_owned_only = false;  ///< the last broad-phase build scanned m_owned's slots only
+  bool m_broad_owned_only = false;      ///< the last broad-phase build scanned m_owned's slots only
+  signed char m_rebuild_decision = -1;  ///< decide_rebuild() for the next update(); -1: none
   std::vector<Index> m_received_springs, m_received_forces;
   std::vector<Index> m_sent;  ///< the slots whose rows share_springs() sent
   std::vector<int> m_counts;  ///< values each process sent in the last exchange

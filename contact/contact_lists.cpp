@@ -83,7 +83,11 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
   // A shared pass scans only this process's slots; a whole one (probe(), the step's
   // overclosure passes) needs every slot's candidates, so it does not reuse such a build.
   const bool whole_needed = !m_shared_pass && m_broad_owned_only;
-  if (!m_broad.needs_rebuild(position) && !whole_needed) return false;
+  // A decision the processes took together (decide_rebuild()) holds for this update() alone.
+  const bool decided = m_rebuild_decision >= 0 && m_shared_pass && m_broad.build_count() > 0;
+  const bool due = decided ? m_rebuild_decision != 0 : m_broad.needs_rebuild(position);
+  m_rebuild_decision = -1;
+  if (!due && !whole_needed) return false;
   m_broad_owned_only = m_shared_pass;
   m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness, m_domain.face_depths(),
                 m_shared_pass ? std::span<const char>(m_owned) : std::span<const char>());

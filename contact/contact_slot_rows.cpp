@@ -73,19 +73,24 @@ bool append_row(Index s, const Real* row, int width, std::vector<Real>& out) {
   return true;
 }
 
-/// Calls take(s, row) for every row of `all` (slot, then `width` values) of a slot `owned`
-/// does not mark, after take(s, zeros) for every slot of `received` (the last exchange's),
-/// which it then lists anew.
+/// Calls take(s, zeros) for every slot of `received` (the last exchange's, listed anew by
+/// take_rows()).
 template <class Take>
-void take_rows(const std::vector<Real>& all, int width, const std::vector<char>& owned,
-               std::vector<Index>& received, Take take) {
+void reset_rows(int width, std::vector<Index>& received, Take take) {
   const std::vector<Real> zeros(static_cast<std::size_t>(width), 0.0);
   for (const Index s : received) take(s, zeros.data());
   received.clear();
-  for (std::size_t k = 0; k < all.size(); k += 1 + static_cast<std::size_t>(width)) {
-    const auto s = static_cast<Index>(all[k]);
+}
+
+/// Calls take(s, row) for every row of [first, last) (slot, then `width` values) of a slot
+/// `owned` does not mark, and lists it in `received`.
+template <class Take>
+void take_rows(const Real* first, const Real* last, int width, const std::vector<char>& owned,
+               std::vector<Index>& received, Take take) {
+  for (const Real* row = first; row < last; row += 1 + width) {
+    const auto s = static_cast<Index>(row[0]);
     if (owned[s] != 0) continue;
-    take(s, &all[k + 1]);
+    take(s, row + 1);
     received.push_back(s);
   }
 }
@@ -101,8 +106,13 @@ void ContactEngine::share_active_slots() {
     m_active_slot[static_cast<std::size_t>(s)] = 1;
 }
 
-void ContactEngine::share_slots(std::vector<char> owned, SlotSharing* sharing) {
-  m_owned = std::move(owned);
+void ContactEngine::share_slots(std::vector<int> slot_process, int process, SlotSharing* sharing) {
+  m_slot_process = std::move(slot_process);
+  m_process = process;
+  m_received_velocities = 0.0;
+  m_owned.assign(m_slot_process.size(), 0);
+  for (std::size_t s = 0; s < m_slot_process.size(); ++s)
+    m_owned[s] = m_slot_process[s] == process ? 1 : 0;
   m_sharing = sharing;
   // Whatever the whole passes before left in the other processes' slots is reset at the
   // first exchanges.
@@ -111,6 +121,8 @@ void ContactEngine::share_slots(std::vector<char> owned, SlotSharing* sharing) {
     for (Index s = 0; s < m_domain.slaves().size(); ++s)
       if (m_owned[s] == 0) m_received_springs.push_back(s);
   m_received_forces = m_received_springs;
+  m_work_velocity.clear();
+  if (m_sharing != nullptr) m_work_velocity.assign(3 * m_slot_process.size(), 0.0);
 }
 
 void ContactEngine::share_springs() {
@@ -142,7 +154,7 @@ void ContactEngine::share_springs() {
     if (append_row(s, row, SPRING_WIDTH, mine)) m_sent.push_back(s);
   }
   const std::vector<Real> all = m_sharing->gather(mine, m_counts, false);
-  take_rows(all, SPRING_WIDTH, m_owned, m_received_springs, [&](Index s, const Real* row) {
+  const auto take = [&](Index s, const Real* row) {
     m_touch[s] = get_touch(row);
     m_second_touch[s] = get_touch(row + TOUCH_WIDTH);
     const Real* r = row + 2 * TOUCH_WIDTH;
@@ -156,10 +168,12 @@ void ContactEngine::share_springs() {
       spring.k = r[4 + side];
       spring.acts = spring.k > 0.0;
     }
-  });
+  };
+  reset_rows(SPRING_WIDTH, m_received_springs, take);
+  take_rows(all.data(), all.data() + all.size(), SPRING_WIDTH, m_owned, m_received_springs, take);
 }
 
-void ContactEngine::share_forces() {
+void ContactEngine::share_forces(const NodalVectors& velocity_half) {
   std::vector<Real> mine;
   Real row[FORCE_WIDTH];
   const bool ramps = !m_interference.empty();
@@ -190,9 +204,26 @@ void ContactEngine::share_forces() {
     mine.push_back(static_cast<Real>(s));
     mine.insert(mine.end(), row, row + FORCE_WIDTH);
   }
-  for (int& count : m_counts) count = count / (1 + SPRING_WIDTH) * (1 + FORCE_WIDTH);
+  // Then the velocity of the node of each own slot that may carry a force (mark_force_slots),
+  // in slot order: the work terms every process sums over all slots.
+  const auto n_processes = m_counts.size();
+  std::vector<int> force_rows(n_processes, 0), velocities(n_processes, 0);
+  for (std::size_t p = 0; p < n_processes; ++p)
+    force_rows[p] = m_counts[p] / (1 + SPRING_WIDTH) * (1 + FORCE_WIDTH);
+  mark_force_slots();
+  const std::vector<Index>& nodes = m_domain.slaves().nodes();
+  for (Index s = 0; s < static_cast<Index>(m_force_slot.size()); ++s) {
+    if (m_force_slot[s] == 0) continue;
+    velocities[m_slot_process[s]] += 3;
+    if (m_owned[s] == 0) continue;
+    for (int d = 0; d < 3; ++d) {
+      m_work_velocity[3 * s + d] = velocity_half(nodes[s], d);
+      mine.push_back(velocity_half(nodes[s], d));
+    }
+  }
+  for (std::size_t p = 0; p < n_processes; ++p) m_counts[p] = force_rows[p] + velocities[p];
   const std::vector<Real> all = m_sharing->gather(mine, m_counts, true);
-  take_rows(all, FORCE_WIDTH, m_owned, m_received_forces, [&](Index s, const Real* r) {
+  const auto take = [&](Index s, const Real* r) {
     for (int d = 0; d < 3; ++d) {
       m_slave_force[3 * s + d] = r[d];
       m_second_force[3 * s + d] = r[3 + d];
@@ -212,7 +243,39 @@ void ContactEngine::share_forces() {
     m_constraints[s].tangential_force = get_vector(r + 17);
     m_second[s].tangential_force = get_vector(r + 20);
     m_constraints[s].normal = get_vector(r + 23);
-  });
+  };
+  reset_rows(FORCE_WIDTH, m_received_forces, take);
+  // Each process's block: its force rows, then its velocities in slot order (one cursor each).
+  std::vector<const Real*> velocity_at(n_processes);
+  const Real* block = all.data();
+  for (std::size_t p = 0; p < n_processes; ++p) {
+    take_rows(block, block + force_rows[p], FORCE_WIDTH, m_owned, m_received_forces, take);
+    velocity_at[p] = block + force_rows[p];
+    if (static_cast<int>(p) != m_process) m_received_velocities += velocities[p];
+    block += m_counts[p];
+  }
+  for (Index s = 0; s < static_cast<Index>(m_force_slot.size()); ++s) {
+    if (m_force_slot[s] == 0) continue;
+    const Real*& v = velocity_at[m_slot_process[s]];
+    for (int d = 0; d < 3; ++d) m_work_velocity[3 * s + d] = *v++;
+  }
+}
+
+void ContactEngine::mark_force_slots() {
+  // A node carries a contact force as a touching slave node or as a corner of a touched face
+  // (every process holds every slot's touches after share_springs()), or carried one at the
+  // last assembly (the previous force of the work term).
+  const SlaveNodes& slaves = m_domain.slaves();
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  m_force_slot.assign(static_cast<std::size_t>(slaves.size()), 0);
+  for (Index s = 0; s < slaves.size(); ++s) {
+    if (m_assembly.has_force(s)) m_force_slot[s] = 1;
+    for (const SlaveTouch* t : {&m_touch[s], &m_second_touch[s]}) {
+      if (t->face == NO_INDEX) continue;
+      m_force_slot[s] = 1;
+      for (const Index a : faces[t->face].nodes) m_force_slot[slaves.slot(a)] = 1;
+    }
+  }
 }
 
 }  // namespace xpl::contact

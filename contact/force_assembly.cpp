@@ -15,8 +15,8 @@ ForceAssembly::ForceAssembly(Index n_slave, Index n_pairs) {
 
 void ForceAssembly::assemble(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
                              const SpringSet& first, const SpringSet& second,
-                             const NodalVectors& velocity_half, Real dt,
-                             NodalVectors& force_internal, ContactTotals& totals) {
+                             const NodalVectors& velocity_half, std::span<const Real> slot_velocity,
+                             Real dt, NodalVectors& force_internal, ContactTotals& totals) {
   const Index n_slave = slaves.size();
   m_previous_force.swap(m_force);
   std::fill(m_force.begin(), m_force.end(), 0.0);
@@ -26,7 +26,7 @@ void ForceAssembly::assemble(const SlaveNodes& slaves, const std::vector<Contact
   for (Index s = 0; s < n_slave; ++s)
     if (second.touch[s].face != NO_INDEX)
       add_spring(slaves, faces, second, s, force_internal, totals);
-  if (dt > 0.0) add_work(slaves, velocity_half, dt, totals.work);
+  if (dt > 0.0) add_work(slaves, velocity_half, slot_velocity, dt, totals.work);
 }
 
 void ForceAssembly::add_spring(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
@@ -60,8 +60,8 @@ void ForceAssembly::add_spring(const SlaveNodes& slaves, const std::vector<Conta
   totals.friction_dissipation += set.dissipation[s];
 }
 
-void ForceAssembly::add_work(const SlaveNodes& slaves, const NodalVectors& velocity_half, Real dt,
-                             Real& work) const {
+void ForceAssembly::add_work(const SlaveNodes& slaves, const NodalVectors& velocity_half,
+                             std::span<const Real> slot_velocity, Real dt, Real& work) const {
   for (Index s = 0; s < slaves.size(); ++s) {
     const Real* now = &m_force[3 * s];
     const Real* before = &m_previous_force[3 * s];
@@ -69,7 +69,10 @@ void ForceAssembly::add_work(const SlaveNodes& slaves, const NodalVectors& veloc
         before[2] == 0.0)
       continue;
     const Index node = slaves.nodes()[s];
-    for (int d = 0; d < 3; ++d) work += 0.5 * (now[d] + before[d]) * velocity_half(node, d) * dt;
+    for (int d = 0; d < 3; ++d) {
+      const Real v = slot_velocity.empty() ? velocity_half(node, d) : slot_velocity[3 * s + d];
+      work += 0.5 * (now[d] + before[d]) * v * dt;
+    }
   }
 }
 

@@ -79,10 +79,18 @@ class ForceAssembly {
   /// corners with the weights N_I; the normal force and the friction force magnitude go to the
   /// pair sums, the frictional dissipation and the count of loaded springs to `totals`. Then
   /// the work of the nodal forces over the increment with velocities `velocity_half`
-  /// (n_nodes × 3, m/s) and length dt (s; none when dt ≤ 0) is added to `totals.work`.
+  /// (n_nodes × 3, m/s) and length dt (s; none when dt ≤ 0) is added to `totals.work`; or,
+  /// when `slot_velocity` is not empty, with the velocity of each slot's node from there
+  /// (n_slave × 3, m/s; read for the slots with a force now or before only).
   void assemble(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
                 const SpringSet& first, const SpringSet& second, const NodalVectors& velocity_half,
-                Real dt, NodalVectors& force_internal, ContactTotals& totals);
+                std::span<const Real> slot_velocity, Real dt, NodalVectors& force_internal,
+                ContactTotals& totals);
+  /// Whether slot s's node had a contact force at the last assembly (before the next one:
+  /// the previous increment's, which the next work term reads).
+  bool has_force(Index s) const {
+    return m_force[3 * s] != 0.0 || m_force[3 * s + 1] != 0.0 || m_force[3 * s + 2] != 0.0;
+  }
 
   /// Total contact force on the node of slave slot s (as slave and as face corner), N.
   Vec3 nodal_force(Index s) const {
@@ -99,8 +107,8 @@ class ForceAssembly {
                   const SpringSet& set, Index s, NodalVectors& force_internal,
                   ContactTotals& totals);
   /// Trapezoidal work ½ (f_n + f_{n−1})·v_{n+1/2} Δt of the assembled forces, added to `work`.
-  void add_work(const SlaveNodes& slaves, const NodalVectors& velocity_half, Real dt,
-                Real& work) const;
+  void add_work(const SlaveNodes& slaves, const NodalVectors& velocity_half,
+                std::span<const Real> slot_velocity, Real dt, Real& work) const;
 
   std::vector<Real> m_force;           // (n_slave × 3): assembled force, this increment
   std::vector<Real> m_previous_force;  // (n_slave × 3): assembled force, last increment

@@ -269,6 +269,34 @@ std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::
   return all;
 }
 
+void DistributedRun::alltoall_into(const std::vector<Real>& send,
+                                   const std::vector<int>& send_counts, std::vector<Real>& receive,
+                                   const std::vector<int>& receive_counts) const {
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  m_send_displacement.assign(static_cast<std::size_t>(m_size), 0);
+  m_receive_displacement.assign(static_cast<std::size_t>(m_size), 0);
+  for (int r = 1; r < m_size; ++r) {
+    m_send_displacement[r] = m_send_displacement[r - 1] + send_counts[r - 1];
+    m_receive_displacement[r] = m_receive_displacement[r - 1] + receive_counts[r - 1];
+  }
+  receive.resize(static_cast<std::size_t>(m_receive_displacement.back() + receive_counts.back()));
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ialltoallv(send.data(), send_counts.data(), m_send_displacement.data(), MPI_DOUBLE,
+                 receive.data(), receive_counts.data(), m_receive_displacement.data(), MPI_DOUBLE,
+                 MPI_COMM_WORLD, &request);
+  wait(request);
+}
+
+std::vector<int> DistributedRun::alltoall_counts(const std::vector<int>& send_counts) const {
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  std::vector<int> receive_counts(static_cast<std::size_t>(m_size), 0);
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ialltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, MPI_COMM_WORLD,
+                &request);
+  wait(request);
+  return receive_counts;
+}
+
 void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<int>& counts) {
   ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   m_posted_mine = std::move(mine);

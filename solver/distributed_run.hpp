@@ -123,6 +123,15 @@ class DistributedRun {
   /// number of values of each rank: found, or with `counts_known` given (one collective less).
   std::vector<Real> allgather(const std::vector<Real>& mine, std::vector<int>& counts,
                               bool counts_known = false) const;
+  /// Point to point (MPI_Alltoallv): `send` holds the values for rank 0, 1, ... back to
+  /// back, `send_counts[r]` of them for rank r; into `receive` (resized: a buffer the caller
+  /// keeps) the values each rank sends this one, `receive_counts[r]` from rank r, in rank
+  /// order. Collective; the counts must match the senders' (alltoall_counts()).
+  void alltoall_into(const std::vector<Real>& send, const std::vector<int>& send_counts,
+                     std::vector<Real>& receive, const std::vector<int>& receive_counts) const;
+  /// The number of values each rank will send this one, from the number this one sends each
+  /// (`send_counts`, size()) (MPI_Alltoall). Collective.
+  std::vector<int> alltoall_counts(const std::vector<int>& send_counts) const;
   /// allgather() in two halves, so that it travels while the rank does other work (one at a
   /// time): post_allgather() starts it with every rank's count known, wait_allgather() waits
   /// and returns every rank's values in rank order.
@@ -147,6 +156,9 @@ class DistributedRun {
   /// The rank whose rows of `node` are the run's: its owner, or for a node of no deformable
   /// element the rank counting its chunk.
   int row_source(Index node) const { return m_row_source[node]; }
+  /// The rank that owns `node` and writes its rows of each frame (rank 0 for a node of no
+  /// deformable element).
+  int owner(Index node) const { return m_node_owner[node]; }
 
   /// Wall time spent in this rank's exchanges and collectives, s: with the neighbours (the
   /// interface forces), shipping the chunks' forces, and gathers and reductions; WAITS: the
@@ -174,6 +186,7 @@ class DistributedRun {
   std::vector<std::vector<Real>> m_send, m_receive;
   std::vector<Real> m_posted_mine, m_posted_all;  ///< post_allgather()
   std::vector<int> m_posted_counts, m_posted_displacement;
+  mutable std::vector<int> m_send_displacement, m_receive_displacement;  ///< alltoall_into()
   struct Requests;
   std::unique_ptr<Requests> m_requests;
   mutable double m_seconds[TIMINGS] = {};

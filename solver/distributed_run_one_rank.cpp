@@ -32,6 +32,13 @@ std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::
   counts.assign(1, static_cast<int>(mine.size()));
   return mine;
 }
+void DistributedRun::alltoall_into(const std::vector<Real>& send, const std::vector<int>&,
+                                   std::vector<Real>& receive, const std::vector<int>&) const {
+  receive = send;
+}
+std::vector<int> DistributedRun::alltoall_counts(const std::vector<int>& send_counts) const {
+  return send_counts;
+}
 void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<int>&) {
   m_posted_all = std::move(mine);
 }

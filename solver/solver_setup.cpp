@@ -203,7 +203,7 @@ void ExplicitSolver::Impl::set_up_distribution() {
 }
 
 void ExplicitSolver::Impl::share_features(DistributedRun& run) {
-  m_contact.set_distribution(&run, m_options.shared_contact);
+  m_contact.set_distribution(&run, m_options.shared_contact, !m_options.shared_frames);
   m_nodes.set_load_share(
       [&run](const std::vector<Index>& nodes, const std::vector<NodalVectors*>& rows) {
         run.share_rows(nodes, {rows.begin(), rows.end()}, rows);

@@ -64,7 +64,7 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
     m_velocity = state.velocity_half;
     share_slots();
     m_rows_shared = m_shared && m_run->size() > 1;
-    if (m_rows_shared) m_rows.reset(*m_run, m_shared_nodes, m_model.node_count());
+    if (m_rows_shared) m_rows.reset(*m_run, m_shared_nodes, m_model.node_count(), m_root_writes);
   }
 }
 

@@ -50,10 +50,13 @@ class ContactStage {
   /// (DistributedRun::row_source()) and takes the other slots' results from their ranks, then
   /// adds to the nodes it integrates the one-rank contact forces in the one-rank order. The
   /// start-of-step passes run whole on every rank. `shared` false: every rank runs the whole
-  /// contact pass instead (the first, redundant design). `run` must outlive the stage.
-  void set_distribution(const DistributedRun* run, bool shared) {
+  /// contact pass instead (the first, redundant design). `root_writes`: rank 0 writes every
+  /// frame alone (--gather-frames), so it reads every node's contact area and normal. `run`
+  /// must outlive the stage.
+  void set_distribution(const DistributedRun* run, bool shared, bool root_writes) {
     m_run = run;
     m_shared = shared;
+    m_root_writes = root_writes;
   }
   /// Distributed runs, for the partition's graph (issue 37 item 2): the (slave node, element
   /// of a master face) pairs the broad phase of step 1's contact lists on `position`, from an
@@ -65,9 +68,14 @@ class ContactStage {
   /// ranks included; a part of the contact force phase), s.
   double sharing_seconds() const;
   /// Distributed runs with shared slots: the contact nodes' values this rank received per
-  /// increment (ContactRows), and what gathering every contact node would have been.
+  /// increment (ContactRows' rows, and the velocities of the work terms that come with the
+  /// slots' forces), and what gathering every contact node's rows would have been.
   std::pair<double, double> rows_received() const {
-    return {m_rows.values_per_gather(), m_rows.whole_values_per_gather()};
+    const double velocities =
+        m_engine && m_rows.gathers() > 0
+            ? m_engine->received_velocities() / static_cast<double>(m_rows.gathers())
+            : 0.0;
+    return {m_rows.values_per_gather() + velocities, m_rows.whole_values_per_gather()};
   }
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
@@ -150,6 +158,7 @@ class ContactStage {
   std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
   const DistributedRun* m_run = nullptr;  ///< distributed runs only
   bool m_shared = true;                   ///< set_distribution()
+  bool m_root_writes = false;             ///< set_distribution()
   std::unique_ptr<contact::SlotSharing> m_sharing;  ///< share_slots(), its collectives
   /// Distributed runs: the nodes the engine reads (its slave nodes: every face node and the
   /// point nodes), ascending, and the run's positions and half-step velocities of them.

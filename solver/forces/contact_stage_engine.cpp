@@ -71,11 +71,11 @@ void ContactStage::share_slots() {
     return;
   }
   const contact::SlaveNodes& slaves = m_engine->domain().slaves();
-  std::vector<char> owned(static_cast<std::size_t>(slaves.size()), 0);
+  std::vector<int> slot_rank(static_cast<std::size_t>(slaves.size()), 0);
   Index mine = 0;
   for (Index s = 0; s < slaves.size(); ++s) {
-    owned[s] = m_run->row_source(slaves.nodes()[s]) == m_run->rank() ? 1 : 0;
-    mine += owned[s];
+    slot_rank[s] = m_run->row_source(slaves.nodes()[s]);
+    mine += slot_rank[s] == m_run->rank() ? 1 : 0;
   }
   m_sink.message(Severity::Info,
                  "mpi: contact shared out among the " + ranks +
@@ -84,7 +84,7 @@ void ContactStage::share_slots() {
                      std::to_string(mine) + " of " + std::to_string(slaves.size()) +
                      "), the results exchanged and assembled in the one-rank order");
   if (!m_sharing) m_sharing = std::make_unique<RankSlotSharing>(*m_run);
-  m_engine->share_slots(std::move(owned), m_sharing.get());
+  m_engine->share_slots(std::move(slot_rank), m_run->rank(), m_sharing.get());
 }
 
 double ContactStage::sharing_seconds() const {
