@@ -104,6 +104,7 @@ void ContactEngine::share_active_slots() {
 void ContactEngine::share_slots(std::vector<char> owned, SlotSharing* sharing) {
   m_owned = std::move(owned);
   m_sharing = sharing;
+  m_visit_all = true;
   // Whatever the whole passes before left in the other processes' slots is reset at the
   // first exchanges.
   m_received_springs.clear();
