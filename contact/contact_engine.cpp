@@ -98,7 +98,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     if (m_user_stiffness)
       slaves.update_areas(faces, position);
     else
-      slaves.update_areas_at(faces, position, m_active_slots, m_active_faces);
+      slaves.update_areas(faces, position, m_active_slot, m_active_face);
     search(position, node_thickness);
     // The face a released or passed node was pressed on, before the springs move on.
     for (const Index s : m_live)

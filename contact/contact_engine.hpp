@@ -383,10 +383,9 @@ class ContactEngine {
   // listed_faces(): CSR offsets (n_slave + 1) into the faces.
   std::vector<Index> m_listed_offset, m_listed;
   // Quiet slots (file comment): at broad-phase builds, this process's slots with listed faces
-  // and the index lists of m_active_slot and m_active_face (ascending); after each update the
-  // live slots that are not quiet (m_held); the slots this update visits (build_visits()); and
-  // 0 … n_slave − 1.
-  std::vector<Index> m_listed_slots, m_active_slots, m_active_faces;
+  // (ascending); after each update the live slots that are not quiet (m_held); the slots this
+  // update visits (build_visits()); and 0 … n_slave − 1.
+  std::vector<Index> m_listed_slots;
   std::vector<Index> m_held, m_live, m_all_slots;
   bool m_visit_all = true;  // the next update() visits every slot (build_visits())
   // Whether some face's depth is below the search margin at the last broad-phase build: only

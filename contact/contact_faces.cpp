@@ -212,47 +212,31 @@ void SlaveNodes::update_areas(std::span<const ContactFace> faces, const NodalVec
   const auto n_faces = static_cast<Index>(faces.size());
   const bool all_faces = face_needed.empty();
 #pragma omp parallel for schedule(static) if (n_faces >= PARALLEL_MIN_SLOTS)
-  for (Index i = 0; i < n_faces; ++i)
-    if (all_faces || face_needed[i]) face_area(faces[i], i, position);
+  for (Index i = 0; i < n_faces; ++i) {
+    if (!all_faces && !face_needed[i]) continue;
+    Vec3 corner[4];
+    face_corners(faces[i], position, {}, corner);
+    const Vec3 n = 0.5 * cross_diagonals(corner);
+    m_face_area[i] = length(n);
+    for (int d = 0; d < 3; ++d) m_face_normal[3 * i + d] = n[d];
+  }
   const Index n_slave = size();
   const bool all_slots = slot_needed.empty();
 #pragma omp parallel for schedule(static) if (n_slave >= PARALLEL_MIN_SLOTS)
-  for (Index s = 0; s < n_slave; ++s)
-    if (all_slots || slot_needed[s]) slot_area(s);
-}
-
-void SlaveNodes::update_areas_at(std::span<const ContactFace> faces, const NodalVectors& position,
-                                 std::span<const Index> slots, std::span<const Index> face_list) {
-  if (faces.size() != m_face_area.size())
-    throw std::invalid_argument("SlaveNodes::update_areas: not the faces it was built from");
-  const auto n_faces = static_cast<Index>(face_list.size());
-#pragma omp parallel for schedule(static) if (n_faces >= PARALLEL_MIN_SLOTS)
-  for (Index k = 0; k < n_faces; ++k) face_area(faces[face_list[k]], face_list[k], position);
-  const auto n_slots = static_cast<Index>(slots.size());
-#pragma omp parallel for schedule(static) if (n_slots >= PARALLEL_MIN_SLOTS)
-  for (Index k = 0; k < n_slots; ++k) slot_area(slots[k]);
-}
-
-void SlaveNodes::face_area(const ContactFace& face, Index i, const NodalVectors& position) {
-  Vec3 corner[4];
-  face_corners(face, position, {}, corner);
-  const Vec3 n = 0.5 * cross_diagonals(corner);
-  m_face_area[i] = length(n);
-  for (int d = 0; d < 3; ++d) m_face_normal[3 * i + d] = n[d];
-}
-
-void SlaveNodes::slot_area(Index s) {
-  Real a = 0.0;
-  Vec3 n = Vec3::Zero();
-  for (Index k = m_face_offsets[s]; k < m_face_offsets[s + 1]; ++k) {
-    const Index f = m_node_faces[k];
-    a += m_face_area[f];
-    n += Vec3(m_face_normal[3 * f], m_face_normal[3 * f + 1], m_face_normal[3 * f + 2]);
+  for (Index s = 0; s < n_slave; ++s) {
+    if (!all_slots && !slot_needed[s]) continue;
+    Real a = 0.0;
+    Vec3 n = Vec3::Zero();
+    for (Index k = m_face_offsets[s]; k < m_face_offsets[s + 1]; ++k) {
+      const Index f = m_node_faces[k];
+      a += m_face_area[f];
+      n += Vec3(m_face_normal[3 * f], m_face_normal[3 * f + 1], m_face_normal[3 * f + 2]);
+    }
+    m_areas[s] = m_point_area.empty() || m_point_area[s] == 0.0 ? 0.25 * a : m_point_area[s];
+    const Real n_len = length(n);
+    if (n_len > 0.0) n /= n_len;
+    for (int d = 0; d < 3; ++d) m_normals[3 * s + d] = n[d];
   }
-  m_areas[s] = m_point_area.empty() || m_point_area[s] == 0.0 ? 0.25 * a : m_point_area[s];
-  const Real n_len = length(n);
-  if (n_len > 0.0) n /= n_len;
-  for (int d = 0; d < 3; ++d) m_normals[3 * s + d] = n[d];
 }
 
 }  // namespace xpl::contact

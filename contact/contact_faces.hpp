@@ -134,11 +134,6 @@ class SlaveNodes {
   /// engine's per-increment pass, for the slave nodes that have candidate faces.
   void update_areas(std::span<const ContactFace> faces, const NodalVectors& position,
                     std::span<const char> slot_needed, std::span<const char> face_needed);
-  /// update_areas for the slots `slots` only, from the faces `face_list` (indices, each once),
-  /// which must include every face around those slots: the same values as the masks above,
-  /// without a walk over every slot and face. The contact engine's per-increment pass.
-  void update_areas_at(std::span<const ContactFace> faces, const NodalVectors& position,
-                       std::span<const Index> slots, std::span<const Index> face_list);
 
   /// Slave node indices, ascending (n_slave).
   const std::vector<Index>& nodes() const { return m_nodes; }
@@ -162,11 +157,6 @@ class SlaveNodes {
   Index size() const { return static_cast<Index>(m_nodes.size()); }
 
  private:
-  /// Area vector of face i at `position` into the scratch arrays (update_areas).
-  void face_area(const ContactFace& face, Index i, const NodalVectors& position);
-  /// Area and normal of slot s from the scratch arrays (update_areas).
-  void slot_area(Index s);
-
   std::vector<Index> m_nodes;
   std::vector<Index> m_slot;          // (n_nodes)
   std::vector<Index> m_face_offsets;  // (n_slave + 1) into m_node_faces

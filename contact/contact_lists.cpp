@@ -121,15 +121,10 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
   // The other processes' slots with candidates, so that every process updates the same node
   // areas (the output's contact pressures read them) and every slot's faces.
   if (m_shared_pass) share_active_slots();
-  m_active_slots.clear();
   for (Index s = 0; s < n_slave; ++s) {
     if (m_active_slot[s] == 0) continue;
-    m_active_slots.push_back(s);
     for (Index f : slaves.faces_of(s)) m_active_face[f] = 1;
   }
-  m_active_faces.clear();
-  for (Index f = 0; f < static_cast<Index>(m_active_face.size()); ++f)
-    if (m_active_face[f] != 0) m_active_faces.push_back(f);
   return true;
 }
 
