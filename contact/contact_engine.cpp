@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <numeric>
 
 #include "contact/closest_point.hpp"
 
@@ -67,6 +69,8 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
   m_stored.assign(n, 0.0);
   m_output_status.assign(n, OutputStatus::Open);
   m_event_face.assign(n, NO_INDEX);
+  m_all_slots.resize(n);
+  std::iota(m_all_slots.begin(), m_all_slots.end(), Index{0});
   m_assembly = ForceAssembly(m_domain.slaves().size(), m_domain.pair_count());
   for (const InteractionLaw& law : m_laws)
     m_user_stiffness = m_user_stiffness || law.pressure_slope > 0.0;
@@ -88,6 +92,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     ScopedTimer timer(timers, Phase::ContactSearch);
     m_shared_pass = m_sharing != nullptr;
     totals.rebuilt = refresh_broad_phase(position, node_thickness);
+    build_visits();
     // Only the search of a slot with candidates reads its area and normal, and so does a
     // user-stiffness law's spring (same slots); a LINEAR law's increment estimate reads all.
     if (m_user_stiffness)
@@ -96,11 +101,10 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       slaves.update_areas(faces, position, m_active_slot, m_active_face);
     search(position, node_thickness);
     // The face a released or passed node was pressed on, before the springs move on.
-    for (Index s = 0; s < n_slave; ++s)
-      if (owned(s))
-        m_event_face[s] = m_lost_depth[s] > 0.0 || m_passed_depth[s] > 0.0
-                              ? m_constraints[s].master_face
-                              : NO_INDEX;
+    for (const Index s : m_live)
+      m_event_face[s] = m_lost_depth[s] > 0.0 || m_passed_depth[s] > 0.0
+                            ? m_constraints[s].master_face
+                            : NO_INDEX;
   }
 
   ScopedTimer timer(timers, Phase::ContactForce);
@@ -110,14 +114,15 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   cap_default_springs(dt_penalty, mass, inverse_mass);
   spring_forces(dt, dt_penalty);
   if (m_shared_pass) share_forces(velocity_half);
-  m_shared_pass = false;
 
   // Assembly, sums and work, in slot order (independent of the thread count).
+  const std::span<const Index> visited = visits();
   m_assembly.assemble(
-      slaves, faces, {m_touch, m_slave_force, m_normal_force, m_constraints, m_dissipation},
+      slaves, faces, visited,
+      {m_touch, m_slave_force, m_normal_force, m_constraints, m_dissipation},
       {m_second_touch, m_second_force, m_second_normal_force, m_second, m_second_dissipation},
       velocity_half, m_work_velocity, dt, force_internal, totals);
-  for (Index s = 0; s < n_slave; ++s) totals.stored_energy += m_stored[s];
+  for (const Index s : visited) totals.stored_energy += m_stored[s];
   if (m_ramping > 0) {
     // In slot order; a ramp that has reached zero ends (its offset stays permanent only
     // where a base is left).
@@ -135,16 +140,18 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   }
   // A face corner without candidates of its own that carries force: its area and normal
   // (read by the contact output) as the full pass would have made them.
+  // (Every other slot's assembled force is zero.)
   if (!m_user_stiffness) {
+    const std::vector<Index>& forced = m_assembly.forced_slots();
     bool extra = false;
-    for (Index s = 0; s < n_slave && !extra; ++s) {
-      const Vec3 f = m_assembly.nodal_force(s);
-      extra = !m_active_slot[s] && f.dot(f) != 0.0;
+    for (std::size_t k = 0; k < forced.size() && !extra; ++k) {
+      const Vec3 f = m_assembly.nodal_force(forced[k]);
+      extra = !m_active_slot[forced[k]] && f.dot(f) != 0.0;
     }
     if (extra) {
       m_extra_slot.assign(static_cast<std::size_t>(n_slave), 0);
       m_extra_face.assign(faces.size(), 0);
-      for (Index s = 0; s < n_slave; ++s) {
+      for (const Index s : forced) {
         const Vec3 f = m_assembly.nodal_force(s);
         if (m_active_slot[s] || f.dot(f) == 0.0) continue;
         m_extra_slot[s] = 1;
@@ -156,7 +163,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   m_updated = true;
   if (m_user_stiffness) {
     m_penalty_sum.reset(static_cast<Index>(mass.size()));
-    for (Index s = 0; s < n_slave; ++s)
+    for (const Index s : visited)
       for (int side = 0; side < 2; ++side) {
         const SlaveTouch& t = side == 0 ? m_touch[s] : m_second_touch[s];
         const Index j = 2 * s + side;
@@ -166,7 +173,35 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
       }
     m_penalty_limit = m_penalty_sum.largest(inverse_mass);
   }
+  keep_held();
+  m_shared_pass = false;
   return totals;
+}
+
+void ContactEngine::build_visits() {
+  m_live.clear();
+  if (m_visit_all) {
+    for (const Index s : m_all_slots)
+      if (owned(s)) m_live.push_back(s);
+    return;
+  }
+  std::set_union(m_listed_slots.begin(), m_listed_slots.end(), m_held.begin(), m_held.end(),
+                 std::back_inserter(m_live));
+  // A whole build (probe()) listed every process's slots.
+  if (m_shared_pass)
+    m_live.erase(std::remove_if(m_live.begin(), m_live.end(), [&](Index s) { return !owned(s); }),
+                 m_live.end());
+}
+
+void ContactEngine::keep_held() {
+  m_held.clear();
+  const bool ramps = !m_interference.empty();
+  for (const Index s : m_live)
+    if (m_touch[s].face != NO_INDEX || m_second_touch[s].face != NO_INDEX ||
+        m_lost_depth[s] != 0.0 || m_passed_depth[s] != 0.0 || m_behind_depth[s] != 0.0 ||
+        m_warm[s].count > 0 || (ramps && m_interference[s].amount > 0.0))
+      m_held.push_back(s);
+  m_visit_all = false;
 }
 
 void ContactEngine::count_events(ContactTotals& totals) const {
@@ -179,7 +214,7 @@ void ContactEngine::count_events(ContactTotals& totals) const {
     deepest = depth;
     return true;
   };
-  for (Index s = 0; s < slaves.size(); ++s) {
+  for (const Index s : visits()) {
     if (deeper(m_lost_depth[s], totals.lost, totals.lost_depth)) {
       totals.lost_node = slaves.nodes()[s];
       totals.lost_element = faces[m_event_face[s]].element;
@@ -203,6 +238,7 @@ void ContactEngine::set_interference(Index s, Real amount, Real base, Real durat
     m_ramp_before.assign(n, 0.0);
     m_ramp_work.assign(n, 0.0);
   }
+  m_visit_all = true;
   Interference& ramp = m_interference[s];
   if (!(ramp.amount > 0.0) && amount > 0.0) ++m_ramping;
   if (ramp.amount > 0.0 && !(amount > 0.0)) --m_ramping;

@@ -15,6 +15,13 @@
 /// Determinism: search and force loops are parallel over slave nodes and write only their own
 /// slot; assembly and every sum run over slots in order, so results do not depend on the
 /// number of threads.
+///
+/// Quiet slots: a slot whose last visit found no touch on either side, no release, pass-through
+/// or behind depth, kept no warm start and has no ramp is quiet: its constraints are open, its
+/// springs and forces zero, and every pass would write over it what it holds. An update visits
+/// only the slots that may not be quiet (those with listed faces, whose search may find a touch,
+/// and those whose last visit left one of the above), in slot order, so every sum and every
+/// state is that of a visit of all slots, to the bit; the others cost nothing per increment.
 
 #include <array>
 #include <cstdint>
@@ -74,7 +81,12 @@ class ContactEngine {
   const ContactDomain& domain() const { return m_domain; }
   const ContactOptions& options() const { return m_options; }
   const std::vector<ContactConstraint>& constraints() const { return m_constraints; }
-  std::vector<ContactConstraint>& constraints() { return m_constraints; }
+  /// Mutable: a constraint set through it may not be quiet (build_visits()), so the next
+  /// update() visits every slot.
+  std::vector<ContactConstraint>& constraints() {
+    m_visit_all = true;
+    return m_constraints;
+  }
   /// Normal force of the slave node's own constraint (weight included), N; per slave slot.
   Real normal_force(Index s) const { return m_normal_force[s]; }
   /// The touch on the other side of slave slot s (a pinched node; face NO_INDEX: none) and
@@ -162,8 +174,19 @@ class ContactEngine {
   /// The releases, pass-throughs and nodes behind a held shell's mid-surface into `totals`,
   /// each counted and its deepest kept (the first in slot order on a tie).
   void count_events(ContactTotals& totals) const;
-  /// Closest admissible face of every slave node (parallel over slots); a slot without
-  /// candidate faces has none, without a look at the node.
+  /// The slots this update() visits (m_live, m_visit; file comment "Quiet slots"): this
+  /// process's slots with listed faces and those m_held keeps, or every slot after construction,
+  /// probe(), a mutable constraints(), set_interference() or share_slots().
+  void build_visits();
+  /// After the passes: m_held, the slots of m_live that are not quiet.
+  void keep_held();
+  /// The slots the passes over every slot (events, the cap's sums, assembly, energy) read: the
+  /// live ones, or every slot in a shared pass (the other processes' come as rows).
+  std::span<const Index> visits() const {
+    return m_shared_pass ? std::span<const Index>(m_all_slots) : std::span<const Index>(m_live);
+  }
+  /// Closest admissible face of every slave node of m_live (parallel over slots); a slot
+  /// without candidate faces has none, without a look at the node.
   void search(const NodalVectors& position, std::span<const Real> node_thickness);
   /// Rebuilds the broad phase when due (then also the lists of slots with candidates and of
   /// their faces); returns whether it did.
@@ -375,6 +398,12 @@ class ContactEngine {
   std::vector<char> m_active_slot, m_active_face;
   // listed_faces(): CSR offsets (n_slave + 1) into the faces.
   std::vector<Index> m_listed_offset, m_listed;
+  // Quiet slots (file comment): at broad-phase builds, this process's slots with listed faces
+  // (ascending); after each update the live slots that are not quiet (m_held); the slots this
+  // update visits (build_visits()); and 0 … n_slave − 1.
+  std::vector<Index> m_listed_slots;
+  std::vector<Index> m_held, m_live, m_all_slots;
+  bool m_visit_all = true;  // the next update() visits every slot (build_visits())
   // Whether some face's depth is below the search margin at the last broad-phase build: only
   // then can admissible() skip a closest point by its box (penetration reach), and only then
   // does the search evaluate last increment's face first.

@@ -109,6 +109,7 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
   // fixed for the step): the search's lists.
   m_listed_offset.assign(static_cast<std::size_t>(n_slave) + 1, 0);
   m_listed.clear();
+  m_listed_slots.clear();
   for (Index s = 0; s < n_slave; ++s) {
     const std::span<const Index> candidates = m_broad.candidates(s);
     if (!candidates.empty() && owned(s)) {  // another process searches the others
@@ -117,6 +118,7 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
         if (!never_admissible(view, f)) m_listed.push_back(f);
     }
     m_listed_offset[s + 1] = static_cast<Index>(m_listed.size());
+    if (m_listed_offset[s + 1] > m_listed_offset[s]) m_listed_slots.push_back(s);
   }
   for (Index s = 0; s < n_slave; ++s)
     if (!m_broad.candidates(s).empty()) m_active_slot[s] = 1;
@@ -132,6 +134,8 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
 
 bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {
   const bool rebuild = refresh_broad_phase(position, node_thickness);
+  m_visit_all = true;  // the search below writes every slot
+  build_visits();
   m_domain.slaves().update_areas(m_domain.faces(), position);
   search(position, node_thickness);
   return rebuild;

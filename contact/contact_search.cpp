@@ -274,7 +274,7 @@ const ContactEngine::FaceGeometry& ContactEngine::face_geometry(
 }
 
 void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
-  const Index n_slave = m_domain.slaves().size();
+  const auto n_live = static_cast<Index>(m_live.size());
   ParallelErrors errors;
   const bool on_team = static_cast<Index>(m_listed.size()) >= PARALLEL_MIN_CANDIDATES;
   // On the calling thread, each face's geometry is worked out once for all the slots that
@@ -291,9 +291,9 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
     cache = &m_face_cache;
   }
 #pragma omp parallel for schedule(dynamic, 256) if (on_team)
-  for (Index s = 0; s < n_slave; ++s)
+  for (Index k = 0; k < n_live; ++k) {
+    const Index s = m_live[k];  // this process's (build_visits())
     errors.guard(ParallelSite::ContactSearch, s, [&] {
-      if (!owned(s)) return;
       SlaveTouch best;
       SlaveTouch second;
       WarmStarts next;
@@ -387,6 +387,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
       m_second_touch[s] = second;
       if (next.count > 0 || m_warm[s].count > 0) m_warm[s] = next;
     });
+  }
   errors.rethrow_if_any();
 }
 

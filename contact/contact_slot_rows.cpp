@@ -114,6 +114,7 @@ void ContactEngine::share_slots(std::vector<int> slot_process, int process, Slot
   for (std::size_t s = 0; s < m_slot_process.size(); ++s)
     m_owned[s] = m_slot_process[s] == process ? 1 : 0;
   m_sharing = sharing;
+  m_visit_all = true;
   // Whatever the whole passes before left in the other processes' slots is reset at the
   // first exchanges.
   m_received_springs.clear();

@@ -13,12 +13,12 @@ namespace xpl::contact {
 void ContactEngine::prepare_springs(const NodalVectors& position, const NodalVectors& velocity_half,
                                     Real dt, Real dt_penalty, std::span<const Real> mass,
                                     std::span<const Real> inverse_mass) {
-  const Index n_slave = m_domain.slaves().size();
+  const auto n_live = static_cast<Index>(m_live.size());
   ParallelErrors errors;
-#pragma omp parallel for schedule(static) if (n_slave >= PARALLEL_MIN_SLOTS)
-  for (Index s = 0; s < n_slave; ++s)
+#pragma omp parallel for schedule(static) if (n_live >= PARALLEL_MIN_SLOTS)
+  for (Index k = 0; k < n_live; ++k) {
+    const Index s = m_live[k];  // this process's (build_visits())
     errors.guard(ParallelSite::ContactForces, s, [&] {
-      if (!owned(s)) return;
       ContactConstraint& c = m_constraints[s];
       ContactConstraint& c2 = m_second[s];
       const SlaveTouch& t = m_touch[s];
@@ -59,16 +59,17 @@ void ContactEngine::prepare_springs(const NodalVectors& position, const NodalVec
       prepare_spring(s, c2, t2, m_spring[2 * s + 1], position, velocity_half, dt, dt_penalty, mass,
                      inverse_mass);
     });
+  }
   errors.rethrow_if_any();
 }
 
 void ContactEngine::spring_forces(Real dt, Real dt_penalty) {
-  const Index n_slave = m_domain.slaves().size();
+  const auto n_live = static_cast<Index>(m_live.size());
   ParallelErrors errors;
-#pragma omp parallel for schedule(static) if (n_slave >= PARALLEL_MIN_SLOTS)
-  for (Index s = 0; s < n_slave; ++s)
+#pragma omp parallel for schedule(static) if (n_live >= PARALLEL_MIN_SLOTS)
+  for (Index k = 0; k < n_live; ++k) {
+    const Index s = m_live[k];  // this process's (build_visits())
     errors.guard(ParallelSite::ContactForces, s, [&] {
-      if (!owned(s)) return;
       m_dissipation[s] = 0.0;
       m_second_dissipation[s] = 0.0;
       m_stored[s] = 0.0;
@@ -93,6 +94,7 @@ void ContactEngine::spring_forces(Real dt, Real dt_penalty) {
       m_second_normal_force[s] = m_spring[2 * s + 1].fn;
       m_output_status[s] = status;
     });
+  }
   errors.rethrow_if_any();
 }
 
@@ -139,7 +141,7 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
                                         std::span<const Real> inverse_mass) {
   const SlaveNodes& slaves = m_domain.slaves();
   const std::vector<ContactFace>& faces = m_domain.faces();
-  const Index n_slave = slaves.size();
+  const std::span<const Index> visited = visits();
   auto touch_of = [&](Index j) -> const SlaveTouch& {
     return j % 2 == 0 ? m_touch[j / 2] : m_second_touch[j / 2];
   };
@@ -148,14 +150,16 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
   };
   m_default_sum.reset(static_cast<Index>(mass.size()));
   bool any = false;
-  for (Index j = 0; j < 2 * n_slave; ++j) {
-    const Spring& spring = m_spring[j];
-    if (!counted(spring)) continue;
-    const SlaveTouch& t = touch_of(j);
-    m_default_sum.add_spring(slaves.nodes()[j / 2], faces[t.face].nodes, t.shape, spring.k,
-                             NO_INDEX, inverse_mass);
-    any = true;
-  }
+  // In slot order, side 0 before side 1 (a quiet slot's springs are zero: not counted).
+  for (const Index s : visited)
+    for (Index j = 2 * s; j < 2 * s + 2; ++j) {
+      const Spring& spring = m_spring[j];
+      if (!counted(spring)) continue;
+      const SlaveTouch& t = touch_of(j);
+      m_default_sum.add_spring(slaves.nodes()[s], faces[t.face].nodes, t.shape, spring.k, NO_INDEX,
+                               inverse_mass);
+      any = true;
+    }
   // The user's penalty scale raises every default spring, and the node budget with them.
   const Real budget =
       DEFAULT_PENALTY_NODE_BUDGET * m_options.penalty_scale / (dt_penalty * dt_penalty);
@@ -168,15 +172,16 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
   };
   if (!m_body_mass.empty()) {
     for (auto& r : m_body_row) r = {0.0, 0.0, 0.0};
-    for (Index j = 0; j < 2 * n_slave; ++j) {
-      const Spring& spring = m_spring[j];
-      if (!counted(spring)) continue;
-      const Index b = body_of(j);
-      if (b == NO_INDEX) continue;
-      const Vec3& n = touch_of(j).normal;
-      const Real spread = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
-      for (int d = 0; d < 3; ++d) m_body_row[b][d] += spring.k * std::abs(n[d]) * spread;
-    }
+    for (const Index s : visited)
+      for (Index j = 2 * s; j < 2 * s + 2; ++j) {
+        const Spring& spring = m_spring[j];
+        if (!counted(spring)) continue;
+        const Index b = body_of(j);
+        if (b == NO_INDEX) continue;
+        const Vec3& n = touch_of(j).normal;
+        const Real spread = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
+        for (int d = 0; d < 3; ++d) m_body_row[b][d] += spring.k * std::abs(n[d]) * spread;
+      }
     for (std::size_t b = 0; b < m_body_mass.size(); ++b) {
       Real largest = 0.0;
       for (int d = 0; d < 3; ++d)
@@ -185,8 +190,9 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
       m_body_factor[b] = largest > budget ? budget / largest : 1.0;
     }
   }
-  for (Index j = 0; j < 2 * n_slave; ++j) {
-    if (!owned(j / 2)) continue;  // the other slots' springs are their owners' (share_slots)
+  // This process's live slots: the other slots' springs are their owners' (share_slots), and
+  // a quiet slot's are zero.
+  const auto cap = [&](Index j) {
     Spring& spring = m_spring[j];
     ContactConstraint& c = j % 2 == 0 ? m_constraints[j / 2] : m_second[j / 2];
     Real factor = 1.0;
@@ -217,6 +223,10 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
       c.offset = std::max(0.0, -c.gap - std::sqrt(c.stiffness / spring.k) * excess);
     }
     c.stiffness = !user && spring.acts ? spring.k : 0.0;
+  };
+  for (const Index s : m_live) {
+    cap(2 * s);
+    cap(2 * s + 1);
   }
 }
 

@@ -5,7 +5,9 @@
 ///
 /// Determinism: everything here runs over slave slots in order, one thread, so the nodal
 /// forces and the sums do not depend on the number of threads that computed the constraint
-/// forces.
+/// forces. It visits only the slots that can carry force (the engine's list of slots with a
+/// touch, ascending, and the slots whose assembled force is not zero), in that same order, so
+/// every sum is the one over all slots to the bit.
 
 #include <span>
 #include <vector>
@@ -73,7 +75,8 @@ class ForceAssembly {
     std::span<const Real> dissipation;               ///< frictional dissipation of the increment, J
   };
 
-  /// One increment: per slave slot s with a touch in `first`, then per slot with one in
+  /// One increment: per slave slot s of `slots` (ascending; every slot with a touch in
+  /// `first` or `second` must be among them) with a touch in `first`, then per slot with one in
   /// `second`, the force on the slave node (normal plus friction, view weight included) is
   /// subtracted from `force_internal` (n_nodes × 3, N) at the node and added at the face
   /// corners with the weights N_I; the normal force and the friction force magnitude go to the
@@ -83,9 +86,9 @@ class ForceAssembly {
   /// when `slot_velocity` is not empty, with the velocity of each slot's node from there
   /// (n_slave × 3, m/s; read for the slots with a force now or before only).
   void assemble(const SlaveNodes& slaves, const std::vector<ContactFace>& faces,
-                const SpringSet& first, const SpringSet& second, const NodalVectors& velocity_half,
-                std::span<const Real> slot_velocity, Real dt, NodalVectors& force_internal,
-                ContactTotals& totals);
+                std::span<const Index> slots, const SpringSet& first, const SpringSet& second,
+                const NodalVectors& velocity_half, std::span<const Real> slot_velocity, Real dt,
+                NodalVectors& force_internal, ContactTotals& totals);
   /// Whether slot s's node had a contact force at the last assembly (before the next one:
   /// the previous increment's, which the next work term reads).
   bool has_force(Index s) const {
@@ -96,6 +99,9 @@ class ForceAssembly {
   Vec3 nodal_force(Index s) const {
     return Vec3(m_force[3 * s], m_force[3 * s + 1], m_force[3 * s + 2]);
   }
+  /// The slots whose assembled force (nodal_force) may be non-zero after the last assembly,
+  /// ascending: every other slot's is zero.
+  const std::vector<Index>& forced_slots() const { return m_forced; }
   /// Per included pair: sums of the normal force magnitudes (N) and of the friction force
   /// magnitudes (N) over the slave nodes touching through that pair, at the last assembly.
   const std::vector<Real>& pair_normal_force() const { return m_pair_normal; }
@@ -107,12 +113,25 @@ class ForceAssembly {
                   const SpringSet& set, Index s, NodalVectors& force_internal,
                   ContactTotals& totals);
   /// Trapezoidal work ½ (f_n + f_{n−1})·v_{n+1/2} Δt of the assembled forces, added to `work`.
+  /// Over the slots of m_forced and m_previous_forced, in slot order; with `slot_velocity`
+  /// (when not empty) for the velocities, as assemble() says.
   void add_work(const SlaveNodes& slaves, const NodalVectors& velocity_half,
-                std::span<const Real> slot_velocity, Real dt, Real& work) const;
+                std::span<const Real> slot_velocity, Real dt, Real& work);
+  /// Slot s gets a share of the force: into m_forced (once).
+  void mark(Index s) {
+    if (m_marked[s]) return;
+    m_marked[s] = 1;
+    m_forced.push_back(s);
+  }
 
   std::vector<Real> m_force;           // (n_slave × 3): assembled force, this increment
   std::vector<Real> m_previous_force;  // (n_slave × 3): assembled force, last increment
   std::vector<Real> m_pair_normal, m_pair_friction;
+  // The slots m_force and m_previous_force may be non-zero at (ascending after assemble), the
+  // marks of m_forced while it is gathered (all zero between assemblies), and the union of
+  // both lists (add_work's scratch).
+  std::vector<Index> m_forced, m_previous_forced, m_worked;
+  std::vector<char> m_marked;
 };
 
 }  // namespace xpl::contact

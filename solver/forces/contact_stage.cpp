@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "contact/initial_overclosure.hpp"
 #include "solver/distributed_run.hpp"
@@ -341,7 +342,8 @@ void ContactStage::fill_output(FrameFields& frame) const {
     // A point node (node-based surface) has no normal of its own: the contact normal of its
     // touch, which points out of the master face (read as for a double-sided node).
     const bool point = m_engine->domain().slave_point(s);
-    const contact::Vec3 normal = point ? m_engine->constraints()[s].normal : slaves.normal(s);
+    const contact::Vec3 normal =
+        point ? std::as_const(*m_engine).constraints()[s].normal : slaves.normal(s);
     const Real along = f.dot(normal);
     const contact::Vec3 fn = along * normal, ft = f - fn;
     const Real area = slaves.areas()[s];
