@@ -98,12 +98,13 @@ void ExplicitSolver::Impl::set_up_distribution() {
   // layout, so that every batch, and its per-batch totals, belongs to one rank.
   std::vector<int> element_part;
   partition::MeshPartition metis;
-  // The t = 0 contact candidate pairs as extra edges (issue 37 item 2), so that contact
-  // partners tend to share a rank.
+  // The t = 0 contact candidate pairs and the tie bindings as extra edges (issue 37 item 2),
+  // so that contact partners and tied surfaces tend to share a rank.
   if (run.rank() == 0)
     metis = m_elements.partition_batches(
         run.size(), m_options.partition_method, element_part,
-        m_contact.start_candidates(m_state.position, m_elements, m_rigid));
+        m_contact.start_candidates(m_state.position, m_elements, m_rigid),
+        m_ties.active() ? m_ties.slave_master_nodes() : std::vector<std::pair<Index, Index>>{});
   run.broadcast(element_part);
   m_distribution.method = partition::method_name(metis.method);
   m_distribution.imbalance = metis.imbalance;

@@ -154,10 +154,12 @@ class ElementSet {
   /// would be badly balanced), and the part of each element (that of its batch) in
   /// `element_part` (n_elements; elements of no block: part 0). Each (node, element) of
   /// `node_element_pairs` adds an edge between the first batch holding the node and the batch
-  /// of the element (the t = 0 contact candidate pairs).
+  /// of the element (the t = 0 contact candidate pairs); `node_node_pairs` one between the
+  /// first batches holding each of the two nodes (a tie's slave node and master corners).
   partition::MeshPartition partition_batches(
       int parts, partition::Method method, std::vector<int>& element_part,
-      const std::vector<std::pair<Index, Index>>& node_element_pairs = {}) const;
+      const std::vector<std::pair<Index, Index>>& node_element_pairs = {},
+      const std::vector<std::pair<Index, Index>>& node_node_pairs = {}) const;
   /// The position of each element in the one-rank order of the nodal sums (block in force
   /// pass order, batch, lane); elements of no block NO_INDEX.
   std::vector<Index> element_order() const;

@@ -25,7 +25,8 @@ constexpr int SOURCE_SHIFT = 29;
 
 partition::MeshPartition ElementSet::partition_batches(
     int parts, partition::Method method, std::vector<int>& element_part,
-    const std::vector<std::pair<Index, Index>>& node_element_pairs) const {
+    const std::vector<std::pair<Index, Index>>& node_element_pairs,
+    const std::vector<std::pair<Index, Index>>& node_node_pairs) const {
   // Every batch of every block as one "element" of the partition: its lanes' nodes, cost.
   constexpr int W = simd::W;
   std::vector<Index> offsets{0}, nodes, lane_elements{0}, elements;
@@ -49,9 +50,10 @@ partition::MeshPartition ElementSet::partition_batches(
     }
   });
   // Extra edges: the batch of each pair's node (the first batch holding it) and that of its
-  // element (e.g. the t = 0 contact candidate pairs: partners tend to share a part).
+  // element (e.g. the t = 0 contact candidate pairs: partners tend to share a part), and the
+  // batches of the two nodes of each node pair (a tie's slave and master corners).
   std::vector<std::pair<Index, Index>> extra_edges;
-  if (!node_element_pairs.empty()) {
+  if (!node_element_pairs.empty() || !node_node_pairs.empty()) {
     std::vector<Index> node_batch(static_cast<std::size_t>(m_model.node_count()), NO_INDEX);
     std::vector<Index> element_batch(static_cast<std::size_t>(m_model.element_count()), NO_INDEX);
     for (std::size_t b = 0; b + 1 < lane_elements.size(); ++b) {
@@ -62,6 +64,10 @@ partition::MeshPartition ElementSet::partition_batches(
     }
     for (const auto& [node, element] : node_element_pairs) {
       const Index a = node_batch[node], b = element_batch[element];
+      if (a != NO_INDEX && b != NO_INDEX && a != b) extra_edges.emplace_back(a, b);
+    }
+    for (const auto& [node, other] : node_node_pairs) {
+      const Index a = node_batch[node], b = node_batch[other];
       if (a != NO_INDEX && b != NO_INDEX && a != b) extra_edges.emplace_back(a, b);
     }
     std::sort(extra_edges.begin(), extra_edges.end());
