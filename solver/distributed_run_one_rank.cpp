@@ -4,6 +4,12 @@
 
 namespace xpl {
 
+Index DistributedRun::RowRoute::sent(int arrays) const {
+  Index nodes = 0;
+  for (const std::vector<Index>& to : send) nodes += static_cast<Index>(to.size());
+  return nodes * 3 * arrays;
+}
+
 #if !XPL_HAVE_MPI
 
 int DistributedRun::world_rank() {
@@ -54,6 +60,7 @@ bool DistributedRun::every_rank_ends(double) {
 void DistributedRun::gather_nodes_to_root(const std::vector<Index>&,
                                           const std::vector<NodalVectors*>&) const {}
 void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
+void DistributedRun::route_rows(const RowRoute&, const std::vector<NodalVectors*>&) const {}
 void DistributedRun::share_chunks(std::vector<Real>&, int, int, int&, std::vector<Real>&,
                                   std::vector<int>&, bool) const {}
 void DistributedRun::share_rows(const std::vector<Index>& nodes,
