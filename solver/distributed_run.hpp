@@ -158,8 +158,6 @@ class DistributedRun {
   /// both sides.
   struct RowRoute {
     std::vector<std::vector<Index>> send, receive;
-    /// Values this rank sends per increment with `arrays` arrays of 3 values per node.
-    Index sent(int arrays) const;
   };
   /// The rows (n_nodes × 3 each) of the nodes of `route`, from `rows` of the sending rank
   /// into `rows` of the receiving one (MPI_Isend/MPI_Irecv between the listed pairs only).

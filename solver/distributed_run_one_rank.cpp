@@ -4,12 +4,6 @@
 
 namespace xpl {
 
-Index DistributedRun::RowRoute::sent(int arrays) const {
-  Index nodes = 0;
-  for (const std::vector<Index>& to : send) nodes += static_cast<Index>(to.size());
-  return nodes * 3 * arrays;
-}
-
 #if !XPL_HAVE_MPI
 
 int DistributedRun::world_rank() {

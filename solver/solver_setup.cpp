@@ -200,30 +200,33 @@ void ExplicitSolver::Impl::set_up_distribution() {
                                          " elements (" + std::to_string(rows[r].elements.size()) +
                                          " run(s)) of each frame");
   }
-  if (!m_rigid.empty()) {
-    // Each body's owner, the body nodes each rank integrates (row_source()), and the forces
-    // each rank receives and sends per increment (rigid_bodies.hpp).
-    const auto size = static_cast<std::size_t>(run.size());
-    std::vector<Index> bodies(size, 0), sources(size, 0), received(size, 0), sent(size, 0);
-    for (const int owner : m_body_owner) ++bodies[owner];
-    const std::vector<Index>& node_body = m_rigid.node_body();
-    for (Index i = 0; i < m_model.node_count(); ++i) {
-      if (node_body[i] == NO_INDEX) continue;
-      const int source = run.row_source(i), owner = m_body_owner[node_body[i]];
-      ++sources[source];
-      if (source != owner) ++received[owner], ++sent[source];
-    }
-    for (int r = 0; r < run.size(); ++r)
-      m_sink.message(Severity::Info, "mpi: rank " + std::to_string(r) + " updates " +
-                                         std::to_string(bodies[r]) + " rigid bod" +
-                                         (bodies[r] == 1 ? "y" : "ies") + " and integrates " +
-                                         std::to_string(sources[r]) +
-                                         " body nodes; per increment it receives "
-                                         "the forces of " +
-                                         std::to_string(received[r]) + " and sends those of " +
-                                         std::to_string(sent[r]) + " (point to point)");
-  }
+  report_rigid_owners(run);
   if (!rows.empty()) m_output.set_frame_rows(std::move(rows[run.rank()]));
+}
+
+void ExplicitSolver::Impl::report_rigid_owners(const DistributedRun& run) {
+  if (m_rigid.empty()) return;
+  // Each body's owner, the body nodes each rank integrates (row_source()), and the forces
+  // each rank receives and sends per increment (rigid_bodies.hpp).
+  const auto size = static_cast<std::size_t>(run.size());
+  std::vector<Index> bodies(size, 0), sources(size, 0), received(size, 0), sent(size, 0);
+  for (const int owner : m_body_owner) ++bodies[owner];
+  const std::vector<Index>& node_body = m_rigid.node_body();
+  for (Index i = 0; i < m_model.node_count(); ++i) {
+    if (node_body[i] == NO_INDEX) continue;
+    const int source = run.row_source(i), owner = m_body_owner[node_body[i]];
+    ++sources[source];
+    if (source != owner) ++received[owner], ++sent[source];
+  }
+  for (int r = 0; r < run.size(); ++r)
+    m_sink.message(Severity::Info, "mpi: rank " + std::to_string(r) + " updates " +
+                                       std::to_string(bodies[r]) + " rigid bod" +
+                                       (bodies[r] == 1 ? "y" : "ies") + " and integrates " +
+                                       std::to_string(sources[r]) +
+                                       " body nodes; per increment it receives "
+                                       "the forces of " +
+                                       std::to_string(received[r]) + " and sends those of " +
+                                       std::to_string(sent[r]) + " (point to point)");
 }
 
 void ExplicitSolver::Impl::share_features(DistributedRun& run) {
@@ -266,7 +269,6 @@ void ExplicitSolver::Impl::share_features(DistributedRun& run) {
       if (from == run.rank()) route.send[to].push_back(i);
       if (to == run.rank()) route.receive[from].push_back(i);
     }
-    m_rigid_route_values = route.sent(1);
     m_nodes.set_rigid_share(
         [&run, route = std::move(route)](const std::vector<NodalVectors*>& rows) {
           run.route_rows(route, rows);
