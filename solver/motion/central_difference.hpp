@@ -80,8 +80,8 @@ class CentralDifference {
   /// DOFs (PrescribedMotion::prescribe()) by every rank's, in one collective; `same_counts`:
   /// every rank has as many rows as at the last call.
   /// `integrated`: 1 for the nodes this rank moves (those its elements use, the nodes of the
-  /// chunks it counts, rigid-body and tie nodes); the nodal passes skip the others, which no
-  /// one reads on this rank (set_spans()).
+  /// chunks it counts, tie nodes, the nodes of the rigid bodies it owns or replays); the nodal
+  /// passes skip the others, which no one reads on this rank (set_spans()).
   using ChunkShare = std::function<void(std::vector<KineticSums>& sums, std::vector<Real>& speed,
                                         std::vector<Real>& rows, bool same_counts)>;
   void set_distribution(ChunkShare share, std::vector<unsigned char> counted,

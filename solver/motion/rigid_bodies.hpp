@@ -106,8 +106,8 @@ class RigidBodies {
   /// from its nodes' forces (which the owner has received from the ranks integrating them);
   /// the owner's rows (BODY_ROWS rows of PrescribedMotion::FOLD_WIDTH values per body, marked
   /// by a negative first value) carry the body's terms of the sums and the motion of its
-  /// reference node to every rank with the prescribed DOFs' rows. Every rank that moves a
-  /// node of the body (`replays`) then places the members exactly as the owner did.
+  /// reference node to every rank with the prescribed DOFs' rows. Every other rank that moves
+  /// a node of the body replays it: places the members exactly as the owner did.
   /// Per body: 1 if this rank owns it, 2 if it replays its motion, 0 if it does neither.
   void set_roles(std::vector<unsigned char> roles) { m_roles = std::move(roles); }
   /// The nodes of body `b`, the reference node first, then the members (ascending).

@@ -26,8 +26,6 @@ void take_row(const Real*& in, NodalVectors& rows, Index i) {
 
 }  // namespace
 
-static_assert(RigidBodies::BODY_ROWS * PAYLOAD >= 26 + MOTION);
-
 std::vector<Index> RigidBodies::body_nodes(Index b) const {
   std::vector<Index> nodes{m_bodies[b].reference};
   nodes.insert(nodes.end(), m_bodies[b].members.begin(), m_bodies[b].members.end());
@@ -38,6 +36,7 @@ void RigidBodies::update_owned(const PrescribedMotion& motion, State& state,
                                const NodalVectors& force_internal,
                                const NodalVectors* force_external, const NodalIncrement& inc,
                                std::vector<Real>& rows) {
+  static_assert(BODY_ROWS * PAYLOAD >= BodyTerms::WIDTH + MOTION);
   std::vector<Real> payload;
   for (std::size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_roles[b] != 1) continue;
