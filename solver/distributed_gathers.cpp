@@ -114,5 +114,38 @@ void DistributedRun::gather_nodes_to_root(const std::vector<Index>& nodes,
         for (int c = 0; c < 3; ++c) (*a)(n, c) = all[k++];
 }
 
+void DistributedRun::route_rows(const RowRoute& route,
+                                const std::vector<NodalVectors*>& rows) const {
+  ExchangeTimer timer(m_seconds[SHIP], m_seconds[WAITS]);
+  constexpr int ROUTE_TAG = 39;
+  const std::size_t width = 3 * rows.size();
+  std::vector<std::vector<Real>> in(static_cast<std::size_t>(m_size)), out(in.size());
+  std::vector<MPI_Request> requests;
+  for (int r = 0; r < m_size; ++r) {
+    if (route.receive[r].empty()) continue;
+    in[r].resize(route.receive[r].size() * width);
+    requests.emplace_back();
+    MPI_Irecv(in[r].data(), static_cast<int>(in[r].size()), MPI_DOUBLE, r, ROUTE_TAG,
+              MPI_COMM_WORLD, &requests.back());
+  }
+  for (int r = 0; r < m_size; ++r) {
+    if (route.send[r].empty()) continue;
+    out[r].reserve(route.send[r].size() * width);
+    for (const Index n : route.send[r])
+      for (const NodalVectors* a : rows)
+        for (int c = 0; c < 3; ++c) out[r].push_back((*a)(n, c));
+    requests.emplace_back();
+    MPI_Isend(out[r].data(), static_cast<int>(out[r].size()), MPI_DOUBLE, r, ROUTE_TAG,
+              MPI_COMM_WORLD, &requests.back());
+  }
+  distributed_detail::wait_all(static_cast<int>(requests.size()), requests.data());
+  for (int r = 0; r < m_size; ++r) {
+    const Real* v = in[r].data();
+    for (const Index n : route.receive[r])
+      for (NodalVectors* a : rows)
+        for (int c = 0; c < 3; ++c) (*a)(n, c) = *v++;
+  }
+}
+
 }  // namespace xpl
 #endif

@@ -153,6 +153,15 @@ class DistributedRun {
   /// as they are). Collective.
   void share_rows(const std::vector<Index>& nodes, const std::vector<const NodalVectors*>& from,
                   const std::vector<NodalVectors*>& to) const;
+  /// Rows that travel point to point between fixed pairs of ranks (route_rows()): per rank,
+  /// the nodes this rank sends it and the nodes it receives from it, in the same order on
+  /// both sides.
+  struct RowRoute {
+    std::vector<std::vector<Index>> send, receive;
+  };
+  /// The rows (n_nodes × 3 each) of the nodes of `route`, from `rows` of the sending rank
+  /// into `rows` of the receiving one (MPI_Isend/MPI_Irecv between the listed pairs only).
+  void route_rows(const RowRoute& route, const std::vector<NodalVectors*>& rows) const;
   /// The rank whose rows of `node` are the run's: its owner, or for a node of no deformable
   /// element the rank counting its chunk.
   int row_source(Index node) const { return m_row_source[node]; }

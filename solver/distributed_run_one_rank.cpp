@@ -54,6 +54,7 @@ bool DistributedRun::every_rank_ends(double) {
 void DistributedRun::gather_nodes_to_root(const std::vector<Index>&,
                                           const std::vector<NodalVectors*>&) const {}
 void DistributedRun::ship_forces(NodalVectors&, NodalVectors*) {}
+void DistributedRun::route_rows(const RowRoute&, const std::vector<NodalVectors*>&) const {}
 void DistributedRun::share_chunks(std::vector<Real>&, int, int, int&, std::vector<Real>&,
                                   std::vector<int>&, bool) const {}
 void DistributedRun::share_rows(const std::vector<Index>& nodes,

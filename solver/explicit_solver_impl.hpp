@@ -48,6 +48,14 @@ struct ExplicitSolver::Impl {
   /// Distributed runs: contact, rigid bodies, ties and loads run whole on every rank on the
   /// nodal rows gathered from the ranks that integrate them (docs/dev/mpi.md).
   void share_features(DistributedRun& run);
+  /// Distributed runs with rigid bodies: each rank's bodies and the forces it receives and
+  /// sends per increment, in the .msg (rank 0's sink writes it).
+  void report_rigid_owners(const DistributedRun& run);
+  /// Distributed runs with rigid bodies: each body's owner (m_body_owner) and this rank's role
+  /// for it (RigidBodies::set_roles()); marks in `integrated` the nodes of the bodies it owns
+  /// or replays, which it returns.
+  std::vector<unsigned char> set_rigid_roles(const DistributedRun& run,
+                                             std::vector<unsigned char>& integrated);
   /// Distributed runs: every node's state from its owner to rank 0 before output.
   void gather_state();
   /// Puts an imported state (positions, velocities, rotations, stresses) into place.
@@ -119,6 +127,8 @@ struct ExplicitSolver::Impl {
   /// Distributed runs: the partition for the summary (rank 0's; the summary's rank
   /// entries come from the exchange plan and the ranks' timers).
   DistributionSummary m_distribution;
+  /// Distributed runs with rigid bodies: the rank owning each body (set_rigid_roles()).
+  std::vector<int> m_body_owner;
   IncrementDecision m_next;      ///< dt_{n+1/2}: the increment about to be taken, and why
   ExternalId m_critical_id = 0;  ///< deck id of the element that limits it
   double m_loop_seconds = 0.0;   ///< wall time of the time loops

@@ -59,7 +59,8 @@ std::vector<std::pair<Index, Index>> runs_of(const std::vector<int>& writer, int
 /// The rows each rank writes of each frame when every rank writes its own (FrameRows), by
 /// rank: the rows each node's owner and each element's rank gather_to_root() and
 /// gather_elements_to_root() send to rank 0, which writes those of the rest (rigid bodies'
-/// elements and nodes no rank owns: every rank holds them alike).
+/// elements, which every rank holds alike, and the nodes no rank owns: rank 0 moves the
+/// rigid bodies' ones, set_rigid_roles()).
 std::vector<FrameRows> frame_rows(const Model& model, const DistributedRun& run) {
   std::vector<int> node_writer(static_cast<std::size_t>(model.node_count()), 0);
   std::vector<int> element_writer(static_cast<std::size_t>(model.element_count()), 0);
@@ -120,20 +121,20 @@ void ExplicitSolver::Impl::set_up_distribution() {
   const Index n = m_model.node_count();
   const bool rotations = !m_state.rotary_inertia.empty();
   std::vector<unsigned char> counted(static_cast<std::size_t>(n), 0);
-  // The nodes this rank moves: those its elements use, those of the chunks it counts, and the
-  // rigid-body and tie nodes, which every rank moves alike (the passes skip the others).
+  // The nodes this rank moves: those its elements use, those of the chunks it counts, the
+  // tie nodes, which every rank moves alike, and the nodes of the rigid bodies it owns or
+  // replays (set_rigid_roles(); the passes skip the others).
   std::vector<unsigned char> integrated(static_cast<std::size_t>(n), 0);
-  for (Index i = 0; i < n; ++i)
-    integrated[i] = run.counts(i) || run.in_part(i) || m_rigid.is_rigid_node(i) ? 1 : 0;
+  for (Index i = 0; i < n; ++i) integrated[i] = run.counts(i) || run.in_part(i) ? 1 : 0;
   if (m_ties.active())
     for (const auto& [slave, corner] : m_ties.slave_master_nodes())
       integrated[slave] = integrated[corner] = 1;
-  // Rigid bodies move on every rank alike (every rank updates every body), so their nodes
-  // keep their motion everywhere.
+  const std::vector<unsigned char> moves_body = set_rigid_roles(run, integrated);
+  // The nodes of the rigid bodies this rank moves keep their motion.
   for (Index i = 0; i < n; ++i) {
     if (run.counts(i)) {
       counted[i] = 1;
-    } else if (!run.in_part(i) && !m_rigid.is_rigid_node(i)) {
+    } else if (!run.in_part(i) && moves_body[i] == 0) {
       m_state.velocity.row(i).setZero();
       m_state.velocity_half.row(i).setZero();
       if (rotations) {
@@ -200,7 +201,33 @@ void ExplicitSolver::Impl::set_up_distribution() {
                                          " elements (" + std::to_string(rows[r].elements.size()) +
                                          " run(s)) of each frame");
   }
+  report_rigid_owners(run);
   if (!rows.empty()) m_output.set_frame_rows(std::move(rows[run.rank()]));
+}
+
+void ExplicitSolver::Impl::report_rigid_owners(const DistributedRun& run) {
+  if (m_rigid.empty()) return;
+  // Each body's owner, the body nodes each rank integrates (row_source()), and the forces
+  // each rank receives and sends per increment (rigid_bodies.hpp).
+  const auto size = static_cast<std::size_t>(run.size());
+  std::vector<Index> bodies(size, 0), sources(size, 0), received(size, 0), sent(size, 0);
+  for (const int owner : m_body_owner) ++bodies[owner];
+  const std::vector<Index>& node_body = m_rigid.node_body();
+  for (Index i = 0; i < m_model.node_count(); ++i) {
+    if (node_body[i] == NO_INDEX) continue;
+    const int source = run.row_source(i), owner = m_body_owner[node_body[i]];
+    ++sources[source];
+    if (source != owner) ++received[owner], ++sent[source];
+  }
+  for (int r = 0; r < run.size(); ++r)
+    m_sink.message(Severity::Info, "mpi: rank " + std::to_string(r) + " updates " +
+                                       std::to_string(bodies[r]) + " rigid bod" +
+                                       (bodies[r] == 1 ? "y" : "ies") + " and integrates " +
+                                       std::to_string(sources[r]) +
+                                       " body nodes; per increment it receives "
+                                       "the forces of " +
+                                       std::to_string(received[r]) + " and sends those of " +
+                                       std::to_string(sent[r]) + " (point to point)");
 }
 
 void ExplicitSolver::Impl::share_features(DistributedRun& run) {
@@ -229,15 +256,53 @@ void ExplicitSolver::Impl::share_features(DistributedRun& run) {
     m_nodes.set_tie_share(share(std::move(slaves)), share(std::move(corners)));
   }
   if (!m_rigid.empty()) {
-    // The forces on the bodies' nodes from the ranks that hold them, in full (elements,
-    // contact, loads), so that every rank's update of every body is the one-rank update.
-    std::vector<Index> rigid_nodes;
-    for (Index i = 0; i < m_model.node_count(); ++i)
-      if (m_rigid.is_rigid_node(i)) rigid_nodes.push_back(i);
-    m_nodes.set_rigid_share([&run, rigid_nodes](const std::vector<NodalVectors*>& rows) {
-      run.share_rows(rigid_nodes, {rows.begin(), rows.end()}, rows);
-    });
+    // The forces on each body's nodes (elements, contact, loads) from the ranks integrating
+    // them to the body's owner only, point to point, so that the owner's update of the body
+    // is the one-rank update.
+    DistributedRun::RowRoute route;
+    route.send.assign(static_cast<std::size_t>(run.size()), {});
+    route.receive = route.send;
+    const std::vector<Index>& node_body = m_rigid.node_body();
+    for (Index i = 0; i < m_model.node_count(); ++i) {
+      if (node_body[i] == NO_INDEX) continue;
+      const int to = m_body_owner[node_body[i]], from = run.row_source(i);
+      if (from == to) continue;
+      if (from == run.rank()) route.send[to].push_back(i);
+      if (to == run.rank()) route.receive[from].push_back(i);
+    }
+    m_nodes.set_rigid_share(
+        [&run, route = std::move(route)](const std::vector<NodalVectors*>& rows) {
+          run.route_rows(route, rows);
+        });
   }
+}
+
+std::vector<unsigned char> ExplicitSolver::Impl::set_rigid_roles(
+    const DistributedRun& run, std::vector<unsigned char>& integrated) {
+  // Each body is owned by the rank integrating most of its nodes (row_source(); ties: the
+  // lowest), so that the fewest forces travel; a rank that moves any node of a body (it uses,
+  // counts, writes or ties it) replays the body's motion and so moves all its nodes.
+  const Index n = m_model.node_count();
+  std::vector<unsigned char> moves(static_cast<std::size_t>(n), 0);
+  m_body_owner.assign(static_cast<std::size_t>(m_rigid.body_count()), 0);
+  std::vector<unsigned char> roles(m_body_owner.size(), 0);
+  std::vector<Index> sources(static_cast<std::size_t>(run.size()));
+  for (Index b = 0; b < m_rigid.body_count(); ++b) {
+    const std::vector<Index> nodes = m_rigid.body_nodes(b);
+    std::fill(sources.begin(), sources.end(), 0);
+    bool needed = false;
+    for (const Index i : nodes) {
+      ++sources[run.row_source(i)];
+      needed = needed || integrated[i] != 0 || run.owner(i) == run.rank();
+    }
+    m_body_owner[b] =
+        static_cast<int>(std::max_element(sources.begin(), sources.end()) - sources.begin());
+    roles[b] = m_body_owner[b] == run.rank() ? 1 : needed ? 2 : 0;
+    if (roles[b] != 0)
+      for (const Index i : nodes) integrated[i] = moves[i] = 1;
+  }
+  m_rigid.set_roles(std::move(roles));
+  return moves;
 }
 
 void ExplicitSolver::Impl::gather_state() {

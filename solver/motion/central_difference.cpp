@@ -254,18 +254,24 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
     // Distributed runs: the bodies and the prescribed DOFs move first (neither reads the
     // kinetic sums), so that the chunks' sums, the prescribed DOFs' rows and the stop signal
     // travel in one collective; then the sums in the one-rank order.
+    // Each body moves on the rank owning it, from its nodes' forces (point to point from
+    // the ranks integrating them); its rows ride with the prescribed DOFs' to every rank.
+    std::vector<Real> body_rows;
     if (!rigid.empty()) {
       if (m_share_rigid) {
         std::vector<NodalVectors*> rows{&elements.force_internal()};
         if (force_external != nullptr) rows.push_back(force_external);
         m_share_rigid(rows);
       }
-      bodies = rigid.update(m_motion, state, elements.force_internal(), force_external, inc);
+      rigid.update_owned(m_motion, state, elements.force_internal(), force_external, inc,
+                         body_rows);
     }
     const bool same_counts = !m_motion.first_update();
     std::vector<Real> rows =
         m_motion.prescribe(state, translation, rotation, inc, m_previous_force);
+    rows.insert(rows.end(), body_rows.begin(), body_rows.end());
     m_share_chunks(m_chunk_sums, m_chunk_speed, rows, same_counts);
+    if (!rigid.empty()) bodies = rigid.take_shared(rows, state, inc);
     sums.kinetic = sum_chunks(n_chunks);
     if (!rigid.empty()) {
       sums.kinetic += bodies.kinetic;

@@ -80,8 +80,8 @@ class CentralDifference {
   /// DOFs (PrescribedMotion::prescribe()) by every rank's, in one collective; `same_counts`:
   /// every rank has as many rows as at the last call.
   /// `integrated`: 1 for the nodes this rank moves (those its elements use, the nodes of the
-  /// chunks it counts, rigid-body and tie nodes); the nodal passes skip the others, which no
-  /// one reads on this rank (set_spans()).
+  /// chunks it counts, tie nodes, the nodes of the rigid bodies it owns or replays); the nodal
+  /// passes skip the others, which no one reads on this rank (set_spans()).
   using ChunkShare = std::function<void(std::vector<KineticSums>& sums, std::vector<Real>& speed,
                                         std::vector<Real>& rows, bool same_counts)>;
   void set_distribution(ChunkShare share, std::vector<unsigned char> counted,
@@ -92,10 +92,11 @@ class CentralDifference {
   }
   /// Nodes the nodal passes visit on this rank (all without a distribution).
   Index integrated_count() const;
-  /// Distributed runs with rigid bodies: every rank updates every body (the same inputs, the
-  /// same motion); `share` puts into the given rows (n_nodes × 3: the internal forces, the
-  /// external ones when the step has loads) the run's values at the bodies' nodes, from the
-  /// ranks that hold them (collective), before the bodies' update.
+  /// Distributed runs with rigid bodies: each body is updated by the rank owning it
+  /// (RigidBodies::set_roles()); `share` puts into the given rows (n_nodes × 3: the internal
+  /// forces, the external ones when the step has loads) the run's values at the nodes of the
+  /// bodies this rank owns, from the ranks that integrate them (point to point), before the
+  /// bodies' update. The bodies' rows then travel with the prescribed DOFs' rows.
   using RowShare = std::function<void(const std::vector<NodalVectors*>& rows)>;
   void set_rigid_share(RowShare share) { m_share_rigid = std::move(share); }
   /// Distributed runs with ties: every rank moves every slave's force to its corners and

@@ -190,8 +190,26 @@ RigidUpdate RigidBodies::update(const PrescribedMotion& motion, State& state,
                                 const NodalVectors* force_external, const NodalIncrement& inc) {
   RigidUpdate result;
   for (Body& body : m_bodies)
-    update_body(body, motion, state, force_internal, force_external, inc, result);
+    fold(body, update_body(body, motion, state, force_internal, force_external, inc), inc, result);
   return result;
+}
+
+void RigidBodies::fold(const Body& body, const BodyTerms& t, const NodalIncrement& inc,
+                       RigidUpdate& result) {
+  for (std::size_t j = 0; j < body.prescribed.size(); ++j)
+    result.work +=
+        0.5 * (t.reaction_before[j] + t.reaction_now[j]) * inc.dt_prev * t.velocity_old[j];
+  RigidJumps& jumps = result.jumps;
+  if (t.jumped > 0) {
+    result.work += t.kinetic - t.before;
+    jumps.pending += t.after - t.kinetic;
+    jumps.energy += t.after - t.before;
+    jumps.dofs += t.jumped;
+    jumps.largest = std::max(jumps.largest, t.largest);
+  }
+  result.kinetic.centred += t.centred - 4.0 * t.counted;
+  result.kinetic.spread += t.spread;
+  if (t.jumped > 0) jumps.spread += t.spread;
 }
 
 RigidBodies::BodySystem RigidBodies::system_at(Body& body, const State& state,
@@ -232,10 +250,11 @@ RigidBodies::BodySystem RigidBodies::system_at(Body& body, const State& state,
   return s;
 }
 
-void RigidBodies::update_body(Body& body, const PrescribedMotion& motion, State& state,
-                              const NodalVectors& force_internal,
-                              const NodalVectors* force_external, const NodalIncrement& inc,
-                              RigidUpdate& result) {
+RigidBodies::BodyTerms RigidBodies::update_body(Body& body, const PrescribedMotion& motion,
+                                                State& state, const NodalVectors& force_internal,
+                                                const NodalVectors* force_external,
+                                                const NodalIncrement& inc) {
+  BodyTerms t;
   const Real dt_prev = inc.dt_prev, dt_avg = inc.dt_avg;
   const Real w_new = inc.w_new, w_before = inc.w_before;
   const Index r = body.reference;
@@ -284,10 +303,11 @@ void RigidBodies::update_body(Body& body, const PrescribedMotion& motion, State&
     v_new[k] = fixed[k] ? v_target[k] : v_old[k] + dt_avg * acc[k];
     w_new_half[k] = fixed[k + 3] ? v_target[k + 3] : w_old[k] + dt_avg * acc[k + 3];
   }
-  for (const PrescribedDof& d : body.prescribed) {
-    const int k = d.component;
-    const Real old = k < 3 ? v_old[k] : w_old[k - 3];
-    result.work += 0.5 * (body.previous_reaction[k] + reaction_kept[k]) * dt_prev * old;
+  for (std::size_t j = 0; j < body.prescribed.size(); ++j) {
+    const int k = body.prescribed[j].component;
+    t.reaction_before[j] = body.previous_reaction[k];
+    t.reaction_now[j] = reaction_kept[k];
+    t.velocity_old[j] = k < 3 ? v_old[k] : w_old[k - 3];
     body.previous_reaction[k] = reaction_kept[k];
     if (k < 3)
       state.reaction(r, k) = reaction[k];
@@ -305,27 +325,22 @@ void RigidBodies::update_body(Body& body, const PrescribedMotion& motion, State&
   v_before.head<3>() = v_old + w_before * (v_new - v_old);
   v_before.tail<3>() = w_old + w_before * (w_new_half - w_old);
   Vector6 v_pair = v_after;  // what ALLKE pairs with v_before
-  RigidJumps& jumps = result.jumps;
   if (jumped > 0) {
     // The state before the jump paired with the one after it (at t = 0 the state before it
-    // alone), as for a free DOF; the impulse's work is split at that energy.
+    // alone), as for a free DOF; the impulse's work is split at that energy (fold()).
     v_before.head<3>() = v_old;
     v_before.tail<3>() = w_old;
     if (!(dt_prev > 0.0)) v_pair = v_before;
-    const Real before = 0.5 * v_before.dot(mass_matrix * v_before);
-    const Real after = 0.5 * v_after.dot(mass_matrix * v_after);
-    const Real kinetic = 0.5 * v_before.dot(mass_matrix * v_pair);
-    result.work += kinetic - before;
-    jumps.pending += after - kinetic;
-    jumps.energy += after - before;
-    jumps.dofs += jumped;
-    jumps.largest = std::max(jumps.largest, largest_jump);
+    t.before = 0.5 * v_before.dot(mass_matrix * v_before);
+    t.after = 0.5 * v_after.dot(mass_matrix * v_after);
+    t.kinetic = 0.5 * v_before.dot(mass_matrix * v_pair);
+    t.jumped = jumped;
+    t.largest = largest_jump;
   }
   const Vector6 sum = v_before + v_pair, difference = v_pair - v_before;
-  const Real spread = difference.dot(mass_matrix * difference);
-  result.kinetic.centred += sum.dot(mass_matrix * sum) - 4.0 * s.counted;
-  result.kinetic.spread += spread;
-  if (jumped > 0) jumps.spread += spread;
+  t.spread = difference.dot(mass_matrix * difference);
+  t.centred = sum.dot(mass_matrix * sum);
+  t.counted = s.counted;
   for (int k = 0; k < 3; ++k) {
     state.velocity_half(r, k) = v_new[k];
     state.velocity(r, k) = v_whole[k];
@@ -340,6 +355,7 @@ void RigidBodies::update_body(Body& body, const PrescribedMotion& motion, State&
   }
   body.omega_half = w_new_half;
   place_members(body, state, s.x_r, v_new, v_whole, w_whole, inc);
+  return t;
 }
 
 void RigidBodies::place_members(Body& body, State& state, const Eigen::Vector3d& x_r,

@@ -102,6 +102,27 @@ class RigidBodies {
                      const NodalVectors& force_internal, const NodalVectors* force_external,
                      const NodalIncrement& inc);
 
+  /// \name Distributed runs (docs/dev/mpi.md): each body is updated by one rank, its owner,
+  /// from its nodes' forces (which the owner has received from the ranks integrating them);
+  /// the owner's rows (BODY_ROWS rows of PrescribedMotion::FOLD_WIDTH values per body, marked
+  /// by a negative first value) carry the body's terms of the sums and the motion of its
+  /// reference node to every rank with the prescribed DOFs' rows. Every other rank that moves
+  /// a node of the body replays it: places the members exactly as the owner did.
+  /// Per body: 1 if this rank owns it, 2 if it replays its motion, 0 if it does neither.
+  void set_roles(std::vector<unsigned char> roles) { m_roles = std::move(roles); }
+  /// The nodes of body `b`, the reference node first, then the members (ascending).
+  std::vector<Index> body_nodes(Index b) const;
+  Index body_count() const { return static_cast<Index>(m_bodies.size()); }
+  static constexpr int BODY_ROWS = 5;
+  /// update() of the bodies this rank owns; appends their rows to `rows`.
+  void update_owned(const PrescribedMotion& motion, State& state,
+                    const NodalVectors& force_internal, const NodalVectors* force_external,
+                    const NodalIncrement& inc, std::vector<Real>& rows);
+  /// Takes the bodies' rows out of `all` (every rank's rows), moves the reference nodes and
+  /// members of the bodies this rank replays, and returns what update() returns, folded in
+  /// body order by the one-rank expressions.
+  RigidUpdate take_shared(std::vector<Real>& all, State& state, const NodalIncrement& inc);
+
  private:
   struct Body {
     Index reference = NO_INDEX;
@@ -116,10 +137,26 @@ class RigidBodies {
     std::array<Real, 6> previous_reaction{};               ///< for the trapezoidal work
   };
   struct BodySystem;
-  /// One central-difference update of `body` (update() for each body), added to `result`.
-  static void update_body(Body& body, const PrescribedMotion& motion, State& state,
-                          const NodalVectors& force_internal, const NodalVectors* force_external,
-                          const NodalIncrement& inc, RigidUpdate& result);
+  /// What one body's update adds to the sums, kept as the operands of the one-rank
+  /// expressions (fold()), so that a sum over the bodies folded elsewhere has the same bits.
+  struct BodyTerms {
+    Real centred = 0.0;  ///< V·M·V of the sum of the velocities before and after
+    Real counted = 0.0;  ///< Σ m v² the free update counted for the body's nodes
+    Real spread = 0.0;
+    Index jumped = 0;  ///< prescribed DOFs whose velocity jumped
+    Real largest = 0.0, kinetic = 0.0, before = 0.0, after = 0.0;  ///< of the jump
+    /// Per prescribed DOF (in the body's order): the reactions before and now, v(n−½).
+    std::array<Real, 6> reaction_before{}, reaction_now{}, velocity_old{};
+    static constexpr int WIDTH = 8 + 18;
+  };
+  /// One central-difference update of `body` (update() for each body): writes the state,
+  /// returns the body's terms of the sums.
+  static BodyTerms update_body(Body& body, const PrescribedMotion& motion, State& state,
+                               const NodalVectors& force_internal,
+                               const NodalVectors* force_external, const NodalIncrement& inc);
+  /// Adds the terms `t` of `body` to `result` as one rank's update adds them.
+  static void fold(const Body& body, const BodyTerms& t, const NodalIncrement& inc,
+                   RigidUpdate& result);
   /// The Newton–Euler system of `body` at t_n from the forces on its nodes (internal and
   /// external, n_nodes × 3, N); advances its rotation vector over dt_prev to t_n.
   static BodySystem system_at(Body& body, const State& state, const NodalVectors& force_internal,
@@ -132,6 +169,7 @@ class RigidBodies {
                             const Eigen::Vector3d& v_new, const Eigen::Vector3d& v_whole,
                             const Eigen::Vector3d& w_whole, const NodalIncrement& inc);
   std::vector<Body> m_bodies;
+  std::vector<unsigned char> m_roles;  ///< set_roles()
   std::vector<Index> m_element_body;
   std::vector<Index> m_node_body;
 };
