@@ -31,20 +31,48 @@ BroadPhase::BroadPhase(Real margin, Real rebuild_motion)
 
 void BroadPhase::build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
                        const NodalVectors& position, std::span<const Real> node_thickness,
-                       std::span<const Real> back_depth, std::span<const char> scanned) {
+                       std::span<const Real> back_depth, std::span<const char> scanned,
+                       std::span<const char> binned) {
   ++m_builds;
-  const JointBox joint = box_faces(faces, position, node_thickness, back_depth);
-  size_grid(joint, static_cast<Index>(faces.size()));
-  bin_faces(static_cast<Index>(faces.size()));
+  const JointBox joint = box_faces(faces, position, node_thickness, back_depth, binned);
+  Index n_binned = static_cast<Index>(faces.size());
+  if (!binned.empty())
+    n_binned = static_cast<Index>(
+        std::count_if(binned.begin(), binned.end(), [](char b) { return b != 0; }));
+  size_grid(joint, n_binned);
+  bin_faces(static_cast<Index>(faces.size()), binned);
   find_candidates(faces, slave_nodes, position, scanned);
   track_nodes(faces, slave_nodes, position);
 }
 
-/// Inflated face boxes and their joint box.
+void BroadPhase::face_box(const ContactFace& face, const NodalVectors& position,
+                          std::span<const Real> node_thickness, Real back_depth, Real lo[3],
+                          Real hi[3]) {
+  Vec3 corner[4];
+  face_corners(face, position, node_thickness, corner);
+  // The slab behind the face: its corners moved back along the unit normal.
+  Vec3 back = Vec3::Zero();
+  if (back_depth > 0.0) {
+    const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+    const Real len = std::sqrt(n.dot(n));
+    if (len > 0.0) back = -(back_depth / len) * n;
+  }
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = corner[0][d];
+    hi[d] = corner[0][d];
+    for (int a = 0; a < 4; ++a) {
+      lo[d] = std::min({lo[d], corner[a][d], corner[a][d] + back[d]});
+      hi[d] = std::max({hi[d], corner[a][d], corner[a][d] + back[d]});
+    }
+  }
+}
+
+/// Inflated face boxes (of the binned faces) and their joint box.
 BroadPhase::JointBox BroadPhase::box_faces(std::span<const ContactFace> faces,
                                            const NodalVectors& position,
                                            std::span<const Real> node_thickness,
-                                           std::span<const Real> back_depth) {
+                                           std::span<const Real> back_depth,
+                                           std::span<const char> binned) {
   const auto n_faces = static_cast<Index>(faces.size());
   m_box_lo.resize(3 * static_cast<std::size_t>(n_faces));
   m_box_hi.resize(3 * static_cast<std::size_t>(n_faces));
@@ -54,25 +82,14 @@ BroadPhase::JointBox BroadPhase::box_faces(std::span<const ContactFace> faces,
 #pragma omp parallel for schedule(static) reduction(min : lo0, lo1, lo2) \
     reduction(max : hi0, hi1, hi2) reduction(+ : extent_sum)
   for (Index f = 0; f < n_faces; ++f) {
-    Vec3 corner[4];
-    face_corners(faces[f], position, node_thickness, corner);
-    // The slab behind the face: its corners moved back along the unit normal.
-    Vec3 back = Vec3::Zero();
-    if (!back_depth.empty() && back_depth[f] > 0.0) {
-      const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
-      const Real len = std::sqrt(n.dot(n));
-      if (len > 0.0) back = -(back_depth[f] / len) * n;
-    }
+    if (!binned.empty() && binned[f] == 0) continue;
+    Real lo[3], hi[3];
+    face_box(faces[f], position, node_thickness, back_depth.empty() ? 0.0 : back_depth[f], lo, hi);
     Real extent = 0.0;
     for (int d = 0; d < 3; ++d) {
-      Real lo = corner[0][d], hi = corner[0][d];
-      for (int a = 0; a < 4; ++a) {
-        lo = std::min({lo, corner[a][d], corner[a][d] + back[d]});
-        hi = std::max({hi, corner[a][d], corner[a][d] + back[d]});
-      }
-      m_box_lo[3 * f + d] = lo - m_margin;
-      m_box_hi[3 * f + d] = hi + m_margin;
-      extent = std::max(extent, hi - lo + 2.0 * m_margin);
+      m_box_lo[3 * f + d] = lo[d] - m_margin;
+      m_box_hi[3 * f + d] = hi[d] + m_margin;
+      extent = std::max(extent, hi[d] - lo[d] + 2.0 * m_margin);
     }
     extent_sum += extent;
     lo0 = std::min(lo0, m_box_lo[3 * f]);
@@ -92,6 +109,7 @@ void BroadPhase::size_grid(const JointBox& joint, Index n_faces) {
   m_dims = {0, 0, 0};
   if (n_faces > 0) {
     m_origin = Vec3(joint.lo[0], joint.lo[1], joint.lo[2]);
+    m_top = Vec3(joint.hi[0], joint.hi[1], joint.hi[2]);
     const Real span[3] = {joint.hi[0] - joint.lo[0], joint.hi[1] - joint.lo[1],
                           joint.hi[2] - joint.lo[2]};
     m_cell = joint.extent_sum / n_faces;
@@ -108,7 +126,7 @@ void BroadPhase::size_grid(const JointBox& joint, Index n_faces) {
 }
 
 /// Bucket -> faces by counting sort: faces ascending within each bucket.
-void BroadPhase::bin_faces(Index n_faces) {
+void BroadPhase::bin_faces(Index n_faces, std::span<const char> binned) {
   const Index n_cells = m_dims[0] * m_dims[1] * m_dims[2];
   auto for_each_bucket = [&](Index f, auto&& visit) {
     Index a[3], b[3];
@@ -120,13 +138,15 @@ void BroadPhase::bin_faces(Index n_faces) {
       for (Index j = a[1]; j <= b[1]; ++j)
         for (Index i = a[0]; i <= b[0]; ++i) visit(i + m_dims[0] * (j + m_dims[1] * k));
   };
+  const auto skip = [&](Index f) { return !binned.empty() && binned[f] == 0; };
   m_cell_offsets.assign(static_cast<std::size_t>(n_cells) + 1, 0);
-  for (Index f = 0; f < n_faces; ++f) for_each_bucket(f, [&](Index c) { ++m_cell_offsets[c + 1]; });
+  for (Index f = 0; f < n_faces; ++f)
+    if (!skip(f)) for_each_bucket(f, [&](Index c) { ++m_cell_offsets[c + 1]; });
   for (Index c = 0; c < n_cells; ++c) m_cell_offsets[c + 1] += m_cell_offsets[c];
   m_cell_faces.resize(static_cast<std::size_t>(m_cell_offsets[n_cells]));
   m_cell_fill.assign(m_cell_offsets.begin(), m_cell_offsets.end() - 1);
   for (Index f = 0; f < n_faces; ++f)
-    for_each_bucket(f, [&](Index c) { m_cell_faces[m_cell_fill[c]++] = f; });
+    if (!skip(f)) for_each_bucket(f, [&](Index c) { m_cell_faces[m_cell_fill[c]++] = f; });
 }
 
 /// Candidates: count per slave node, prefix sum, fill (both passes parallel, no races).
@@ -180,10 +200,13 @@ void BroadPhase::track_nodes(std::span<const ContactFace> faces, std::span<const
 Index BroadPhase::scan_bucket(Index node, const Vec3& p, std::span<const ContactFace> faces,
                               Index* out) const {
   if (m_cell_offsets.size() < 2) return 0;
+  // Outside the joint box, outside every box. The exact joint box, not the grid's extent
+  // (rounded): every box holding `p` is then found in its bucket whatever the grid (the
+  // bucket coordinates are monotonic in x and clamped), so the candidates do not depend on
+  // which faces were binned (build()).
   Index cell[3];
   for (int d = 0; d < 3; ++d) {
-    const Real top = m_origin[d] + m_dims[d] * m_cell;
-    if (p[d] < m_origin[d] || p[d] > top) return 0;  // outside every box
+    if (p[d] < m_origin[d] || p[d] > m_top[d]) return 0;
     cell[d] = bucket_coordinate(p[d], m_origin[d], m_cell, m_dims[d]);
   }
   const Index c = cell[0] + m_dims[0] * (cell[1] + m_dims[1] * cell[2]);

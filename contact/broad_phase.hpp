@@ -38,9 +38,20 @@ class BroadPhase {
   /// Remembers the positions of every face node and slave node for needs_rebuild().
   /// `scanned` (one per slave node, empty: all): the slave nodes whose candidates are found;
   /// the others get none (a distributed run's process scans the slots it searches).
+  /// `binned` (one per face, empty: all): the faces whose corners' rows `position` holds (a
+  /// distributed run's ghost faces); only they are binned, the others are candidates of no
+  /// node. A scanned node's candidates do not depend on which other faces are binned (the
+  /// box test is exact and the grid only narrows which boxes are tested), so they are the
+  /// whole build's as long as every face whose box may hold the node is binned.
   void build(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
              const NodalVectors& position, std::span<const Real> node_thickness,
-             std::span<const Real> back_depth = {}, std::span<const char> scanned = {});
+             std::span<const Real> back_depth = {}, std::span<const char> scanned = {},
+             std::span<const char> binned = {});
+  /// The box of face `f` as build() bins it (m): its contact surface's corners and the slab
+  /// `back_depth` behind it, not yet inflated by the margin (lo, hi: 3 each).
+  static void face_box(const ContactFace& face, const NodalVectors& position,
+                       std::span<const Real> node_thickness, Real back_depth, Real lo[3],
+                       Real hi[3]);
 
   /// Whether any node tracked at the last build has moved more than the rebuild motion since it
   /// (true before the first build). Parallel max-reduction, no allocation.
@@ -79,9 +90,10 @@ class BroadPhase {
   };
   // The steps of build(), in order.
   JointBox box_faces(std::span<const ContactFace> faces, const NodalVectors& position,
-                     std::span<const Real> node_thickness, std::span<const Real> back_depth);
+                     std::span<const Real> node_thickness, std::span<const Real> back_depth,
+                     std::span<const char> binned);
   void size_grid(const JointBox& joint, Index n_faces);
-  void bin_faces(Index n_faces);
+  void bin_faces(Index n_faces, std::span<const char> binned);
   void find_candidates(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
                        const NodalVectors& position, std::span<const char> scanned);
   void track_nodes(std::span<const ContactFace> faces, std::span<const Index> slave_nodes,
@@ -95,6 +107,7 @@ class BroadPhase {
   long m_builds = 0;
   // Grid: origin, bucket size, buckets per direction, bucket -> faces (CSR).
   Vec3 m_origin = Vec3::Zero();
+  Vec3 m_top = Vec3::Zero();  ///< the joint box's upper corner (scan_bucket())
   Real m_cell = 1.0;
   std::array<Index, 3> m_dims{0, 0, 0};
   std::vector<Index> m_cell_offsets;

@@ -91,7 +91,8 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   {
     ScopedTimer timer(timers, Phase::ContactSearch);
     m_shared_pass = m_sharing != nullptr;
-    totals.rebuilt = refresh_broad_phase(position, node_thickness);
+    totals.rebuilt = refresh_broad_phase(position, node_thickness) || m_built_ahead;
+    m_built_ahead = false;
     build_visits();
     // Only the search of a slot with candidates reads its area and normal, and so does a
     // user-stiffness law's spring (same slots); a LINEAR law's increment estimate reads all.

@@ -153,6 +153,15 @@ class ContactEngine {
   /// exact, so the one-process decision); that update() then does not measure the motion
   /// again on its copies. For the next update() only.
   void decide_rebuild(bool due) { m_rebuild_decision = due ? 1 : 0; }
+  /// Distributed runs, before an update() of shared slots when the processes decided to build
+  /// the broad phase (collective: every process calls it): builds it now on `position`, whose
+  /// rows are current only for the faces `faces_held` marks (n_faces: ghost faces, which
+  /// must include every face whose box may hold a slot of this process) and this process's
+  /// slots, and lists the slots' faces as update() would; the caller then brings the rows the
+  /// new lists read (mark_read_nodes()) and decides no rebuild for the update(), which
+  /// reports the build (ContactTotals::rebuilt).
+  void build_shared_broad_phase(const NodalVectors& position, std::span<const Real> node_thickness,
+                                std::span<const char> faces_held);
 
  private:
   /// Whether this process computes slot s in the current update() (share_slots()).
@@ -429,6 +438,8 @@ class ContactEngine {
   bool m_shared_pass = false;
   bool m_broad_owned_only = false;      ///< the last broad-phase build scanned m_owned's slots only
   signed char m_rebuild_decision = -1;  ///< decide_rebuild() for the next update(); -1: none
+  std::span<const char> m_faces_held;   ///< build_shared_broad_phase()'s, while it builds
+  bool m_built_ahead = false;           ///< build_shared_broad_phase() before this update()
   std::vector<Index> m_received_springs, m_received_forces;
   std::vector<Index> m_sent;  ///< the slots whose rows share_springs() sent
   std::vector<int> m_counts;  ///< values each process sent in the last exchange

@@ -90,7 +90,8 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
   if (!due && !whole_needed) return false;
   m_broad_owned_only = m_shared_pass;
   m_broad.build(m_domain.faces(), slaves.nodes(), position, node_thickness, m_domain.face_depths(),
-                m_shared_pass ? std::span<const char>(m_owned) : std::span<const char>());
+                m_shared_pass ? std::span<const char>(m_owned) : std::span<const char>(),
+                m_shared_pass ? m_faces_held : std::span<const char>());
   const Index n_slave = slaves.size();
   m_active_slot.assign(static_cast<std::size_t>(n_slave), 0);
   m_active_face.assign(m_domain.faces().size(), 0);
@@ -130,6 +131,18 @@ bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
     for (Index f : slaves.faces_of(s)) m_active_face[f] = 1;
   }
   return true;
+}
+
+void ContactEngine::build_shared_broad_phase(const NodalVectors& position,
+                                             std::span<const Real> node_thickness,
+                                             std::span<const char> faces_held) {
+  m_shared_pass = true;
+  m_rebuild_decision = 1;
+  m_faces_held = faces_held;
+  refresh_broad_phase(position, node_thickness);
+  m_faces_held = {};
+  m_shared_pass = false;
+  m_built_ahead = true;
 }
 
 bool ContactEngine::probe(const NodalVectors& position, std::span<const Real> node_thickness) {

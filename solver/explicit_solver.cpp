@@ -303,14 +303,16 @@ void ExplicitSolver::Impl::report_exchange() {
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
   std::vector<int> counts;
   const DistributedRun& run = *m_run;
-  constexpr std::size_t WIDTH = 14;
+  constexpr std::size_t WIDTH = 19;
+  const ContactRows::BuildValues build = m_contact.rows_per_build();
   const std::vector<Real> all = m_run->allgather(
       {run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
        run.exchange_seconds(DistributedRun::SHIP), run.exchange_seconds(DistributedRun::GATHERS),
        m_loop_seconds, static_cast<Real>(m_nodes.integrated_count()), m_loop_shares.exchange,
        m_loop_shares.wait, m_loop_shares.output, m_timers.seconds(Phase::ContactSearch),
        m_timers.seconds(Phase::ContactForce), m_contact.sharing_seconds(),
-       m_contact.rows_received().first, m_contact.rows_received().second},
+       m_contact.rows_received().first, m_contact.rows_received().second, m_contact.rows_sent(),
+       build.received, build.sent, build.lists_received, build.lists_sent},
       counts);
   // The summary's partition and times (rank 0's sink keeps them).
   DistributionSummary d = partition_summary();
@@ -328,6 +330,11 @@ void ExplicitSolver::Impl::report_exchange() {
     k.contact_exchange = t[11];
     k.contact_values = t[12];
     k.contact_values_whole = t[13];
+    k.contact_values_sent = t[14];
+    k.contact_build_received = t[15];
+    k.contact_build_sent = t[16];
+    k.contact_lists_received = t[17];
+    k.contact_lists_sent = t[18];
   }
   m_sink.distribution(d);
   for (int r = 0; r < m_run->size(); ++r) {

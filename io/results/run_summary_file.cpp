@@ -163,6 +163,11 @@ JsonValue SummaryRecord::json() const {
       rank.set("contact_exchange", k.contact_exchange);
       rank.set("contact_values", k.contact_values);
       rank.set("contact_values_whole", k.contact_values_whole);
+      rank.set("contact_values_sent", k.contact_values_sent);
+      rank.set("contact_build_received", k.contact_build_received);
+      rank.set("contact_build_sent", k.contact_build_sent);
+      rank.set("contact_lists_received", k.contact_lists_received);
+      rank.set("contact_lists_sent", k.contact_lists_sent);
     }
   }
   return out;

@@ -1,7 +1,9 @@
 #include "solver/forces/contact_rows.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "solver/distributed_run.hpp"
 
@@ -13,8 +15,8 @@ constexpr std::size_t ROW_WIDTH = 6;  // position and v(n+½)
 
 }  // namespace
 
-void ContactRows::reset(const DistributedRun& run, std::vector<Index> nodes, Index n_nodes,
-                        bool root_writes) {
+void ContactRows::reset(const DistributedRun& run, const contact::ContactEngine& engine,
+                        std::vector<Index> nodes, Index n_nodes, bool root_writes) {
   m_run = &run;
   m_root_writes = root_writes;
   m_all = std::move(nodes);
@@ -30,26 +32,75 @@ void ContactRows::reset(const DistributedRun& run, std::vector<Index> nodes, Ind
   m_receive_nodes.clear();
   m_lists = false;
   m_partial = false;
+  m_ghost_built = false;
+  // The rank sourcing each face (the one integrating its first corner, so one per face), and
+  // the corners it needs of the ranks integrating them to box the face.
+  const int rank = run.rank();
+  const auto ranks = static_cast<std::size_t>(run.size());
+  const std::vector<contact::ContactFace>& faces = engine.domain().faces();
+  std::vector<std::pair<int, Index>> send, receive;
+  m_sourced.clear();
+  for (Index f = 0; f < static_cast<Index>(faces.size()); ++f) {
+    const int source = run.row_source(faces[f].nodes[0]);
+    if (source == rank) m_sourced.push_back(f);
+    for (const Index a : faces[f].nodes) {
+      const int from = run.row_source(a);
+      if (from == source) continue;
+      if (source == rank) receive.emplace_back(from, a);
+      if (from == rank) send.emplace_back(source, a);
+    }
+  }
+  const auto sorted = [ranks](std::vector<std::pair<int, Index>>& pairs) {
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    std::vector<std::vector<Index>> lists(ranks);
+    for (const auto& [r, n] : pairs) lists[static_cast<std::size_t>(r)].push_back(n);
+    return lists;
+  };
+  m_corner_send = sorted(send);
+  m_corner_receive = sorted(receive);
+}
+
+ContactRows::BuildValues ContactRows::values_per_build() const {
+  const double b = m_builds > 0 ? static_cast<double>(m_builds) : 1.0;
+  const double l = m_list_makings > 0 ? static_cast<double>(m_list_makings) : 1.0;
+  return {m_build_values.received / b, m_build_values.sent / b, m_build_values.lists_received / l,
+          m_build_values.lists_sent / l};
 }
 
 void ContactRows::gather_all(const State& state, NodalVectors& position, NodalVectors& velocity) {
   m_run->share_rows(m_all, {&state.position, &state.velocity_half}, {&position, &velocity});
   m_values += static_cast<double>(ROW_WIDTH * (m_all.size() - m_integrated_count));
+  m_sent += static_cast<double>(ROW_WIDTH * m_integrated_count * (m_run->size() - 1));
   ++m_gathers;
 }
 
-void ContactRows::gather(contact::ContactEngine& engine, const State& state, NodalVectors& position,
+bool ContactRows::gather(contact::ContactEngine& engine, const State& state, NodalVectors& position,
                          NodalVectors& velocity) {
   m_partial = false;
+  m_ghost_built = false;
   const contact::BroadPhase& broad = engine.broad_phase();
   if (!m_lists || broad.build_count() == 0) {
     gather_all(state, position, velocity);
-    return;
+    return false;
   }
   // Each rank the rows it asked for at the build, and to every rank this rank's largest
-  // motion of the contact nodes it integrates (current in `state`; reduced by max below).
-  const int rank = m_run->rank();
+  // motion of the contact nodes it integrates (current in `state`; reduced by max).
   const Real motion = broad.largest_motion_sq(state.position, m_integrated);
+  const Real largest = exchange_listed(state, position, velocity, motion, m_values, m_sent);
+  ++m_gathers;
+  // The one-rank decision, bit for bit: the engine takes it rather than measure the motion
+  // again on its copies. A build reads the ghost faces (build_ghosts()).
+  const bool due = broad.exceeds_rebuild_motion(largest);
+  engine.decide_rebuild(due);
+  m_partial = true;
+  return due;
+}
+
+Real ContactRows::exchange_listed(const State& state, NodalVectors& position,
+                                  NodalVectors& velocity, Real motion, double& received,
+                                  double& sent) {
+  const int rank = m_run->rank();
   m_send.clear();
   for (int r = 0; r < m_run->size(); ++r) {
     for (const Index n : m_send_nodes[r])
@@ -65,26 +116,126 @@ void ContactRows::gather(contact::ContactEngine& engine, const State& state, Nod
       for (NodalVectors* rows : {&position, &velocity})
         for (int c = 0; c < 3; ++c) (*rows)(n, c) = m_receive[k++];
     largest = std::max(largest, m_receive[k++]);
-    if (r != rank) m_values += static_cast<double>(m_receive_counts[r]);
+    if (r == rank) continue;
+    received += static_cast<double>(m_receive_counts[r]);
+    sent += static_cast<double>(m_send_counts[r]);
   }
   for (const Index n : m_local) {
     position.row(n) = state.position.row(n);
     velocity.row(n) = state.velocity_half.row(n);
   }
-  ++m_gathers;
-  // The one-rank decision, bit for bit: the engine takes it rather than measure the motion
-  // again on its copies. A build reads every contact node (the rows not sent above are as the
-  // last whole gather left them).
-  const bool due = broad.exceeds_rebuild_motion(largest);
-  engine.decide_rebuild(due);
-  if (due)
-    gather_all(state, position, velocity);
-  else
-    m_partial = true;
+  return largest;
+}
+
+void ContactRows::build_ghosts(contact::ContactEngine& engine, const State& state,
+                               std::span<const Real> node_thickness, NodalVectors& position,
+                               NodalVectors& velocity) {
+  // This rank's own rows current in the copies: the build remembers their positions for the
+  // next rebuild decisions (largest_motion_sq() over the nodes each rank integrates).
+  std::vector<char> fresh = m_integrated;
+  for (const Index n : m_all)
+    if (m_integrated[n] != 0) {
+      position.row(n) = state.position.row(n);
+      velocity.row(n) = state.velocity_half.row(n);
+    }
+  exchange_ghost_positions(engine, state, node_thickness, position, fresh);
+  // The faces whose boxes are the one-rank ones here: those with every corner current.
+  const std::vector<contact::ContactFace>& faces = engine.domain().faces();
+  std::vector<char> held(faces.size(), 0);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& c = faces[f].nodes;
+    held[f] = fresh[c[0]] != 0 && fresh[c[1]] != 0 && fresh[c[2]] != 0 && fresh[c[3]] != 0;
+  }
+  engine.build_shared_broad_phase(position, node_thickness, held);
+  m_ghost_built = true;
+  // The rows the new lists read, now (the search and springs of this increment read them).
+  update_lists(engine, true);
+  exchange_listed(state, position, velocity, 0.0, m_build_values.received, m_build_values.sent);
+  engine.decide_rebuild(false);
+  ++m_builds;
+}
+
+void ContactRows::exchange_ghost_positions(const contact::ContactEngine& engine, const State& state,
+                                           std::span<const Real> node_thickness,
+                                           NodalVectors& position, std::vector<char>& fresh) {
+  const int rank = m_run->rank();
+  const auto ranks = static_cast<std::size_t>(m_run->size());
+  BuildValues& count = m_build_values;
+  // The corners of the faces this rank sources that other ranks integrate (fixed lists).
+  std::vector<int> send_counts(ranks, 0), receive_counts(ranks, 0);
+  std::vector<Real> send, receive;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    for (const Index n : m_corner_send[r])
+      for (int c = 0; c < 3; ++c) send.push_back(state.position(n, c));
+    send_counts[r] = static_cast<int>(3 * m_corner_send[r].size());
+    receive_counts[r] = static_cast<int>(3 * m_corner_receive[r].size());
+  }
+  m_run->alltoall_into(send, send_counts, receive, receive_counts);
+  std::size_t k = 0;
+  for (std::size_t r = 0; r < ranks; ++r)
+    for (const Index n : m_corner_receive[r]) {
+      for (int c = 0; c < 3; ++c) position(n, c) = receive[k++];
+      fresh[n] = 1;
+    }
+  count.sent += static_cast<double>(send.size());
+  count.received += static_cast<double>(receive.size());
+  // Each rank's box of the slots it scans: the contact nodes it integrates.
+  std::vector<Real> box{std::numeric_limits<Real>::max(),    std::numeric_limits<Real>::max(),
+                        std::numeric_limits<Real>::max(),    std::numeric_limits<Real>::lowest(),
+                        std::numeric_limits<Real>::lowest(), std::numeric_limits<Real>::lowest()};
+  for (const Index n : m_all)
+    if (m_integrated[n] != 0)
+      for (int d = 0; d < 3; ++d) {
+        box[d] = std::min(box[d], state.position(n, d));
+        box[3 + d] = std::max(box[3 + d], state.position(n, d));
+      }
+  std::vector<int> box_counts(ranks, 6);
+  const std::vector<Real> boxes = m_run->allgather(box, box_counts, true);
+  count.sent += static_cast<double>(6 * (ranks - 1));
+  count.received += static_cast<double>(6 * (ranks - 1));
+  // Each face this rank sources to every rank whose box its box, inflated as the broad phase
+  // inflates it, meets (exact: the same bits as the receiver's broad phase computes; a node
+  // inside the face's box and the rank's box makes them meet): its corners' positions.
+  const std::vector<contact::ContactFace>& faces = engine.domain().faces();
+  const std::span<const Real> depth = engine.domain().face_depths();
+  const Real margin = engine.broad_phase().margin();
+  std::vector<std::vector<Index>> to(ranks);
+  for (const Index f : m_sourced) {
+    Real lo[3], hi[3];
+    contact::BroadPhase::face_box(faces[f], position, node_thickness,
+                                  depth.empty() ? 0.0 : depth[f], lo, hi);
+    for (std::size_t r = 0; r < ranks; ++r) {
+      if (static_cast<int>(r) == rank) continue;
+      const Real* b = &boxes[6 * r];
+      bool meets = true;
+      for (int d = 0; d < 3; ++d)
+        meets = meets && lo[d] - margin <= b[3 + d] && hi[d] + margin >= b[d];
+      if (meets) to[r].insert(to[r].end(), faces[f].nodes.begin(), faces[f].nodes.end());
+    }
+  }
+  send.clear();
+  for (std::size_t r = 0; r < ranks; ++r) {
+    std::sort(to[r].begin(), to[r].end());
+    to[r].erase(std::unique(to[r].begin(), to[r].end()), to[r].end());
+    for (const Index n : to[r]) {
+      send.push_back(static_cast<Real>(n));
+      for (int c = 0; c < 3; ++c) send.push_back(position(n, c));
+    }
+    send_counts[r] = static_cast<int>(4 * to[r].size());
+  }
+  receive_counts = m_run->alltoall_counts(send_counts);
+  m_run->alltoall_into(send, send_counts, receive, receive_counts);
+  for (k = 0; k + 3 < receive.size(); k += 4) {
+    const auto n = static_cast<Index>(receive[k]);
+    for (int c = 0; c < 3; ++c) position(n, c) = receive[k + 1 + c];
+    fresh[n] = 1;
+  }
+  count.sent += static_cast<double>(send.size());
+  count.received += static_cast<double>(receive.size());
 }
 
 void ContactRows::update_lists(const contact::ContactEngine& engine, bool rebuilt) {
-  if (m_partial && rebuilt)
+  if (m_partial && rebuilt && !m_ghost_built)
     throw std::logic_error("contact rows: the broad phase was built on partly gathered rows");
   if (m_lists && !rebuilt) return;
   const int rank = m_run->rank();
@@ -99,6 +250,11 @@ void ContactRows::update_lists(const contact::ContactEngine& engine, bool rebuil
     if (mark[n] != 0) mine.push_back(static_cast<Real>(n));
   std::vector<int> counts;
   const std::vector<Real> read = m_run->allgather(mine, counts);
+  ++m_list_makings;
+  m_build_values.lists_received +=
+      static_cast<double>(read.size() - mine.size() + m_run->size() - 1);
+  m_build_values.lists_sent +=
+      static_cast<double>((mine.size() + 1) * static_cast<std::size_t>(m_run->size() - 1));
   std::vector<char> anyone(mark.size(), 0);
   for (const Real n : read) anyone[static_cast<std::size_t>(n)] = 1;
   // What this rank reads: its marks, the output rows it writes of those nodes, and around
@@ -135,6 +291,11 @@ void ContactRows::update_lists(const contact::ContactEngine& engine, bool rebuil
   const std::vector<int> asked_of_me = m_run->alltoall_counts(asked);
   std::vector<Real> to_send;
   m_run->alltoall_into(wanted, asked, to_send, asked_of_me);
+  for (std::size_t r = 0; r < asked.size(); ++r) {
+    if (static_cast<int>(r) == rank) continue;
+    m_build_values.lists_sent += static_cast<double>(asked[r] + 1);
+    m_build_values.lists_received += static_cast<double>(asked_of_me[r] + 1);
+  }
   m_send_nodes.assign(m_receive_nodes.size(), {});
   m_send_counts.resize(m_receive_nodes.size());
   m_receive_counts.resize(m_receive_nodes.size());

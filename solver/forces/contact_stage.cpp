@@ -65,7 +65,8 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
     m_velocity = state.velocity_half;
     share_slots();
     m_rows_shared = m_shared && m_run->size() > 1;
-    if (m_rows_shared) m_rows.reset(*m_run, m_shared_nodes, m_model.node_count(), m_root_writes);
+    if (m_rows_shared)
+      m_rows.reset(*m_run, *m_engine, m_shared_nodes, m_model.node_count(), m_root_writes);
   }
 }
 
@@ -201,9 +202,10 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
   m_stored_energy = 0.0;
   if (!m_engine) return;
   if (m_engine->interference_ramping()) m_engine->set_step_time(state.step_time);
-  if (m_rows_shared)
-    m_rows.gather(*m_engine, state, m_position, m_velocity);
-  else if (m_run != nullptr)
+  if (m_rows_shared) {
+    if (m_rows.gather(*m_engine, state, m_position, m_velocity))
+      m_rows.build_ghosts(*m_engine, state, elements.node_thickness(), m_position, m_velocity);
+  } else if (m_run != nullptr)
     m_run->share_rows(m_shared_nodes, {&state.position, &state.velocity_half},
                       {&m_position, &m_velocity});
   const contact::ContactTotals t =

@@ -77,6 +77,11 @@ class ContactStage {
             : 0.0;
     return {m_rows.values_per_gather() + velocities, m_rows.whole_values_per_gather()};
   }
+  /// Distributed runs with shared slots: the contact rows' values this rank sent per
+  /// increment, and what a build of the broad phase and a making of the read lists carry
+  /// (ContactRows::values_per_build()).
+  double rows_sent() const { return m_rows.values_sent_per_gather(); }
+  ContactRows::BuildValues rows_per_build() const { return m_rows.values_per_build(); }
   /// Whether contact is active in the current step.
   bool active() const { return m_engine != nullptr; }
   /// The engine of the current step (null without contact): its t = 0 candidate pairs feed

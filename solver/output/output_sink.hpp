@@ -115,6 +115,12 @@ struct DistributionSummary {
     /// Contact nodes' values (positions, v(n+½)) it received per increment with contact, and
     /// what gathering every contact node each increment would have been (shared slots only).
     double contact_values = 0.0, contact_values_whole = 0.0;
+    /// The contact rows' values it sent per increment (as contact_values, without the
+    /// velocities); per build of the broad phase, those it received and sent for the build
+    /// (ghost faces and the new lists' rows); per making of the read lists, those the lists'
+    /// exchanges carried to and from it.
+    double contact_values_sent = 0.0, contact_build_received = 0.0, contact_build_sent = 0.0,
+           contact_lists_received = 0.0, contact_lists_sent = 0.0;
   };
   std::string method;          ///< the partitioner ("METIS", "bisection")
   Real imbalance = 1.0;        ///< largest part weight over the mean

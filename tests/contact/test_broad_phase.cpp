@@ -202,3 +202,50 @@ TEST_CASE("broad phase results do not depend on the thread count", "[contact][br
   CHECK(faces[0] == faces[1]);
   CHECK(faces[0] == faces[2]);
 }
+
+TEST_CASE("a scanned node's candidates do not depend on the other faces binned",
+          "[contact][broad_phase]") {
+  // A distributed run's rank bins only its ghost faces: those whose inflated box
+  // (BroadPhase::face_box) meets the box of the nodes it scans; its nodes' lists must be the
+  // whole build's, though the grid is another.
+  const Real margin = 0.02;
+  Cloud c = make_cloud(1500, 1500, 7);
+  std::vector<char> scanned(c.slaves.size(), 0);
+  Real lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
+  for (std::size_t s = 0; s < c.slaves.size(); ++s) {
+    const Index n = c.slaves[s];
+    if (!(c.position(n, 0) < 0.3 && c.position(n, 1) > 0.5)) continue;
+    scanned[s] = 1;
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], c.position(n, d));
+      hi[d] = std::max(hi[d], c.position(n, d));
+    }
+  }
+  std::vector<Real> depth(c.faces.size(), 0.0);
+  for (std::size_t f = 0; f < c.faces.size(); f += 5) depth[f] = 0.03;
+  std::vector<char> binned(c.faces.size(), 0);
+  NodalVectors stale = c.position;
+  stale.array() += 7.0;  // every row not of a binned face: another increment's
+  std::size_t n_binned = 0;
+  for (std::size_t f = 0; f < c.faces.size(); ++f) {
+    Real a[3], b[3];
+    BroadPhase::face_box(c.faces[f], c.position, c.thickness, depth[f], a, b);
+    bool meets = true;
+    for (int d = 0; d < 3; ++d) meets = meets && a[d] - margin <= hi[d] && b[d] + margin >= lo[d];
+    if (!meets) continue;
+    binned[f] = 1;
+    ++n_binned;
+    for (const Index n : c.faces[f].nodes) stale.row(n) = c.position.row(n);
+  }
+  for (std::size_t s = 0; s < c.slaves.size(); ++s)
+    if (scanned[s] != 0) stale.row(c.slaves[s]) = c.position.row(c.slaves[s]);
+  REQUIRE(n_binned > 0);
+  REQUIRE(n_binned < c.faces.size() / 2);
+  BroadPhase whole(margin), ghost(margin);
+  whole.build(c.faces, c.slaves, c.position, c.thickness, depth, scanned);
+  ghost.build(c.faces, c.slaves, stale, c.thickness, depth, scanned, binned);
+  CHECK(whole.grid_size() != ghost.grid_size());
+  CHECK(whole.offsets() == ghost.offsets());
+  CHECK(whole.candidate_faces() == ghost.candidate_faces());
+  CHECK(!whole.candidate_faces().empty());
+}
