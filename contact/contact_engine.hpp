@@ -34,6 +34,7 @@
 #include "contact/closest_point.hpp"
 #include "contact/contact_domain.hpp"
 #include "contact/contact_options.hpp"
+#include "contact/face_bounds.hpp"
 #include "contact/force_assembly.hpp"
 #include "contact/penalty.hpp"
 #include "contact/penalty_increment.hpp"
@@ -224,7 +225,8 @@ class ContactEngine {
   /// What admissible() derives from face f's nodes alone: its corners (a shell face's on its
   /// side, offset by half the thickness), the normal of their diagonals (unnormalised, m²), its
   /// length and direction, a shell face's depth limit (m) and the largest half thickness of its
-  /// corners (m).
+  /// corners (m); when first read (face_bounds()), the bounds of its corners and of a shell
+  /// face's mid-surface corners along that direction.
   struct FaceGeometry {
     Vec3 corner[4];
     Vec3 normal = Vec3::Zero();
@@ -232,6 +234,9 @@ class ContactEngine {
     Vec3 unit = Vec3::Zero();
     Real shell_depth = 0.0;
     Real round = 0.0;
+    bool bounds_ready = false;
+    CornerBounds bounds, mid_bounds;  // mid_bounds: shell faces only
+    Vec3 mid[4];                      // shell faces: the mid-surface corners, m
   };
   /// The geometry of the faces a serial search has evaluated (search(): a face is a candidate
   /// of several slots): valid where `stamp` equals `current`, the number of that search.
@@ -242,9 +247,11 @@ class ContactEngine {
   };
   /// Face f's geometry at `position`: from `cache` when it holds it (and into it when not),
   /// else computed into `local`.
-  const FaceGeometry& face_geometry(Index f, const NodalVectors& position,
-                                    std::span<const Real> node_thickness, FaceCache* cache,
-                                    FaceGeometry& local) const;
+  FaceGeometry& face_geometry(Index f, const NodalVectors& position,
+                              std::span<const Real> node_thickness, FaceCache* cache,
+                              FaceGeometry& local) const;
+  /// The bounds of `g` (face f's geometry), worked out on the first call.
+  void face_bounds(Index f, FaceGeometry& g) const;
   struct SlaveView {
     Index slot = NO_INDEX;
     Index node = NO_INDEX;

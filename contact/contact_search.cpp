@@ -43,89 +43,6 @@ SlaveTouch opposite_touch(const SlaveTouch& best, const std::array<SlaveTouch, N
   return SlaveTouch{};
 }
 
-/// How far (m, squared) from the node an admissible penetration can lie: a touch admissible()
-/// keeps with gap < 0 and −gap ≤ `limit` (depth + half thickness + allowance, m; `half_t` the
-/// node's half thickness, m) is at most max(half_t, √(limit² + (limit − half_t)²)) away.
-/// Inside the face region, or beside it on the outside, the distance is |gap + half_t| ≤
-/// max(half_t, limit − half_t); beside it below the face plane the lateral test bounds the
-/// offset beyond the edge by |gap|.
-Real penetration_reach_sq(Real limit, Real half_t) {
-  return std::max(half_t * half_t, limit * limit + (limit - half_t) * (limit - half_t));
-}
-
-/// A lower bound (m) of the distance from `p` (m) to the bilinear face with these corners
-/// (m): every point of the face is a convex combination of its corners (the bilinear weights
-/// are ≥ 0 and sum to 1 on the square), so it lies in their box and between the planes normal
-/// to `unit` (a unit vector) through the lowest and highest of them; the distance to the box
-/// and that to the slab between those planes both bound the distance from below. Less a
-/// relative slack of 1e-9 for the rounding of the closest point, so that a test against it
-/// changes no bit of the search.
-Real distance_below(const Vec3 corner[4], const Vec3& p, const Vec3& unit) {
-  Real out_sq = 0.0, extent = 0.0, scale = 0.0;
-  for (int d = 0; d < 3; ++d) {
-    const Real lo = std::min({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
-    const Real hi = std::max({corner[0][d], corner[1][d], corner[2][d], corner[3][d]});
-    const Real out = std::max({lo - p[d], p[d] - hi, 0.0});
-    out_sq += out * out;
-    extent = std::max(extent, hi - lo);
-    scale = std::max(scale, std::abs(p[d]));
-  }
-  Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
-  for (int a = 0; a < 4; ++a) {
-    const Real h = corner[a].dot(unit);
-    lo = std::min(lo, h);
-    hi = std::max(hi, h);
-  }
-  const Real height = p.dot(unit);
-  const Real bound = std::max(std::sqrt(out_sq), std::max({lo - height, height - hi, 0.0}));
-  return bound - 1e-9 * (bound + extent) - 1e-12 * scale;
-}
-
-/// Whether `p` (m) lies certainly behind every corner of the mid-surface `mid` (m) along
-/// `unit`, beyond the rounding of admissible()'s round-edge test: then for every point m of
-/// the mid-surface (a convex combination of its corners) (p − m)·unit < 0.
-bool behind_mid_surface(const Vec3 mid[4], const Vec3& p, const Vec3& unit) {
-  Real lo = std::numeric_limits<Real>::infinity(), extent = 0.0, scale = std::abs(p.dot(unit));
-  for (int a = 0; a < 4; ++a) {
-    const Real h = mid[a].dot(unit);
-    lo = std::min(lo, h);
-    for (int d = 0; d < 3; ++d) scale = std::max({scale, std::abs(mid[a][d]), std::abs(p[d])});
-  }
-  for (int d = 0; d < 3; ++d) {
-    const Real lo_d = std::min({mid[0][d], mid[1][d], mid[2][d], mid[3][d]});
-    const Real hi_d = std::max({mid[0][d], mid[1][d], mid[2][d], mid[3][d]});
-    extent = std::max(extent, hi_d - lo_d);
-  }
-  return p.dot(unit) < lo - 1e-9 * extent - 1e-12 * scale;
-}
-
-/// Whether the face with these corners (m; `unit` its unit normal) certainly matters to no
-/// search of the node at `p` (m): all of it farther than `nearer_than` (m), so not the
-/// nearest, and than any admissible penetration can lie, so not a penetrated one (what the
-/// search does with such a face is nothing). `limit` (m): the deepest penetration admissible()
-/// keeps (depth + half thickness `half_t` + allowance). Tried only when that reach is shorter
-/// than the search `margin` (m): shells, about a thickness against a margin of a third of a
-/// face; a solid face's depth reaches beyond it, and the test would only cost. A round face
-/// (admissible()) passes its mid-surface corners `mid` (else null), whether the node is
-/// `behind` that mid-surface, and `round` (m), the largest half thickness of its corners.
-bool out_of_reach(const Vec3 corner[4], const Vec3& unit, const Vec3& p, Real limit, Real half_t,
-                  Real margin, Real nearer_than, const Vec3* mid, bool behind, Real round) {
-  // How far from the node an admissible penetration can lie: inside the face region, or
-  // beside it on a round edge or on the outside, the distance is |gap + half_t| ≤
-  // max(half_t, limit − half_t); beside a square edge below the face plane the lateral
-  // test bounds the offset beyond the edge by |gap| (penetration_reach_sq).
-  const Real reach = mid != nullptr ? std::max(half_t, limit - half_t)
-                                    : std::sqrt(penetration_reach_sq(limit, half_t));
-  if (!(reach < margin)) return false;
-  Real below = distance_below(corner, p, unit);
-  if (mid != nullptr && !behind) {
-    // Beside the edge the distance is |reach − radius| to the mid-surface point, at least
-    // the mid-surface's distance less the largest half thickness of its corners.
-    below = std::min(below, distance_below(mid, p, unit) - round);
-  }
-  return below > nearer_than && below > reach;
-}
-
 /// The nearest of the penetrated touches `penetrated` (nearest first) on a face of another
 /// element than `best`'s whose normal is more than 60° from best's (CORNER_COSINE): the other
 /// face of a corner a shell node is pressed into; none when no such face.
@@ -158,7 +75,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   const Real w = m_domain.weight(s, f, pair);
   if (w == 0.0) return false;
   FaceGeometry local;
-  const FaceGeometry& geometry = face_geometry(f, position, node_thickness, v.faces, local);
+  FaceGeometry& geometry = face_geometry(f, position, node_thickness, v.faces, local);
   const Vec3(&corner)[4] = geometry.corner;
   const Vec3& n_f = geometry.normal;
   const Real n_len = geometry.normal_len;
@@ -180,17 +97,16 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   // other side's half of every point of its round edge, which the test below rejects: only
   // the face's interior can hold it, and the other side of its held shell not even that.
   bool behind = false;
-  Vec3 mid_corner[4];
+  if (round_face || (!kept_side && m_try_skip)) face_bounds(f, geometry);
   if (round_face) {
-    for (int a = 0; a < 4; ++a) mid_corner[a] = node_point(position, faces[f].nodes[a]);
-    behind = behind_mid_surface(mid_corner, v.point, geometry.unit);
+    behind = behind_mid_surface(geometry.mid_bounds, v.point, geometry.unit);
     if (other_side && behind) return false;
   }
   if (!kept_side && m_try_skip) {
     const Real round = round_face ? geometry.round : 0.0;
-    if (out_of_reach(corner, geometry.unit, v.point, depth + half_t + v.allowance, half_t,
-                     m_broad.margin(), nearer_than, round_face ? mid_corner : nullptr, behind,
-                     round))
+    if (out_of_reach(geometry.bounds, geometry.unit, v.point, depth + half_t + v.allowance, half_t,
+                     m_broad.margin(), nearer_than, round_face ? &geometry.mid_bounds : nullptr,
+                     behind, round))
       return false;
   }
   const QuadStart* start = nullptr;
@@ -215,7 +131,7 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
     Vec3 mid = Vec3::Zero();
     Real radius = 0.0;
     for (int a = 0; a < 4; ++a) {
-      mid += cp.weights[a] * node_point(position, faces[f].nodes[a]);
+      mid += cp.weights[a] * geometry.mid[a];
       radius += cp.weights[a] * 0.5 * node_thickness_of(node_thickness, faces[f].nodes[a]);
     }
     const Vec3 d = v.point - mid;
@@ -248,13 +164,15 @@ bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& 
   return true;
 }
 
-const ContactEngine::FaceGeometry& ContactEngine::face_geometry(
-    Index f, const NodalVectors& position, std::span<const Real> node_thickness, FaceCache* cache,
-    FaceGeometry& local) const {
+ContactEngine::FaceGeometry& ContactEngine::face_geometry(Index f, const NodalVectors& position,
+                                                          std::span<const Real> node_thickness,
+                                                          FaceCache* cache,
+                                                          FaceGeometry& local) const {
   if (cache != nullptr && cache->stamp[f] == cache->current) return cache->geometry[f];
   FaceGeometry& g = cache != nullptr ? cache->geometry[f] : local;
   const ContactFace& face = m_domain.faces()[f];
   face_corners(face, position, node_thickness, g.corner);
+  g.bounds_ready = false;
   g.normal = (g.corner[2] - g.corner[0]).cross(g.corner[3] - g.corner[1]);
   g.normal_len = std::sqrt(g.normal.dot(g.normal));
   // The unit normal is read by the reach test (m_try_skip) and a round face's behind test only.
@@ -268,9 +186,17 @@ const ContactEngine::FaceGeometry& ContactEngine::face_geometry(
       g.round = std::max(g.round, 0.5 * node_thickness_of(node_thickness, c));
     }
     g.shell_depth = DEPTH_LIMIT_FRACTION * 0.25 * t;  // of the mean thickness
+    for (int a = 0; a < 4; ++a) g.mid[a] = node_point(position, face.nodes[a]);
   }
   if (cache != nullptr) cache->stamp[f] = cache->current;
   return g;
+}
+
+void ContactEngine::face_bounds(Index f, FaceGeometry& g) const {
+  if (g.bounds_ready) return;
+  bound_corners(g.corner, g.unit, g.bounds);
+  if (m_domain.faces()[f].shell) bound_corners(g.mid, g.unit, g.mid_bounds);
+  g.bounds_ready = true;
 }
 
 void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
