@@ -78,6 +78,7 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
     m_user_k.assign(2 * n, 0.0);
     m_user_law.assign(2 * n, NO_INDEX);
   }
+  init_sleep();
 }
 
 ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVectors& velocity_half,
@@ -92,6 +93,7 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     ScopedTimer timer(timers, Phase::ContactSearch);
     m_shared_pass = m_sharing != nullptr;
     totals.rebuilt = refresh_broad_phase(position, node_thickness);
+    advance_sleep_path(totals.rebuilt, position);
     build_visits();
     // Only the search of a slot with candidates reads its area and normal, and so does a
     // user-stiffness law's spring (same slots); a LINEAR law's increment estimate reads all.
@@ -181,11 +183,25 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
 void ContactEngine::build_visits() {
   m_live.clear();
   if (m_visit_all) {
+    forget_sleep();
     for (const Index s : m_all_slots)
       if (owned(s)) m_live.push_back(s);
     return;
   }
-  std::set_union(m_listed_slots.begin(), m_listed_slots.end(), m_held.begin(), m_held.end(),
+  // Sleeping slots (file comment) are left out once quiet; the check mode searches them.
+  m_awake_listed.clear();
+  for (const Index s : m_listed_slots) {
+    m_asleep[s] = sleeps(s) ? 1 : 0;
+    if (m_asleep[s] == 0) m_awake_listed.push_back(s);
+  }
+  const auto n_listed = static_cast<long long>(m_listed_slots.size());
+  const auto n_awake = static_cast<long long>(m_awake_listed.size());
+  m_sleep_counts.searched += n_awake;
+  m_sleep_counts.asleep += n_listed - n_awake;
+  if (m_sleep_mode == SleepMode::Check) m_sleep_counts.checked += n_listed - n_awake;
+  const std::vector<Index>& listed =
+      m_sleep_mode == SleepMode::Check ? m_listed_slots : m_awake_listed;
+  std::set_union(listed.begin(), listed.end(), m_held.begin(), m_held.end(),
                  std::back_inserter(m_live));
   // A whole build (probe()) listed every process's slots.
   if (m_shared_pass)

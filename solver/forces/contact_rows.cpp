@@ -50,21 +50,25 @@ void ContactRows::gather(contact::ContactEngine& engine, const State& state, Nod
   // motion of the contact nodes it integrates (current in `state`; reduced by max below).
   const int rank = m_run->rank();
   const Real motion = broad.largest_motion_sq(state.position, m_integrated);
+  // And the motion since the last update (the sleeping slots' path, ContactEngine).
+  const Real step = engine.measure_step_motion(state.position, m_integrated);
   m_send.clear();
   for (int r = 0; r < m_run->size(); ++r) {
     for (const Index n : m_send_nodes[r])
       for (const NodalVectors* rows : {&state.position, &state.velocity_half})
         for (int c = 0; c < 3; ++c) m_send.push_back((*rows)(n, c));
     m_send.push_back(motion);
+    m_send.push_back(step);
   }
   m_run->alltoall_into(m_send, m_send_counts, m_receive, m_receive_counts);
   std::size_t k = 0;
-  Real largest = 0.0;
+  Real largest = 0.0, largest_step = 0.0;
   for (int r = 0; r < m_run->size(); ++r) {
     for (const Index n : m_receive_nodes[r])
       for (NodalVectors* rows : {&position, &velocity})
         for (int c = 0; c < 3; ++c) (*rows)(n, c) = m_receive[k++];
     largest = std::max(largest, m_receive[k++]);
+    largest_step = std::max(largest_step, m_receive[k++]);
     if (r != rank) m_values += static_cast<double>(m_receive_counts[r]);
   }
   for (const Index n : m_local) {
@@ -76,7 +80,7 @@ void ContactRows::gather(contact::ContactEngine& engine, const State& state, Nod
   // again on its copies. A build reads every contact node (the rows not sent above are as the
   // last whole gather left them).
   const bool due = broad.exceeds_rebuild_motion(largest);
-  engine.decide_rebuild(due);
+  engine.decide_rebuild(due, largest_step);
   if (due)
     gather_all(state, position, velocity);
   else
@@ -142,8 +146,8 @@ void ContactRows::update_lists(const contact::ContactEngine& engine, bool rebuil
   for (std::size_t r = 0; r < m_receive_nodes.size(); ++r) {
     for (int i = 0; i < asked_of_me[r]; ++i)
       m_send_nodes[r].push_back(static_cast<Index>(to_send[k++]));
-    m_send_counts[r] = static_cast<int>(ROW_WIDTH * m_send_nodes[r].size() + 1);
-    m_receive_counts[r] = static_cast<int>(ROW_WIDTH * m_receive_nodes[r].size() + 1);
+    m_send_counts[r] = static_cast<int>(ROW_WIDTH * m_send_nodes[r].size() + 2);
+    m_receive_counts[r] = static_cast<int>(ROW_WIDTH * m_receive_nodes[r].size() + 2);
   }
   m_lists = true;
 }
