@@ -22,48 +22,7 @@
 /// only the slots that may not be quiet (those with listed faces, whose search may find a touch,
 /// and those whose last visit left one of the above), in slot order, so every sum and every
 /// state is that of a visit of all slots, to the bit; the others cost nothing per increment.
-///
-/// Sleeping slots (slot_sleep.cpp): a listed slot far from every face it lists is not searched
-/// and holds no touch while a lower bound on its distance, reduced by the motion since, keeps it
-/// beyond any penetration. An awake search of slot s records, when the slot is free (no closed
-/// constraint, so no side memory and no continuing face; no permanent offset, ramp or
-/// user-stiffness law; nothing penetrated, released or passed), its clearance
-///   c = min over its listed faces f of (L_f − R_f) − G,
-/// and the motion path P then. L_f bounds from below the distance from the node to the
-/// mid-surface of f (the bilinear patch of f's nodes; a solid face is its own mid-surface): the
-/// patch is a convex combination of its corners, so it lies in their box and in their slab along
-/// any unit vector (the normal of their diagonals), and the larger of the two distances is a
-/// bound, less a relative rounding slack. Every face the search could evaluate gets it, those
-/// admissible() rejects by orientation or reach too, since both tests change with the motion.
-/// R_f is how near that mid-surface a node must come for admissible() to keep a penetrating
-/// touch on f (gap < 0) with the rules of an updated engine: the closest point q of f's offset
-/// surface (a shell face's corners moved out along its normal by their half thicknesses h_a on
-/// its side; each offset point is within r_f = max h_a of the mid-surface point of the same
-/// bilinear coordinates, so the node is within |p − q| + r_f of the mid-surface) lies within
-/// max(h_n, depth_f) of a node h_n (the node's half thickness) in front of it over the face's
-/// interior, and beside its edges a double-sided node touches the round edge, within h_n + r_f
-/// of the mid-surface: R_f = max(h_n, depth_f) + r_f; a single-sided node beside a square edge
-/// lies within √(l² + (l − h_n)²), l = depth_f + h_n, of q (penetration_reach_sq()), so
-/// R_f = max(h_n, that) + r_f. Both sides of a double-sided shell are listed faces of their own
-/// and bounded alike; the node's own side does not enter (L_f and R_f hold for either).
-/// Thicknesses and face depths are fixed for the step. G = SLEEP_GUARD × min_f R_f wakes the
-/// slot while it is still that far from any touch, so that it is searched (and keeps an open
-/// touch's memory: master face, gap, normal, onset offset) for several increments before it can
-/// touch. Motion: every tracked node (each face corner, a rigid body's included, and each slave
-/// node) moves by at most the per-update largest motion m_k (BroadPhase::step_motion_sq()) in
-/// an update, so between two updates by at most the path P = Σ m_k between them, and so does
-/// each mid-surface point (a convex combination of corners); the distance from a node to a
-/// mid-surface shrinks by at most 2 ΔP. The slot sleeps while c − 2 (P − P_s)(1 + 1e-9) > 0:
-/// then no listed face is within R_f, admissible() keeps no penetrating touch, so no spring
-/// acts, nothing is pinched, and a free slot releases and passes nothing: all it loses is the
-/// open touch (its memory) and the warm starts. A slot with no listed face changes is assumed
-/// (the lists change at broad-phase builds only, which forget every record and the path).
-/// A sleeping slot is left out of the visits once its last visit made it quiet. probe(), a
-/// mutable constraints() and the other full visits forget the records. In a shared pass the
-/// owner records and decides with its own listed faces and the path every process has (the
-/// max of the processes' step motions is exact): the one-process decision. XPL_CONTACT_SLEEP:
-/// `off` never sleeps, `check` searches the sleeping slots anyway and throws if one would have
-/// touched, `count` (or `check`) prints the counts to stderr when the engine goes.
+/// Sleeping slots, far from every listed face, are not searched: slot_sleep.hpp (why it is sound).
 
 #include <array>
 #include <cstdint>
@@ -80,6 +39,7 @@
 #include "contact/penalty.hpp"
 #include "contact/penalty_increment.hpp"
 #include "contact/slot_sharing.hpp"
+#include "contact/slot_sleep.hpp"
 
 namespace xpl::contact {
 
@@ -193,32 +153,14 @@ class ContactEngine {
   /// broad phase is to be built, decided by the caller as the max over the processes of each
   /// one's largest motion of the nodes it integrates (BroadPhase::exceeds_rebuild_motion(),
   /// exact, so the one-process decision); that update() then does not measure the motion
-  /// again on its copies. For the next update() only.
-  /// With the rebuild decision, the largest squared motion (m², max over the processes) of the
-  /// tracked nodes since the last update (measure_step_motion()): the sleeping slots' path.
+  /// again on its copies. For the next update() only; with the max of the processes'
+  /// measure_step_motion() (m²: the step motion of the nodes each integrates, slot_sleep.hpp).
   void decide_rebuild(bool due, Real step_motion_sq) {
     m_rebuild_decision = due ? 1 : 0;
-    m_step_decision = step_motion_sq;
+    m_sleep.step_decision = step_motion_sq;
   }
-  /// Distributed runs, before decide_rebuild(): the largest squared motion (m²) since the last
-  /// update of the tracked nodes `node_mask` (n_nodes) marks, at `position` (n_nodes × 3, m,
-  /// current for those nodes), which are remembered (BroadPhase::step_motion_sq()).
-  Real measure_step_motion(const NodalVectors& position, std::span<const char> node_mask) {
-    return m_broad.step_motion_sq(position, node_mask);
-  }
-  /// Sleeping slots (file comment): slot searches made and left asleep, and asleep searches
-  /// that would have touched (XPL_CONTACT_SLEEP=check), since construction.
-  struct SleepCounts {
-    long long searched = 0, asleep = 0, checked = 0, updates = 0;
-    double path = 0.0;  ///< Σ over the updates of the largest step motion, m
-  };
-  const SleepCounts& sleep_counts() const { return m_sleep_counts; }
-  /// Prints sleep_counts() to stderr when XPL_CONTACT_SLEEP is `count` or `check`.
-  ~ContactEngine();
-  ContactEngine(const ContactEngine&) = default;
-  ContactEngine(ContactEngine&&) = default;
-  ContactEngine& operator=(const ContactEngine&) = default;
-  ContactEngine& operator=(ContactEngine&&) = default;
+  Real measure_step_motion(const NodalVectors& position, std::span<const char> node_mask);
+  const SleepCounts& sleep_counts() const { return m_sleep.counts; }  ///< slot_sleep.hpp
 
  private:
   /// Whether this process computes slot s in the current update() (share_slots()).
@@ -407,20 +349,8 @@ class ContactEngine {
   bool beside_next_face(Index f, const Vec3 (&corner)[4], const Vec3& n_f, const ClosestPoint& cp,
                         const Vec3& point, Real lateral, const NodalVectors& position,
                         std::span<const Real> node_thickness) const;
-  /// Sleeping slots (file comment, slot_sleep.cpp): after refresh_broad_phase() in update(),
-  /// the path of this update's motion, measured here or decided (decide_rebuild()); a build
-  /// forgets the path and every record.
-  void advance_sleep_path(bool rebuilt, const NodalVectors& position);
-  /// The mode from XPL_CONTACT_SLEEP (file comment), then forget_sleep().
-  void init_sleep();
-  void forget_sleep();
-  /// Whether slot s's record keeps it asleep at the current path.
-  bool sleeps(Index s) const;
-  /// After an awake search of slot s with nearest touch `best` and view `v`: its record.
-  void record_sleep(const SlaveView& v, const SlaveTouch& best, const NodalVectors& position,
-                    std::span<const Real> node_thickness);
-  /// A sleeping slot's search result: no touch, no depths, no warm starts; in check mode,
-  /// first whether the search just made would have touched (then throws).
+  void record_sleep(const SlaveView& v, const SlaveTouch& best, const SlaveTouch& second,
+                    const NodalVectors& position, std::span<const Real> node_thickness);
   void put_to_sleep(Index s, bool searched);
 
   ContactDomain m_domain;
@@ -485,17 +415,7 @@ class ContactEngine {
   std::vector<Index> m_listed_slots;
   std::vector<Index> m_held, m_live, m_all_slots;
   bool m_visit_all = true;  // the next update() visits every slot (build_visits())
-  // Sleeping slots (file comment): per slave slot the clearance its last awake search recorded
-  // (m; −inf: none) and the path then (m); whether it sleeps in this update; the path since the
-  // last build (m); the step motion decided for the next update (m², < 0: none); the mode.
-  std::vector<Real> m_sleep_clear, m_sleep_path;
-  std::vector<char> m_asleep;
-  std::vector<Index> m_awake_listed;
-  Real m_path = 0.0;
-  Real m_step_decision = -1.0;
-  enum class SleepMode : std::uint8_t { Off, On, Count, Check };
-  SleepMode m_sleep_mode = SleepMode::On;
-  SleepCounts m_sleep_counts;
+  SlotSleep m_sleep;        // sleeping slots (slot_sleep.hpp)
   // Whether some face's depth is below the search margin at the last broad-phase build: only
   // then can admissible() skip a closest point by its box (penetration reach), and only then
   // does the search evaluate last increment's face first.

@@ -274,7 +274,7 @@ const ContactEngine::FaceGeometry& ContactEngine::face_geometry(
 }
 
 void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
-  const auto n_live = static_cast<Index>(m_live.size());
+  const auto n_live = static_cast<Index>(m_sleep.searched.size());
   ParallelErrors errors;
   const bool on_team = static_cast<Index>(m_listed.size()) >= PARALLEL_MIN_CANDIDATES;
   // On the calling thread, each face's geometry is worked out once for all the slots that
@@ -292,14 +292,8 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
   }
 #pragma omp parallel for schedule(dynamic, 256) if (on_team)
   for (Index k = 0; k < n_live; ++k) {
-    const Index s = m_live[k];  // this process's (build_visits())
+    const Index s = m_sleep.searched[k];  // this process's (build_visits())
     errors.guard(ParallelSite::ContactSearch, s, [&] {
-      // A sleeping slot (file comment) is not searched, but in the check mode.
-      const bool asleep = m_asleep[s] != 0;
-      if (asleep && m_sleep_mode != SleepMode::Check) {
-        put_to_sleep(s, false);
-        return;
-      }
       SlaveTouch best;
       SlaveTouch second;
       WarmStarts next;
@@ -388,13 +382,11 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         }
         if (pinched && second.face == NO_INDEX && view.double_sided && m_updated)
           second = corner_touch(best, penetrated, n_penetrated, m_domain.faces());
-        m_second_touch[s] = second;
-        if (!asleep) record_sleep(view, best, position, node_thickness);
+        if (m_sleep.asleep[s] == 0) record_sleep(view, best, second, position, node_thickness);
       }
       m_touch[s] = best;
       m_second_touch[s] = second;
       if (next.count > 0 || m_warm[s].count > 0) m_warm[s] = next;
-      if (asleep) put_to_sleep(s, true);
     });
   }
   errors.rethrow_if_any();

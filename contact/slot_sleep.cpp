@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "contact/slot_sleep.hpp"
+
 #include "contact/contact_engine.hpp"
 
 namespace xpl::contact {
@@ -47,63 +49,60 @@ Real patch_distance_below(const Vec3 (&mid)[4], const Vec3& p) {
 
 }  // namespace
 
-ContactEngine::~ContactEngine() {
-  if (m_sleep_mode != SleepMode::Count && m_sleep_mode != SleepMode::Check) return;
-  const SleepCounts& n = m_sleep_counts;
+SlotSleep::SlotSleep(Index n_slave) {
+  const char* value = std::getenv("XPL_CONTACT_SLEEP");
+  const std::string v = value != nullptr ? value : "";
+  mode = v == "off"     ? SleepMode::Off
+         : v == "count" ? SleepMode::Count
+         : v == "check" ? SleepMode::Check
+                        : SleepMode::On;
+  clear.assign(static_cast<std::size_t>(n_slave), 0.0);
+  path_then.assign(static_cast<std::size_t>(n_slave), 0.0);
+  asleep.assign(static_cast<std::size_t>(n_slave), 0);
+  forget();
+}
+
+SlotSleep::~SlotSleep() {
+  if (mode != SleepMode::Count && mode != SleepMode::Check) return;
   std::fprintf(stderr,
                "xpl contact sleep: %lld slot searches, %lld asleep (%lld of them searched by the "
                "check, none touching); %lld updates, mean largest step motion %.3e m\n",
-               n.searched, n.asleep, n.checked, n.updates,
-               n.updates > 0 ? n.path / static_cast<double>(n.updates) : 0.0);
+               counts.searched, counts.asleep, counts.checked, counts.updates,
+               counts.updates > 0 ? counts.path / static_cast<double>(counts.updates) : 0.0);
 }
 
-void ContactEngine::init_sleep() {
-  const char* value = std::getenv("XPL_CONTACT_SLEEP");
-  m_sleep_mode = SleepMode::On;
-  if (value != nullptr && std::strcmp(value, "off") == 0) m_sleep_mode = SleepMode::Off;
-  if (value != nullptr && std::strcmp(value, "count") == 0) m_sleep_mode = SleepMode::Count;
-  if (value != nullptr && std::strcmp(value, "check") == 0) m_sleep_mode = SleepMode::Check;
-  forget_sleep();
+void SlotSleep::forget() {
+  std::fill(clear.begin(), clear.end(), -std::numeric_limits<Real>::infinity());
+  std::fill(asleep.begin(), asleep.end(), 0);
+  path = 0.0;
 }
 
-void ContactEngine::forget_sleep() {
-  const auto n = static_cast<std::size_t>(m_domain.slaves().size());
-  m_sleep_clear.assign(n, -std::numeric_limits<Real>::infinity());
-  m_sleep_path.assign(n, 0.0);
-  m_asleep.assign(n, 0);
-  m_path = 0.0;
+void SlotSleep::advance(bool rebuilt, Real step_sq) {
+  ++counts.updates;
+  counts.path += std::sqrt(step_sq);
+  if (rebuilt)
+    forget();
+  else
+    path += std::sqrt(step_sq);
 }
 
-void ContactEngine::advance_sleep_path(bool rebuilt, const NodalVectors& position) {
-  const bool decided = m_step_decision >= 0.0 && m_shared_pass;
-  const Real step_sq = rebuilt ? 0.0 : decided ? m_step_decision : m_broad.step_motion_sq(position);
-  m_step_decision = -1.0;
-  ++m_sleep_counts.updates;
-  m_sleep_counts.path += std::sqrt(step_sq);
-  if (rebuilt) {
-    forget_sleep();
-    return;
-  }
-  m_path += std::sqrt(step_sq);
-}
-
-bool ContactEngine::sleeps(Index s) const {
-  const Real clear = m_sleep_clear[s];
-  return clear > 0.0 && clear - 2.0 * (m_path - m_sleep_path[s]) * (1.0 + 1e-9) > 0.0;
+Real ContactEngine::measure_step_motion(const NodalVectors& position,
+                                        std::span<const char> node_mask) {
+  return m_broad.step_motion_sq(position, node_mask);
 }
 
 void ContactEngine::record_sleep(const SlaveView& v, const SlaveTouch& best,
-                                 const NodalVectors& position,
+                                 const SlaveTouch& second, const NodalVectors& position,
                                  std::span<const Real> node_thickness) {
   const Index s = v.slot;
-  m_sleep_clear[s] = -std::numeric_limits<Real>::infinity();
-  if (m_sleep_mode == SleepMode::Off || m_user_stiffness) return;
+  m_sleep.clear[s] = -std::numeric_limits<Real>::infinity();
+  if (m_sleep.mode == SleepMode::Off || m_user_stiffness) return;
   const ContactConstraint& c = m_constraints[s];
   if (v.held != nullptr || v.continuing != NO_INDEX || c.offset_permanent ||
       c.status == ContactStatus::Closed || m_second[s].status == ContactStatus::Closed)
     return;
   if (!m_interference.empty() && m_interference[s].amount > 0.0) return;
-  if ((best.face != NO_INDEX && !(best.gap > 0.0)) || m_second_touch[s].face != NO_INDEX ||
+  if ((best.face != NO_INDEX && !(best.gap > 0.0)) || second.face != NO_INDEX ||
       m_lost_depth[s] != 0.0 || m_passed_depth[s] != 0.0 || m_behind_depth[s] != 0.0)
     return;
   const std::vector<ContactFace>& faces = m_domain.faces();
@@ -142,8 +141,8 @@ void ContactEngine::record_sleep(const SlaveView& v, const SlaveTouch& best,
   }
   const Real clear = least - SLEEP_GUARD * reach_least;
   if (!(clear > 0.0)) return;
-  m_sleep_clear[s] = clear;
-  m_sleep_path[s] = m_path;
+  m_sleep.clear[s] = clear;
+  m_sleep.path_then[s] = m_sleep.path;
 }
 
 void ContactEngine::put_to_sleep(Index s, bool searched) {
