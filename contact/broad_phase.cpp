@@ -195,6 +195,7 @@ void BroadPhase::track_nodes(std::span<const ContactFace> faces, std::span<const
   m_tracked_position.resize(3 * m_tracked.size());
   for (std::size_t i = 0; i < m_tracked.size(); ++i)
     for (int d = 0; d < 3; ++d) m_tracked_position[3 * i + d] = position(m_tracked[i], d);
+  m_step_position = m_tracked_position;
 }
 
 Index BroadPhase::scan_bucket(Index node, const Vec3& p, std::span<const ContactFace> faces,
@@ -244,6 +245,26 @@ Real BroadPhase::largest_motion_sq(const NodalVectors& position,
     for (int d = 0; d < 3; ++d) {
       const Real u = position(n, d) - m_tracked_position[3 * i + d];
       sq += u * u;
+    }
+    max_sq = std::max(max_sq, sq);
+  }
+  return max_sq;
+}
+
+Real BroadPhase::step_motion_sq(const NodalVectors& position, std::span<const char> node_mask) {
+  const auto n_tracked = static_cast<Index>(m_tracked.size());
+  const bool masked = !node_mask.empty();
+  Real max_sq = 0.0;
+  const bool on_team = n_tracked >= PARALLEL_MIN_SLOTS;
+#pragma omp parallel for schedule(static) reduction(max : max_sq) if (on_team)
+  for (Index i = 0; i < n_tracked; ++i) {
+    const Index n = m_tracked[i];
+    if (masked && node_mask[n] == 0) continue;
+    Real sq = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const Real u = position(n, d) - m_step_position[3 * i + d];
+      sq += u * u;
+      m_step_position[3 * i + d] = position(n, d);
     }
     max_sq = std::max(max_sq, sq);
   }

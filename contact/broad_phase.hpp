@@ -61,6 +61,13 @@ class BroadPhase {
   /// processes each take the nodes whose rows they hold and reduce (max is exact), so that
   /// the decision is needs_rebuild()'s on the whole positions, bit for bit.
   Real largest_motion_sq(const NodalVectors& position, std::span<const char> node_mask = {}) const;
+  /// The largest squared motion (m²) of the tracked nodes that `node_mask` marks (n_nodes;
+  /// empty: all) since the last call that measured them (or the last build), whose positions
+  /// it then remembers for the next call; 0 before the first build. A distributed run's
+  /// processes each measure the nodes they integrate and reduce (max is exact), as for
+  /// largest_motion_sq(). The sum of these over the increments bounds how far any tracked
+  /// node has moved since any of them (ContactEngine, sleeping slots).
+  Real step_motion_sq(const NodalVectors& position, std::span<const char> node_mask = {});
   /// Whether a largest squared motion `max_sq` (m²) calls for a rebuild (after a first build).
   bool exceeds_rebuild_motion(Real max_sq) const {
     return max_sq > m_rebuild_motion * m_rebuild_motion;
@@ -121,6 +128,7 @@ class BroadPhase {
   // Nodes whose motion is watched and their positions at the last build (n_tracked × 3).
   std::vector<Index> m_tracked;
   std::vector<Real> m_tracked_position;
+  std::vector<Real> m_step_position;  ///< (n_tracked × 3) at the last step_motion_sq()
   std::vector<char> m_is_tracked;
 };
 

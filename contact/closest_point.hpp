@@ -92,4 +92,24 @@ struct SlaveTouch {
   Real xi = 0.0, eta = 0.0;     ///< face coordinates of the closest point
 };
 
+/// Where the closest point of a face lay for a slave node (face, coordinates): last
+/// increment's, a Newton start on a strongly warped face (closest_point_on_quad).
+struct WarmStart {
+  Index face = NO_INDEX;
+  QuadStart at;
+};
+
+/// The closest points of the first WARM_KEPT faces a slot's search evaluates (ContactEngine).
+struct WarmStarts {
+  static constexpr int WARM_KEPT = 4;
+  std::array<WarmStart, WARM_KEPT> kept{};
+  int count = 0;
+  /// Keeps face f's closest point (ξ, η) unless f is there already or the list is full.
+  void keep(Index f, Real xi, Real eta) {
+    for (int k = 0; k < count; ++k)
+      if (kept[k].face == f) return;
+    if (count < WARM_KEPT) kept[count++] = {f, {xi, eta}};
+  }
+};
+
 }  // namespace xpl::contact

@@ -49,7 +49,8 @@ ContactEngine::ContactEngine(ContactDomain domain, std::vector<InteractionLaw> l
     : m_domain(std::move(domain)),
       m_laws(std::move(laws)),
       m_options(options),
-      m_broad(make_broad_phase(options, m_domain.faces(), position, node_thickness)) {
+      m_broad(make_broad_phase(options, m_domain.faces(), position, node_thickness)),
+      m_sleep(m_domain.slaves().size()) {
   const auto n = static_cast<std::size_t>(m_domain.slaves().size());
   m_constraints.assign(n, ContactConstraint{});
   m_touch.assign(n, SlaveTouch{});
@@ -93,6 +94,13 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     m_shared_pass = m_sharing != nullptr;
     totals.rebuilt = refresh_broad_phase(position, node_thickness) || m_built_ahead;
     m_built_ahead = false;
+    // The sleeping slots' path (slot_sleep.hpp): this update's step motion, measured here or
+    // decided by the processes together (decide_rebuild()).
+    const bool decided = m_sleep.step_decision >= 0.0 && m_shared_pass;
+    m_sleep.advance(totals.rebuilt, totals.rebuilt ? 0.0
+                                    : decided      ? m_sleep.step_decision
+                                                   : m_broad.step_motion_sq(position));
+    m_sleep.step_decision = -1.0;
     build_visits();
     // Only the search of a slot with candidates reads its area and normal, and so does a
     // user-stiffness law's spring (same slots); a LINEAR law's increment estimate reads all.
@@ -101,6 +109,9 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
     else
       slaves.update_areas(faces, position, m_active_slot, m_active_face);
     search(position, node_thickness);
+    if (m_sleep.mode == SleepMode::Check)
+      for (const Index s : m_live)
+        if (m_sleep.asleep[s] != 0) put_to_sleep(s, true);
     // The face a released or passed node was pressed on, before the springs move on.
     for (const Index s : m_live)
       m_event_face[s] = m_lost_depth[s] > 0.0 || m_passed_depth[s] > 0.0
@@ -182,16 +193,38 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
 void ContactEngine::build_visits() {
   m_live.clear();
   if (m_visit_all) {
+    m_sleep.forget();
     for (const Index s : m_all_slots)
       if (owned(s)) m_live.push_back(s);
-    return;
+  } else {
+    // Sleeping slots (slot_sleep.hpp) are left out once quiet; the check mode searches them.
+    m_sleep.awake_listed.clear();
+    for (const Index s : m_listed_slots) {
+      m_sleep.asleep[s] = m_sleep.sleeps(s) ? 1 : 0;
+      if (m_sleep.asleep[s] == 0) m_sleep.awake_listed.push_back(s);
+    }
+    const auto n_asleep =
+        static_cast<long long>(m_listed_slots.size() - m_sleep.awake_listed.size());
+    m_sleep.counts.searched += static_cast<long long>(m_sleep.awake_listed.size());
+    m_sleep.counts.asleep += n_asleep;
+    const bool check = m_sleep.mode == SleepMode::Check;
+    if (check) m_sleep.counts.checked += n_asleep;
+    const std::vector<Index>& listed = check ? m_listed_slots : m_sleep.awake_listed;
+    std::set_union(listed.begin(), listed.end(), m_held.begin(), m_held.end(),
+                   std::back_inserter(m_live));
+    // A whole build (probe()) listed every process's slots.
+    if (m_shared_pass)
+      m_live.erase(std::remove_if(m_live.begin(), m_live.end(), [&](Index s) { return !owned(s); }),
+                   m_live.end());
   }
-  std::set_union(m_listed_slots.begin(), m_listed_slots.end(), m_held.begin(), m_held.end(),
-                 std::back_inserter(m_live));
-  // A whole build (probe()) listed every process's slots.
-  if (m_shared_pass)
-    m_live.erase(std::remove_if(m_live.begin(), m_live.end(), [&](Index s) { return !owned(s); }),
-                 m_live.end());
+  // The slots search() looks at: a sleeping one still held is put to sleep at once.
+  m_sleep.searched.clear();
+  for (const Index s : m_live) {
+    if (m_sleep.asleep[s] != 0 && m_sleep.mode != SleepMode::Check)
+      put_to_sleep(s, false);
+    else
+      m_sleep.searched.push_back(s);
+  }
 }
 
 void ContactEngine::keep_held() {

@@ -22,6 +22,7 @@
 /// only the slots that may not be quiet (those with listed faces, whose search may find a touch,
 /// and those whose last visit left one of the above), in slot order, so every sum and every
 /// state is that of a visit of all slots, to the bit; the others cost nothing per increment.
+/// Sleeping slots, far from every listed face, are not searched: slot_sleep.hpp (why it is sound).
 
 #include <array>
 #include <cstdint>
@@ -39,6 +40,7 @@
 #include "contact/penalty.hpp"
 #include "contact/penalty_increment.hpp"
 #include "contact/slot_sharing.hpp"
+#include "contact/slot_sleep.hpp"
 
 namespace xpl::contact {
 
@@ -131,36 +133,33 @@ class ContactEngine {
   void set_step_time(Real step_time) { m_step_time = step_time; }
   /// Whether some slave slot's interference is still ramping.
   bool interference_ramping() const { return m_ramping > 0; }
-  /// Distributed runs (slot_sharing.hpp): from the next update() on, process `process`
-  /// searches and computes the springs of the slave slots whose `slot_process` (n_slave) it
-  /// is only, and takes every other slot's results from its owner through `sharing` (which
-  /// must outlive the engine); a slot's state (offset, constraint, friction spring, ramp) is
-  /// kept by its owner alone, and so is the velocity of its node, which the owner sends to
-  /// every process when the node carries a force (the work terms). The broad phase's grid
-  /// stays whole on every process; probe() searches all.
+  /// Distributed runs (slot_sharing.hpp, docs/dev/mpi.md): from the next update() on, process
+  /// `process` searches and computes the springs of its slots (`slot_process`, n_slave) only
+  /// and takes the others' results from their owners through `sharing` (outliving the
+  /// engine); a slot's state and its node's velocity (the work terms) are its owner's.
   void share_slots(std::vector<int> slot_process, int process, SlotSharing* sharing);
-  /// Distributed runs, after an update() of shared slots (contact_reads.cpp): sets in `mark`
-  /// (n_nodes) the nodes whose positions and velocities the search and springs of this
-  /// process's slots read until the broad phase is next built: each slot's node, the corners
-  /// of its candidate faces and of the faces its state holds. False when the whole pass reads
-  /// more than the slots' neighbourhoods (a law of its own stiffness: every node area).
+  /// Distributed runs, after an update() of shared slots (contact_reads.cpp): marks (n_nodes)
+  /// the nodes this process's search and springs read until the next build. False when a
+  /// whole pass reads more (a law of its own stiffness: every node area).
   bool mark_read_nodes(std::vector<char>& mark) const;
-  /// Distributed runs: the node velocities this process has received with the other
-  /// processes' slot forces (share_forces()) since share_slots().
+  /// Distributed runs: node velocities received with the slot forces since share_slots().
   double received_velocities() const { return m_received_velocities; }
-  /// Distributed runs, before an update() of shared slots on a built broad phase: whether the
-  /// broad phase is to be built, decided by the caller as the max over the processes of each
-  /// one's largest motion of the nodes it integrates (BroadPhase::exceeds_rebuild_motion(),
-  /// exact, so the one-process decision); that update() then does not measure the motion
-  /// again on its copies. For the next update() only.
-  void decide_rebuild(bool due) { m_rebuild_decision = due ? 1 : 0; }
-  /// Distributed runs, before an update() of shared slots when the processes decided to build
-  /// the broad phase (collective: every process calls it): builds it now on `position`, whose
-  /// rows are current only for the faces `faces_held` marks (n_faces: ghost faces, which
-  /// must include every face whose box may hold a slot of this process) and this process's
-  /// slots, and lists the slots' faces as update() would; the caller then brings the rows the
-  /// new lists read (mark_read_nodes()) and decides no rebuild for the update(), which
-  /// reports the build (ContactTotals::rebuilt).
+  /// Distributed runs, for the next update() of shared slots only: whether the broad phase is
+  /// to be built (the max over the processes of each one's largest motion of the nodes it
+  /// integrates: exact, so the one-process decision) and the max of their
+  /// measure_step_motion() (m², the sleeping slots' path, slot_sleep.hpp); update() then
+  /// measures neither on its copies.
+  void decide_rebuild(bool due, Real step_motion_sq) {
+    m_rebuild_decision = due ? 1 : 0;
+    m_sleep.step_decision = step_motion_sq;
+  }
+  Real measure_step_motion(const NodalVectors& position, std::span<const char> node_mask);
+  const SleepCounts& sleep_counts() const { return m_sleep.counts; }  ///< slot_sleep.hpp
+  /// Distributed runs, when the processes decided to build (collective): builds the broad
+  /// phase now on `position`, current only for the faces `faces_held` marks (n_faces: the
+  /// ghost faces, every face whose box may hold a slot of this process) and this process's
+  /// slots, and lists the slots' faces; the caller brings the rows the new lists read and
+  /// decides no rebuild for the update(), which reports this build (ContactTotals::rebuilt).
   void build_shared_broad_phase(const NodalVectors& position, std::span<const Real> node_thickness,
                                 std::span<const char> faces_held);
 
@@ -201,27 +200,6 @@ class ContactEngine {
   /// Rebuilds the broad phase when due (then also the lists of slots with candidates and of
   /// their faces); returns whether it did.
   bool refresh_broad_phase(const NodalVectors& position, std::span<const Real> node_thickness);
-  /// What the admissibility test needs of a slave node, gathered once per node and search
-  /// (not once per candidate face): position, normal, sidedness, half thickness, and the shell
-  /// face it is held on (side memory) or null.
-  /// Where the closest point of a face lay for a slave node (face, coordinates): last
-  /// increment's, a Newton start on a strongly warped face (closest_point_on_quad).
-  struct WarmStart {
-    Index face = NO_INDEX;
-    QuadStart at;
-  };
-  /// The closest points of the first WARM_KEPT faces a slot's search evaluates.
-  static constexpr int WARM_KEPT = 4;
-  struct WarmStarts {
-    std::array<WarmStart, WARM_KEPT> kept{};
-    int count = 0;
-    /// Keeps face f's closest point (ξ, η) unless f is there already or the list is full.
-    void keep(Index f, Real xi, Real eta) {
-      for (int k = 0; k < count; ++k)
-        if (kept[k].face == f) return;
-      if (count < WARM_KEPT) kept[count++] = {f, {xi, eta}};
-    }
-  };
   /// What admissible() derives from face f's nodes alone: its corners (a shell face's on its
   /// side, offset by half the thickness), the normal of their diagonals (unnormalised, m²), its
   /// length and direction, a shell face's depth limit (m) and the largest half thickness of its
@@ -252,6 +230,9 @@ class ContactEngine {
                               FaceGeometry& local) const;
   /// The bounds of `g` (face f's geometry), worked out on the first call.
   void face_bounds(Index f, FaceGeometry& g) const;
+  /// What the admissibility test needs of a slave node, gathered once per node and search
+  /// (not once per candidate face): position, normal, sidedness, half thickness, and the shell
+  /// face it is held on (side memory) or null.
   struct SlaveView {
     Index slot = NO_INDEX;
     Index node = NO_INDEX;
@@ -357,6 +338,9 @@ class ContactEngine {
   bool beside_next_face(Index f, const Vec3 (&corner)[4], const Vec3& n_f, const ClosestPoint& cp,
                         const Vec3& point, Real lateral, const NodalVectors& position,
                         std::span<const Real> node_thickness) const;
+  void record_sleep(const SlaveView& v, const SlaveTouch& best, const SlaveTouch& second,
+                    const NodalVectors& position, std::span<const Real> node_thickness);
+  void put_to_sleep(Index s, bool searched);
 
   ContactDomain m_domain;
   std::vector<InteractionLaw> m_laws;
@@ -420,6 +404,7 @@ class ContactEngine {
   std::vector<Index> m_listed_slots;
   std::vector<Index> m_held, m_live, m_all_slots;
   bool m_visit_all = true;  // the next update() visits every slot (build_visits())
+  SlotSleep m_sleep;        // sleeping slots (slot_sleep.hpp)
   // Whether some face's depth is below the search margin at the last broad-phase build: only
   // then can admissible() skip a closest point by its box (penetration reach), and only then
   // does the search evaluate last increment's face first.

@@ -101,6 +101,12 @@ inline constexpr Real DEPTH_LIMIT_FRACTION = 0.5;
 /// shell thickness in the crash tube, against approaches of micrometres) are offset.
 inline constexpr Real ONSET_REACH_FACTOR = 2.0;
 
+/// A listed slot sleeps (is not searched) only while its distance bound keeps it this fraction
+/// of its touch distance beyond any touch (ContactEngine, sleeping slots), so that it wakes and
+/// is searched for many increments (motions of micrometres against a tenth of a shell
+/// thickness in the crash tube) before it can touch, with an open touch's memory as before.
+inline constexpr Real SLEEP_GUARD = 0.1;
+
 // ---- Start-of-step passes (adjustment_pass.hpp, initial_overclosure.hpp,
 // ---- contact_clearance.hpp)
 

@@ -200,7 +200,7 @@ void ContactEngine::face_bounds(Index f, FaceGeometry& g) const {
 }
 
 void ContactEngine::search(const NodalVectors& position, std::span<const Real> node_thickness) {
-  const auto n_live = static_cast<Index>(m_live.size());
+  const auto n_live = static_cast<Index>(m_sleep.searched.size());
   ParallelErrors errors;
   const bool on_team = static_cast<Index>(m_listed.size()) >= PARALLEL_MIN_CANDIDATES;
   // On the calling thread, each face's geometry is worked out once for all the slots that
@@ -218,7 +218,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
   }
 #pragma omp parallel for schedule(dynamic, 256) if (on_team)
   for (Index k = 0; k < n_live; ++k) {
-    const Index s = m_live[k];  // this process's (build_visits())
+    const Index s = m_sleep.searched[k];  // this process's (build_visits())
     errors.guard(ParallelSite::ContactSearch, s, [&] {
       SlaveTouch best;
       SlaveTouch second;
@@ -308,6 +308,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         }
         if (pinched && second.face == NO_INDEX && view.double_sided && m_updated)
           second = corner_touch(best, penetrated, n_penetrated, m_domain.faces());
+        if (m_sleep.asleep[s] == 0) record_sleep(view, best, second, position, node_thickness);
       }
       m_touch[s] = best;
       m_second_touch[s] = second;

@@ -87,19 +87,23 @@ bool ContactRows::gather(contact::ContactEngine& engine, const State& state, Nod
   // Each rank the rows it asked for at the build, and to every rank this rank's largest
   // motion of the contact nodes it integrates (current in `state`; reduced by max).
   const Real motion = broad.largest_motion_sq(state.position, m_integrated);
-  const Real largest = exchange_listed(state, position, velocity, motion, m_values, m_sent);
+  // And the motion since the last update (the sleeping slots' path, ContactEngine).
+  const Real step = engine.measure_step_motion(state.position, m_integrated);
+  Real largest_step = 0.0;
+  const Real largest =
+      exchange_listed(state, position, velocity, motion, step, largest_step, m_values, m_sent);
   ++m_gathers;
   // The one-rank decision, bit for bit: the engine takes it rather than measure the motion
   // again on its copies. A build reads the ghost faces (build_ghosts()).
   const bool due = broad.exceeds_rebuild_motion(largest);
-  engine.decide_rebuild(due);
+  engine.decide_rebuild(due, largest_step);
   m_partial = true;
   return due;
 }
 
 Real ContactRows::exchange_listed(const State& state, NodalVectors& position,
-                                  NodalVectors& velocity, Real motion, double& received,
-                                  double& sent) {
+                                  NodalVectors& velocity, Real motion, Real step,
+                                  Real& largest_step, double& received, double& sent) {
   const int rank = m_run->rank();
   m_send.clear();
   for (int r = 0; r < m_run->size(); ++r) {
@@ -107,15 +111,18 @@ Real ContactRows::exchange_listed(const State& state, NodalVectors& position,
       for (const NodalVectors* rows : {&state.position, &state.velocity_half})
         for (int c = 0; c < 3; ++c) m_send.push_back((*rows)(n, c));
     m_send.push_back(motion);
+    m_send.push_back(step);
   }
   m_run->alltoall_into(m_send, m_send_counts, m_receive, m_receive_counts);
   std::size_t k = 0;
   Real largest = 0.0;
+  largest_step = 0.0;
   for (int r = 0; r < m_run->size(); ++r) {
     for (const Index n : m_receive_nodes[r])
       for (NodalVectors* rows : {&position, &velocity})
         for (int c = 0; c < 3; ++c) (*rows)(n, c) = m_receive[k++];
     largest = std::max(largest, m_receive[k++]);
+    largest_step = std::max(largest_step, m_receive[k++]);
     if (r == rank) continue;
     received += static_cast<double>(m_receive_counts[r]);
     sent += static_cast<double>(m_send_counts[r]);
@@ -150,8 +157,10 @@ void ContactRows::build_ghosts(contact::ContactEngine& engine, const State& stat
   m_ghost_built = true;
   // The rows the new lists read, now (the search and springs of this increment read them).
   update_lists(engine, true);
-  exchange_listed(state, position, velocity, 0.0, m_build_values.received, m_build_values.sent);
-  engine.decide_rebuild(false);
+  Real step = 0.0;  // a build starts the sleeping slots' records afresh: no path read
+  exchange_listed(state, position, velocity, 0.0, 0.0, step, m_build_values.received,
+                  m_build_values.sent);
+  engine.decide_rebuild(false, 0.0);
   ++m_builds;
 }
 
@@ -303,8 +312,8 @@ void ContactRows::update_lists(const contact::ContactEngine& engine, bool rebuil
   for (std::size_t r = 0; r < m_receive_nodes.size(); ++r) {
     for (int i = 0; i < asked_of_me[r]; ++i)
       m_send_nodes[r].push_back(static_cast<Index>(to_send[k++]));
-    m_send_counts[r] = static_cast<int>(ROW_WIDTH * m_send_nodes[r].size() + 1);
-    m_receive_counts[r] = static_cast<int>(ROW_WIDTH * m_receive_nodes[r].size() + 1);
+    m_send_counts[r] = static_cast<int>(ROW_WIDTH * m_send_nodes[r].size() + 2);
+    m_receive_counts[r] = static_cast<int>(ROW_WIDTH * m_receive_nodes[r].size() + 2);
   }
   m_lists = true;
 }

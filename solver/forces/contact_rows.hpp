@@ -76,11 +76,12 @@ class ContactRows {
  private:
   /// Every contact node's rows (share_rows()).
   void gather_all(const State& state, NodalVectors& position, NodalVectors& velocity);
-  /// The rows of the lists (update_lists()) and this rank's largest motion `motion`, point
-  /// to point; returns the largest motion of all ranks. Counts the values into `received`
-  /// and `sent`.
+  /// The rows of the lists (update_lists()) and this rank's largest motion `motion` and step
+  /// motion `step` (m², the sleeping slots' path), point to point; returns the largest motion
+  /// of all ranks and sets `largest_step` to the largest step motion. Counts the values into
+  /// `received` and `sent`.
   Real exchange_listed(const State& state, NodalVectors& position, NodalVectors& velocity,
-                       Real motion, double& received, double& sent);
+                       Real motion, Real step, Real& largest_step, double& received, double& sent);
   /// build_ghosts()'s first part: the positions of the corners of the faces this rank
   /// sources that other ranks integrate, then of the ghost faces, into `position`; marks in
   /// `fresh` (n_nodes) every node whose position is now current.
