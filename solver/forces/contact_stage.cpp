@@ -203,8 +203,12 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
   if (!m_engine) return;
   if (m_engine->interference_ramping()) m_engine->set_step_time(state.step_time);
   if (m_rows_shared) {
-    if (m_rows.gather(*m_engine, state, m_position, m_velocity))
+    if (m_rows.gather(*m_engine, state, m_position, m_velocity)) {
+      // The ranks' build of the broad phase on ghost faces: search time, as the engine's own
+      // builds (update() then builds nothing).
+      ScopedTimer timer(m_timers, Phase::ContactSearch);
       m_rows.build_ghosts(*m_engine, state, elements.node_thickness(), m_position, m_velocity);
+    }
   } else if (m_run != nullptr)
     m_run->share_rows(m_shared_nodes, {&state.position, &state.velocity_half},
                       {&m_position, &m_velocity});
