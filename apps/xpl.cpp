@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/slot_sleep.hpp"
 #include "job.hpp"
 #include "mpi_session.hpp"
 #include "subcommands.hpp"
@@ -291,6 +292,12 @@ int main(int argc, char** argv) {
   }
   Arguments args;
   if (!parse(argc, argv, args)) return 2;
+  try {
+    (void)xpl::contact::sleep_mode_from_environment();  // a bad setting is a usage error
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "xpl: " << e.what() << "\n";
+    return 2;
+  }
   if (args.help) {
     std::cout << (command == "check" ? CHECK_USAGE : RUN_USAGE);
     return 0;

@@ -49,13 +49,20 @@ Real patch_distance_below(const Vec3 (&mid)[4], const Vec3& p) {
 
 }  // namespace
 
-SlotSleep::SlotSleep(Index n_slave) {
+SleepMode sleep_mode_from_environment() {
   const char* value = std::getenv("XPL_CONTACT_SLEEP");
-  const std::string v = value != nullptr ? value : "";
-  mode = v == "off"     ? SleepMode::Off
-         : v == "count" ? SleepMode::Count
-         : v == "check" ? SleepMode::Check
-                        : SleepMode::On;
+  if (value == nullptr || *value == '\0') return SleepMode::On;  // unset or empty: on
+  const std::string v = value;
+  if (v == "on") return SleepMode::On;
+  if (v == "off") return SleepMode::Off;
+  if (v == "count") return SleepMode::Count;
+  if (v == "check") return SleepMode::Check;
+  throw std::invalid_argument("XPL_CONTACT_SLEEP=" + v +
+                              ": unknown value; expected on, off, count or check (or unset)");
+}
+
+SlotSleep::SlotSleep(Index n_slave) {
+  mode = sleep_mode_from_environment();
   clear.assign(static_cast<std::size_t>(n_slave), 0.0);
   path_then.assign(static_cast<std::size_t>(n_slave), 0.0);
   asleep.assign(static_cast<std::size_t>(n_slave), 0);

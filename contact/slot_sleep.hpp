@@ -59,6 +59,10 @@ struct SleepCounts {
 /// XPL_CONTACT_SLEEP: off, on (unset), count, check (file comment).
 enum class SleepMode : std::uint8_t { Off, On, Count, Check };
 
+/// The mode XPL_CONTACT_SLEEP asks for; std::invalid_argument naming the value and the
+/// accepted ones when it is set to anything else (never a silent default); unset or empty: on.
+SleepMode sleep_mode_from_environment();
+
 /// The engine's sleeping-slot state.
 struct SlotSleep {
   /// Per slave slot: the clearance c its last awake search recorded (m; −inf: none), the path
@@ -72,7 +76,7 @@ struct SlotSleep {
   SleepMode mode = SleepMode::On;
   SleepCounts counts;
 
-  /// The mode from the environment; `n_slave` records, none set.
+  /// The mode from the environment (sleep_mode_from_environment()); `n_slave` records, none set.
   explicit SlotSleep(Index n_slave = 0);
   SlotSleep(const SlotSleep&) = default;
   SlotSleep(SlotSleep&&) = default;

@@ -12,6 +12,7 @@ DECK is a valid deck (the bar example): the usage errors must be caught before i
 and nothing may be written. WORK_DIR is emptied and used as the working directory.
 """
 
+import os
 import pathlib
 import shutil
 import subprocess
@@ -35,8 +36,9 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
 
-    def run(*args):
-        return subprocess.run([xpl, *args], cwd=work, capture_output=True, text=True, timeout=60)
+    def run(*args, env=None):
+        return subprocess.run([xpl, *args], cwd=work, capture_output=True, text=True, timeout=60,
+                              env=env)
 
     result = run("--version")
     check(result.returncode == 0, f"--version: exit code {result.returncode}")
@@ -91,6 +93,14 @@ def main():
               f"stderr:\n{result.stderr}")
         check(result.stderr.strip() != "", f"{what}: nothing on stderr")
         check(result.stdout == "", f"{what}: printed on stdout: {result.stdout!r}")
+    # A misspelt XPL_CONTACT_SLEEP is a usage error, not the default (contact/slot_sleep.hpp).
+    for value in ("of", "ON", "0"):
+        env = dict(os.environ, XPL_CONTACT_SLEEP=value)
+        result = run("run", deck, "-o", "out_sleep", env=env)
+        check(result.returncode == 2 and f"XPL_CONTACT_SLEEP={value}: unknown value" in result.stderr
+              and "expected on, off, count or check" in result.stderr,
+              f"XPL_CONTACT_SLEEP={value!r}: exit {result.returncode}, expected 2 with "
+              f"\"unknown value\"; stderr:\n{result.stderr}")
     written = sorted(p.name for p in work.rglob("*"))
     check(not written, f"usage errors wrote files: {written}")
 
