@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "common/parallel_error.hpp"
 #include "contact/parallel_size.hpp"
@@ -18,6 +20,42 @@ constexpr double MAX_BUCKETS_PER_FACE = 4.0;
 Index bucket_coordinate(Real x, Real origin, Real cell, Index dim) {
   const auto i = static_cast<Index>(std::floor((x - origin) / cell));
   return std::clamp<Index>(i, 0, dim - 1);
+}
+
+/// The largest squared motions of the `tracked` nodes `node_mask` marks (empty: all) since
+/// `at_build` (first, when SinceBuild) and since `*at_step` (second, when SinceStep; the
+/// positions are then remembered there), in one walk; a max-reduction over the team, exact
+/// whatever the order, so one walk gives the bits of two.
+template <bool SinceBuild, bool SinceStep>
+std::pair<Real, Real> walk_motions(const std::vector<Index>& tracked,
+                                   const std::vector<Real>& at_build, std::vector<Real>* at_step,
+                                   const NodalVectors& position, std::span<const char> node_mask) {
+  const auto n_tracked = static_cast<Index>(tracked.size());
+  const bool masked = !node_mask.empty();
+  Real build_sq = 0.0, step_sq = 0.0;
+  const bool on_team = n_tracked >= PARALLEL_MIN_SLOTS;
+#pragma omp parallel for schedule(static) reduction(max : build_sq, step_sq) if (on_team)
+  for (Index i = 0; i < n_tracked; ++i) {
+    const Index n = tracked[i];
+    if (masked && node_mask[n] == 0) continue;
+    Real since_build = 0.0, since_step = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const Real x = position(n, d);
+      if constexpr (SinceBuild) {
+        const Real u = x - at_build[3 * i + d];
+        since_build += u * u;
+      }
+      if constexpr (SinceStep) {
+        Real& then = (*at_step)[3 * i + d];
+        const Real u = x - then;
+        since_step += u * u;
+        then = x;
+      }
+    }
+    build_sq = std::max(build_sq, since_build);
+    step_sq = std::max(step_sq, since_step);
+  }
+  return {build_sq, step_sq};
 }
 
 }  // namespace
@@ -233,42 +271,22 @@ bool BroadPhase::needs_rebuild(const NodalVectors& position) const {
 
 Real BroadPhase::largest_motion_sq(const NodalVectors& position,
                                    std::span<const char> node_mask) const {
-  const auto n_tracked = static_cast<Index>(m_tracked.size());
-  const bool masked = !node_mask.empty();
-  Real max_sq = 0.0;
-  const bool on_team = n_tracked >= PARALLEL_MIN_SLOTS;
-#pragma omp parallel for schedule(static) reduction(max : max_sq) if (on_team)
-  for (Index i = 0; i < n_tracked; ++i) {
-    const Index n = m_tracked[i];
-    if (masked && node_mask[n] == 0) continue;
-    Real sq = 0.0;
-    for (int d = 0; d < 3; ++d) {
-      const Real u = position(n, d) - m_tracked_position[3 * i + d];
-      sq += u * u;
-    }
-    max_sq = std::max(max_sq, sq);
-  }
-  return max_sq;
+  return walk_motions<true, false>(m_tracked, m_tracked_position, nullptr, position, node_mask)
+      .first;
 }
 
 Real BroadPhase::step_motion_sq(const NodalVectors& position, std::span<const char> node_mask) {
-  const auto n_tracked = static_cast<Index>(m_tracked.size());
-  const bool masked = !node_mask.empty();
-  Real max_sq = 0.0;
-  const bool on_team = n_tracked >= PARALLEL_MIN_SLOTS;
-#pragma omp parallel for schedule(static) reduction(max : max_sq) if (on_team)
-  for (Index i = 0; i < n_tracked; ++i) {
-    const Index n = m_tracked[i];
-    if (masked && node_mask[n] == 0) continue;
-    Real sq = 0.0;
-    for (int d = 0; d < 3; ++d) {
-      const Real u = position(n, d) - m_step_position[3 * i + d];
-      sq += u * u;
-      m_step_position[3 * i + d] = position(n, d);
-    }
-    max_sq = std::max(max_sq, sq);
-  }
-  return max_sq;
+  return walk_motions<false, true>(m_tracked, m_tracked_position, &m_step_position, position,
+                                   node_mask)
+      .second;
+}
+
+Real BroadPhase::motions_sq(const NodalVectors& position, std::span<const char> node_mask,
+                            Real& step_sq) {
+  const auto [largest, step] = walk_motions<true, true>(m_tracked, m_tracked_position,
+                                                        &m_step_position, position, node_mask);
+  step_sq = step;
+  return largest;
 }
 
 }  // namespace xpl::contact

@@ -68,6 +68,9 @@ class BroadPhase {
   /// largest_motion_sq(). The sum of these over the increments bounds how far any tracked
   /// node has moved since any of them (ContactEngine, sleeping slots).
   Real step_motion_sq(const NodalVectors& position, std::span<const char> node_mask = {});
+  /// largest_motion_sq() and step_motion_sq() in one walk over the tracked nodes: returns the
+  /// former and puts the latter in `step_sq` (the same bits as the two calls).
+  Real motions_sq(const NodalVectors& position, std::span<const char> node_mask, Real& step_sq);
   /// Whether a largest squared motion `max_sq` (m²) calls for a rebuild (after a first build).
   bool exceeds_rebuild_motion(Real max_sq) const {
     return max_sq > m_rebuild_motion * m_rebuild_motion;

@@ -92,14 +92,17 @@ ContactTotals ContactEngine::update(const NodalVectors& position, const NodalVec
   {
     ScopedTimer timer(timers, Phase::ContactSearch);
     m_shared_pass = m_sharing != nullptr;
-    totals.rebuilt = refresh_broad_phase(position, node_thickness) || m_built_ahead;
+    // The sleeping slots' path (slot_sleep.hpp): this update's step motion, measured with the
+    // rebuild motion (< 0: not measured there) or decided by the processes together
+    // (decide_rebuild()).
+    Real step_sq = -1.0;
+    totals.rebuilt = refresh_broad_phase(position, node_thickness, &step_sq) || m_built_ahead;
     m_built_ahead = false;
-    // The sleeping slots' path (slot_sleep.hpp): this update's step motion, measured here or
-    // decided by the processes together (decide_rebuild()).
     const bool decided = m_sleep.step_decision >= 0.0 && m_shared_pass;
-    m_sleep.advance(totals.rebuilt, totals.rebuilt ? 0.0
-                                    : decided      ? m_sleep.step_decision
-                                                   : m_broad.step_motion_sq(position));
+    m_sleep.advance(totals.rebuilt, totals.rebuilt   ? 0.0
+                                    : decided        ? m_sleep.step_decision
+                                    : step_sq >= 0.0 ? step_sq
+                                                     : m_broad.step_motion_sq(position));
     m_sleep.step_decision = -1.0;
     build_visits();
     // Only the search of a slot with candidates reads its area and normal, and so does a

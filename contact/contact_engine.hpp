@@ -147,13 +147,16 @@ class ContactEngine {
   /// Distributed runs, for the next update() of shared slots only: whether the broad phase is
   /// to be built (the max over the processes of each one's largest motion of the nodes it
   /// integrates: exact, so the one-process decision) and the max of their
-  /// measure_step_motion() (m², the sleeping slots' path, slot_sleep.hpp); update() then
-  /// measures neither on its copies.
+  /// step motions (m², the sleeping slots' path, slot_sleep.hpp); update() then measures
+  /// neither on its copies.
   void decide_rebuild(bool due, Real step_motion_sq) {
     m_rebuild_decision = due ? 1 : 0;
     m_sleep.step_decision = step_motion_sq;
   }
-  Real measure_step_motion(const NodalVectors& position, std::span<const char> node_mask);
+  /// Distributed runs: the largest squared motion since the build of the contact nodes
+  /// `node_mask` marks, and in `step_sq` their step motion (one walk, BroadPhase::motions_sq).
+  Real measure_motions(const NodalVectors& position, std::span<const char> node_mask,
+                       Real& step_sq);
   const SleepCounts& sleep_counts() const { return m_sleep.counts; }  ///< slot_sleep.hpp
   /// Distributed runs, when the processes decided to build (collective): builds the broad
   /// phase now on `position`, current only for the faces `faces_held` marks (n_faces: the
@@ -199,7 +202,8 @@ class ContactEngine {
   void search(const NodalVectors& position, std::span<const Real> node_thickness);
   /// Rebuilds the broad phase when due (then also the lists of slots with candidates and of
   /// their faces); returns whether it did.
-  bool refresh_broad_phase(const NodalVectors& position, std::span<const Real> node_thickness);
+  bool refresh_broad_phase(const NodalVectors& position, std::span<const Real> node_thickness,
+                           Real* step_sq = nullptr);
   /// What admissible() derives from face f's nodes alone: its corners (a shell face's on its
   /// side, offset by half the thickness), the normal of their diagonals (unnormalised, m²), its
   /// length and direction, a shell face's depth limit (m) and the largest half thickness of its

@@ -78,14 +78,19 @@ void ContactEngine::widen_search(Real extra) {
 }
 
 bool ContactEngine::refresh_broad_phase(const NodalVectors& position,
-                                        std::span<const Real> node_thickness) {
+                                        std::span<const Real> node_thickness, Real* step_sq) {
   SlaveNodes& slaves = m_domain.slaves();
   // A shared pass scans only this process's slots; a whole one (probe(), the step's
   // overclosure passes) needs every slot's candidates, so it does not reuse such a build.
   const bool whole_needed = !m_shared_pass && m_broad_owned_only;
   // A decision the processes took together (decide_rebuild()) holds for this update() alone.
   const bool decided = m_rebuild_decision >= 0 && m_shared_pass && m_broad.build_count() > 0;
-  const bool due = decided ? m_rebuild_decision != 0 : m_broad.needs_rebuild(position);
+  // The step motion (sleeping slots) comes from the same walk as the rebuild motion.
+  const bool due = decided              ? m_rebuild_decision != 0
+                   : step_sq == nullptr ? m_broad.needs_rebuild(position)
+                   : m_broad.build_count() == 0
+                       ? true
+                       : m_broad.exceeds_rebuild_motion(m_broad.motions_sq(position, {}, *step_sq));
   m_rebuild_decision = -1;
   if (!due && !whole_needed) return false;
   m_broad_owned_only = m_shared_pass;

@@ -93,9 +93,9 @@ void SlotSleep::advance(bool rebuilt, Real step_sq) {
     path += std::sqrt(step_sq);
 }
 
-Real ContactEngine::measure_step_motion(const NodalVectors& position,
-                                        std::span<const char> node_mask) {
-  return m_broad.step_motion_sq(position, node_mask);
+Real ContactEngine::measure_motions(const NodalVectors& position, std::span<const char> node_mask,
+                                    Real& step_sq) {
+  return m_broad.motions_sq(position, node_mask, step_sq);
 }
 
 void ContactEngine::record_sleep(const SlaveView& v, const SlaveTouch& best,

@@ -85,10 +85,10 @@ bool ContactRows::gather(contact::ContactEngine& engine, const State& state, Nod
     return false;
   }
   // Each rank the rows it asked for at the build, and to every rank this rank's largest
-  // motion of the contact nodes it integrates (current in `state`; reduced by max).
-  const Real motion = broad.largest_motion_sq(state.position, m_integrated);
-  // And the motion since the last update (the sleeping slots' path, ContactEngine).
-  const Real step = engine.measure_step_motion(state.position, m_integrated);
+  // motion of the contact nodes it integrates (current in `state`; reduced by max) with their
+  // motion since the last update (the sleeping slots' path, ContactEngine), from one walk.
+  Real step = 0.0;
+  const Real motion = engine.measure_motions(state.position, m_integrated, step);
   Real largest_step = 0.0;
   const Real largest =
       exchange_listed(state, position, velocity, motion, step, largest_step, m_values, m_sent);
