@@ -17,7 +17,9 @@
 /// Usage: shell4r_element_micro MODE [N (60)] [INCREMENTS (100)]
 ///   MODE prod | fast: N × N random elements, INCREMENTS passes of that kernel alone (for
 ///   callgrind: the instruction count of a run with fewer increments subtracted gives the
-///   count per element-increment); check: both kernels, forces compared after every pass.
+///   count per element-increment); check: both kernels, forces compared after every pass;
+///   plate | plastic [YIELD]: the production kernel on the stretched plate of
+///   shell4r_stretched_plate.hpp, elastic or perfectly plastic (issue 38 item 1).
 /// Built with the benchmarks (cmake -DXPL_BUILD_BENCHMARKS=ON), target shell4r_element_micro.
 
 #include <cmath>
@@ -36,6 +38,7 @@
 #include "elements/shell/shell4r_hourglass.hpp"
 #include "elements/shell/shell4r_increment.hpp"
 #include "elements/vec3.hpp"
+#include "shell4r_stretched_plate.hpp"
 
 using namespace xpl;
 using namespace xpl::elements;
@@ -372,12 +375,16 @@ struct RandomPlate {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s prod|fast|check [N] [INCREMENTS]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s prod|fast|check|plate|plastic [N] [INCREMENTS] [YIELD]\n",
+                 argv[0]);
     return 2;
   }
   const char* mode = argv[1];
   const int n = argc > 2 ? std::atoi(argv[2]) : 60;
   const int increments = argc > 3 ? std::atoi(argv[3]) : 100;
+  if (std::strcmp(mode, "plate") == 0 || std::strcmp(mode, "plastic") == 0)
+    return micro::run_stretched(std::strcmp(mode, "plastic") == 0, n, increments,
+                                argc > 4 ? std::atof(argv[4]) : 50e6);
   RandomPlate plate(n, 38);
   ShellProperties prop;
   prop.density = 7850.0;
