@@ -15,7 +15,7 @@ by the partition), 3219 nodes in two nodal chunks (2048 nodes each, CentralDiffe
 - POST: a fine C3D8R block (16 x 8 x 1) tied on a rigid plate (the master corners are rigid
   body members), the plate driven in z by a velocity BC on its reference node.
 
-Two steps (the *CLOAD changed in the second). Usage: make_tie_ranks.py [OUT]
+Two steps (the *CLOAD changed in the second, a pressure on the fine plate's slaves added). Usage: make_tie_ranks.py [OUT]
 (default: tie_ranks.inp beside this script)
 """
 
@@ -102,6 +102,7 @@ def main():
         "*SURFACE, NAME=COARSE_TOP", "COARSE, S2", "*SURFACE, NAME=COARSE_BOTTOM", "COARSE, S1",
         "*SURFACE, NAME=FINE_BOTTOM", "FINE, S1",
         "*SURFACE, NAME=SKIN_FINE", "PLATE_FINE", "*SURFACE, NAME=SKIN_COARSE", "PLATE_COARSE",
+        "*SURFACE, TYPE=ELEMENT, NAME=FINE_UNDER", "PLATE_FINE, SNEG",
         "*SURFACE, NAME=RIGID_TOP", "RIGID, S2", "*SURFACE, NAME=POST_BOTTOM", "POST, S1",
         "*TIE, NAME=GLUE, ADJUST=YES", "FINE_BOTTOM, COARSE_TOP",
         "*TIE, NAME=SKIN, ADJUST=NO, POSITION TOLERANCE=0.001", "SKIN_FINE, SKIN_COARSE",
@@ -122,7 +123,7 @@ def main():
         "*OUTPUT, HISTORY, NUMBER INTERVAL=4", "*NODE OUTPUT, NSET=REF", "U3, RF3",
         "*ENERGY OUTPUT", "*END STEP",
         "*STEP, NAME=LIFT", "*DYNAMIC, EXPLICIT", ", 1.5e-5",
-        "*CLOAD, OP=NEW", "LOADED, 2, 1000.",
+        "*CLOAD, OP=NEW", "LOADED, 2, 1000.", "*DSLOAD", "FINE_UNDER, P, 1e5",
         "*OUTPUT, FIELD, NUMBER INTERVAL=8", "*NODE OUTPUT", "U, V, A, RF, UR",
         "*OUTPUT, HISTORY, NUMBER INTERVAL=4", "*ENERGY OUTPUT", "*END STEP"]
     out.write_text("\n".join(text) + "\n")
