@@ -96,6 +96,8 @@ class DistributedRun {
   /// Whether this rank counts (and so integrates) the nodal chunk of `node`, or chunk `c`.
   bool counts(Index node) const { return m_chunk_owner[node / m_chunk] == m_rank; }
   bool counts_chunk(Index c) const { return m_chunk_owner[c] == m_rank; }
+  /// The rank that counts the nodal chunk of `node`.
+  int chunk_counter(Index node) const { return m_chunk_owner[node / m_chunk]; }
 
   /// The finished forces (and moments, if not null; n_nodes × 3) of the nodes of this rank's
   /// chunks that its elements do not use, from their owners (Isend/Irecv).

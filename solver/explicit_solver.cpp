@@ -303,16 +303,25 @@ void ExplicitSolver::Impl::report_exchange() {
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
   std::vector<int> counts;
   const DistributedRun& run = *m_run;
-  constexpr std::size_t WIDTH = 19;
+  constexpr std::size_t WIDTH = 22;
   const ContactRows::BuildValues build = m_contact.rows_per_build();
+  // The tie rows' values per increment (tie_routes.hpp) after the times and contact values.
+  const auto with_ties = [this](std::vector<Real> values) {
+    const auto increments = static_cast<double>(std::max<Index>(1, m_tie_traffic.increments));
+    for (const double v : {m_tie_traffic.received, m_tie_traffic.sent, m_tie_traffic.whole})
+      values.push_back(v / increments);
+    return values;
+  };
   const std::vector<Real> all = m_run->allgather(
-      {run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
-       run.exchange_seconds(DistributedRun::SHIP), run.exchange_seconds(DistributedRun::GATHERS),
-       m_loop_seconds, static_cast<Real>(m_nodes.integrated_count()), m_loop_shares.exchange,
-       m_loop_shares.wait, m_loop_shares.output, m_timers.seconds(Phase::ContactSearch),
-       m_timers.seconds(Phase::ContactForce), m_contact.sharing_seconds(),
-       m_contact.rows_received().first, m_contact.rows_received().second, m_contact.rows_sent(),
-       build.received, build.sent, build.lists_received, build.lists_sent},
+      with_ties({run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
+                 run.exchange_seconds(DistributedRun::SHIP),
+                 run.exchange_seconds(DistributedRun::GATHERS), m_loop_seconds,
+                 static_cast<Real>(m_nodes.integrated_count()), m_loop_shares.exchange,
+                 m_loop_shares.wait, m_loop_shares.output, m_timers.seconds(Phase::ContactSearch),
+                 m_timers.seconds(Phase::ContactForce), m_contact.sharing_seconds(),
+                 m_contact.rows_received().first, m_contact.rows_received().second,
+                 m_contact.rows_sent(), build.received, build.sent, build.lists_received,
+                 build.lists_sent}),
       counts);
   // The summary's partition and times (rank 0's sink keeps them).
   DistributionSummary d = partition_summary();
@@ -335,6 +344,9 @@ void ExplicitSolver::Impl::report_exchange() {
     k.contact_build_sent = t[16];
     k.contact_lists_received = t[17];
     k.contact_lists_sent = t[18];
+    k.tie_values = t[19];
+    k.tie_values_sent = t[20];
+    k.tie_values_whole = t[21];
   }
   m_sink.distribution(d);
   for (int r = 0; r < m_run->size(); ++r) {

@@ -19,6 +19,7 @@
 #include "solver/motion/rigid_bodies.hpp"
 #include "solver/motion/ties.hpp"
 #include "solver/output/output_driver.hpp"
+#include "solver/tie_routes.hpp"
 
 namespace xpl {
 
@@ -51,6 +52,9 @@ struct ExplicitSolver::Impl {
   /// Distributed runs with rigid bodies: each rank's bodies and the forces it receives and
   /// sends per increment, in the .msg (rank 0's sink writes it).
   void report_rigid_owners(const DistributedRun& run);
+  /// Distributed runs with ties: each rank's tie nodes and the rows it receives and sends per
+  /// increment for them, in the .msg (rank 0's sink writes it).
+  void report_tie_routes();
   /// Distributed runs with rigid bodies: each body's owner (m_body_owner) and this rank's role
   /// for it (RigidBodies::set_roles()); marks in `integrated` the nodes of the bodies it owns
   /// or replays, which it returns.
@@ -129,6 +133,14 @@ struct ExplicitSolver::Impl {
   DistributionSummary m_distribution;
   /// Distributed runs with rigid bodies: the rank owning each body (set_rigid_roles()).
   std::vector<int> m_body_owner;
+  /// Distributed runs with ties: each rank's tie passes and rows (tie_routes.hpp), and the
+  /// values this rank's routes carried (and the first design's gathers would have) so far.
+  std::vector<TieRoutes::Rank> m_tie_ranks;
+  struct TieTraffic {
+    double received = 0.0, sent = 0.0, whole = 0.0;
+    Index increments = 0;
+  };
+  TieTraffic m_tie_traffic;
   IncrementDecision m_next;      ///< dt_{n+1/2}: the increment about to be taken, and why
   ExternalId m_critical_id = 0;  ///< deck id of the element that limits it
   double m_loop_seconds = 0.0;   ///< wall time of the time loops

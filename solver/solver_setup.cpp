@@ -121,14 +121,11 @@ void ExplicitSolver::Impl::set_up_distribution() {
   const Index n = m_model.node_count();
   const bool rotations = !m_state.rotary_inertia.empty();
   std::vector<unsigned char> counted(static_cast<std::size_t>(n), 0);
-  // The nodes this rank moves: those its elements use, those of the chunks it counts, the
-  // tie nodes, which every rank moves alike, and the nodes of the rigid bodies it owns or
-  // replays (set_rigid_roles(); the passes skip the others).
+  // The nodes this rank moves: those its elements use, those of the chunks it counts, and
+  // the nodes of the rigid bodies it owns or replays (set_rigid_roles(); the passes skip the
+  // others). Tie nodes are moved where they live (tie_routes.hpp).
   std::vector<unsigned char> integrated(static_cast<std::size_t>(n), 0);
   for (Index i = 0; i < n; ++i) integrated[i] = run.counts(i) || run.in_part(i) ? 1 : 0;
-  if (m_ties.active())
-    for (const auto& [slave, corner] : m_ties.slave_master_nodes())
-      integrated[slave] = integrated[corner] = 1;
   const std::vector<unsigned char> moves_body = set_rigid_roles(run, integrated);
   // The nodes of the rigid bodies this rank moves keep their motion.
   for (Index i = 0; i < n; ++i) {
@@ -202,6 +199,7 @@ void ExplicitSolver::Impl::set_up_distribution() {
                                          " run(s)) of each frame");
   }
   report_rigid_owners(run);
+  report_tie_routes();
   if (!rows.empty()) m_output.set_frame_rows(std::move(rows[run.rank()]));
 }
 
@@ -230,6 +228,22 @@ void ExplicitSolver::Impl::report_rigid_owners(const DistributedRun& run) {
                                        std::to_string(sent[r]) + " (point to point)");
 }
 
+void ExplicitSolver::Impl::report_tie_routes() {
+  for (int r = 0; r < static_cast<int>(m_tie_ranks.size()); ++r) {
+    const TieRoutes::Rank& k = m_tie_ranks[static_cast<std::size_t>(r)];
+    m_sink.message(
+        Severity::Info,
+        "mpi: rank " + std::to_string(r) + " ties: gathers slave forces into " +
+            std::to_string(k.masters) + " master nodes and moves " + std::to_string(k.slaves) +
+            " slave nodes; per increment it receives the forces of " +
+            std::to_string(k.forces_received) + " slave nodes and the motion of " +
+            std::to_string(k.motion_received) + " master nodes, and sends " +
+            std::to_string(k.forces_sent) + " and " + std::to_string(k.motion_sent) +
+            " (point to point; gathering every tie node took " + std::to_string(k.whole_forces) +
+            " and " + std::to_string(k.whole_motion) + ")");
+  }
+}
+
 void ExplicitSolver::Impl::share_features(DistributedRun& run) {
   m_contact.set_distribution(&run, m_options.shared_contact, !m_options.shared_frames);
   m_nodes.set_load_share(
@@ -237,23 +251,31 @@ void ExplicitSolver::Impl::share_features(DistributedRun& run) {
         run.share_rows(nodes, {rows.begin(), rows.end()}, rows);
       });
   if (m_ties.active()) {
-    // Slave forces and corner motions from the ranks that hold them, so that every rank's
-    // tie passes are the one-rank passes.
-    std::vector<Index> slaves, corners;
-    for (const auto& [slave, corner] : m_ties.slave_master_nodes()) {
-      slaves.push_back(slave);
-      corners.push_back(corner);
-    }
-    for (std::vector<Index>* nodes : {&slaves, &corners}) {
-      std::sort(nodes->begin(), nodes->end());
-      nodes->erase(std::unique(nodes->begin(), nodes->end()), nodes->end());
-    }
-    const auto share = [&run](std::vector<Index> nodes) {
-      return [&run, nodes = std::move(nodes)](const std::vector<NodalVectors*>& rows) {
-        run.share_rows(nodes, {rows.begin(), rows.end()}, rows);
-      };
-    };
-    m_nodes.set_tie_share(share(std::move(slaves)), share(std::move(corners)));
+    // Each rank gathers into the master corners it integrates and makes the slaves it
+    // integrates follow, on the rows of the others' nodes it receives point to point.
+    TieRoutes routes = make_tie_routes(m_ties.slave_master_nodes(), run, m_model.node_count());
+    m_ties.set_local(routes.gathers, routes.follows);
+    const TieRoutes::Rank mine = routes.ranks[static_cast<std::size_t>(run.rank())];
+    m_tie_ranks = std::move(routes.ranks);
+    // Values per increment for the summary: 3 per row of each array the route carries.
+    m_nodes.set_tie_share(
+        [this, &run, route = std::move(routes.forces),
+         mine](const std::vector<NodalVectors*>& rows) {
+          const auto width = static_cast<double>(3 * rows.size());
+          ++m_tie_traffic.increments;
+          m_tie_traffic.received += width * static_cast<double>(mine.forces_received);
+          m_tie_traffic.sent += width * static_cast<double>(mine.forces_sent);
+          m_tie_traffic.whole += width * static_cast<double>(mine.whole_forces);
+          run.route_rows(route, rows);
+        },
+        [this, &run, route = std::move(routes.motion),
+         mine](const std::vector<NodalVectors*>& rows) {
+          const auto width = static_cast<double>(3 * rows.size());
+          m_tie_traffic.received += width * static_cast<double>(mine.motion_received);
+          m_tie_traffic.sent += width * static_cast<double>(mine.motion_sent);
+          m_tie_traffic.whole += width * static_cast<double>(mine.whole_motion);
+          run.route_rows(route, rows);
+        });
   }
   if (!m_rigid.empty()) {
     // The forces on each body's nodes (elements, contact, loads) from the ranks integrating
@@ -281,7 +303,7 @@ std::vector<unsigned char> ExplicitSolver::Impl::set_rigid_roles(
     const DistributedRun& run, std::vector<unsigned char>& integrated) {
   // Each body is owned by the rank integrating most of its nodes (row_source(); ties: the
   // lowest), so that the fewest forces travel; a rank that moves any node of a body (it uses,
-  // counts, writes or ties it) replays the body's motion and so moves all its nodes.
+  // counts or writes it) replays the body's motion and so moves all its nodes.
   const Index n = m_model.node_count();
   std::vector<unsigned char> moves(static_cast<std::size_t>(n), 0);
   m_body_owner.assign(static_cast<std::size_t>(m_rigid.body_count()), 0);

@@ -168,6 +168,9 @@ JsonValue SummaryRecord::json() const {
       rank.set("contact_build_sent", k.contact_build_sent);
       rank.set("contact_lists_received", k.contact_lists_received);
       rank.set("contact_lists_sent", k.contact_lists_sent);
+      rank.set("tie_values", k.tie_values);
+      rank.set("tie_values_sent", k.tie_values_sent);
+      rank.set("tie_values_whole", k.tie_values_whole);
     }
   }
   return out;

@@ -80,7 +80,7 @@ class CentralDifference {
   /// DOFs (PrescribedMotion::prescribe()) by every rank's, in one collective; `same_counts`:
   /// every rank has as many rows as at the last call.
   /// `integrated`: 1 for the nodes this rank moves (those its elements use, the nodes of the
-  /// chunks it counts, tie nodes, the nodes of the rigid bodies it owns or replays); the nodal
+  /// chunks it counts, the nodes of the rigid bodies it owns or replays); the nodal
   /// passes skip the others, which no one reads on this rank (set_spans()).
   using ChunkShare = std::function<void(std::vector<KineticSums>& sums, std::vector<Real>& speed,
                                         std::vector<Real>& rows, bool same_counts)>;
@@ -99,11 +99,13 @@ class CentralDifference {
   /// bodies' update. The bodies' rows then travel with the prescribed DOFs' rows.
   using RowShare = std::function<void(const std::vector<NodalVectors*>& rows)>;
   void set_rigid_share(RowShare share) { m_share_rigid = std::move(share); }
-  /// Distributed runs with ties: every rank moves every slave's force to its corners and
-  /// every slave after its corners; `forces` puts into the given rows the run's values at the
-  /// slave nodes (internal forces, external ones when the step has loads, internal moments
-  /// with shells) before the forces move, `motion` those at the master corners (v(n+½), v, a,
-  /// and the angular velocities with rotations) before the slaves follow (collective).
+  /// Distributed runs with ties: each rank moves the slave forces to the master corners it
+  /// integrates and makes the slaves it integrates follow (Ties::set_local(),
+  /// solver/tie_routes.hpp); `forces` puts into the given rows the run's values at the slave
+  /// nodes it needs and does not integrate (internal forces, external ones when the step has
+  /// loads, internal moments with shells) before the forces move, `motion` those at the master
+  /// corners it needs (v(n+½), v, a, and the angular velocities with rotations) before the
+  /// slaves follow (point to point).
   void set_tie_share(RowShare forces, RowShare motion) {
     m_share_tie_forces = std::move(forces);
     m_share_tie_motion = std::move(motion);

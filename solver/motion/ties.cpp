@@ -274,48 +274,76 @@ void Ties::distribute_mass(State& state) const {
   follow(state);
 }
 
+void Ties::set_local(const std::vector<unsigned char>& gathers,
+                     const std::vector<unsigned char>& follows) {
+  m_local = true;
+  m_local_masters.clear();
+  m_local_bindings.clear();
+  for (std::size_t m = 0; m < m_master.size(); ++m)
+    if (gathers[m_master[m]] != 0) m_local_masters.push_back(m);
+  for (std::size_t b = 0; b < m_bindings.size(); ++b)
+    if (follows[m_bindings[b].slave] != 0) m_local_bindings.push_back(b);
+}
+
 void Ties::gather(NodalVectors& force_internal, const NodalVectors* force_external,
                   NodalVectors* moment_internal) const {
-  for (std::size_t m = 0; m < m_master.size(); ++m) {
-    const Index i = m_master[m];
-    for (Index e = m_entry_offsets[m]; e < m_entry_offsets[m + 1]; ++e) {
-      const Binding& b = m_bindings[m_entries[e].first];
-      const Real w = b.weight[m_entries[e].second];
-      for (int c = 0; c < 3; ++c) {
-        Real f = force_internal(b.slave, c);
-        if (force_external != nullptr) f -= (*force_external)(b.slave, c);
-        force_internal(i, c) += w * f;
-      }
-      if (moment_internal != nullptr && b.rotations)
-        for (int c = 0; c < 3; ++c) (*moment_internal)(i, c) += w * (*moment_internal)(b.slave, c);
+  // Each master node's sum is its own (the slaves' forces are read, never written): visiting
+  // some of them leaves the others' bits as they are.
+  if (m_local) {
+    for (const std::size_t m : m_local_masters)
+      gather_master(m, force_internal, force_external, moment_internal);
+    return;
+  }
+  for (std::size_t m = 0; m < m_master.size(); ++m)
+    gather_master(m, force_internal, force_external, moment_internal);
+}
+
+void Ties::gather_master(std::size_t m, NodalVectors& force_internal,
+                         const NodalVectors* force_external, NodalVectors* moment_internal) const {
+  const Index i = m_master[m];
+  for (Index e = m_entry_offsets[m]; e < m_entry_offsets[m + 1]; ++e) {
+    const Binding& b = m_bindings[m_entries[e].first];
+    const Real w = b.weight[m_entries[e].second];
+    for (int c = 0; c < 3; ++c) {
+      Real f = force_internal(b.slave, c);
+      if (force_external != nullptr) f -= (*force_external)(b.slave, c);
+      force_internal(i, c) += w * f;
     }
+    if (moment_internal != nullptr && b.rotations)
+      for (int c = 0; c < 3; ++c) (*moment_internal)(i, c) += w * (*moment_internal)(b.slave, c);
   }
 }
 
 void Ties::follow(State& state) const {
   const bool rotations = state.angular_velocity_half.rows() > 0;
-  for (const Binding& b : m_bindings) {
-    for (int c = 0; c < 3; ++c) {
-      Real v_half = 0.0, v = 0.0, a = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        v_half += b.weight[k] * state.velocity_half(b.corner[k], c);
-        v += b.weight[k] * state.velocity(b.corner[k], c);
-        a += b.weight[k] * state.acceleration(b.corner[k], c);
-      }
-      state.velocity_half(b.slave, c) = v_half;
-      state.velocity(b.slave, c) = v;
-      state.acceleration(b.slave, c) = a;
+  if (m_local) {
+    for (const std::size_t b : m_local_bindings) follow_binding(m_bindings[b], state, rotations);
+    return;
+  }
+  for (const Binding& b : m_bindings) follow_binding(b, state, rotations);
+}
+
+void Ties::follow_binding(const Binding& b, State& state, bool rotations) const {
+  for (int c = 0; c < 3; ++c) {
+    Real v_half = 0.0, v = 0.0, a = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      v_half += b.weight[k] * state.velocity_half(b.corner[k], c);
+      v += b.weight[k] * state.velocity(b.corner[k], c);
+      a += b.weight[k] * state.acceleration(b.corner[k], c);
     }
-    if (!rotations || !b.rotations) continue;
-    for (int c = 0; c < 3; ++c) {
-      Real w_half = 0.0, w = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        w_half += b.weight[k] * state.angular_velocity_half(b.corner[k], c);
-        w += b.weight[k] * state.angular_velocity(b.corner[k], c);
-      }
-      state.angular_velocity_half(b.slave, c) = w_half;
-      state.angular_velocity(b.slave, c) = w;
+    state.velocity_half(b.slave, c) = v_half;
+    state.velocity(b.slave, c) = v;
+    state.acceleration(b.slave, c) = a;
+  }
+  if (!rotations || !b.rotations) return;
+  for (int c = 0; c < 3; ++c) {
+    Real w_half = 0.0, w = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      w_half += b.weight[k] * state.angular_velocity_half(b.corner[k], c);
+      w += b.weight[k] * state.angular_velocity(b.corner[k], c);
     }
+    state.angular_velocity_half(b.slave, c) = w_half;
+    state.angular_velocity(b.slave, c) = w;
   }
 }
 

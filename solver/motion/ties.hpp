@@ -71,6 +71,12 @@ class Ties {
   /// Slave velocities (half and whole step), accelerations and tied angular velocities
   /// interpolated from their corners, after the corners' update.
   void follow(State& state) const;
+  /// Distributed runs (docs/dev/mpi.md, "Ties where their nodes live"): restricts gather() to
+  /// the master nodes with `gathers[i]` != 0 and follow() to the slaves with `follows[i]` != 0
+  /// (n_nodes each): those whose forces this rank finishes and the slaves it moves. Each pass
+  /// then does, for those nodes, exactly what it does on one rank.
+  void set_local(const std::vector<unsigned char>& gathers,
+                 const std::vector<unsigned char>& follows);
   /// One message per tie for the .msg file: tied slave nodes, largest adjustment, untied ones.
   const std::vector<std::string>& messages() const { return m_messages; }
   /// Warnings for the .msg file: a tie that binds no slave node (with the nearest distance
@@ -100,6 +106,10 @@ class Ties {
   /// Builds the per-master-node entries (m_master, m_entry_offsets, m_entries) of the
   /// bindings, over the model's n nodes.
   void index_masters(Index n);
+  /// gather() at master node m_master[m]; follow() of binding `b`.
+  void gather_master(std::size_t m, NodalVectors& force_internal,
+                     const NodalVectors* force_external, NodalVectors* moment_internal) const;
+  void follow_binding(const Binding& b, State& state, bool rotations) const;
   std::vector<Binding> m_bindings;  ///< in tie order, then slave node order
   /// Per master node (m_master, in node order): its (binding, corner) entries in binding
   /// order, CSR in m_entry_offsets.
@@ -107,6 +117,10 @@ class Ties {
   std::vector<Index> m_entry_offsets;
   std::vector<std::pair<Index, int>> m_entries;
   std::vector<char> m_tied;
+  /// set_local(): the positions in m_master gather() visits and the bindings follow() visits;
+  /// m_local false: every one.
+  bool m_local = false;
+  std::vector<std::size_t> m_local_masters, m_local_bindings;
   std::vector<std::string> m_messages;
   std::vector<std::string> m_warnings;
 };

@@ -121,6 +121,10 @@ struct DistributionSummary {
     /// exchanges carried to and from it.
     double contact_values_sent = 0.0, contact_build_received = 0.0, contact_build_sent = 0.0,
            contact_lists_received = 0.0, contact_lists_sent = 0.0;
+    /// Tie rows' values it received and sent per increment (slave forces, master corners'
+    /// motion, point to point), and what the first design's two gathers of every tie node
+    /// delivered to it (docs/dev/mpi.md, "Ties where their nodes live").
+    double tie_values = 0.0, tie_values_sent = 0.0, tie_values_whole = 0.0;
   };
   std::string method;          ///< the partitioner ("METIS", "bisection")
   Real imbalance = 1.0;        ///< largest part weight over the mean
