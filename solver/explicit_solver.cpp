@@ -303,17 +303,19 @@ void ExplicitSolver::Impl::report_exchange() {
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
   std::vector<int> counts;
   const DistributedRun& run = *m_run;
-  constexpr std::size_t WIDTH = 19;
+  constexpr std::size_t WIDTH = 21;
   const ContactRows::BuildValues build = m_contact.rows_per_build();
-  const std::vector<Real> all = m_run->allgather(
+  std::vector<Real> mine(
       {run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
        run.exchange_seconds(DistributedRun::SHIP), run.exchange_seconds(DistributedRun::GATHERS),
        m_loop_seconds, static_cast<Real>(m_nodes.integrated_count()), m_loop_shares.exchange,
        m_loop_shares.wait, m_loop_shares.output, m_timers.seconds(Phase::ContactSearch),
        m_timers.seconds(Phase::ContactForce), m_contact.sharing_seconds(),
        m_contact.rows_received().first, m_contact.rows_received().second, m_contact.rows_sent(),
-       build.received, build.sent, build.lists_received, build.lists_sent},
-      counts);
+       build.received, build.sent, build.lists_received, build.lists_sent});
+  mine.push_back(m_contact.slot_values().first);
+  mine.push_back(m_contact.slot_values().second);
+  const std::vector<Real> all = m_run->allgather(mine, counts);
   // The summary's partition and times (rank 0's sink keeps them).
   DistributionSummary d = partition_summary();
   d.times_gathered = true;
@@ -335,6 +337,8 @@ void ExplicitSolver::Impl::report_exchange() {
     k.contact_build_sent = t[16];
     k.contact_lists_received = t[17];
     k.contact_lists_sent = t[18];
+    k.contact_slot_received = t[19];
+    k.contact_slot_sent = t[20];
   }
   m_sink.distribution(d);
   for (int r = 0; r < m_run->size(); ++r) {

@@ -168,6 +168,8 @@ JsonValue SummaryRecord::json() const {
       rank.set("contact_build_sent", k.contact_build_sent);
       rank.set("contact_lists_received", k.contact_lists_received);
       rank.set("contact_lists_sent", k.contact_lists_sent);
+      rank.set("contact_slot_received", k.contact_slot_received);
+      rank.set("contact_slot_sent", k.contact_slot_sent);
     }
   }
   return out;

@@ -121,6 +121,9 @@ struct DistributionSummary {
     /// exchanges carried to and from it.
     double contact_values_sent = 0.0, contact_build_received = 0.0, contact_build_sent = 0.0,
            contact_lists_received = 0.0, contact_lists_sent = 0.0;
+    /// The slots' results (ContactEngine's two exchanges, padding included) it received and
+    /// sent per increment with shared contact slots.
+    double contact_slot_received = 0.0, contact_slot_sent = 0.0;
   };
   std::string method;          ///< the partitioner ("METIS", "bisection")
   Real imbalance = 1.0;        ///< largest part weight over the mean
