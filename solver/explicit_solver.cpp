@@ -303,7 +303,7 @@ void ExplicitSolver::Impl::report_exchange() {
   // Every rank's time in exchanges and collectives (waits included) against the time loop.
   std::vector<int> counts;
   const DistributedRun& run = *m_run;
-  constexpr std::size_t WIDTH = 22;
+  constexpr std::size_t WIDTH = 24;
   const ContactRows::BuildValues build = m_contact.rows_per_build();
   // The tie rows' values per increment (tie_routes.hpp) after the times and contact values.
   const auto with_ties = [this](std::vector<Real> values) {
@@ -321,7 +321,8 @@ void ExplicitSolver::Impl::report_exchange() {
                  m_timers.seconds(Phase::ContactForce), m_contact.sharing_seconds(),
                  m_contact.rows_received().first, m_contact.rows_received().second,
                  m_contact.rows_sent(), build.received, build.sent, build.lists_received,
-                 build.lists_sent}),
+                 build.lists_sent, m_contact.slot_values().first,
+                 m_contact.slot_values().second}),
       counts);
   // The summary's partition and times (rank 0's sink keeps them).
   DistributionSummary d = partition_summary();
@@ -344,9 +345,11 @@ void ExplicitSolver::Impl::report_exchange() {
     k.contact_build_sent = t[16];
     k.contact_lists_received = t[17];
     k.contact_lists_sent = t[18];
-    k.tie_values = t[19];
-    k.tie_values_sent = t[20];
-    k.tie_values_whole = t[21];
+    k.contact_slot_received = t[19];
+    k.contact_slot_sent = t[20];
+    k.tie_values = t[21];
+    k.tie_values_sent = t[22];
+    k.tie_values_whole = t[23];
   }
   m_sink.distribution(d);
   for (int r = 0; r < m_run->size(); ++r) {

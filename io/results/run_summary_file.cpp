@@ -171,6 +171,8 @@ JsonValue SummaryRecord::json() const {
       rank.set("tie_values", k.tie_values);
       rank.set("tie_values_sent", k.tie_values_sent);
       rank.set("tie_values_whole", k.tie_values_whole);
+      rank.set("contact_slot_received", k.contact_slot_received);
+      rank.set("contact_slot_sent", k.contact_slot_sent);
     }
   }
   return out;

@@ -243,6 +243,35 @@ void ContactRows::exchange_ghost_positions(const contact::ContactEngine& engine,
   count.received += static_cast<double>(receive.size());
 }
 
+void ContactRows::tell_marks(const std::vector<char>& mark, std::vector<char>& anyone) {
+  const int rank = m_run->rank();
+  const auto ranks = static_cast<std::size_t>(m_run->size());
+  std::vector<std::vector<Index>> tell(ranks);
+  for (const Index n : m_all) {
+    if (mark[n] == 0) continue;
+    const int source = m_run->row_source(n);
+    const int writer = m_root_writes ? 0 : m_run->owner(n);
+    if (source != rank) tell[static_cast<std::size_t>(source)].push_back(n);
+    if (writer != rank && writer != source && writer >= 0 && writer < m_run->size())
+      tell[static_cast<std::size_t>(writer)].push_back(n);
+  }
+  std::vector<int> counts(ranks, 0);
+  std::vector<Real> send, receive;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    counts[r] = static_cast<int>(tell[r].size());
+    for (const Index n : tell[r]) send.push_back(static_cast<Real>(n));
+  }
+  const std::vector<int> told = m_run->alltoall_counts(counts);
+  m_run->alltoall_into(send, counts, receive, told);
+  for (const Real n : receive) anyone[static_cast<std::size_t>(n)] = 1;
+  ++m_list_makings;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (static_cast<int>(r) == rank) continue;
+    m_build_values.lists_sent += static_cast<double>(counts[r] + 1);
+    m_build_values.lists_received += static_cast<double>(told[r] + 1);
+  }
+}
+
 void ContactRows::update_lists(const contact::ContactEngine& engine, bool rebuilt) {
   if (m_partial && rebuilt && !m_ghost_built)
     throw std::logic_error("contact rows: the broad phase was built on partly gathered rows");
@@ -250,22 +279,13 @@ void ContactRows::update_lists(const contact::ContactEngine& engine, bool rebuil
   const int rank = m_run->rank();
   std::vector<char> mark(m_integrated.size(), 0);
   if (!engine.mark_read_nodes(mark)) return;  // the same answer on every rank
-  // Every rank's marks: the nodes that may carry a contact force until the next build (a
-  // slot's node, the corners of the faces it may touch), whose output rows their owners
-  // write, and whose velocities (the work terms) the rank integrating them sends with the
-  // forces (ContactEngine::share_forces()).
-  std::vector<Real> mine;
-  for (const Index n : m_all)
-    if (mark[n] != 0) mine.push_back(static_cast<Real>(n));
-  std::vector<int> counts;
-  const std::vector<Real> read = m_run->allgather(mine, counts);
-  ++m_list_makings;
-  m_build_values.lists_received +=
-      static_cast<double>(read.size() - mine.size() + m_run->size() - 1);
-  m_build_values.lists_sent +=
-      static_cast<double>((mine.size() + 1) * static_cast<std::size_t>(m_run->size() - 1));
-  std::vector<char> anyone(mark.size(), 0);
-  for (const Real n : read) anyone[static_cast<std::size_t>(n)] = 1;
+  // Every rank's marks are the nodes that may carry a contact force until the next build (a
+  // slot's node, the corners of the faces it may touch): each goes to the rank integrating
+  // the node (it copies the node's rows from `state`: their velocities travel with the
+  // forces, ContactEngine::share_forces()) and to the rank writing its output rows (the
+  // contact pressure reads its area and normal), point to point; `anyone` holds them here.
+  std::vector<char> anyone = mark;
+  tell_marks(mark, anyone);
   // What this rank reads: its marks, the output rows it writes of those nodes, and around
   // each of them the faces whose areas and normals the node's area and normal sum, and whose
   // neighbours across an edge the search looks at (ContactEngine::update()).

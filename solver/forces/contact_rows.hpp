@@ -82,6 +82,9 @@ class ContactRows {
   /// `received` and `sent`.
   Real exchange_listed(const State& state, NodalVectors& position, NodalVectors& velocity,
                        Real motion, Real step, Real& largest_step, double& received, double& sent);
+  /// update_lists(): each of this rank's marks (n_nodes) to the rank integrating the node and
+  /// to the rank writing its output rows (collective); the marks received into `anyone`.
+  void tell_marks(const std::vector<char>& mark, std::vector<char>& anyone);
   /// build_ghosts()'s first part: the positions of the corners of the faces this rank
   /// sources that other ranks integrate, then of the ghost faces, into `position`; marks in
   /// `fresh` (n_nodes) every node whose position is now current.

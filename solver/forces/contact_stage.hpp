@@ -67,6 +67,10 @@ class ContactStage {
   /// Distributed runs: wall time in the exchanges of the slots' results (waits for the other
   /// ranks included; a part of the contact force phase), s.
   double sharing_seconds() const;
+  /// Distributed runs with shared slots: the values of the slots' results (both exchanges,
+  /// the velocities of the work terms and any padding included) this rank received and sent
+  /// per shared increment.
+  std::pair<double, double> slot_values() const;
   /// Distributed runs with shared slots: the contact nodes' values this rank received per
   /// increment (ContactRows' rows, and the velocities of the work terms that come with the
   /// slots' forces), and what gathering every contact node's rows would have been.

@@ -22,12 +22,22 @@ class RankSlotSharing final : public contact::SlotSharing {
   std::vector<Real> gather(const std::vector<Real>& mine, std::vector<int>& counts,
                            bool counts_known) override {
     const auto start = std::chrono::steady_clock::now();
-    std::vector<Real> all =
-        counts_known ? m_run.allgather(mine, counts, true) : gather_found(mine, counts);
+    std::vector<Real> all;
+    if (counts_known) {
+      all = m_run.allgather(mine, counts, true);
+      count(counts);
+      ++exchanges;  // exchange 2, once per shared update()
+    } else {
+      all = gather_found(mine, counts);
+    }
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return all;
   }
   double seconds = 0.0;  ///< in gather(), waits for the other ranks included
+  /// Values this rank received from and sent to the other ranks in gather() (the padding of
+  /// the one-collective gather included), and the shared update()s (exchange 2 each).
+  double received = 0.0, sent = 0.0;
+  long exchanges = 0;
 
  private:
   std::vector<Real> gather_found(const std::vector<Real>& mine, std::vector<int>& counts) {
@@ -38,6 +48,7 @@ class RankSlotSharing final : public contact::SlotSharing {
       std::copy(mine.begin(), mine.end(), padded.begin() + 1);
     std::vector<int> blocks(static_cast<std::size_t>(m_run.size()), static_cast<int>(block));
     const std::vector<Real> gathered = m_run.allgather(padded, blocks, true);
+    count(blocks);
     counts.assign(blocks.size(), 0);
     int largest = 0;
     for (std::size_t r = 0; r < blocks.size(); ++r) {
@@ -46,6 +57,7 @@ class RankSlotSharing final : public contact::SlotSharing {
     }
     if (largest > m_capacity) {
       m_capacity = 2 * largest;
+      count(counts);
       return m_run.allgather(mine, counts, true);
     }
     std::vector<Real> all;
@@ -54,6 +66,16 @@ class RankSlotSharing final : public contact::SlotSharing {
       all.insert(all.end(), first, first + counts[r]);
     }
     return all;
+  }
+
+  /// Counts one allgather of `counts` values per rank into `received` and `sent`.
+  void count(const std::vector<int>& counts) {
+    const auto me = static_cast<std::size_t>(m_run.rank());
+    for (std::size_t r = 0; r < counts.size(); ++r)
+      if (r != me) {
+        received += counts[r];
+        sent += counts[me];
+      }
   }
 
   const DistributedRun& m_run;
@@ -89,6 +111,13 @@ void ContactStage::share_slots() {
 
 double ContactStage::sharing_seconds() const {
   return m_sharing ? static_cast<const RankSlotSharing&>(*m_sharing).seconds : 0.0;
+}
+
+std::pair<double, double> ContactStage::slot_values() const {
+  if (!m_sharing) return {0.0, 0.0};
+  const auto& sharing = static_cast<const RankSlotSharing&>(*m_sharing);
+  const double n = sharing.exchanges > 0 ? static_cast<double>(sharing.exchanges) : 1.0;
+  return {sharing.received / n, sharing.sent / n};
 }
 
 std::vector<std::pair<Index, Index>> ContactStage::start_candidates(const NodalVectors& position,

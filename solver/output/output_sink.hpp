@@ -125,6 +125,9 @@ struct DistributionSummary {
     /// motion, point to point), and what the first design's two gathers of every tie node
     /// delivered to it (docs/dev/mpi.md, "Ties where their nodes live").
     double tie_values = 0.0, tie_values_sent = 0.0, tie_values_whole = 0.0;
+    /// The slots' results (ContactEngine's two exchanges, padding included) it received and
+    /// sent per increment with shared contact slots.
+    double contact_slot_received = 0.0, contact_slot_sent = 0.0;
   };
   std::string method;          ///< the partitioner ("METIS", "bisection")
   Real imbalance = 1.0;        ///< largest part weight over the mean
