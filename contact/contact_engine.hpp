@@ -220,8 +220,8 @@ class ContactEngine {
     CornerBounds bounds, mid_bounds;  // mid_bounds: shell faces only
     Vec3 mid[4];                      // shell faces: the mid-surface corners, m
   };
-  /// The geometry of the faces a serial search has evaluated (search(): a face is a candidate
-  /// of several slots): valid where `stamp` equals `current`, the number of that search.
+  /// The geometry of the faces one thread of a search has evaluated (search(): a face is a
+  /// candidate of several slots): valid where `stamp` equals `current`, the number of that search.
   struct FaceCache {
     std::vector<FaceGeometry> geometry;
     std::vector<std::uint32_t> stamp;
@@ -365,7 +365,7 @@ class ContactEngine {
   // Per slave slot, written by search(): the closest points its search evaluated, Newton's
   // starts in the next search (SlaveView::warm).
   std::vector<WarmStarts> m_warm;
-  FaceCache m_face_cache;  // search(), when it runs on the calling thread
+  std::vector<FaceCache> m_face_caches;  // search(): one per thread of its team
   std::vector<Real> m_second_force;
   std::vector<Real> m_second_normal_force;
   std::vector<Real> m_second_dissipation;

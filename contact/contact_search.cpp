@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include <omp.h>
+
 #include "common/parallel_error.hpp"
 #include "contact/closest_point.hpp"
 #include "contact/contact_engine.hpp"
@@ -203,18 +205,20 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
   const auto n_live = static_cast<Index>(m_sleep.searched.size());
   ParallelErrors errors;
   const bool on_team = static_cast<Index>(m_listed.size()) >= PARALLEL_MIN_CANDIDATES;
-  // On the calling thread, each face's geometry is worked out once for all the slots that
-  // list it; on the team, per slot and face (no writes shared between threads).
-  FaceCache* cache = nullptr;
-  if (!on_team) {
-    const std::size_t n_faces = m_domain.faces().size();
-    if (m_face_cache.stamp.size() != n_faces || m_face_cache.current == UINT32_MAX) {
-      m_face_cache.geometry.assign(n_faces, FaceGeometry{});
-      m_face_cache.stamp.assign(n_faces, 0);
-      m_face_cache.current = 0;
+  // Each thread works out a face's geometry once for all the slots it searches that list the
+  // face (its own cache: no writes shared between threads; the same numbers as per slot).
+  const std::size_t n_caches =
+      on_team ? static_cast<std::size_t>(std::max(1, omp_get_max_threads())) : 1;
+  if (m_face_caches.size() < n_caches) m_face_caches.resize(n_caches);
+  const std::size_t n_faces = m_domain.faces().size();
+  for (std::size_t t = 0; t < n_caches; ++t) {
+    FaceCache& cache = m_face_caches[t];
+    if (cache.stamp.size() != n_faces || cache.current == UINT32_MAX) {
+      cache.geometry.assign(n_faces, FaceGeometry{});
+      cache.stamp.assign(n_faces, 0);
+      cache.current = 0;
     }
-    ++m_face_cache.current;
-    cache = &m_face_cache;
+    ++cache.current;
   }
 #pragma omp parallel for schedule(dynamic, 256) if (on_team)
   for (Index k = 0; k < n_live; ++k) {
@@ -239,7 +243,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         SlaveView view = slave_view(s, position, node_thickness, false);
         if (m_updated) view.warm = &m_warm[s];
         view.next = &next;
-        view.faces = cache;
+        view.faces = &m_face_caches[static_cast<std::size_t>(omp_get_thread_num())];
         const std::span<const Index> listed = listed_faces(s);
         // The face pressed last increment, when no static rule rejects it (the listed faces
         // have been sifted by never_admissible(); a solid face has no own-shell test).
