@@ -31,6 +31,7 @@ ExplicitSolver::Impl::Impl(const Model& model, OutputSink& sink, SolverOptions o
     m_elements.update_inverse_mass(m_ties.changed_nodes(), m_state, m_rigid);
     m_nodes.set_ties(&m_ties);
     m_contact.set_tied_nodes(m_ties.tied_nodes());
+    m_contact.set_tie_slaves(m_ties.slave_points());
   }
   const std::vector<std::string> rigid_messages = set_up_rigid_bodies();
   if (m_options.initial_state != nullptr) apply_initial_state(*m_options.initial_state);

@@ -212,11 +212,14 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
   } else if (m_run != nullptr)
     m_run->share_rows(m_shared_nodes, {&state.position, &state.velocity_half},
                       {&m_position, &m_velocity});
-  const contact::ContactTotals t =
-      m_engine->update(m_run != nullptr ? m_position : state.position,
-                       m_run != nullptr ? m_velocity : state.velocity_half, dt_taken, dt_penalty,
-                       elements.node_thickness(), state.mass, elements.inverse_mass(),
-                       elements.force_internal(), m_timers);
+  const bool tied = !m_tie_slaves.empty();
+  if (tied)
+    contact_masses(elements.inverse_mass(), m_contact_inverse, &state.mass, &m_contact_mass);
+  const contact::ContactTotals t = m_engine->update(
+      m_run != nullptr ? m_position : state.position,
+      m_run != nullptr ? m_velocity : state.velocity_half, dt_taken, dt_penalty,
+      elements.node_thickness(), tied ? m_contact_mass : state.mass,
+      tied ? m_contact_inverse : elements.inverse_mass(), elements.force_internal(), m_timers);
   if (m_rows_shared) m_rows.update_lists(*m_engine, t.rebuilt);
   state.energies.friction += t.friction_dissipation;
   // The interference ramp's energy is an input, as the work of a load: in ALLWK, and in
@@ -307,10 +310,27 @@ ContactIncrement ContactStage::penalty_increment(const ElementIncrement& element
                          state.increment);
 }
 
+void ContactStage::contact_masses(const std::vector<Real>& inverse_mass,
+                                  std::vector<Real>& out_inverse, const std::vector<Real>* mass,
+                                  std::vector<Real>* out_mass) const {
+  out_inverse = inverse_mass;
+  if (mass != nullptr) *out_mass = *mass;
+  for (const Ties::SlavePoint& p : m_tie_slaves) {
+    Real inverse = 0.0;
+    for (int k = 0; k < 4; ++k)
+      if (p.corner[k] != NO_INDEX) inverse += p.weight[k] * p.weight[k] * inverse_mass[p.corner[k]];
+    out_inverse[p.slave] = inverse;
+    if (mass != nullptr) (*out_mass)[p.slave] = inverse > 0.0 ? 1.0 / inverse : contact::RIGID_MASS;
+  }
+}
+
 void ContactStage::check_penalty(const ElementIncrement& elements, int step,
                                  const std::vector<Real>& inverse_mass) const {
   if (!m_engine) return;
-  const contact::PenaltyLimit limit = m_engine->estimate_penalty_limit(inverse_mass);
+  std::vector<Real> tied_inverse;
+  if (!m_tie_slaves.empty()) contact_masses(inverse_mass, tied_inverse);
+  const contact::PenaltyLimit limit =
+      m_engine->estimate_penalty_limit(m_tie_slaves.empty() ? inverse_mass : tied_inverse);
   const Step& s = m_model.steps[step];
   if (s.increment.fixed || !(limit.omega_sq > 0.0)) return;
   const Real dt_elements = elements.dt;

@@ -19,6 +19,7 @@
 #include "solver/model/model.hpp"
 #include "solver/model/state.hpp"
 #include "solver/motion/rigid_bodies.hpp"
+#include "solver/motion/ties.hpp"
 #include "solver/output/output_sink.hpp"
 
 namespace xpl {
@@ -44,6 +45,13 @@ class ContactStage {
   /// Nodes of ties (Ties::tied_nodes, n_nodes): held by the overclosure pass, their
   /// penetration an offset with reason "tie".
   void set_tied_nodes(std::vector<char> tied) { m_tied = std::move(tied); }
+  /// The ties' slave points (Ties::slave_points). A tied slave node keeps no mass (its corners
+  /// carry it) and its contact force goes to the corners, so contact reads for it the mass
+  /// such a force moves: 1/m* = Σ N_I²/m_I over its corners (the corners' accelerations
+  /// N_I f/m_I, interpolated back to the node), rigid where every corner is. Without this the
+  /// node read as massless: no spring of its own, and a rigid master for the others' springs,
+  /// too stiff for the corners that move (contact created energy).
+  void set_tie_slaves(std::vector<Ties::SlavePoint> points) { m_tie_slaves = std::move(points); }
   /// Distributed runs (docs/dev/mpi.md, "Contact under N ranks"): every rank reads the
   /// positions and velocities of the contact nodes gathered from the ranks that integrate
   /// them; it searches and computes the springs of the slave slots whose node it integrates
@@ -144,6 +152,11 @@ class ContactStage {
   /// Distributed runs on more than one rank: the engine's slots shared out among the ranks
   /// by the rank integrating each slave node (ContactEngine::share_slots()).
   void share_slots();
+  /// `inverse_mass` (n_nodes, 1/kg) with the tie slaves' replaced (set_tie_slaves()) into
+  /// `out_inverse`, and likewise `mass` (kg) into `out_mass` when given.
+  void contact_masses(const std::vector<Real>& inverse_mass, std::vector<Real>& out_inverse,
+                      const std::vector<Real>* mass = nullptr,
+                      std::vector<Real>* out_mass = nullptr) const;
   /// Initial overclosures of a newly built engine (SPEC C2–C6): adjusts (step 1) or stores
   /// offsets (later step, import); with an engine of an earlier step, carries its offsets
   /// over instead.
@@ -165,9 +178,13 @@ class ContactStage {
   PenaltyIncrementLimit m_penalty;        ///< the increment a LINEAR penalty allows
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
   std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
-  const DistributedRun* m_run = nullptr;  ///< distributed runs only
-  bool m_shared = true;                   ///< set_distribution()
-  bool m_root_writes = false;             ///< set_distribution()
+  std::vector<Ties::SlavePoint> m_tie_slaves;  ///< set_tie_slaves(), empty without ties
+  /// The masses and inverse masses contact reads (n_nodes) where there are tie slaves:
+  /// the state's with each tie slave's replaced (contact_masses()).
+  std::vector<Real> m_contact_mass, m_contact_inverse;
+  const DistributedRun* m_run = nullptr;            ///< distributed runs only
+  bool m_shared = true;                             ///< set_distribution()
+  bool m_root_writes = false;                       ///< set_distribution()
   std::unique_ptr<contact::SlotSharing> m_sharing;  ///< share_slots(), its collectives
   /// Distributed runs: the nodes the engine reads (its slave nodes: every face node and the
   /// point nodes), ascending, and the run's positions and half-step velocities of them.

@@ -10,7 +10,9 @@
 ///   masses, so the stable increment does not change);
 /// - force: before the master nodes are updated, the slave's whole nodal force (internal,
 ///   contact and external loads) goes to the corners, f_I += N_I f_s;
-/// - after the update the slave takes v_{n+1/2}, v_n and a_n interpolated from the corners.
+/// - after the update the slave takes v_{n+1/2}, v_n and a_n interpolated from the corners;
+/// - contact reads for a slave the mass its force moves, 1/m* = Σ N_I²/m_I (slave_points(),
+///   ContactStage::set_tie_slaves).
 /// The forces then do in total the work they do on the corners (Σ f_s·v_s = Σ_I f_I·v_I), so
 /// the tie does no work and ETOTAL stays balanced; ALLKE counts the slave's mass at its
 /// corners (½ Σ m_I v_I²), which is the kinetic energy of the equations the update solves.
@@ -83,6 +85,20 @@ class Ties {
   /// against the tolerance), and ADJUST=YES moving slave nodes by more than the size of the
   /// master face they bind to (with the largest move).
   const std::vector<std::string>& warnings() const { return m_warnings; }
+  /// A bound slave node, its master corners (NO_INDEX: none) and their weights N_I.
+  struct SlavePoint {
+    Index slave = NO_INDEX;
+    std::array<Index, 4> corner{};
+    std::array<Real, 4> weight{};
+  };
+  /// Every binding's slave point, in binding order (contact reads the mass a tied slave node
+  /// moves with from them: ContactStage::set_tie_slaves).
+  std::vector<SlavePoint> slave_points() const {
+    std::vector<SlavePoint> points;
+    points.reserve(m_bindings.size());
+    for (const Binding& b : m_bindings) points.push_back({b.slave, b.corner, b.weight});
+    return points;
+  }
   /// Every (slave node, master corner node) a binding joins, in binding order: the partition
   /// keeps them on one part where it can (solver/model_partition.hpp).
   std::vector<std::pair<Index, Index>> slave_master_nodes() const {
