@@ -310,17 +310,37 @@ ContactIncrement ContactStage::penalty_increment(const ElementIncrement& element
                          state.increment);
 }
 
+void ContactStage::set_tie_slaves(std::vector<Ties::SlavePoint> points) {
+  m_tie_slaves = std::move(points);
+  m_tie_corner_weight.assign(static_cast<std::size_t>(m_model.node_count()), 0.0);
+  for (const Ties::SlavePoint& p : m_tie_slaves)
+    for (int k = 0; k < 4; ++k)
+      if (p.corner[k] != NO_INDEX) m_tie_corner_weight[p.corner[k]] += std::max(0.0, p.weight[k]);
+}
+
 void ContactStage::contact_masses(const std::vector<Real>& inverse_mass,
                                   std::vector<Real>& out_inverse, const std::vector<Real>* mass,
                                   std::vector<Real>* out_mass) const {
   out_inverse = inverse_mass;
   if (mass != nullptr) *out_mass = *mass;
   for (const Ties::SlavePoint& p : m_tie_slaves) {
-    Real inverse = 0.0;
-    for (int k = 0; k < 4; ++k)
-      if (p.corner[k] != NO_INDEX) inverse += p.weight[k] * p.weight[k] * inverse_mass[p.corner[k]];
-    out_inverse[p.slave] = inverse;
-    if (mass != nullptr) (*out_mass)[p.slave] = inverse > 0.0 ? 1.0 / inverse : contact::RIGID_MASS;
+    // m* = Σ_I N_I (N_I m_I / W_I): each corner's mass shared among the slaves bound to it in
+    // proportion to their weights (W_I = Σ N_I over them).
+    Real share = 0.0;
+    bool rigid = false;
+    for (int k = 0; k < 4; ++k) {
+      const Index c = p.corner[k];
+      const Real n = c != NO_INDEX ? std::max(0.0, p.weight[k]) : 0.0;
+      if (!(n > 0.0)) continue;
+      if (!(inverse_mass[c] > 0.0)) {
+        rigid = true;
+        break;
+      }
+      share += n * n / (inverse_mass[c] * m_tie_corner_weight[c]);
+    }
+    const Real m = rigid ? contact::RIGID_MASS : share;
+    out_inverse[p.slave] = rigid || !(share > 0.0) ? 0.0 : 1.0 / share;
+    if (mass != nullptr) (*out_mass)[p.slave] = m;
   }
 }
 

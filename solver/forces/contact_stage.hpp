@@ -46,12 +46,14 @@ class ContactStage {
   /// penetration an offset with reason "tie".
   void set_tied_nodes(std::vector<char> tied) { m_tied = std::move(tied); }
   /// The ties' slave points (Ties::slave_points). A tied slave node keeps no mass (its corners
-  /// carry it) and its contact force goes to the corners, so contact reads for it the mass
-  /// such a force moves: 1/m* = Σ N_I²/m_I over its corners (the corners' accelerations
-  /// N_I f/m_I, interpolated back to the node), rigid where every corner is. Without this the
-  /// node read as massless: no spring of its own, and a rigid master for the others' springs,
-  /// too stiff for the corners that move (contact created energy).
-  void set_tie_slaves(std::vector<Ties::SlavePoint> points) { m_tie_slaves = std::move(points); }
+  /// carry it) and its contact force goes to the corners, so contact reads for it its share of
+  /// the corners' mass: m* = Σ_I N_I² m_I / W_I, W_I the sum of the weights bound to corner I
+  /// (each corner's mass shared among its slaves as their weights; a slave alone on a corner
+  /// with weight 1 reads the corner's mass), rigid where a corner it weighs on is. The slaves'
+  /// springs on one corner then sum to what one spring on the corner would be. Read as
+  /// massless, a tied node had no spring of its own and was a rigid master for the others'
+  /// springs, too stiff for the corners that move (contact created energy).
+  void set_tie_slaves(std::vector<Ties::SlavePoint> points);
   /// Distributed runs (docs/dev/mpi.md, "Contact under N ranks"): every rank reads the
   /// positions and velocities of the contact nodes gathered from the ranks that integrate
   /// them; it searches and computes the springs of the slave slots whose node it integrates
@@ -179,6 +181,7 @@ class ContactStage {
   Real m_stored_energy = 0.0;             ///< ContactTotals::stored_energy of the last apply, J
   std::vector<char> m_tied;               ///< Ties::tied_nodes(), empty without ties
   std::vector<Ties::SlavePoint> m_tie_slaves;  ///< set_tie_slaves(), empty without ties
+  std::vector<Real> m_tie_corner_weight;       ///< W_I per node (set_tie_slaves())
   /// The masses and inverse masses contact reads (n_nodes) where there are tie slaves:
   /// the state's with each tie slave's replaced (contact_masses()).
   std::vector<Real> m_contact_mass, m_contact_inverse;

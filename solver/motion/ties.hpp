@@ -11,8 +11,8 @@
 /// - force: before the master nodes are updated, the slave's whole nodal force (internal,
 ///   contact and external loads) goes to the corners, f_I += N_I f_s;
 /// - after the update the slave takes v_{n+1/2}, v_n and a_n interpolated from the corners;
-/// - contact reads for a slave the mass its force moves, 1/m* = Σ N_I²/m_I (slave_points(),
-///   ContactStage::set_tie_slaves).
+/// - contact reads for a slave its share of the corners' mass, m* = Σ N_I² m_I / W_I
+///   (slave_points(), ContactStage::set_tie_slaves).
 /// The forces then do in total the work they do on the corners (Σ f_s·v_s = Σ_I f_I·v_I), so
 /// the tie does no work and ETOTAL stays balanced; ALLKE counts the slave's mass at its
 /// corners (½ Σ m_I v_I²), which is the kinetic energy of the equations the update solves.
