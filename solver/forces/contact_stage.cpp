@@ -24,6 +24,10 @@ ContactStage::ContactStage(const Model& model, OutputSink& sink, PhaseTimers& ti
 void ContactStage::begin_step(int step, State& state, ElementSet& elements,
                               const RigidBodies& rigid,
                               const std::vector<PrescribedDof>& prescribed) {
+  // The masses contact reads for tie slaves (set_tie_slaves()): the nodal masses are set once,
+  // at set-up (elements, point masses, ties, rigid bodies), so once a step is enough.
+  if (!m_tie_slaves.empty())
+    contact_masses(elements.inverse_mass(), m_contact_inverse, &state.mass, &m_contact_mass);
   // The definition in force: the latest *CONTACT up to this step, and every *CONTACT PAIR.
   const Step& s = m_model.steps[step];
   const bool changed = step == 0 || s.contact || !s.contact_pairs.empty();
@@ -213,8 +217,6 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
     m_run->share_rows(m_shared_nodes, {&state.position, &state.velocity_half},
                       {&m_position, &m_velocity});
   const bool tied = !m_tie_slaves.empty();
-  if (tied)
-    contact_masses(elements.inverse_mass(), m_contact_inverse, &state.mass, &m_contact_mass);
   const contact::ContactTotals t = m_engine->update(
       m_run != nullptr ? m_position : state.position,
       m_run != nullptr ? m_velocity : state.velocity_half, dt_taken, dt_penalty,

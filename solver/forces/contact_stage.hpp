@@ -183,7 +183,7 @@ class ContactStage {
   std::vector<Ties::SlavePoint> m_tie_slaves;  ///< set_tie_slaves(), empty without ties
   std::vector<Real> m_tie_corner_weight;       ///< W_I per node (set_tie_slaves())
   /// The masses and inverse masses contact reads (n_nodes) where there are tie slaves:
-  /// the state's with each tie slave's replaced (contact_masses()).
+  /// the state's with each tie slave's replaced (contact_masses(), at each begin_step()).
   std::vector<Real> m_contact_mass, m_contact_inverse;
   const DistributedRun* m_run = nullptr;            ///< distributed runs only
   bool m_shared = true;                             ///< set_distribution()
