@@ -61,6 +61,20 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
   if (m_rank == 0) unpack_owned_rows(all, m_plan.part, rows);
 }
 
+void DistributedRun::allgather_rows(NodalVectors& rows) const {
+  if (rows.rows() == 0) return;
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  const std::vector<Real> mine = pack_rows(rows, plan().owned);
+  const GatherLayout g = gather_layout(
+      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
+  std::vector<Real> all(g.total);
+  MPI_Request gathered = MPI_REQUEST_NULL;
+  MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(),
+                  g.counts.data(), g.displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD, &gathered);
+  wait(gathered);
+  unpack_owned_rows(all, m_plan.part, rows);
+}
+
 void DistributedRun::gather_elements_to_root(std::vector<Real>& rows, int width) const {
   if (rows.empty()) return;
   ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);

@@ -141,6 +141,8 @@ class DistributedRun {
   const std::vector<Real>& wait_allgather();
   /// The rows (n_nodes × 3) of the nodes each rank owns, from their owners to rank 0.
   void gather_to_root(NodalVectors& rows) const;
+  /// The same to every rank: each node's row from its owner (MPI_Iallgatherv).
+  void allgather_rows(NodalVectors& rows) const;
   /// Element rows (`width` values per element) from each element's rank to rank 0.
   void gather_elements_to_root(std::vector<Real>& rows, int width) const;
   /// The rows of `nodes` (ascending, the same list on every rank) in every array of `rows`

@@ -46,6 +46,7 @@ const std::vector<Real>& DistributedRun::wait_allgather() {
   return m_posted_all;
 }
 void DistributedRun::gather_to_root(NodalVectors&) const {}
+void DistributedRun::allgather_rows(NodalVectors&) const {}
 void DistributedRun::gather_elements_to_root(std::vector<Real>&, int) const {}
 void DistributedRun::open_end_channel() {}
 bool DistributedRun::every_rank_ends(double) {

@@ -251,6 +251,15 @@ class HexBlock {
     m_batches.for_color_batches(ParallelSite::HexStiffness,
                                 [&](Index b) { derived().stiffness_batch(b, columns); });
   }
+  /// The same over the batches b with `selected[b]` nonzero only (a distributed run's share,
+  /// solver/forces/element_set.cpp): each node's terms from them in the same order.
+  void add_stiffness_product(const NodalVectors& position, const NodalVectors& u, NodalVectors& y,
+                             const std::vector<char>& selected) const {
+    const NodalColumns columns = nodal_columns(position, u, y);
+    m_batches.for_color_batches(ParallelSite::HexStiffness, [&](Index b) {
+      if (selected[b] != 0) derived().stiffness_batch(b, columns);
+    });
+  }
 
   /// Adds ρ V₀ / 8 to each node of each element (reference coordinates n_nodes × 3, m).
   void add_lumped_mass(const NodalVectors& reference, std::vector<Real>& mass) const {

@@ -326,20 +326,35 @@ ElementEstimate ElementSet::increment_estimate(const State& state, const Element
   });
   if (stiffness && !s.increment.fixed) {
     ScopedTimer timer(m_timers, Phase::InternalForce);
-    // Distributed runs: rank 0 estimates on the whole mesh, with the positions of every node
-    // gathered from their owners when the estimate is due, and shares the result
-    // (distribute()).
+    // Distributed runs: every rank runs the estimate on the whole mesh, with the positions of
+    // every node from their owners when it is due; in each product a rank multiplies the whole
+    // blocks' batches at the nodes it owns (distribute()), whose rows then hold the one-rank
+    // sums, and every rank takes each node's row from its owner.
     const auto gather = [this, &state] {
       if (m_run == nullptr) return;
       m_whole_position = state.position;
-      m_run->gather_to_root(m_whole_position);
+      m_run->allgather_rows(m_whole_position);
     };
     const auto product = [this, &state](const NodalVectors& u, NodalVectors& y) {
-      const NodalVectors& x = m_run != nullptr ? m_whole_position : state.position;
-      for_each_whole_block([&](const auto& block) {
-        if constexpr (requires { block.add_stiffness_product(x, u, y); })
-          block.add_stiffness_product(x, u, y);
-      });
+      if (m_run == nullptr) {
+        for_each_whole_block([&](const auto& block) {
+          if constexpr (requires { block.add_stiffness_product(state.position, u, y); })
+            block.add_stiffness_product(state.position, u, y);
+        });
+        return;
+      }
+      [&]<std::size_t... I>(std::index_sequence<I...>) {
+        (
+            [&] {
+              const auto& whole = std::get<I>(m_whole);
+              const std::vector<char>& selected = m_product_batches[I];
+              if constexpr (requires { whole->add_stiffness_product(u, u, y, selected); })
+                if (whole) whole->add_stiffness_product(m_whole_position, u, y, selected);
+            }(),
+            ...);
+      }
+      (std::make_index_sequence<3>{});
+      m_run->allgather_rows(y);
     };
     e.global_ratio = m_global.apply(product, state.position.rows(), m_inverse_mass, s.bulk_linear,
                                     totals, gather);

@@ -259,6 +259,9 @@ class ElementSet {
   std::vector<Index> m_slot_source;
   int m_slot_parts = 0;           ///< m_parts when m_slot_source was made
   NodalVectors m_whole_position;  ///< positions of every node for the global estimate
+  /// [kind]: 1 for the whole block's batches this rank multiplies in the global estimate's
+  /// stiffness products (distribute()).
+  std::vector<char> m_product_batches[3];
 };
 
 }  // namespace xpl

@@ -161,14 +161,37 @@ void ElementSet::distribute_blocks(std::index_sequence<I...>) {
 
 void ElementSet::distribute(DistributedRun& run) {
   m_run = &run;
-  // The global estimate on rank 0 alone (the whole blocks, gathered positions), its largest
-  // eigenvalue and product count broadcast.
-  m_global.set_distribution(run.rank() == 0, [&run](Real& lambda, int& products) {
-    run.broadcast_estimate(lambda, products);
-  });
+  // The global estimate on every rank, its stiffness products shared (increment_estimate()):
+  // the same iteration on the same whole vectors everywhere; rank 0's eigenvalue and product
+  // count are broadcast all the same, so that every rank takes its increment bit for bit.
+  m_global.set_distribution(
+      true, [&run](Real& lambda, int& products) { run.broadcast_estimate(lambda, products); });
   distribute_blocks(std::make_index_sequence<3>{});
   m_parts = 0;  // the force pass partitions the rank's blocks anew
   m_slot_parts = 0;
+  // The whole blocks' batches this rank multiplies in a stiffness product: those with a
+  // corner at a node it owns, so that its owned rows get every term, in the one-rank order.
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (
+        [&] {
+          const auto& whole = std::get<I>(m_whole);
+          std::vector<char>& selected = m_product_batches[I];
+          selected.clear();
+          if (!whole) return;
+          constexpr int W = simd::W;
+          const std::vector<Index>& owners = whole->lane_owners();
+          selected.assign(static_cast<std::size_t>(whole->batch_count()), 0);
+          for (Index b = 0; b < whole->batch_count(); ++b)
+            for (int l = 0; l < W && selected[b] == 0; ++l) {
+              if (owners[b * W + l] == NO_INDEX) continue;
+              const Index e = whole->element_index(owners[b * W + l]);
+              for (Index k = m_model.element_offsets[e]; k < m_model.element_offsets[e + 1]; ++k)
+                if (run.owns(m_model.element_nodes[k])) selected[b] = 1;
+            }
+        }(),
+        ...);
+  }
+  (std::make_index_sequence<3>{});
 }
 
 void ElementSet::mark_batch_phases(std::vector<Index>& node_part) {
