@@ -143,7 +143,26 @@ void ContactStage::resolve_overclosures(int step, const contact::ContactEngine* 
                        "moves (C6)");
   if (!views.empty())
     report_clearances(clearances, view_names, *m_engine, m_model, step, diagnostics, m_sink);
-  report_overclosures(report, *m_engine, m_model, step, diagnostics, effect, m_sink);
+  // A tie slave and a master corner it is bound to are joined (Ties::slave_points()).
+  std::vector<Index> point_of;
+  if (!m_tie_slaves.empty() && !report.ignored.empty()) {
+    point_of.assign(static_cast<std::size_t>(m_model.node_count()), NO_INDEX);
+    for (std::size_t k = 0; k < m_tie_slaves.size(); ++k)
+      point_of[m_tie_slaves[k].slave] = static_cast<Index>(k);
+  }
+  const auto bound = [&](Index slave, Index corner) {
+    const Index k = point_of[slave];
+    if (k == NO_INDEX) return false;
+    const auto& corners = m_tie_slaves[k].corner;
+    return std::find(corners.begin(), corners.end(), corner) != corners.end();
+  };
+  const auto tie_joined = [&](Index node, Index face) {
+    if (point_of.empty()) return false;
+    for (const Index c : m_engine->domain().faces()[face].nodes)
+      if (c != NO_INDEX && (bound(node, c) || bound(c, node))) return true;
+    return false;
+  };
+  report_overclosures(report, *m_engine, m_model, step, diagnostics, effect, m_sink, tie_joined);
 }
 
 std::vector<contact::ClearanceView> ContactStage::clearance_views(

@@ -51,7 +51,8 @@ class Tables {
 /// The .msg lines of the adjusted, offset and ignored nodes (DETAIL), or the count of the
 /// ignored ones (SUMMARY).
 void message_overclosed_nodes(const contact::OverclosureReport& report, const Names& names,
-                              const Diagnostics& diagnostics, OutputSink& sink) {
+                              const Diagnostics& diagnostics, OutputSink& sink,
+                              const std::function<bool(Index, Index)>& tie_joined) {
   if (diagnostics.overclosure_detail) {
     for (const contact::AdjustedNode& a : report.adjusted)
       sink.message(Severity::Info,
@@ -73,9 +74,14 @@ void message_overclosed_nodes(const contact::OverclosureReport& report, const Na
                    "initial overclosure: " + names.node(g.node) + " (slave surface " +
                        names.surface(g.slave_surface) + ") penetrates " + names.face(g.face) +
                        " by " + real_text(g.depth) + " m, deeper than the automatic limit " +
-                       real_text(g.limit) +
-                       " m (15 % of the facet size): not adjusted; the penalty will push it "
-                       "out from the first increment. Fix the mesh or use *CONTACT CLEARANCE");
+                       real_text(g.limit) + " m (15 % of the facet size): not adjusted; " +
+                       (tie_joined && tie_joined(g.node, g.face)
+                            ? "a *TIE joins it to this face, which keeps them together: the "
+                              "penalty cannot push it out, its force and the face's reaction "
+                              "act on the tied pair. To keep contact off the tied pair, "
+                              "exclude it (*CONTACT EXCLUSIONS)"
+                            : "the penalty will push it out from the first increment. Fix the "
+                              "mesh or use *CONTACT CLEARANCE"));
   } else if (!report.ignored.empty()) {
     sink.message(Severity::Warning,
                  std::to_string(report.ignored.size()) +
@@ -243,9 +249,10 @@ std::string face_label(contact::ElementKind kind, int face) {
 void report_overclosures(const contact::OverclosureReport& report,
                          const contact::ContactEngine& engine, const Model& model, int step,
                          const Diagnostics& diagnostics, const AdjustmentEffect& effect,
-                         OutputSink& sink) {
+                         OutputSink& sink,
+                         const std::function<bool(Index node, Index face)>& tie_joined) {
   const Names names(engine.domain(), model);
-  message_overclosed_nodes(report, names, diagnostics, sink);
+  message_overclosed_nodes(report, names, diagnostics, sink, tie_joined);
   message_crossed_and_refused(report, names, engine.domain(), model, diagnostics, sink);
   message_overclosure_summary(report, model, step, diagnostics, effect, sink);
 

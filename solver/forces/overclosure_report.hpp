@@ -2,6 +2,7 @@
 /// \file Reports of the initial-overclosure pass (SPEC C11): the .msg listing (DETAIL), the
 /// .sta summary (always) and the tables of the results file.
 
+#include <functional>
 #include <string>
 
 #include "contact/contact_clearance.hpp"
@@ -22,10 +23,13 @@ struct AdjustmentEffect {
 /// faces and surfaces. DETAIL (`diagnostics.overclosure_detail`) lists every adjusted node,
 /// offset, ignored node and crossed edge in the .msg file; both levels write the summary line
 /// to the .sta file and the tables /overclosure/step_N/{adjusted, offsets, ignored, crossed}.
+/// `tie_joined(node, face)`: a *TIE joins the node to a corner of the face (a slave and a
+/// master corner it is bound to); such an ignored node is reported as held by its tie.
 void report_overclosures(const contact::OverclosureReport& report,
                          const contact::ContactEngine& engine, const Model& model, int step,
                          const Diagnostics& diagnostics, const AdjustmentEffect& effect,
-                         OutputSink& sink);
+                         OutputSink& sink,
+                         const std::function<bool(Index node, Index face)>& tie_joined = {});
 
 /// Names of one clearance view for the reports: the clearance and the slave and master
 /// surfaces.
