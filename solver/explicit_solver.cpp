@@ -312,18 +312,29 @@ void ExplicitSolver::Impl::report_exchange() {
       values.push_back(v / increments);
     return values;
   };
-  const std::vector<Real> all = m_run->allgather(
-      with_ties({run.exchange_seconds(), run.exchange_seconds(DistributedRun::NEIGHBOURS),
-                 run.exchange_seconds(DistributedRun::SHIP),
-                 run.exchange_seconds(DistributedRun::GATHERS), m_loop_seconds,
-                 static_cast<Real>(m_nodes.integrated_count()), m_loop_shares.exchange,
-                 m_loop_shares.wait, m_loop_shares.output, m_timers.seconds(Phase::ContactSearch),
-                 m_timers.seconds(Phase::ContactForce), m_contact.sharing_seconds(),
-                 m_contact.rows_received().first, m_contact.rows_received().second,
-                 m_contact.rows_sent(), build.received, build.sent, build.lists_received,
-                 build.lists_sent, m_contact.slot_values().first,
-                 m_contact.slot_values().second}),
-      counts);
+  const std::vector<Real> all =
+      m_run->allgather(with_ties({run.exchange_seconds(),
+                                  run.exchange_seconds(DistributedRun::NEIGHBOURS),
+                                  run.exchange_seconds(DistributedRun::SHIP),
+                                  run.exchange_seconds(DistributedRun::GATHERS),
+                                  m_loop_seconds,
+                                  static_cast<Real>(m_nodes.integrated_count()),
+                                  m_loop_shares.exchange,
+                                  m_loop_shares.wait,
+                                  m_loop_shares.output,
+                                  m_timers.seconds(Phase::ContactSearch),
+                                  m_timers.seconds(Phase::ContactForce),
+                                  m_contact.sharing_seconds(),
+                                  m_contact.rows_received().first,
+                                  m_contact.rows_received().second,
+                                  m_contact.rows_sent(),
+                                  build.received,
+                                  build.sent,
+                                  build.lists_received,
+                                  build.lists_sent,
+                                  m_contact.slot_values().first,
+                                  m_contact.slot_values().second}),
+                       counts);
   // The summary's partition and times (rank 0's sink keeps them).
   DistributionSummary d = partition_summary();
   d.times_gathered = true;
