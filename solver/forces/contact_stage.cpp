@@ -26,8 +26,7 @@ void ContactStage::begin_step(int step, State& state, ElementSet& elements,
                               const std::vector<PrescribedDof>& prescribed) {
   // The masses contact reads for tie slaves (set_tie_slaves()): the nodal masses are set once,
   // at set-up (elements, point masses, ties, rigid bodies), so once a step is enough.
-  if (!m_tie_slaves.empty())
-    contact_masses(elements.inverse_mass(), m_contact_inverse, &state.mass, &m_contact_mass);
+  if (!m_tie_slaves.empty()) contact_masses(elements.inverse_mass(), state.mass);
   // The definition in force: the latest *CONTACT up to this step, and every *CONTACT PAIR.
   const Step& s = m_model.steps[step];
   const bool changed = step == 0 || s.contact || !s.contact_pairs.empty();
@@ -340,10 +339,9 @@ void ContactStage::set_tie_slaves(std::vector<Ties::SlavePoint> points) {
 }
 
 void ContactStage::contact_masses(const std::vector<Real>& inverse_mass,
-                                  std::vector<Real>& out_inverse, const std::vector<Real>* mass,
-                                  std::vector<Real>* out_mass) const {
-  out_inverse = inverse_mass;
-  if (mass != nullptr) *out_mass = *mass;
+                                  const std::vector<Real>& mass) {
+  m_contact_inverse = inverse_mass;
+  m_contact_mass = mass;
   for (const Ties::SlavePoint& p : m_tie_slaves) {
     // m* = Σ_I N_I (N_I m_I / W_I): each corner's mass shared among the slaves bound to it in
     // proportion to their weights (W_I = Σ N_I over them).
@@ -359,19 +357,17 @@ void ContactStage::contact_masses(const std::vector<Real>& inverse_mass,
       }
       share += n * n / (inverse_mass[c] * m_tie_corner_weight[c]);
     }
-    const Real m = rigid ? contact::RIGID_MASS : share;
-    out_inverse[p.slave] = rigid || !(share > 0.0) ? 0.0 : 1.0 / share;
-    if (mass != nullptr) (*out_mass)[p.slave] = m;
+    m_contact_inverse[p.slave] = rigid || !(share > 0.0) ? 0.0 : 1.0 / share;
+    m_contact_mass[p.slave] = rigid ? contact::RIGID_MASS : share;
   }
 }
 
 void ContactStage::check_penalty(const ElementIncrement& elements, int step,
                                  const std::vector<Real>& inverse_mass) const {
   if (!m_engine) return;
-  std::vector<Real> tied_inverse;
-  if (!m_tie_slaves.empty()) contact_masses(inverse_mass, tied_inverse);
+  // With ties, the tie slaves' masses begin_step() made (from the same inverse masses).
   const contact::PenaltyLimit limit =
-      m_engine->estimate_penalty_limit(m_tie_slaves.empty() ? inverse_mass : tied_inverse);
+      m_engine->estimate_penalty_limit(m_tie_slaves.empty() ? inverse_mass : m_contact_inverse);
   const Step& s = m_model.steps[step];
   if (s.increment.fixed || !(limit.omega_sq > 0.0)) return;
   const Real dt_elements = elements.dt;

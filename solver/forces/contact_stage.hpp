@@ -154,11 +154,9 @@ class ContactStage {
   /// Distributed runs on more than one rank: the engine's slots shared out among the ranks
   /// by the rank integrating each slave node (ContactEngine::share_slots()).
   void share_slots();
-  /// `inverse_mass` (n_nodes, 1/kg) with the tie slaves' replaced (set_tie_slaves()) into
-  /// `out_inverse`, and likewise `mass` (kg) into `out_mass` when given.
-  void contact_masses(const std::vector<Real>& inverse_mass, std::vector<Real>& out_inverse,
-                      const std::vector<Real>* mass = nullptr,
-                      std::vector<Real>* out_mass = nullptr) const;
+  /// m_contact_inverse and m_contact_mass: `inverse_mass` (n_nodes, 1/kg) and `mass` (kg) with
+  /// the tie slaves' replaced (set_tie_slaves()).
+  void contact_masses(const std::vector<Real>& inverse_mass, const std::vector<Real>& mass);
   /// Initial overclosures of a newly built engine (SPEC C2–C6): adjusts (step 1) or stores
   /// offsets (later step, import); with an engine of an earlier step, carries its offsets
   /// over instead.

@@ -348,7 +348,9 @@ ElementEstimate ElementSet::increment_estimate(const State& state, const Element
             [&] {
               const auto& whole = std::get<I>(m_whole);
               const std::vector<char>& selected = m_product_batches[I];
-              if constexpr (requires { whole->add_stiffness_product(u, u, y, selected); })
+              if constexpr (requires {
+                              whole->add_stiffness_product(m_whole_position, u, y, selected);
+                            })
                 if (whole) whole->add_stiffness_product(m_whole_position, u, y, selected);
             }(),
             ...);
