@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "solver/distributed_run.hpp"
+
 namespace xpl::distributed_detail {
 
 /// Where wait_all() adds the time it waits: the waits of the exchange an ExchangeTimer
@@ -41,6 +43,8 @@ class ExchangeTimer {
 void wait_all(int n, MPI_Request* requests);
 /// Waits for one request (wait_all()).
 void wait(MPI_Request& request);
+/// Waits for the requests of `requests` (wait_all()), then clears it.
+void wait_all(std::vector<MPI_Request>& requests);
 
 /// Receive counts and displacements of a gather of `width` values per item of every rank
 /// (`items(r)`: rank r's items), in rank order; `total` is their sum.
@@ -60,3 +64,14 @@ GatherLayout gather_layout(int size, std::size_t width, Items items) {
 }
 
 }  // namespace xpl::distributed_detail
+
+namespace xpl {
+
+/// A rank's requests in flight between the calls that start and finish an exchange.
+struct DistributedRun::Requests {
+  std::vector<MPI_Request> receive, send;
+  /// post_allgather()'s and share_chunks()' messages, point to point; ship_forces()' sends.
+  std::vector<MPI_Request> gather_receive, gather_send, chunk_receive, chunk_send, ship_send;
+};
+
+}  // namespace xpl

@@ -1,6 +1,8 @@
 // The gathers of a frame's rows to rank 0 (DistributedRun::gather_to_root,
 // gather_elements_to_root): the nodal rows from each node's owner, the element rows from each
-// element's rank, in rank order (`--gather-frames`, and the history's nodal rows).
+// element's rank, in rank order (`--gather-frames`, and the history's nodal rows); and the
+// gathers of every increment to every rank (the batch totals, the chunk sums with the
+// prescribed DOFs' rows), point to point.
 #include "solver/distributed_run.hpp"
 
 #if XPL_HAVE_MPI
@@ -16,8 +18,42 @@ using distributed_detail::ExchangeTimer;
 using distributed_detail::gather_layout;
 using distributed_detail::GatherLayout;
 using distributed_detail::wait;
+using distributed_detail::wait_all;
 
 namespace {
+
+constexpr int TOTALS_TAG = 39;  // post_allgather()
+constexpr int CHUNKS_TAG = 40;  // share_chunks()
+
+/// Starts the gather of every rank's `mine` (`counts[r]` values from rank r) into `all`
+/// (resized) in rank order, point to point: `receives` complete when `all` is whole, `sends`
+/// when the other ranks have `mine` (which must not change until then).
+void post_gather(int rank, int size, const std::vector<Real>& mine, std::vector<Real>& all,
+                 const std::vector<int>& counts, int tag, std::vector<MPI_Request>& receives,
+                 std::vector<MPI_Request>& sends) {
+  // Point to point rather than MPI_Iallgatherv: a rank's data is in once its receives are
+  // done, while a collective (and a send above the eager limit) also waits for the other
+  // ranks to take this rank's data, that is for them to wake from their sleeping waits. The
+  // sends complete later, before `mine` is filled again.
+  std::vector<int> displacement(static_cast<std::size_t>(size), 0);
+  for (int r = 1; r < size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
+  all.resize(static_cast<std::size_t>(displacement.back() + counts.back()));
+  std::copy(mine.begin(), mine.end(), all.begin() + displacement[rank]);
+  receives.clear();
+  for (int r = 0; r < size; ++r) {
+    if (r == rank || counts[r] == 0) continue;
+    receives.emplace_back();
+    MPI_Irecv(all.data() + displacement[r], counts[r], MPI_DOUBLE, r, tag, MPI_COMM_WORLD,
+              &receives.back());
+  }
+  sends.clear();
+  for (int r = 0; r < size; ++r) {
+    if (r == rank || mine.empty()) continue;
+    sends.emplace_back();
+    MPI_Isend(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, r, tag, MPI_COMM_WORLD,
+              &sends.back());
+  }
+}
 
 /// The owned rows of `rows` packed node by node (3 values each).
 std::vector<Real> pack_rows(const NodalVectors& rows, const std::vector<Index>& nodes) {
@@ -158,6 +194,69 @@ void DistributedRun::route_rows(const RowRoute& route,
     for (const Index n : route.receive[r])
       for (NodalVectors* a : rows)
         for (int c = 0; c < 3; ++c) (*a)(n, c) = *v++;
+  }
+}
+
+void DistributedRun::post_allgather(std::vector<Real>& mine, const std::vector<int>& counts) {
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  wait_all(m_requests->gather_send);  // the previous call's, long done: its buffer is free
+  m_posted_mine.swap(mine);
+  post_gather(m_rank, m_size, m_posted_mine, m_posted_all, counts, TOTALS_TAG,
+              m_requests->gather_receive, m_requests->gather_send);
+}
+
+const std::vector<Real>& DistributedRun::wait_allgather() {
+  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+  wait_all(m_requests->gather_receive);
+  return m_posted_all;
+}
+
+void DistributedRun::share_chunks(std::vector<Real>& values, int width, int blocks, int& largest,
+                                  std::vector<Real>& rows, std::vector<int>& counts,
+                                  bool counts_known) const {
+  const auto n_chunks = m_chunk_owner.size();
+  // Each rank's chunks, its `largest` (an int, exact in a double), then its rows (in
+  // buffers kept between increments: the rows are 584 kB on the 46³ block's fixed face).
+  std::vector<Real>& mine = m_chunk_mine;
+  std::vector<Real>& all = m_chunk_all;
+  {
+    ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+    wait_all(m_requests->chunk_send);  // the previous increment's, long done
+  }
+  mine.clear();
+  for (int b = 0; b < blocks; ++b)
+    for (std::size_t c = 0; c < n_chunks; ++c)
+      if (m_chunk_owner[c] == m_rank)
+        mine.insert(mine.end(),
+                    values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c) * width),
+                    values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c + 1) * width));
+  mine.push_back(static_cast<Real>(largest));
+  mine.insert(mine.end(), rows.begin(), rows.end());
+  {
+    ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
+    if (!counts_known) {
+      const int n = static_cast<int>(mine.size());
+      counts.assign(static_cast<std::size_t>(m_size), 0);
+      MPI_Request request = MPI_REQUEST_NULL;
+      MPI_Iallgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+      wait(request);
+    }
+    post_gather(m_rank, m_size, mine, all, counts, CHUNKS_TAG, m_requests->chunk_receive,
+                m_requests->chunk_send);
+    wait_all(m_requests->chunk_receive);
+  }
+  rows.clear();
+  std::size_t at = 0;
+  for (int r = 0; r < m_size; ++r) {
+    const std::size_t end = at + static_cast<std::size_t>(counts[r]);
+    for (int b = 0; b < blocks; ++b)
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        if (m_chunk_owner[c] == r)
+          for (int k = 0; k < width; ++k) values[(b * n_chunks + c) * width + k] = all[at++];
+    largest = std::max(largest, static_cast<int>(all[at++]));
+    rows.insert(rows.end(), all.begin() + static_cast<std::ptrdiff_t>(at),
+                all.begin() + static_cast<std::ptrdiff_t>(end));
+    at = end;
   }
 }
 

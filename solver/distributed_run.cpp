@@ -16,10 +16,6 @@
 namespace xpl {
 
 #if XPL_HAVE_MPI
-struct DistributedRun::Requests {
-  std::vector<MPI_Request> receive, send;
-  MPI_Request gather = MPI_REQUEST_NULL;  ///< post_allgather()
-};
 
 namespace {
 
@@ -55,6 +51,13 @@ void wait_all(int n, MPI_Request* requests) {
 
 void wait(MPI_Request& request) {
   wait_all(1, &request);
+}
+
+/// Waits for the requests of `requests` (completes them; cleared).
+void wait_all(std::vector<MPI_Request>& requests) {
+  if (requests.empty()) return;
+  wait_all(static_cast<int>(requests.size()), requests.data());
+  requests.clear();
 }
 
 }  // namespace distributed_detail
@@ -132,7 +135,19 @@ std::vector<std::string> DistributedRun::refusals(const Model&, bool imported) {
 DistributedRun::DistributedRun()
     : m_rank(world_rank()), m_size(world_size()), m_requests(std::make_unique<Requests>()) {}
 
-DistributedRun::~DistributedRun() = default;
+DistributedRun::~DistributedRun() {
+#if XPL_HAVE_MPI
+  // Sends still in flight read buffers this object owns (their receivers have them all: every
+  // rank made the same exchanges).
+  if (m_requests == nullptr) return;
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (finalized != 0) return;
+  for (auto* pending : {&m_requests->send, &m_requests->gather_send, &m_requests->chunk_send,
+                        &m_requests->ship_send})
+    wait_all(*pending);
+#endif
+}
 
 void DistributedRun::set_partition(const Model& model, std::vector<int> element_part,
                                    std::vector<Index> element_order, Index chunk,
@@ -221,6 +236,7 @@ void DistributedRun::broadcast_estimate(Real& value, int& count) const {
 
 void DistributedRun::post_receives(int width) {
   ExchangeTimer timer(m_seconds[NEIGHBOURS], m_seconds[WAITS]);
+  wait_all(m_requests->send);  // the last increment's, long done: the buffers are free
   const auto& neighbours = plan().neighbours;
   m_receive.resize(neighbours.size());
   m_send.resize(neighbours.size());
@@ -243,9 +259,10 @@ void DistributedRun::send() {
 }
 
 const std::vector<std::vector<Real>>& DistributedRun::receive() {
+  // The receives only: the sends complete at the next post_receives(), so that the last rank
+  // in does not wait for its neighbours to wake and take its values.
   ExchangeTimer timer(m_seconds[NEIGHBOURS], m_seconds[WAITS]);
   wait_all(static_cast<int>(m_requests->receive.size()), m_requests->receive.data());
-  wait_all(static_cast<int>(m_requests->send.size()), m_requests->send.data());
   return m_receive;
 }
 
@@ -297,32 +314,15 @@ std::vector<int> DistributedRun::alltoall_counts(const std::vector<int>& send_co
   return receive_counts;
 }
 
-void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<int>& counts) {
-  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
-  m_posted_mine = std::move(mine);
-  m_posted_counts = counts;
-  m_posted_displacement.assign(static_cast<std::size_t>(m_size), 0);
-  for (int r = 1; r < m_size; ++r)
-    m_posted_displacement[r] = m_posted_displacement[r - 1] + m_posted_counts[r - 1];
-  m_posted_all.resize(static_cast<std::size_t>(m_posted_displacement.back() + counts.back()));
-  MPI_Iallgatherv(m_posted_mine.data(), static_cast<int>(m_posted_mine.size()), MPI_DOUBLE,
-                  m_posted_all.data(), m_posted_counts.data(), m_posted_displacement.data(),
-                  MPI_DOUBLE, MPI_COMM_WORLD, &m_requests->gather);
-}
-
-const std::vector<Real>& DistributedRun::wait_allgather() {
-  ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
-  wait(m_requests->gather);
-  return m_posted_all;
-}
-
 void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
   ExchangeTimer timer(m_seconds[SHIP], m_seconds[WAITS]);
   const int width = moment != nullptr ? 6 : 3;
   constexpr int SHIP_TAG = 38;
+  wait_all(m_requests->ship_send);  // the last increment's, long done: the buffers are free
   m_ship_send_buffer.resize(static_cast<std::size_t>(m_size));
   m_ship_receive_buffer.resize(static_cast<std::size_t>(m_size));
   std::vector<MPI_Request> requests;
+  std::vector<MPI_Request>& sends = m_requests->ship_send;
   for (int r = 0; r < m_size; ++r) {
     if (m_ship_receive[r].empty()) continue;
     m_ship_receive_buffer[r].resize(m_ship_receive[r].size() * width);
@@ -339,11 +339,11 @@ void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
       if (moment != nullptr)
         for (int c = 0; c < 3; ++c) buffer.push_back((*moment)(n, c));
     }
-    requests.emplace_back();
+    sends.emplace_back();
     MPI_Isend(buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, r, SHIP_TAG,
-              MPI_COMM_WORLD, &requests.back());
+              MPI_COMM_WORLD, &sends.back());
   }
-  wait_all(static_cast<int>(requests.size()), requests.data());
+  wait_all(requests);  // the receives: the sends complete at the next call
   for (int r = 0; r < m_size; ++r) {
     const Real* in = m_ship_receive_buffer[r].data();
     for (const Index n : m_ship_receive[r]) {
@@ -351,36 +351,6 @@ void DistributedRun::ship_forces(NodalVectors& force, NodalVectors* moment) {
       if (moment != nullptr)
         for (int c = 0; c < 3; ++c) (*moment)(n, c) = *in++;
     }
-  }
-}
-
-void DistributedRun::share_chunks(std::vector<Real>& values, int width, int blocks, int& largest,
-                                  std::vector<Real>& rows, std::vector<int>& counts,
-                                  bool counts_known) const {
-  const auto n_chunks = m_chunk_owner.size();
-  // Each rank's chunks, its `largest` (an int, exact in a double), then its rows.
-  std::vector<Real> mine;
-  for (int b = 0; b < blocks; ++b)
-    for (std::size_t c = 0; c < n_chunks; ++c)
-      if (m_chunk_owner[c] == m_rank)
-        mine.insert(mine.end(),
-                    values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c) * width),
-                    values.begin() + static_cast<std::ptrdiff_t>((b * n_chunks + c + 1) * width));
-  mine.push_back(static_cast<Real>(largest));
-  mine.insert(mine.end(), rows.begin(), rows.end());
-  const std::vector<Real> all = allgather(mine, counts, counts_known);
-  rows.clear();
-  std::size_t at = 0;
-  for (int r = 0; r < m_size; ++r) {
-    const std::size_t end = at + static_cast<std::size_t>(counts[r]);
-    for (int b = 0; b < blocks; ++b)
-      for (std::size_t c = 0; c < n_chunks; ++c)
-        if (m_chunk_owner[c] == r)
-          for (int k = 0; k < width; ++k) values[(b * n_chunks + c) * width + k] = all[at++];
-    largest = std::max(largest, static_cast<int>(all[at++]));
-    rows.insert(rows.end(), all.begin() + static_cast<std::ptrdiff_t>(at),
-                all.begin() + static_cast<std::ptrdiff_t>(end));
-    at = end;
   }
 }
 

@@ -14,7 +14,7 @@
 ///   the one-rank order (block, batch, lane). Every rank using a node integrates it with the
 ///   same force and mass, so no positions are exchanged.
 /// - Element totals (energy increments, stable increment, critical and failed element): each
-///   rank's per-batch values are gathered (MPI_Allgatherv) into the whole layout on every
+///   rank's per-batch values are gathered (point to point) into the whole layout on every
 ///   rank and reduced there by the one-rank code, in batch order.
 /// - Global stable-increment estimate (Lanczos, at the start of a step and when the element
 ///   estimate moves): the positions are gathered to rank 0 from their owners, rank 0 runs the
@@ -104,11 +104,11 @@ class DistributedRun {
   void ship_forces(NodalVectors& force, NodalVectors* moment);
   /// The chunk values `per_chunk` (values per chunk: `width`, chunk after chunk; `blocks`
   /// such arrays back to back, e.g. translations then rotations) of every chunk from the
-  /// rank that counts it (MPI_Allgatherv). Two more values ride along (no collective of their
-  /// own): `largest` (e.g. a stop signal): in, this rank's value; out, the largest of the
-  /// ranks'; `rows`: in, this rank's; out, every rank's in rank order. `counts`: the number of
-  /// values each rank sends (found, one collective more, unless `counts_known`: they change
-  /// only with the number of rows).
+  /// rank that counts it (point to point to every rank; the sends complete at the next
+  /// call). Two more values ride along (no exchange of their own): `largest` (e.g. a stop signal):
+  /// in, this rank's value; out, the largest of the ranks'; `rows`: in, this rank's; out, every
+  /// rank's in rank order. `counts`: the number of values each rank sends (found, one collective
+  /// more, unless `counts_known`: they change only with the number of rows).
   void share_chunks(std::vector<Real>& values, int width, int blocks, int& largest,
                     std::vector<Real>& rows, std::vector<int>& counts, bool counts_known) const;
 
@@ -136,8 +136,10 @@ class DistributedRun {
   std::vector<int> alltoall_counts(const std::vector<int>& send_counts) const;
   /// allgather() in two halves, so that it travels while the rank does other work (one at a
   /// time): post_allgather() starts it with every rank's count known, wait_allgather() waits
-  /// and returns every rank's values in rank order.
-  void post_allgather(std::vector<Real> mine, const std::vector<int>& counts);
+  /// and returns every rank's values in rank order. post_allgather() keeps `mine` until the
+  /// wait and hands back the buffer of the previous call in its place (cleared by the caller
+  /// before it fills it again): two buffers that keep their capacity between increments.
+  void post_allgather(std::vector<Real>& mine, const std::vector<int>& counts);
   const std::vector<Real>& wait_allgather();
   /// The rows (n_nodes × 3) of the nodes each rank owns, from their owners to rank 0.
   void gather_to_root(NodalVectors& rows) const;
@@ -197,9 +199,9 @@ class DistributedRun {
   std::vector<std::vector<Index>> m_ship_send, m_ship_receive;
   std::vector<std::vector<Real>> m_ship_send_buffer, m_ship_receive_buffer;
   std::vector<std::vector<Real>> m_send, m_receive;
-  std::vector<Real> m_posted_mine, m_posted_all;  ///< post_allgather()
-  std::vector<int> m_posted_counts, m_posted_displacement;
+  std::vector<Real> m_posted_mine, m_posted_all;                         ///< post_allgather()
   mutable std::vector<int> m_send_displacement, m_receive_displacement;  ///< alltoall_into()
+  mutable std::vector<Real> m_chunk_mine, m_chunk_all;                   ///< share_chunks()
   struct Requests;
   std::unique_ptr<Requests> m_requests;
   mutable double m_seconds[TIMINGS] = {};

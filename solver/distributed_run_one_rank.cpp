@@ -39,8 +39,8 @@ void DistributedRun::alltoall_into(const std::vector<Real>& send, const std::vec
 std::vector<int> DistributedRun::alltoall_counts(const std::vector<int>& send_counts) const {
   return send_counts;
 }
-void DistributedRun::post_allgather(std::vector<Real> mine, const std::vector<int>&) {
-  m_posted_all = std::move(mine);
+void DistributedRun::post_allgather(std::vector<Real>& mine, const std::vector<int>&) {
+  m_posted_all = mine;
 }
 const std::vector<Real>& DistributedRun::wait_allgather() {
   return m_posted_all;

@@ -256,6 +256,7 @@ class ElementSet {
       m_whole;
   DistributedRun* m_run = nullptr;
   std::vector<std::vector<Index>> m_rank_batches[3];  ///< [kind][rank]: its batches
+  std::vector<Real> m_totals_mine;  ///< post_totals(): this rank's batch totals (a kept buffer)
   std::vector<Index> m_slot_source;
   int m_slot_parts = 0;           ///< m_parts when m_slot_source was made
   NodalVectors m_whole_position;  ///< positions of every node for the global estimate

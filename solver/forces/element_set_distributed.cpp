@@ -322,8 +322,10 @@ void ElementSet::combine_interface_forces() {
 }
 
 void ElementSet::post_totals() {
-  // This rank's batch totals, kind after kind, batch after batch.
-  std::vector<Real> mine;
+  // This rank's batch totals, kind after kind, batch after batch (into a buffer kept
+  // between increments: 350 kB a rank on the 46³ block at 2 ranks).
+  std::vector<Real>& mine = m_totals_mine;
+  mine.clear();
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     (
         [&] {
@@ -353,7 +355,7 @@ void ElementSet::post_totals() {
         ...);
   }
   (std::make_index_sequence<3>{});
-  m_run->post_allgather(std::move(mine), counts);
+  m_run->post_allgather(mine, counts);
 }
 
 void ElementSet::reduce_totals(ElementTotals& totals) {

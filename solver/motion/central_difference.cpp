@@ -256,7 +256,8 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
     // travel in one collective; then the sums in the one-rank order.
     // Each body moves on the rank owning it, from its nodes' forces (point to point from
     // the ranks integrating them); its rows ride with the prescribed DOFs' to every rank.
-    std::vector<Real> body_rows;
+    // The rows in buffers kept between increments (584 kB on the 46³ block's fixed face).
+    m_body_rows.clear();
     if (!rigid.empty()) {
       if (m_share_rigid) {
         std::vector<NodalVectors*> rows{&elements.force_internal()};
@@ -264,12 +265,12 @@ void CentralDifference::update_nodes(State& state, ElementSet& elements, RigidBo
         m_share_rigid(rows);
       }
       rigid.update_owned(m_motion, state, elements.force_internal(), force_external, inc,
-                         body_rows);
+                         m_body_rows);
     }
     const bool same_counts = !m_motion.first_update();
-    std::vector<Real> rows =
-        m_motion.prescribe(state, translation, rotation, inc, m_previous_force);
-    rows.insert(rows.end(), body_rows.begin(), body_rows.end());
+    std::vector<Real>& rows = m_rows;
+    m_motion.prescribe(state, translation, rotation, inc, m_previous_force, rows);
+    rows.insert(rows.end(), m_body_rows.begin(), m_body_rows.end());
     m_share_chunks(m_chunk_sums, m_chunk_speed, rows, same_counts);
     if (!rigid.empty()) bodies = rigid.take_shared(rows, state, inc);
     sums.kinetic = sum_chunks(n_chunks);

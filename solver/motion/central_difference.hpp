@@ -166,6 +166,9 @@ class CentralDifference {
   /// prescribed in one step and loaded in the next); allocated when a step has either.
   NodalVectors m_previous_force;
   ChunkShare m_share_chunks;  ///< set_distribution(); empty: one rank
+  /// Distributed runs: the prescribed DOFs' and the bodies' rows (buffers kept between
+  /// increments).
+  std::vector<Real> m_rows, m_body_rows;
   /// Distributed runs: the runs [first, last) of the nodes this rank moves, chunk by chunk
   /// (runs of chunk c: m_span_start[c] to m_span_start[c + 1]); empty: every node.
   std::vector<Index> m_span_start, m_spans;

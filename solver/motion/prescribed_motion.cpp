@@ -114,13 +114,12 @@ void PrescribedMotion::update(State& state, const NodalField& translation,
   end_update(inc, rigid_jumps, previous_force, sums);
 }
 
-std::vector<Real> PrescribedMotion::prescribe(State& state, const NodalField& translation,
-                                              const NodalField& rotation, const NodalIncrement& inc,
-                                              NodalVectors& previous_force) {
-  std::vector<Real> rows;
+void PrescribedMotion::prescribe(State& state, const NodalField& translation,
+                                 const NodalField& rotation, const NodalIncrement& inc,
+                                 NodalVectors& previous_force, std::vector<Real>& rows) {
+  rows.clear();
   NodalSums untouched;
   update_prescribed(state, translation, rotation, inc, previous_force, untouched, &rows);
-  return rows;
 }
 
 void PrescribedMotion::finish(const NodalIncrement& inc, const RigidJumps& rigid_jumps,
@@ -233,7 +232,8 @@ void PrescribedMotion::fold_rows(const std::vector<Real>& all, const NodalIncrem
                                  NodalSums& sums) {
   // Every rank's DOFs, folded in DOF order as update_prescribed() does on one rank.
   KineticSums counted, kinetic;
-  std::vector<const Real*> by_dof(m_prescribed.size(), nullptr);
+  std::vector<const Real*>& by_dof = m_by_dof;
+  by_dof.assign(m_prescribed.size(), nullptr);
   for (std::size_t r = 0; r + FOLD_WIDTH <= all.size(); r += FOLD_WIDTH)
     by_dof[static_cast<std::size_t>(all[r])] = &all[r + 1];
   for (std::size_t k = 0; k < by_dof.size(); ++k) {

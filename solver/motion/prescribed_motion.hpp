@@ -83,11 +83,11 @@ class PrescribedMotion {
               NodalVectors& previous_force, NodalSums& sums);
   /// Distributed runs: update() in two halves around one collective (the rows travel with the
   /// nodal chunks' sums): prescribe() sets the prescribed DOFs' motion and reactions and
-  /// returns this rank's rows (FOLD_WIDTH values per DOF it counts); finish() books what
-  /// update() books, with every rank's rows `all` (in any order) folded in DOF order.
-  std::vector<Real> prescribe(State& state, const NodalField& translation,
-                              const NodalField& rotation, const NodalIncrement& inc,
-                              NodalVectors& previous_force);
+  /// puts this rank's rows into `rows` (FOLD_WIDTH values per DOF it counts; a buffer the
+  /// caller keeps, cleared first); finish() books what update() books, with every rank's
+  /// rows `all` (in any order) folded in DOF order.
+  void prescribe(State& state, const NodalField& translation, const NodalField& rotation,
+                 const NodalIncrement& inc, NodalVectors& previous_force, std::vector<Real>& rows);
   void finish(const NodalIncrement& inc, const RigidJumps& rigid_jumps,
               NodalVectors& previous_force, const std::vector<Real>& all, NodalSums& sums);
   /// A warning to the sink when the last update() met a jump of the prescribed motion, with
@@ -151,7 +151,8 @@ class PrescribedMotion {
   };
   Jump m_jump;
   std::vector<PendingJump> m_jumps;
-  bool m_first_update = false;  ///< the next update is the first one of the step
+  std::vector<const Real*> m_by_dof;  ///< fold_rows(): each DOF's row, kept between increments
+  bool m_first_update = false;        ///< the next update is the first one of the step
   /// Work of the impulses of a jump that falls in the increment after it, J: added with the
   /// work of that increment (the second half of the velocity change, v_n → v(n+½)).
   Real m_jump_work_pending = 0.0;
