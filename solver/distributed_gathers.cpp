@@ -24,10 +24,14 @@ namespace {
 
 constexpr int TOTALS_TAG = 39;  // post_allgather()
 constexpr int CHUNKS_TAG = 40;  // share_chunks()
+/// Above this many ranks post_gather() is one MPI_Iallgatherv: N − 1 messages a rank (and
+/// their latencies) would outgrow the collective's log N rounds.
+constexpr int POINT_TO_POINT_RANKS = 8;
 
 /// Starts the gather of every rank's `mine` (`counts[r]` values from rank r) into `all`
 /// (resized) in rank order, point to point: `receives` complete when `all` is whole, `sends`
-/// when the other ranks have `mine` (which must not change until then).
+/// when the other ranks have `mine` (which must not change until then). Above
+/// POINT_TO_POINT_RANKS ranks, one collective in `receives` and no `sends`.
 void post_gather(int rank, int size, const std::vector<Real>& mine, std::vector<Real>& all,
                  const std::vector<int>& counts, int tag, std::vector<MPI_Request>& receives,
                  std::vector<MPI_Request>& sends) {
@@ -38,15 +42,22 @@ void post_gather(int rank, int size, const std::vector<Real>& mine, std::vector<
   std::vector<int> displacement(static_cast<std::size_t>(size), 0);
   for (int r = 1; r < size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
   all.resize(static_cast<std::size_t>(displacement.back() + counts.back()));
-  std::copy(mine.begin(), mine.end(), all.begin() + displacement[rank]);
   receives.clear();
+  sends.clear();
+  if (size > POINT_TO_POINT_RANKS) {
+    receives.emplace_back();
+    MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(),
+                    counts.data(), displacement.data(), MPI_DOUBLE, MPI_COMM_WORLD,
+                    &receives.back());
+    return;
+  }
+  std::copy(mine.begin(), mine.end(), all.begin() + displacement[rank]);
   for (int r = 0; r < size; ++r) {
     if (r == rank || counts[r] == 0) continue;
     receives.emplace_back();
     MPI_Irecv(all.data() + displacement[r], counts[r], MPI_DOUBLE, r, tag, MPI_COMM_WORLD,
               &receives.back());
   }
-  sends.clear();
   for (int r = 0; r < size; ++r) {
     if (r == rank || mine.empty()) continue;
     sends.emplace_back();
