@@ -45,6 +45,10 @@ void wait_all(int n, MPI_Request* requests);
 void wait(MPI_Request& request);
 /// Waits for the requests of `requests` (wait_all()), then clears it.
 void wait_all(std::vector<MPI_Request>& requests);
+/// Every rank's `n` into `counts` (size ranks; MPI_Iallgather, waited for).
+void gather_counts(int size, int n, std::vector<int>& counts);
+/// Where each rank's values start in a gather of `counts[r]` values from rank r (rank order).
+std::vector<int> displacements(const std::vector<int>& counts);
 
 /// Receive counts and displacements of a gather of `width` values per item of every rank
 /// (`items(r)`: rank r's items), in rank order; `total` is their sum.

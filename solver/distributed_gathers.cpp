@@ -39,8 +39,7 @@ void post_gather(int rank, int size, const std::vector<Real>& mine, std::vector<
   // done, while a collective (and a send above the eager limit) also waits for the other
   // ranks to take this rank's data, that is for them to wake from their sleeping waits. The
   // sends complete later, before `mine` is filled again.
-  std::vector<int> displacement(static_cast<std::size_t>(size), 0);
-  for (int r = 1; r < size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
+  const std::vector<int> displacement = distributed_detail::displacements(counts);
   all.resize(static_cast<std::size_t>(displacement.back() + counts.back()));
   receives.clear();
   sends.clear();
@@ -75,6 +74,19 @@ std::vector<Real> pack_rows(const NodalVectors& rows, const std::vector<Index>& 
   return packed;
 }
 
+/// This rank's owned rows of `rows` packed (pack_rows) and the layout of every rank's owned
+/// rows in rank order: the two halves of a gather of the owned rows.
+struct OwnedRows {
+  std::vector<Real> mine;
+  GatherLayout layout;
+};
+OwnedRows owned_rows(const NodalVectors& rows, const partition::ExchangePlan& plan, int rank,
+                     int size) {
+  return {pack_rows(rows, plan.part[rank].owned),
+          gather_layout(
+              size, 3, [&plan](int r) -> const auto& { return plan.part[r].owned; })};
+}
+
 /// The inverse of pack_rows over every rank: `all` holds each rank's owned rows in rank order
 /// (`part[r].owned`), written into `rows`.
 void unpack_owned_rows(const std::vector<Real>& all, const std::vector<partition::PartPlan>& part,
@@ -101,9 +113,7 @@ std::vector<Real> gather_on_root(const std::vector<Real>& mine, const GatherLayo
 void DistributedRun::gather_to_root(NodalVectors& rows) const {
   if (rows.rows() == 0) return;
   ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
-  const std::vector<Real> mine = pack_rows(rows, plan().owned);
-  const GatherLayout g = gather_layout(
-      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
+  const auto [mine, g] = owned_rows(rows, m_plan, m_rank, m_size);
   const std::vector<Real> all = gather_on_root(mine, g, m_rank);
   if (m_rank == 0) unpack_owned_rows(all, m_plan.part, rows);
 }
@@ -111,9 +121,7 @@ void DistributedRun::gather_to_root(NodalVectors& rows) const {
 void DistributedRun::allgather_rows(NodalVectors& rows) const {
   if (rows.rows() == 0) return;
   ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
-  const std::vector<Real> mine = pack_rows(rows, plan().owned);
-  const GatherLayout g = gather_layout(
-      m_size, 3, [this](int r) -> const auto& { return m_plan.part[r].owned; });
+  const auto [mine, g] = owned_rows(rows, m_plan, m_rank, m_size);
   std::vector<Real> all(g.total);
   MPI_Request gathered = MPI_REQUEST_NULL;
   MPI_Iallgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(),
@@ -245,13 +253,8 @@ void DistributedRun::share_chunks(std::vector<Real>& values, int width, int bloc
   mine.insert(mine.end(), rows.begin(), rows.end());
   {
     ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
-    if (!counts_known) {
-      const int n = static_cast<int>(mine.size());
-      counts.assign(static_cast<std::size_t>(m_size), 0);
-      MPI_Request request = MPI_REQUEST_NULL;
-      MPI_Iallgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
-      wait(request);
-    }
+    if (!counts_known)
+      distributed_detail::gather_counts(m_size, static_cast<int>(mine.size()), counts);
     post_gather(m_rank, m_size, mine, all, counts, CHUNKS_TAG, m_requests->chunk_receive,
                 m_requests->chunk_send);
     wait_all(m_requests->chunk_receive);

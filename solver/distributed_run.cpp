@@ -60,6 +60,20 @@ void wait_all(std::vector<MPI_Request>& requests) {
   requests.clear();
 }
 
+void gather_counts(int size, int n, std::vector<int>& counts) {
+  counts.assign(static_cast<std::size_t>(size), 0);
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Iallgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+  wait(request);
+}
+
+std::vector<int> displacements(const std::vector<int>& counts) {
+  std::vector<int> displacement(counts.size(), 0);
+  for (std::size_t r = 1; r < counts.size(); ++r)
+    displacement[r] = displacement[r - 1] + counts[r - 1];
+  return displacement;
+}
+
 }  // namespace distributed_detail
 
 using distributed_detail::ExchangeTimer;
@@ -270,14 +284,8 @@ std::vector<Real> DistributedRun::allgather(const std::vector<Real>& mine, std::
                                             bool counts_known) const {
   ExchangeTimer timer(m_seconds[GATHERS], m_seconds[WAITS]);
   const int n = static_cast<int>(mine.size());
-  if (!counts_known) {
-    counts.assign(static_cast<std::size_t>(m_size), 0);
-    MPI_Request request = MPI_REQUEST_NULL;
-    MPI_Iallgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
-    wait(request);
-  }
-  std::vector<int> displacement(static_cast<std::size_t>(m_size), 0);
-  for (int r = 1; r < m_size; ++r) displacement[r] = displacement[r - 1] + counts[r - 1];
+  if (!counts_known) distributed_detail::gather_counts(m_size, n, counts);
+  const std::vector<int> displacement = distributed_detail::displacements(counts);
   std::vector<Real> all(static_cast<std::size_t>(displacement.back() + counts.back()));
   MPI_Request gathered = MPI_REQUEST_NULL;
   MPI_Iallgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displacement.data(),
