@@ -152,6 +152,32 @@ class ShellPlasticState {
                                            simd::Vec* flow = nullptr, simd::Vec* tangent = nullptr,
                                            bool* yielded = nullptr);
 
+  /// The yield test of point_return alone: σ_y(ε̄ᵖ_n, 0) of section point k of batch b per
+  /// lane (+inf in elastic lanes) and the lanes whose trial (σxx, σyy, σxy) lies outside it by
+  /// more than SHELL_YIELD_TOLERANCE. Where no lane yields, point_return leaves the stresses
+  /// and the state alone, returns 0 and gives the tangent ratio 1 and the flow stress `yield`:
+  /// a kernel can test first and keep the trial stresses in registers.
+  struct YieldTest {
+    simd::Vec yield;
+    simd::Mask yielding;
+  };
+  XPL_KERNEL_INLINE YieldTest yield_test(std::size_t b, int k, simd::Vec sxx, simd::Vec syy,
+                                         simd::Vec sxy) const {
+    const simd::Vec y =
+        batch_constant(b) ? simd::splat(m_constant_yield[b]) : simd::load(&m_yield[row(b, k)]);
+    const simd::Vec vm2 = sxx * sxx - sxx * syy + syy * syy + 3.0 * (sxy * sxy);
+    return {y, simd::greater(vm2, (y * y) * (1.0 + SHELL_YIELD_TOLERANCE))};
+  }
+  /// The rest of point_return where `test` (yield_test of the same trial) has a yielding
+  /// lane: the return in place, Δε33ᵖ into `thickness_strain`, the flow stress and tangent
+  /// ratio into `flow` and `tangent`; returns the plastic work.
+  XPL_KERNEL_INLINE simd::Vec yielding_return(std::size_t b, int k, const YieldTest& test,
+                                              simd::Vec q11, simd::Vec q12, simd::Vec shear,
+                                              Real dt, simd::Vec weight, const simd::Vec start[3],
+                                              simd::Vec& sxx, simd::Vec& syy, simd::Vec& sxy,
+                                              simd::Vec& thickness_strain, simd::Vec& flow,
+                                              simd::Vec& tangent);
+
   /// σ_y(ε̄ᵖ, 0) (Pa) of section point k of batch b per lane after its last return (the next
   /// trial's yield test); +inf in elastic lanes.
   simd::Vec static_yield(std::size_t b, int k) const {
@@ -207,20 +233,31 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
     std::size_t b, int k, simd::Vec q11, simd::Vec q12, simd::Vec shear, Real dt, simd::Vec weight,
     const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy, simd::Vec& sxy,
     simd::Vec& thickness_strain, simd::Vec* flow, simd::Vec* tangent, bool* yielded) {
+  const YieldTest test = yield_test(b, k, sxx, syy, sxy);
+  const bool any_yielding = simd::any(test.yielding);
+  if (yielded != nullptr) *yielded = any_yielding;
+  simd::Vec flow_end = test.yield, ratio = simd::splat(1.0);
+  simd::Vec dissipation = simd::splat(0.0);
+  if (any_yielding)
+    dissipation = yielding_return(b, k, test, q11, q12, shear, dt, weight, start, sxx, syy, sxy,
+                                  thickness_strain, flow_end, ratio);
+  if (flow != nullptr) *flow = flow_end;
+  if (tangent != nullptr) *tangent = ratio;
+  return dissipation;
+}
+
+XPL_KERNEL_INLINE simd::Vec ShellPlasticState::yielding_return(
+    std::size_t b, int k, const YieldTest& test, simd::Vec q11, simd::Vec q12, simd::Vec shear,
+    Real dt, simd::Vec weight, const simd::Vec start[3], simd::Vec& sxx, simd::Vec& syy,
+    simd::Vec& sxy, simd::Vec& thickness_strain, simd::Vec& flow, simd::Vec& tangent) {
   using simd::Vec;
   const std::size_t r = row(b, k);
   // Perfectly plastic batches (the common case of crash decks) read no state but ε̄ᵖ, and that
   // only where a lane yields.
   const bool constant = batch_constant(b);
-  const Vec y = constant ? simd::splat(m_constant_yield[b]) : simd::load(&m_yield[r]);
-  const Vec vm2 = sxx * sxx - sxx * syy + syy * syy + 3.0 * (sxy * sxy);
-  const simd::Mask yielding = simd::greater(vm2, (y * y) * (1.0 + SHELL_YIELD_TOLERANCE));
+  const Vec y = test.yield;
+  const simd::Mask yielding = test.yielding;
   Vec dissipation = simd::splat(0.0);
-  if (flow != nullptr) *flow = y;
-  if (tangent != nullptr) *tangent = simd::splat(1.0);
-  const bool any_yielding = simd::any(yielding);
-  if (yielded != nullptr) *yielded = any_yielding;
-  if (!any_yielding) return dissipation;
   // The elastic stress increment of the tangent ratio.
   const Vec trial[3] = {sxx - start[0], syy - start[1], sxy - start[2]};
   // Rate-free tables on the segment of ε̄ᵖ_n: σ_y = y + slope Δε̄ᵖ (y = σ_y(ε̄ᵖ_n), kept up
@@ -266,8 +303,8 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
   // (finish_point takes the rate factor out where there is one).
   const Vec end_yield = simd::select(yielding, ret.yield, y);
   if (!constant) simd::store(&m_yield[r], end_yield);
-  if (flow != nullptr) *flow = end_yield;
-  if (tangent != nullptr) {
+  flow = end_yield;
+  {
     const Vec along = von_mises_product(sxx - start[0], syy - start[1], sxy - start[2], trial[0],
                                         trial[1], trial[2]);
     const Vec trial2 =
@@ -275,7 +312,7 @@ XPL_KERNEL_INLINE simd::Vec ShellPlasticState::point_return(
     const Vec ratio =
         simd::min(simd::max(along / simd::max(trial2, simd::splat(1e-300)), simd::splat(0.0)),
                   simd::splat(1.0));
-    *tangent = simd::select(yielding & simd::greater(trial2, 0.0), ratio, simd::splat(1.0));
+    tangent = simd::select(yielding & simd::greater(trial2, 0.0), ratio, simd::splat(1.0));
   }
   if (constant) return dissipation;  // every lane linear, on a segment that never ends
   const simd::Mask other = yielding & ~linear;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "common/types.hpp"
 #include "elements/parallel/kernel_inline.hpp"
@@ -155,7 +156,7 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
                                                         const ShellPlaneRates& r) {
   const Real* cst = &m_const[b * N_CONST * W];
   auto constant = [&](Constant k) { return simd::load(cst + k * W); };
-  const Vec dxx = r.dxx, dyy = r.dyy, gxy = r.gxy, kxx = r.kxx, kyy = r.kyy, kxy = r.kxy;
+  const Vec dxx = r.dxx, dyy = r.dyy, kxx = r.kxx, kyy = r.kyy;
   const Vec gxz = r.gxz, gyz = r.gyz;
   // Plane stress: the thickness follows the in-plane dilatation of the reference surface,
   // advanced before the resultants (strains at the mid-increment thickness, N and M at the end
@@ -184,37 +185,43 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   // each (an integer division) rather than one per point.
   const Real* zetas = &m_zeta[b * m_points * W];
   const Real* weights = &m_weight[b * m_points * W];
-  for (int k = 0; k < m_points; ++k) {
-    const Vec zeta = 0.5 * simd::load(zetas + k * W) - offset;
+  // One section point: RETURNS (plastic batches with a yielding point) tests its trial and
+  // returns it where a lane yields; otherwise the trial is the stress.
+  auto point = [&](int k, auto returns) __attribute__((always_inline)) {
     const Vec weight = simd::load(weights + k * W);
-    const Vec zk = t_mid * zeta, tw = t_mid * weight;  // mid-increment: strain and work
-    const Vec zk_n = t * zeta, tw_n = t * weight;      // end of increment: resultants
-    const Vec exx = dt * (dxx + zk * kxx), eyy = dt * (dyy + zk * kyy);
-    const Vec exy = dt * (gxy + zk * kxy);
     Real* s = &m_stress[(b * m_points + k) * 3 * W];
-    const Vec sxx = simd::load(s), syy = simd::load(s + W), sxy = simd::load(s + 2 * W);
-    Vec sxx_n = sxx + q11 * exx + q12 * eyy;
-    Vec syy_n = syy + q12 * exx + q11 * eyy;
-    Vec sxy_n = sxy + g * exy;
+    const shell4r_kernel::SectionTrial p =
+        shell4r_kernel::section_trial(zetas, k, s, weight, offset, t_mid, t, dt, r, q11, q12, g);
+    const Vec zeta = p.zeta, tw = p.tw, zk_n = p.zk_n, tw_n = p.tw_n;
+    const Vec exx = p.exx, eyy = p.eyy, exy = p.exy;
+    const Vec sxx = p.sxx, syy = p.syy, sxy = p.sxy;
+    Vec sxx_n = p.sxx_n, syy_n = p.syy_n, sxy_n = p.sxy_n;
     if constexpr (PLASTIC) {
-      const Vec start[3] = {sxx, syy, sxy};
-      const Vec trial[3] = {sxx_n, syy_n, sxy_n};
-      Vec point_flow;  // σ_y at the end: max(σ_y, σ_vM) to the return's tolerance, no root
-      Vec ratio;       // tangent ratio: 1 where the point stays elastic, about 0 where it flows
-      bool yielded;
-      plastic_work +=
-          tw * m_plastic.point_return(b, k, q11, q12, g, dt, weight, start, sxx_n, syy_n, sxy_n,
-                                      thinning, &point_flow, &ratio, &yielded);
-      if (yielded) {
-        returned_off[0] += tw_n * (trial[0] - sxx_n);
-        returned_off[1] += tw_n * (trial[1] - syy_n);
-        returned_off[2] += tw_n * (trial[2] - sxy_n);
-        batch_yielded = true;
+      Vec point_flow;  // σ_y at the end: max(σ_y, σ_vM) to the return's tolerance
+      if constexpr (decltype(returns)::value) {
+        const ShellPlasticState::YieldTest test = m_plastic.yield_test(b, k, sxx_n, syy_n, sxy_n);
+        point_flow = test.yield;
+        Vec ratio_k = simd::splat(1.0);
+        if (simd::any(test.yielding)) {
+          const Vec start[3] = {sxx, syy, sxy};
+          const Vec trial[3] = {sxx_n, syy_n, sxy_n};
+          Vec ratio;  // tangent ratio: 1 where the point stays elastic, about 0 where it flows
+          plastic_work +=
+              tw * m_plastic.yielding_return(b, k, test, q11, q12, g, dt, weight, start, sxx_n,
+                                             syy_n, sxy_n, thinning, point_flow, ratio);
+          returned_off[0] += tw_n * (trial[0] - sxx_n);
+          returned_off[1] += tw_n * (trial[1] - syy_n);
+          returned_off[2] += tw_n * (trial[2] - sxy_n);
+          batch_yielded = true;
+          ratio_k = ratio;
+        }
+        const Vec wz2 = weight * zeta * zeta;
+        tan_m += weight * ratio_k;
+        tan_b += wz2 * ratio_k;
+        weight_b += wz2;
+      } else {
+        if (!one_yield) point_flow = m_plastic.static_yield(b, k);
       }
-      const Vec wz2 = weight * zeta * zeta;
-      tan_m += weight * ratio;
-      tan_b += wz2 * ratio;
-      weight_b += wz2;
       if (!one_yield)
         flow += simd::select(simd::greater(weight, 0.0), weight * point_flow, simd::splat(0.0));
     }
@@ -228,35 +235,31 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
     myy += (tw_n * zk_n) * syy_n;
     mxy += (tw_n * zk_n) * sxy_n;
     work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
+  };
+  // Plastic batches: whether a point's trial yields in a lane (the test of the loop below).
+  // Where none does (most of a crash model's shells in most increments), the loop runs
+  // without the returns, as an elastic batch's: the return code, inlined, would crowd the
+  // registers of the points that do not need it.
+  if (PLASTIC &&
+      shell4r_kernel::any_point_yields(m_plastic, b, m_points, &m_stress[b * m_points * 3 * W],
+                                       zetas, offset, t_mid, t, dt, r, q11, q12, g)) {
+    for (int k = 0; k < m_points; ++k) point(k, std::true_type{});
+  } else {
+    for (int k = 0; k < m_points; ++k) point(k, std::false_type{});
   }
   if constexpr (PLASTIC) {
     if (one_yield) flow = shell4r_kernel::one_yield_flow(weights, m_points, m_plastic, b);
-    const Vec returned_n[3] = {nxx, nyy, nxy};
-    const Vec trial_n[3] = {nxx + returned_off[0], nyy + returned_off[1], nxy + returned_off[2]};
-    shell4r_kernel::section_tangents(tan_m, tan_b, weight_b, trial_n, returned_n, flow,
-                                     batch_yielded, out);
-    // Plastic incompressibility: Δε33 = −ν/(1−ν)(Δε11ᵉ + Δε22ᵉ) − (Δε11ᵖ + Δε22ᵖ). The update
-    // above took the elastic term on the total strain Δεᵉ + Δεᵖ, so the plastic part adds
-    // (1 − ν/(1−ν)) Δε33ᵖ, Δε33ᵖ averaged through the thickness with the weights. N scales with
-    // t and M with t², so the resultants follow the end thickness as in the elastic case.
-    const Vec r = 1.0 + (1.0 - constant(NU_RATIO)) * thinning;
-    t = t * r;
-    simd::store(&m_thickness[b * W], t);
-    const Vec r2 = r * r;
-    nxx *= r;
-    nyy *= r;
-    nxy *= r;
-    mxx *= r2;
-    myy *= r2;
-    mxy *= r2;
+    shell4r_kernel::plastic_tangents(batch_yielded, tan_m, tan_b, weight_b, returned_off, nxx, nyy,
+                                     nxy, flow, weights, m_points, out);
+    if (batch_yielded) {  // else Δε33ᵖ = 0: the factor is exactly 1
+      const Vec f = shell4r_kernel::plastic_thickness_factor(constant(NU_RATIO), thinning);
+      t = t * f;
+      simd::store(&m_thickness[b * W], t);
+      shell4r_kernel::scale_resultants(f, nxx, nyy, nxy, mxx, myy, mxy);
+    }
   }
-  Real* shear = &m_shear[b * 2 * W];
-  const Vec kg = constant(SHEAR_T);
-  const Vec txz = simd::load(shear), tyz = simd::load(shear + W);
-  const Vec txz_n = txz + (kg * dt) * gxz, tyz_n = tyz + (kg * dt) * gyz;
-  simd::store(shear, txz_n);
-  simd::store(shear + W, tyz_n);
-  work += (0.5 * dt) * t_mid * ((txz + txz_n) * gxz + (tyz + tyz_n) * gyz);
+  shell4r_kernel::transverse_shear(&m_shear[b * 2 * W], constant(SHEAR_T), dt, gxz, gyz, t_mid, t,
+                                   work, out);
   out.t = t;
   out.nxx = nxx;
   out.nyy = nyy;
@@ -264,8 +267,6 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
   out.mxx = mxx;
   out.myy = myy;
   out.mxy = mxy;
-  out.qx = t * txz_n;
-  out.qy = t * tyz_n;
   out.work = work;
   out.plastic_work = plastic_work;
   return out;
