@@ -16,6 +16,7 @@ ShellPlasticState::ShellPlasticState(std::span<const Plasticity* const> lane_law
   std::vector<const Plasticity*> seen;
   m_lane_law.assign(lane_law.size(), -1);
   m_batch_plastic.assign(n_batches, 0);
+  m_batch_yielded.assign(n_batches, 0);
   for (std::size_t s = 0; s < lane_law.size(); ++s) {
     const Plasticity* law = lane_law[s];
     if (law == nullptr) continue;
@@ -31,6 +32,7 @@ ShellPlasticState::ShellPlasticState(std::span<const Plasticity* const> lane_law
   if (m_laws.empty()) {
     m_lane_law.clear();
     m_batch_plastic.clear();
+    m_batch_yielded.clear();
     return;
   }
   m_segment_slope.assign(1, 0.0);

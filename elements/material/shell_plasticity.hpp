@@ -126,6 +126,13 @@ class ShellPlasticState {
   bool empty() const { return m_laws.empty(); }
   /// Whether any lane of batch b is plastic.
   bool batch_plastic(std::size_t b) const { return !empty() && m_batch_plastic[b] != 0; }
+  /// Whether a section point of plastic batch b yielded in its last pass: a hint for the next
+  /// one (where none did, the S4R kernel tests every point before it loops; where one did,
+  /// it goes straight to the loop with the returns). Never part of the results.
+  bool yielded_last(std::size_t b) const { return m_batch_yielded[b] != 0; }
+  void set_yielded_last(std::size_t b, bool yielded) {
+    m_batch_yielded[b] = static_cast<unsigned char>(yielded);
+  }
   /// Whether the lanes of batch b are all perfectly plastic at one yield stress (rate-free
   /// tables of one point: a segment of slope 0 that never ends). Their points keep ε̄ᵖ alone:
   /// no stored yield stress, no segment index (issue 38 item 1: a third of the bytes a
@@ -209,7 +216,10 @@ class ShellPlasticState {
   std::vector<Plasticity> m_laws;              ///< distinct laws of the block
   std::vector<int> m_lane_law;                 ///< [b][W] index into m_laws, −1 elastic
   std::vector<unsigned char> m_batch_plastic;  ///< [b] any lane plastic
-  std::vector<Real> m_peeq;                    ///< [b][points][W] ε̄ᵖ, -
+  /// [b] a point yielded in the batch's last pass (yielded_last). Each batch is one thread's
+  /// in a pass, so threads write distinct bytes.
+  std::vector<unsigned char> m_batch_yielded;
+  std::vector<Real> m_peeq;  ///< [b][points][W] ε̄ᵖ, -
   /// [b] σ_y (Pa) of the batches whose lanes are all perfectly plastic at it (batch_constant);
   /// NaN in the others.
   std::vector<Real> m_constant_yield;

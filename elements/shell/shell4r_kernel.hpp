@@ -236,18 +236,18 @@ ShellSectionResultants Shell4rBlock::section_resultants(std::size_t b, Real dt,
     mxy += (tw_n * zk_n) * sxy_n;
     work += (0.5 * tw) * ((sxx + sxx_n) * exx + (syy + syy_n) * eyy + (sxy + sxy_n) * exy);
   };
-  // Plastic batches: whether a point's trial yields in a lane (the test of the loop below).
-  // Where none does (most of a crash model's shells in most increments), the loop runs
-  // without the returns, as an elastic batch's: the return code, inlined, would crowd the
-  // registers of the points that do not need it.
+  // Returns where a point yielded in the last pass or a trial yields now; else (most shells of
+  // a crash model) the elastic loop, which the inlined returns would crowd out of registers.
   if (PLASTIC &&
-      shell4r_kernel::any_point_yields(m_plastic, b, m_points, &m_stress[b * m_points * 3 * W],
-                                       zetas, offset, t_mid, t, dt, r, q11, q12, g)) {
+      (m_plastic.yielded_last(b) ||
+       shell4r_kernel::any_point_yields(m_plastic, b, m_points, &m_stress[b * m_points * 3 * W],
+                                        zetas, offset, t_mid, t, dt, r, q11, q12, g))) {
     for (int k = 0; k < m_points; ++k) point(k, std::true_type{});
   } else {
     for (int k = 0; k < m_points; ++k) point(k, std::false_type{});
   }
   if constexpr (PLASTIC) {
+    m_plastic.set_yielded_last(b, batch_yielded);
     if (one_yield) flow = shell4r_kernel::one_yield_flow(weights, m_points, m_plastic, b);
     shell4r_kernel::plastic_tangents(batch_yielded, tan_m, tan_b, weight_b, returned_off, nxx, nyy,
                                      nxy, flow, weights, m_points, out);
