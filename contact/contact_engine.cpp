@@ -263,7 +263,9 @@ void ContactEngine::count_events(ContactTotals& totals) const {
     }
     if (deeper(m_behind_depth[s], totals.behind, totals.behind_depth)) {
       totals.behind_node = slaves.nodes()[s];
-      totals.behind_element = faces[m_touch[s].face].element;
+      const Index f = m_touch[s].face;
+      totals.behind_element = faces[f].element;
+      totals.behind_element_depth = faces[f].shell ? 0.0 : 2.0 * m_domain.face_depth(f);
     }
   }
 }

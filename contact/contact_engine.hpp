@@ -288,7 +288,9 @@ class ContactEngine {
   Real passed_depth(const SlaveView& v, Index touched, const NodalVectors& position) const;
   /// How far (m) the node of view `v`, still held on the side of the shell it was pressed on
   /// (`touch` on that element), lies behind the shell's mid-surface over the face's interior:
-  /// deeper than half the thickness, about to pass through. Else 0.
+  /// deeper than half the thickness, about to pass through. For `touch` on a solid face, the
+  /// overlap of the bodies there (−gap, less a clearance's allowance) where it exceeds half
+  /// the element behind the face (ContactDomain::face_depth). Else 0.
   Real behind_depth(const SlaveView& v, const SlaveTouch& touch,
                     std::span<const Real> node_thickness) const;
   /// What the force pass needs of one spring (a side of a slave slot), from the pass before

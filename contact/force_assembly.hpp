@@ -49,11 +49,14 @@ struct ContactTotals {
   Real passed_depth = 0.0;
   Index passed_element = NO_INDEX;
   /// Slave nodes still held on the side of a shell they were pressed on but behind its
-  /// mid-surface (ContactEngine::behind_depth), and the deepest: node, depth (m), element.
+  /// mid-surface, or overlapping a solid face by more than half the element behind it
+  /// (ContactEngine::behind_depth), and the deepest: node, depth (m), element, and for a solid
+  /// face the depth of that element (m; 0 for a shell).
   Index behind = 0;
   Index behind_node = NO_INDEX;
   Real behind_depth = 0.0;
   Index behind_element = NO_INDEX;
+  Real behind_element_depth = 0.0;
   bool rebuilt = false;  ///< the broad phase was rebuilt
 };
 

@@ -91,11 +91,17 @@ Real ContactEngine::passed_depth(const SlaveView& v, Index touched,
 
 Real ContactEngine::behind_depth(const SlaveView& v, const SlaveTouch& touch,
                                  std::span<const Real> node_thickness) const {
-  if (v.held == nullptr || touch.face == NO_INDEX) return 0.0;
-  const ContactFace& face = m_domain.faces()[touch.face];
-  if (!face.shell || face.element != v.held->element) return 0.0;
+  if (touch.face == NO_INDEX) return 0.0;
   // Over the face's interior only (beside its edge the gap is a distance, not a depth).
   if (!(std::abs(touch.xi) < 1.0 && std::abs(touch.eta) < 1.0)) return 0.0;
+  const ContactFace& face = m_domain.faces()[touch.face];
+  if (!face.shell) {
+    // A solid face: the bodies overlap (beyond a clearance's allowance) by more than half the
+    // element behind the face, the depth down to which a new touch is found at all.
+    const Real overlap = -touch.gap - v.allowance;
+    return overlap > m_domain.face_depth(touch.face) ? overlap : 0.0;
+  }
+  if (v.held == nullptr || face.element != v.held->element) return 0.0;
   Real half_t = 0.0;
   for (int a = 0; a < 4; ++a)
     half_t += touch.shape[a] * 0.5 * node_thickness_of(node_thickness, face.nodes[a]);

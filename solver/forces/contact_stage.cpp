@@ -264,19 +264,28 @@ void ContactStage::apply(State& state, ElementSet& elements, Real dt_taken, Real
         element, state.increment, state.time);
   }
   if (t.behind > 0) {
-    if (m_behind_increments == 0)
-      m_sink.message(
-          Severity::Warning,
-          "increment " + std::to_string(state.increment) + ", t = " + format_real(state.time) +
-              " s: contact too soft: node " + std::to_string(m_model.node_ids[t.behind_node]) +
-              " is " + format_real(t.behind_depth) +
-              " m behind the mid-surface of the shell of element " +
-              std::to_string(m_model.element_ids[t.behind_element]) +
-              " it is pressed on, deeper than half its thickness" +
-              (t.behind > 1 ? " (with " + std::to_string(t.behind - 1) + " more nodes)" : "") +
-              ": the bodies overlap by more than the shell and may pass through. Refine the mesh "
-              "where it hits, raise the penalty scale factor (*CONTACT CONTROLS ASSIGNMENT), or "
-              "lower the time scale factor");
+    if (m_behind_increments == 0) {
+      const std::string element = std::to_string(m_model.element_ids[t.behind_element]);
+      const std::string more =
+          t.behind > 1 ? " (with " + std::to_string(t.behind - 1) + " more nodes)" : "";
+      const std::string where =
+          t.behind_element_depth > 0.0
+              ? " m into the solid behind the face of element " + element +
+                    " it is pressed on, more than half that element's depth (" +
+                    format_real(t.behind_element_depth) + " m)" + more +
+                    ": the bodies overlap by more than the mesh resolves, and the results "
+                    "there are not to be trusted."
+              : " m behind the mid-surface of the shell of element " + element +
+                    " it is pressed on, deeper than half its thickness" + more +
+                    ": the bodies overlap by more than the shell and may pass through.";
+      m_sink.message(Severity::Warning,
+                     "increment " + std::to_string(state.increment) +
+                         ", t = " + format_real(state.time) + " s: contact too soft: node " +
+                         std::to_string(m_model.node_ids[t.behind_node]) + " is " +
+                         format_real(t.behind_depth) + where +
+                         " Refine the mesh where it hits, raise the penalty scale factor "
+                         "(*CONTACT CONTROLS ASSIGNMENT), or lower the time scale factor");
+    }
     ++m_behind_increments;
     m_behind_deepest = std::max(m_behind_deepest, t.behind_depth);
   }
@@ -315,7 +324,7 @@ void ContactStage::end_step() {
   if (m_behind_increments > 1)
     m_sink.message(Severity::Warning,
                    "contact too soft: nodes behind the mid-surface of the shell they are pressed "
-                   "on in " +
+                   "on, or deeper than half the solid element behind their face, in " +
                        std::to_string(m_behind_increments) +
                        " increments of the step, the deepest " + format_real(m_behind_deepest) +
                        " m");

@@ -744,6 +744,56 @@ TEST_CASE(
   CHECK(totals.passed_element == 0);
 }
 
+TEST_CASE(
+    "a node pressed into a solid face deeper than half the element behind it is reported as "
+    "contact too soft, with that element's depth; shallower, it is not",
+    "[contact][engine][speed]") {
+  // Lower block: one hex of 1 (z in [0, 1]); upper block: one hex of 0.4 whose bottom face
+  // starts on the lower block's top face, over its interior.
+  const Real dt = 1e-3;
+  test::ContactMesh mesh;
+  test::add_hex_block(mesh, 1, 1, 1, 1.0);
+  const Index first_block = mesh.node_count();
+  test::add_hex_block(mesh, 1, 1, 1, 0.4, Vec3(0.3, 0.3, 1.0));
+  const Index n = mesh.node_count();
+  const std::vector<Real> thickness(static_cast<std::size_t>(n),
+                                    std::numeric_limits<Real>::quiet_NaN());
+  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  contact::ContactOptions options;
+  options.margin = 0.1;
+  NodalVectors x = mesh.coordinates;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, options, x,
+                                thickness);
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  NodalVectors v = NodalVectors::Zero(n, 3);
+  PhaseTimers timers;
+  engine.update(x, v, 0.0, dt, thickness, mass, inverse_mass, force, timers);
+  const auto step = [&](Real dz) {
+    for (Index i = first_block; i < n; ++i) {
+      x(i, 2) += dz;
+      v(i, 2) = dz / dt;
+    }
+    force.setZero();
+    return engine.update(x, v, dt, dt, thickness, mass, inverse_mass, force, timers);
+  };
+  const Index corner = first_block;  // bottom corner at (0.3, 0.3, 1)
+  const Index s = engine.domain().slaves().slot(corner);
+  // 0.3 into the lower block's top face (its hex is 1 deep): held, not reported.
+  contact::ContactTotals totals = step(-0.3);
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(engine.touch(s).gap == Approx(-0.3).margin(1e-12));
+  CHECK(totals.behind == 0);
+  // 0.6 in: still held by the face it was pressed on, past half the element: reported.
+  totals = step(-0.3);
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(engine.touch(s).gap == Approx(-0.6).margin(1e-12));
+  CHECK(totals.lost == 0);
+  CHECK(totals.behind == 4);  // the upper block's four bottom corners
+  CHECK(totals.behind_depth == Approx(0.6).margin(1e-12));
+  CHECK(totals.behind_element == 0);
+  CHECK(totals.behind_element_depth == Approx(1.0).margin(1e-12));
+}
+
 TEST_CASE("the springs that push a free rigid body are bounded with the body's mass",
           "[contact][engine][rigid]") {
   // The scene above: a rigid 2×2×1 block whose nine bottom nodes dip 0.01 into a deformable
