@@ -286,6 +286,9 @@ class ContactEngine {
   /// interior, when the search found it no face (`touched` NO_INDEX) or only the wall's other
   /// side: it has passed through the shell. Else 0.
   Real passed_depth(const SlaveView& v, Index touched, const NodalVectors& position) const;
+  /// Whether shell face f lies on the other side of the wall that the node of view `v` is held
+  /// on (v.held: that face's other side, or the other side of an element continuing the wall).
+  bool across_held_wall(const SlaveView& v, Index f, const NodalVectors& position) const;
   /// How far (m) the node of view `v`, still held on the side of the shell it was pressed on
   /// (`touch` on that element), lies behind the shell's mid-surface over the face's interior:
   /// deeper than half the thickness, about to pass through. For `touch` on a solid face, the

@@ -268,6 +268,12 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         }
         const Real bound =
             previous_admissible ? previous_distance : std::numeric_limits<Real>::max();
+        // Side memory: the shell face the node is held on, and its touch while the node lies
+        // pressed in over that face's interior (below).
+        const Index held_face = view.held != nullptr
+                                    ? static_cast<Index>(view.held - m_domain.faces().data())
+                                    : NO_INDEX;
+        SlaveTouch held_touch;
         const auto consider = [&](Index f) {
           if (previous_known && f == previous) {
             if (!previous_admissible) return;
@@ -284,12 +290,24 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
           if (candidate.gap < 0.0) {
             keep_nearest(penetrated, penetrated_distance, n_penetrated, candidate, distance);
             ++n_seen;
+            if (f == held_face && std::abs(candidate.xi) < 1.0 && std::abs(candidate.eta) < 1.0)
+              held_touch = candidate;
           }
         };
         for (Index f : listed) consider(f);
         // The face pressed last increment, deeper than the broad phase's slab (contact at speed).
         if (continuing != NO_INDEX && !std::binary_search(listed.begin(), listed.end(), continuing))
           consider(continuing);
+        // A node pressed into the shell face it is held on, over that face's interior, stays
+        // there whatever open touch, or touch of the wall's other side, lies nearer: driven deep
+        // at speed, it is nearer to the round edge of the next element than to the face it went
+        // into, and an open touch there would drop its side memory, and the other side's would
+        // push it on through (sweep scene 5163: a box corner through a plate at 214 m/s, the
+        // run "completed").
+        if (held_touch.face != NO_INDEX && best.face != held_face &&
+            (best.face == NO_INDEX || best.gap >= 0.0 ||
+             across_held_wall(view, best.face, position)))
+          best = held_touch;
         m_lost_depth[s] = best.face == NO_INDEX ? released_depth(view, position) : 0.0;
         m_passed_depth[s] = passed_depth(view, best.face, position);
         m_behind_depth[s] = behind_depth(view, best, node_thickness);

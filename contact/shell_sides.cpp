@@ -89,6 +89,19 @@ Real ContactEngine::passed_depth(const SlaveView& v, Index touched,
   return depth;
 }
 
+bool ContactEngine::across_held_wall(const SlaveView& v, Index f,
+                                     const NodalVectors& position) const {
+  const std::vector<ContactFace>& faces = m_domain.faces();
+  if (v.held == nullptr || !faces[f].shell) return false;
+  const ContactFace& held = *v.held;
+  Vec3 corner[4];
+  face_corners(held, position, {}, corner);
+  const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+  const Real n_len = std::sqrt(n.dot(n));
+  if (!(n_len > 0.0)) return false;
+  return shell_side(faces, held, n / n_len, f, position) < 0;
+}
+
 Real ContactEngine::behind_depth(const SlaveView& v, const SlaveTouch& touch,
                                  std::span<const Real> node_thickness) const {
   if (touch.face == NO_INDEX) return 0.0;

@@ -745,6 +745,72 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "a shell node driven deep into the shell face it is held on stays held there when the round "
+    "edge of the next element is nearer: it is not handed to the plate's other side",
+    "[contact][engine][speed]") {
+  // Plate: two shells (x in [0, 1] and [1, 2], y in [0, 1], z = 0), t = 0.2. A vertical shell
+  // (t = 0.02, in the plane y = 0.5) comes down with its bottom corner A at x = 0.85, 0.15
+  // from the plate's shared edge: pressed in to just above the plate's mid-surface, A is
+  // nearer to the round edge of element 1 (open there) than to element 0's face it went into.
+  const Real t_plate = 0.2, t_blade = 0.02, dt = 1e-3;
+  test::ContactMesh mesh;
+  test::add_shell_plate(mesh, 2, 1, 1.0);
+  const Index a = mesh.add_node(0.85, 0.5, 0.15);
+  const Index b = mesh.add_node(0.45, 0.5, 0.15);
+  const Index c = mesh.add_node(0.45, 0.5, 0.55);
+  const Index d = mesh.add_node(0.85, 0.5, 0.55);
+  mesh.add_element(contact::ElementKind::Shell, {a, b, c, d});
+  const Index n = mesh.node_count();
+  std::vector<Real> thickness(static_cast<std::size_t>(n), t_plate);
+  for (Index i = a; i < n; ++i) thickness[i] = t_blade;
+  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
+  contact::ContactOptions options;
+  options.margin = 0.1;
+  NodalVectors x = mesh.coordinates;
+  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, options, x,
+                                thickness);
+  NodalVectors force = NodalVectors::Zero(n, 3);
+  NodalVectors v = NodalVectors::Zero(n, 3);
+  PhaseTimers timers;
+  engine.update(x, v, 0.0, dt, thickness, mass, inverse_mass, force, timers);
+  const auto step = [&](Real dz) {
+    for (Index i = a; i < n; ++i) {
+      x(i, 2) += dz;
+      v(i, 2) = dz / dt;
+    }
+    force.setZero();
+    return engine.update(x, v, dt, dt, thickness, mass, inverse_mass, force, timers);
+  };
+  const Index s = engine.domain().slaves().slot(a);
+  const auto element_of = [&](Index slot) {
+    return engine.domain().faces()[engine.touch(slot).face].element;
+  };
+  // Pressed 0.01 into element 0's upper side (A at z = 0.1).
+  contact::ContactTotals totals = step(-0.05);
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(element_of(s) == 0);
+  CHECK(engine.touch(s).gap < 0.0);
+  const Vec3 side = engine.touch(s).normal;
+  // Driven to 0.005 above the mid-surface: element 1's round edge is 0.05 from A (open), element
+  // 0's face 0.095. Held on element 0's upper side, pressed in 0.105.
+  totals = step(-0.095);
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(element_of(s) == 0);
+  CHECK(engine.touch(s).gap == Approx(-0.105).margin(1e-12));
+  CHECK(engine.touch(s).normal.dot(side) > 0.99);
+  CHECK(engine.normal_force(s) > 0.0);
+  // On through the mid-surface, 0.005 behind it: still held on the upper side (pushed back up)
+  // and reported as too soft; the plate's lower side does not take it.
+  totals = step(-0.01);
+  REQUIRE(engine.touch(s).face != NO_INDEX);
+  CHECK(element_of(s) == 0);
+  CHECK(engine.touch(s).normal.dot(side) > 0.99);
+  CHECK(totals.passed == 0);
+  CHECK(totals.behind >= 1);
+  CHECK(totals.behind_depth == Approx(0.005).margin(1e-12));  // its mid-surface behind the plate's
+}
+
+TEST_CASE(
     "a node pressed into a solid face deeper than half the element behind it is reported as "
     "contact too soft, with that element's depth; shallower, it is not",
     "[contact][engine][speed]") {
