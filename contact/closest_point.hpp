@@ -19,6 +19,7 @@
 /// closest point is on a perimeter edge (SPEC C9).
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "contact/contact_faces.hpp"
@@ -91,6 +92,11 @@ struct SlaveTouch {
   std::array<Real, 4> shape{};  ///< weights N_I of the face corners at the closest point
   Real xi = 0.0, eta = 0.0;     ///< face coordinates of the closest point
 };
+
+/// Whether a touch's closest point lies over its face's interior (not beside an edge).
+inline bool over_interior(const SlaveTouch& t) {
+  return std::abs(t.xi) < 1.0 && std::abs(t.eta) < 1.0;
+}
 
 /// Where the closest point of a face lay for a slave node (face, coordinates): last
 /// increment's, a Newton start on a strongly warped face (closest_point_on_quad).

@@ -286,14 +286,15 @@ class ContactEngine {
   /// interior, when the search found it no face (`touched` NO_INDEX) or only the wall's other
   /// side: it has passed through the shell. Else 0.
   Real passed_depth(const SlaveView& v, Index touched, const NodalVectors& position) const;
-  /// Whether shell face f lies on the other side of the wall that the node of view `v` is held
-  /// on (v.held: that face's other side, or the other side of an element continuing the wall).
-  bool across_held_wall(const SlaveView& v, Index f, const NodalVectors& position) const;
+  /// The search's choice `best` for the node of view `v`, given `held` (its touch pressed into
+  /// the held shell face over its interior, or none): `held` replaces an open touch, none, or a
+  /// touch of the held wall's other side.
+  void keep_held_side(const SlaveView& v, const SlaveTouch& held, const NodalVectors& position,
+                      SlaveTouch& best) const;
   /// How far (m) the node of view `v`, still held on the side of the shell it was pressed on
   /// (`touch` on that element), lies behind the shell's mid-surface over the face's interior:
-  /// deeper than half the thickness, about to pass through. For `touch` on a solid face, the
-  /// overlap of the bodies there (−gap, less a clearance's allowance) where it exceeds half
-  /// the element behind the face (ContactDomain::face_depth). Else 0.
+  /// deeper than half the thickness, about to pass through. On a solid face, the overlap (−gap
+  /// less a clearance's allowance) where it exceeds ContactDomain::face_depth. Else 0.
   Real behind_depth(const SlaveView& v, const SlaveTouch& touch,
                     std::span<const Real> node_thickness) const;
   /// What the force pass needs of one spring (a side of a slave slot), from the pass before

@@ -58,6 +58,21 @@ SlaveTouch corner_touch(const SlaveTouch& best, const std::array<SlaveTouch, N>&
   return SlaveTouch{};
 }
 
+/// The nearest penetrated touch among `listed` on the other side of a pinched node from `best`
+/// (normals within PINCH_COSINE); `touch(f, t, d)` is admissible() of face f for the node.
+template <class Touch>
+SlaveTouch other_side_among(std::span<const Index> listed, const SlaveTouch& best, Touch&& touch) {
+  SlaveTouch second, candidate;
+  Real distance = 0.0, second_distance = std::numeric_limits<Real>::max();
+  for (Index f : listed)
+    if (touch(f, candidate, distance) && candidate.gap < 0.0 && candidate.face != best.face &&
+        candidate.normal.dot(best.normal) < PINCH_COSINE && distance < second_distance) {
+      second_distance = distance;
+      second = candidate;
+    }
+  return second;
+}
+
 }  // namespace
 
 bool ContactEngine::admissible(const SlaveView& v, Index f, const NodalVectors& position,
@@ -268,12 +283,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         }
         const Real bound =
             previous_admissible ? previous_distance : std::numeric_limits<Real>::max();
-        // Side memory: the shell face the node is held on, and its touch while the node lies
-        // pressed in over that face's interior (below).
-        const Index held_face = view.held != nullptr
-                                    ? static_cast<Index>(view.held - m_domain.faces().data())
-                                    : NO_INDEX;
-        SlaveTouch held_touch;
+        SlaveTouch held_touch;  // on the held shell face, pressed in over its interior
         const auto consider = [&](Index f) {
           if (previous_known && f == previous) {
             if (!previous_admissible) return;
@@ -290,7 +300,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
           if (candidate.gap < 0.0) {
             keep_nearest(penetrated, penetrated_distance, n_penetrated, candidate, distance);
             ++n_seen;
-            if (f == held_face && std::abs(candidate.xi) < 1.0 && std::abs(candidate.eta) < 1.0)
+            if (view.held == &m_domain.faces()[f] && over_interior(candidate))
               held_touch = candidate;
           }
         };
@@ -298,16 +308,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         // The face pressed last increment, deeper than the broad phase's slab (contact at speed).
         if (continuing != NO_INDEX && !std::binary_search(listed.begin(), listed.end(), continuing))
           consider(continuing);
-        // A node pressed into the shell face it is held on, over that face's interior, stays
-        // there whatever open touch, or touch of the wall's other side, lies nearer: driven deep
-        // at speed, it is nearer to the round edge of the next element than to the face it went
-        // into, and an open touch there would drop its side memory, and the other side's would
-        // push it on through (sweep scene 5163: a box corner through a plate at 214 m/s, the
-        // run "completed").
-        if (held_touch.face != NO_INDEX && best.face != held_face &&
-            (best.face == NO_INDEX || best.gap >= 0.0 ||
-             across_held_wall(view, best.face, position)))
-          best = held_touch;
+        keep_held_side(view, held_touch, position, best);
         m_lost_depth[s] = best.face == NO_INDEX ? released_depth(view, position) : 0.0;
         m_passed_depth[s] = passed_depth(view, best.face, position);
         m_behind_depth[s] = behind_depth(view, best, node_thickness);
@@ -316,18 +317,12 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
         // (a corner node of a squashed block behind the block's far side).
         const bool pinched = best.face != NO_INDEX && best.gap < 0.0;
         if (pinched) second = opposite_touch(best, penetrated, n_penetrated);
-        if (pinched && second.face == NO_INDEX && n_seen > PENETRATED_KEPT) {
-          // More penetrated faces than kept (a node under the shared corner of many faces on
-          // both sides): look for the other side among all of them.
-          Real second_distance = std::numeric_limits<Real>::max();
-          for (Index f : listed)
-            if (admissible(view, f, position, node_thickness, candidate, distance) &&
-                candidate.gap < 0.0 && candidate.face != best.face &&
-                candidate.normal.dot(best.normal) < PINCH_COSINE && distance < second_distance) {
-              second_distance = distance;
-              second = candidate;
-            }
-        }
+        // More penetrated faces than kept (a node under the shared corner of many faces on both
+        // sides): look for the other side among all of them.
+        if (pinched && second.face == NO_INDEX && n_seen > PENETRATED_KEPT)
+          second = other_side_among(listed, best, [&](Index f, SlaveTouch& t, Real& d) {
+            return admissible(view, f, position, node_thickness, t, d);
+          });
         if (pinched && second.face == NO_INDEX && view.double_sided && m_updated)
           second = corner_touch(best, penetrated, n_penetrated, m_domain.faces());
         if (m_sleep.asleep[s] == 0) record_sleep(view, best, second, position, node_thickness);
