@@ -744,6 +744,51 @@ TEST_CASE(
   CHECK(totals.passed_element == 0);
 }
 
+namespace {
+
+/// A contact engine over `mesh` (all exterior, margin 0.1, unit masses, increment dt) whose
+/// nodes from `first_moving` on move together: step(dz) moves them by dz along z in one
+/// increment and returns the update's totals.
+struct MovingPart {
+  MovingPart(const test::ContactMesh& mesh, const std::vector<Real>& node_thickness,
+             Index first_moving, Real increment)
+      : x(mesh.coordinates),
+        thickness(node_thickness),
+        mass(static_cast<std::size_t>(mesh.node_count()), 1.0),
+        engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, margin(), x, thickness),
+        force(NodalVectors::Zero(mesh.node_count(), 3)),
+        v(NodalVectors::Zero(mesh.node_count(), 3)),
+        first(first_moving),
+        dt(increment) {
+    engine.update(x, v, 0.0, dt, thickness, mass, mass, force, timers);
+  }
+  static contact::ContactOptions margin() {
+    contact::ContactOptions options;
+    options.margin = 0.1;
+    return options;
+  }
+  contact::ContactTotals step(Real dz) {
+    for (Index i = first; i < x.rows(); ++i) {
+      x(i, 2) += dz;
+      v(i, 2) = dz / dt;
+    }
+    force.setZero();
+    return engine.update(x, v, dt, dt, thickness, mass, mass, force, timers);
+  }
+  /// The element of the face slot s touches.
+  Index element_of(Index s) const { return engine.domain().faces()[engine.touch(s).face].element; }
+
+  NodalVectors x;
+  std::vector<Real> thickness, mass;  // unit masses: the inverse masses are the same
+  contact::ContactEngine engine;
+  NodalVectors force, v;
+  PhaseTimers timers;
+  Index first;
+  Real dt;
+};
+
+}  // namespace
+
 TEST_CASE(
     "a shell node driven deep into the shell face it is held on stays held there when the round "
     "edge of the next element is nearer: it is not handed to the plate's other side",
@@ -752,7 +797,7 @@ TEST_CASE(
   // (t = 0.02, in the plane y = 0.5) comes down with its bottom corner A at x = 0.85, 0.15
   // from the plate's shared edge: pressed in to just above the plate's mid-surface, A is
   // nearer to the round edge of element 1 (open there) than to element 0's face it went into.
-  const Real t_plate = 0.2, t_blade = 0.02, dt = 1e-3;
+  const Real t_plate = 0.2, t_blade = 0.02;
   test::ContactMesh mesh;
   test::add_shell_plate(mesh, 2, 1, 1.0);
   const Index a = mesh.add_node(0.85, 0.5, 0.15);
@@ -760,50 +805,30 @@ TEST_CASE(
   const Index c = mesh.add_node(0.45, 0.5, 0.55);
   const Index d = mesh.add_node(0.85, 0.5, 0.55);
   mesh.add_element(contact::ElementKind::Shell, {a, b, c, d});
-  const Index n = mesh.node_count();
-  std::vector<Real> thickness(static_cast<std::size_t>(n), t_plate);
-  for (Index i = a; i < n; ++i) thickness[i] = t_blade;
-  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
-  contact::ContactOptions options;
-  options.margin = 0.1;
-  NodalVectors x = mesh.coordinates;
-  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, options, x,
-                                thickness);
-  NodalVectors force = NodalVectors::Zero(n, 3);
-  NodalVectors v = NodalVectors::Zero(n, 3);
-  PhaseTimers timers;
-  engine.update(x, v, 0.0, dt, thickness, mass, inverse_mass, force, timers);
-  const auto step = [&](Real dz) {
-    for (Index i = a; i < n; ++i) {
-      x(i, 2) += dz;
-      v(i, 2) = dz / dt;
-    }
-    force.setZero();
-    return engine.update(x, v, dt, dt, thickness, mass, inverse_mass, force, timers);
-  };
+  std::vector<Real> thickness(static_cast<std::size_t>(mesh.node_count()), t_plate);
+  for (Index i = a; i < mesh.node_count(); ++i) thickness[i] = t_blade;
+  MovingPart part(mesh, thickness, a, 1e-3);
+  const contact::ContactEngine& engine = part.engine;
   const Index s = engine.domain().slaves().slot(a);
-  const auto element_of = [&](Index slot) {
-    return engine.domain().faces()[engine.touch(slot).face].element;
-  };
   // Pressed 0.01 into element 0's upper side (A at z = 0.1).
-  contact::ContactTotals totals = step(-0.05);
+  contact::ContactTotals totals = part.step(-0.05);
   REQUIRE(engine.touch(s).face != NO_INDEX);
-  CHECK(element_of(s) == 0);
+  CHECK(part.element_of(s) == 0);
   CHECK(engine.touch(s).gap < 0.0);
   const Vec3 side = engine.touch(s).normal;
   // Driven to 0.005 above the mid-surface: element 1's round edge is 0.05 from A (open), element
   // 0's face 0.095. Held on element 0's upper side, pressed in 0.105.
-  totals = step(-0.095);
+  totals = part.step(-0.095);
   REQUIRE(engine.touch(s).face != NO_INDEX);
-  CHECK(element_of(s) == 0);
+  CHECK(part.element_of(s) == 0);
   CHECK(engine.touch(s).gap == Approx(-0.105).margin(1e-12));
   CHECK(engine.touch(s).normal.dot(side) > 0.99);
   CHECK(engine.normal_force(s) > 0.0);
   // On through the mid-surface, 0.005 behind it: still held on the upper side (pushed back up)
   // and reported as too soft; the plate's lower side does not take it.
-  totals = step(-0.01);
+  totals = part.step(-0.01);
   REQUIRE(engine.touch(s).face != NO_INDEX);
-  CHECK(element_of(s) == 0);
+  CHECK(part.element_of(s) == 0);
   CHECK(engine.touch(s).normal.dot(side) > 0.99);
   CHECK(totals.passed == 0);
   CHECK(totals.behind >= 1);
@@ -816,41 +841,22 @@ TEST_CASE(
     "[contact][engine][speed]") {
   // Lower block: one hex of 1 (z in [0, 1]); upper block: one hex of 0.4 whose bottom face
   // starts on the lower block's top face, over its interior.
-  const Real dt = 1e-3;
   test::ContactMesh mesh;
   test::add_hex_block(mesh, 1, 1, 1, 1.0);
   const Index first_block = mesh.node_count();
   test::add_hex_block(mesh, 1, 1, 1, 0.4, Vec3(0.3, 0.3, 1.0));
-  const Index n = mesh.node_count();
-  const std::vector<Real> thickness(static_cast<std::size_t>(n),
+  const std::vector<Real> thickness(static_cast<std::size_t>(mesh.node_count()),
                                     std::numeric_limits<Real>::quiet_NaN());
-  const std::vector<Real> mass(n, 1.0), inverse_mass(n, 1.0);
-  contact::ContactOptions options;
-  options.margin = 0.1;
-  NodalVectors x = mesh.coordinates;
-  contact::ContactEngine engine(ContactDomain(all_exterior(), mesh.topology(), x), {}, options, x,
-                                thickness);
-  NodalVectors force = NodalVectors::Zero(n, 3);
-  NodalVectors v = NodalVectors::Zero(n, 3);
-  PhaseTimers timers;
-  engine.update(x, v, 0.0, dt, thickness, mass, inverse_mass, force, timers);
-  const auto step = [&](Real dz) {
-    for (Index i = first_block; i < n; ++i) {
-      x(i, 2) += dz;
-      v(i, 2) = dz / dt;
-    }
-    force.setZero();
-    return engine.update(x, v, dt, dt, thickness, mass, inverse_mass, force, timers);
-  };
-  const Index corner = first_block;  // bottom corner at (0.3, 0.3, 1)
-  const Index s = engine.domain().slaves().slot(corner);
+  MovingPart part(mesh, thickness, first_block, 1e-3);
+  const contact::ContactEngine& engine = part.engine;
+  const Index s = engine.domain().slaves().slot(first_block);  // bottom corner at (0.3, 0.3, 1)
   // 0.3 into the lower block's top face (its hex is 1 deep): held, not reported.
-  contact::ContactTotals totals = step(-0.3);
+  contact::ContactTotals totals = part.step(-0.3);
   REQUIRE(engine.touch(s).face != NO_INDEX);
   CHECK(engine.touch(s).gap == Approx(-0.3).margin(1e-12));
   CHECK(totals.behind == 0);
   // 0.6 in: still held by the face it was pressed on, past half the element: reported.
-  totals = step(-0.3);
+  totals = part.step(-0.3);
   REQUIRE(engine.touch(s).face != NO_INDEX);
   CHECK(engine.touch(s).gap == Approx(-0.6).margin(1e-12));
   CHECK(totals.lost == 0);
