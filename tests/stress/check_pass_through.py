@@ -3,11 +3,13 @@
 run must not end "completed" with the bodies on the wrong side of each other. Scene 116 (a
 C3D8 block's corner at 108 m/s into a clamped plastic S4R plate three elements across) and
 153 (an S4R box at 289 m/s onto a free S4R plate) once ended "completed" with a projectile
-node 1.3 and 1.7 mm beyond the plate's mid-surface. Either a scene completes and the checker
+node 1.3 and 1.7 mm beyond the plate's mid-surface; 5163 (an S4R box corner-first at 214 m/s
+onto a rigid S4R plate) with its corner 1.35 mm through the plate (the node's side memory lost
+to an open touch of the next element). Either a scene completes and the checker
 finds no pass-through, or the run fails and its reason names the node that passed through a
 shell.
 
-Usage: check_pass_through.py XPL WORK_DIR [ID ...]   (default IDs: 116 153)
+Usage: check_pass_through.py XPL WORK_DIR [ID ...]   (default IDs: 116 153 5163)
 Standard library only.
 """
 
@@ -17,7 +19,7 @@ from scene_run import arguments, run_scene
 
 
 def main():
-    args = arguments(__doc__, [116, 153])
+    args = arguments(__doc__, [116, 153, 5163])
     if args is None:
         return 2
     xpl, work, ids = args
