@@ -44,6 +44,13 @@ inline constexpr Real PENALTY_ALONE_BUDGET = 2.0;
 /// mode): the contact stability stress tests hold at it.
 inline constexpr Real DEFAULT_PENALTY_NODE_BUDGET = 1.0;
 
+/// The bound on ω²Δt² of a rigid body's bounce on its default springs (its translation rows
+/// over the body's mass, cap_default_springs), below the node budget: a free rigid body's
+/// motion has no element stiffness to spread an impact over, so its contact lasts ~π/(ωΔt)
+/// increments, and a spring's onset and release inside an increment cost an energy error of
+/// the order of √k (docs/theory/contact.md). At 0.25 a bounce spans ≥ 6 increments.
+inline constexpr Real DEFAULT_PENALTY_BODY_BUDGET = 0.25;
+
 /// The nearest penetrated faces a slave node keeps in the search for the face on its other
 /// side (a pinched node); a node under more (the shared corner of four faces on each side)
 /// searches its candidates once more.

@@ -171,6 +171,8 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
     return m_node_body[faces[touch_of(j).face].nodes[0]];
   };
   if (!m_body_mass.empty()) {
+    const Real body_budget =
+        DEFAULT_PENALTY_BODY_BUDGET * m_options.penalty_scale / (dt_penalty * dt_penalty);
     for (auto& r : m_body_row) r = {0.0, 0.0, 0.0};
     for (const Index s : visited)
       for (Index j = 2 * s; j < 2 * s + 2; ++j) {
@@ -187,7 +189,7 @@ void ContactEngine::cap_default_springs(Real dt_penalty, std::span<const Real> m
       for (int d = 0; d < 3; ++d)
         if (std::isfinite(m_body_mass[b][d]) && m_body_mass[b][d] > 0.0)
           largest = std::max(largest, m_body_row[b][d] / m_body_mass[b][d]);
-      m_body_factor[b] = largest > budget ? budget / largest : 1.0;
+      m_body_factor[b] = largest > body_budget ? body_budget / largest : 1.0;
     }
   }
   // This process's live slots: the other slots' springs are their owners' (share_slots), and

@@ -1,6 +1,6 @@
-"""What check_seed_overclosures.py and check_pass_through.py share: their arguments and one
-scene written, run with one thread and checked by impact_check.py (whose verdict on all the
-criteria is not theirs). Standard library only."""
+"""What check_seed_overclosures.py, check_pass_through.py and check_rigid_bounce.py share:
+their arguments and one scene written, run with one thread and checked by impact_check.py
+(whose verdict on all the criteria is not theirs). Standard library only."""
 
 import json
 import pathlib
