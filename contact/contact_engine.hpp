@@ -283,9 +283,9 @@ class ContactEngine {
   Real released_depth(const SlaveView& v, const NodalVectors& position) const;
   /// How far (m) the node of view `v`, held on a side of a shell last increment, lies behind
   /// the mid-surface of that wall (the held face, or the next elements continuing it) over its
-  /// interior, when the search found it no face (`touched` NO_INDEX) or only the wall's other
-  /// side: it has passed through the shell. Else 0.
-  Real passed_depth(const SlaveView& v, Index touched, const NodalVectors& position) const;
+  /// interior, when the search found it no pressed touch (`touch`) but on the wall's other side:
+  /// it has passed through the shell. Else 0.
+  Real passed_depth(const SlaveView& v, const SlaveTouch& touch, const NodalVectors& pos) const;
   /// The search's choice `best` for the node of view `v`, given `held` (its touch pressed into
   /// the held shell face over its interior, or none): `held` replaces an open touch, none, or a
   /// touch of the held wall's other side.

@@ -310,7 +310,7 @@ void ContactEngine::search(const NodalVectors& position, std::span<const Real> n
           consider(continuing);
         keep_held_side(view, held_touch, position, best);
         m_lost_depth[s] = best.face == NO_INDEX ? released_depth(view, position) : 0.0;
-        m_passed_depth[s] = passed_depth(view, best.face, position);
+        m_passed_depth[s] = passed_depth(view, best, position);
         m_behind_depth[s] = behind_depth(view, best, node_thickness);
         // Pinched: penetrating its nearest face and one on its other side. A node outside its
         // nearest face is not pinched, however deep it lies behind a face across its own body

@@ -57,9 +57,10 @@ int shell_side(const std::vector<ContactFace>& faces, const ContactFace& held,
 
 }  // namespace
 
-Real ContactEngine::passed_depth(const SlaveView& v, Index touched,
+Real ContactEngine::passed_depth(const SlaveView& v, const SlaveTouch& touch,
                                  const NodalVectors& position) const {
   if (v.held == nullptr || !m_updated) return 0.0;
+  const Index touched = touch.face;
   const std::vector<ContactFace>& faces = m_domain.faces();
   const ContactFace& held = *v.held;
   // Still held on the same face, or by a solid face: nothing to measure (most held nodes, every
@@ -71,8 +72,12 @@ Real ContactEngine::passed_depth(const SlaveView& v, Index touched,
   const Real n_len = std::sqrt(n.dot(n));
   if (!(n_len > 0.0)) return 0.0;
   const Vec3 held_normal = n / n_len;
-  // Held by another shell face on this wall's side, or by one that is not part of the wall.
-  if (touched != NO_INDEX && shell_side(faces, held, held_normal, touched, position) >= 0)
+  // Pressed on another shell face on this wall's side, or on a face that is not part of the
+  // wall: held. An open touch holds nothing (sweep scene 6623: a rigid block's corner, pressed
+  // 0.27 mm behind a thin plate's mid-surface, slid past its face's edge; the open touch of the
+  // next element's corner dropped its side memory and the run completed with it through).
+  if (touched != NO_INDEX && touch.gap < 0.0 &&
+      shell_side(faces, held, held_normal, touched, position) >= 0)
     return 0.0;
   // Behind the mid-surface of the held face or of the wall's next elements, over its interior.
   Real depth = 0.0;
