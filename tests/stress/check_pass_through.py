@@ -17,28 +17,23 @@ Standard library only.
 
 import sys
 
-from scene_run import arguments, run_scene
+from scene_run import check_scenes
+
+
+def check(_scene, out, _folder, summary):
+    status, reason = summary["status"], summary.get("exit_reason", "")
+    crossed = [line.strip() for line in out.splitlines() if "passed through" in line]
+    if status == "completed":
+        ok = not crossed
+        said = crossed[0] if crossed else "no pass-through found by the checker"
+    else:
+        ok = "passed through the shell" in reason
+        said = reason
+    return ok, [f"status {status}: {said[:300]}"]
 
 
 def main():
-    args = arguments(__doc__, [116, 153, 5163, 6623])
-    if args is None:
-        return 2
-    xpl, work, ids = args
-    failures = 0
-    for scene in ids:
-        out, _, summary = run_scene(xpl, work, scene)
-        status, reason = summary["status"], summary.get("exit_reason", "")
-        crossed = [line.strip() for line in out.splitlines() if "passed through" in line]
-        if status == "completed":
-            ok = not crossed
-            said = crossed[0] if crossed else "no pass-through found by the checker"
-        else:
-            ok = "passed through the shell" in reason
-            said = reason
-        print(f"scene {scene}: {'ok' if ok else 'FAILED'}: status {status}: {said[:300]}")
-        failures += 0 if ok else 1
-    return 1 if failures else 0
+    return check_scenes(__doc__, [116, 153, 5163, 6623], check)
 
 
 if __name__ == "__main__":

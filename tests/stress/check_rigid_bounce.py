@@ -14,29 +14,23 @@ Standard library only.
 
 import sys
 
-from scene_run import arguments, run_scene
+from scene_run import check_scenes
 
 HELD = ("completed", "drift", "kinetic", "penetration")
 
 
+def check(_scene, report, _folder, summary):
+    lines = [line.strip() for line in report.splitlines()]
+    held = {c: any(line.startswith(f"ok   {c}") for line in lines) for c in HELD}
+    ok = summary["status"] == "completed" and all(held.values())
+    missing = [c for c, h in held.items() if not h]
+    said = summary.get("exit_reason", "") or (f"not held: {', '.join(missing)}" if missing
+                                              else "every criterion of the four held")
+    return ok, [f"status {summary['status']}: {said[:300]}"]
+
+
 def main():
-    args = arguments(__doc__, [6062, 6639])
-    if args is None:
-        return 2
-    xpl, work, ids = args
-    failures = 0
-    for scene in ids:
-        report, _, summary = run_scene(xpl, work, scene)
-        lines = [line.strip() for line in report.splitlines()]
-        held = {c: any(line.startswith(f"ok   {c}") for line in lines) for c in HELD}
-        ok = summary["status"] == "completed" and all(held.values())
-        missing = [c for c, h in held.items() if not h]
-        said = summary.get("exit_reason", "") or (f"not held: {', '.join(missing)}" if missing
-                                                  else "every criterion of the four held")
-        print(f"scene {scene}: {'ok' if ok else 'FAILED'}: status {summary['status']}: "
-              f"{said[:300]}")
-        failures += 0 if ok else 1
-    return 1 if failures else 0
+    return check_scenes(__doc__, [6062, 6639], check)
 
 
 if __name__ == "__main__":

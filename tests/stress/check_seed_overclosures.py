@@ -12,27 +12,20 @@ Standard library only.
 
 import sys
 
-from scene_run import arguments, run_scene
+from scene_run import check_scenes
+
+
+def check(scene, _report, folder, summary):
+    msg = (folder / f"scene_{scene}.msg").read_text()
+    status = summary["status"]
+    seeded = [line for line in msg.splitlines() if "initial overclosure: node" in line]
+    ok = status == "completed" and not seeded
+    return ok, [f"status {status}, {len(seeded)} initial overclosure(s)"] + [
+        line[:240] for line in seeded[:3]]
 
 
 def main():
-    args = arguments(__doc__, [86, 120, 199])
-    if args is None:
-        return 2
-    xpl, work, ids = args
-    failures = 0
-    for scene in ids:
-        _, folder, summary = run_scene(xpl, work, scene)
-        msg = (folder / f"scene_{scene}.msg").read_text()
-        status = summary["status"]
-        seeded = [line for line in msg.splitlines() if "initial overclosure: node" in line]
-        ok = status == "completed" and not seeded
-        print(f"scene {scene}: {'ok' if ok else 'FAILED'}: status {status}, "
-              f"{len(seeded)} initial overclosure(s)")
-        for line in seeded[:3]:
-            print(f"  {line[:240]}")
-        failures += 0 if ok else 1
-    return 1 if failures else 0
+    return check_scenes(__doc__, [86, 120, 199], check)
 
 
 if __name__ == "__main__":

@@ -29,3 +29,23 @@ def run_scene(xpl, work, scene):
     folder = work / f"scene_{scene}"
     summary = json.loads((folder / f"scene_{scene}.summary.json").read_text())
     return report, folder, summary
+
+
+def check_scenes(doc, defaults, check):
+    """Runs each scene of the command line (arguments(): `XPL WORK_DIR [ID ...]`, `defaults`
+    without IDs) and judges it by `check(scene, report, folder, summary)` -> (ok, lines):
+    prints `scene N: ok|FAILED: ` and the first line, the others indented. Returns the exit code:
+    0 when every scene is ok, 1 otherwise, 2 without arguments (after printing `doc`)."""
+    args = arguments(doc, defaults)
+    if args is None:
+        return 2
+    xpl, work, ids = args
+    failures = 0
+    for scene in ids:
+        report, folder, summary = run_scene(xpl, work, scene)
+        ok, lines = check(scene, report, folder, summary)
+        print(f"scene {scene}: {'ok' if ok else 'FAILED'}: {lines[0]}")
+        for line in lines[1:]:
+            print(f"  {line}")
+        failures += 0 if ok else 1
+    return 1 if failures else 0
