@@ -7,9 +7,9 @@ node 1.3 and 1.7 mm beyond the plate's mid-surface; 5163 (an S4R box corner-firs
 onto a rigid S4R plate) with its corner 1.35 mm through the plate (the node's side memory lost
 to an open touch of the next element); 6623 (a rigid copper block at 249 m/s onto a clamped
 0.58 mm plate) with a corner 1.07 mm through (pressed behind the mid-surface, it slid past its
-face's edge, and the open touch of the next element's corner was taken as holding it). Either a scene completes and the checker
-finds no pass-through, or the run fails and its reason names the node that passed through a
-shell.
+face's edge, and the open touch of the next element's corner was taken as holding it).
+Either a scene completes and the checker finds no pass-through, or the run fails and its
+reason names the node that passed through a shell.
 
 Usage: check_pass_through.py XPL WORK_DIR [ID ...]   (default IDs: 116 153 5163 6623)
 Standard library only.
