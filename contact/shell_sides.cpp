@@ -55,6 +55,18 @@ int shell_side(const std::vector<ContactFace>& faces, const ContactFace& held,
   return cosine < -WALL_COSINE ? -1 : 0;
 }
 
+/// The unit normal of shell face `face` (its diagonals' cross product) into `unit`; false where
+/// the face has collapsed.
+bool unit_normal(const ContactFace& face, const NodalVectors& position, Vec3& unit) {
+  Vec3 corner[4];
+  face_corners(face, position, {}, corner);
+  const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
+  const Real n_len = std::sqrt(n.dot(n));
+  if (!(n_len > 0.0)) return false;
+  unit = n / n_len;
+  return true;
+}
+
 }  // namespace
 
 Real ContactEngine::passed_depth(const SlaveView& v, const SlaveTouch& touch,
@@ -66,12 +78,8 @@ Real ContactEngine::passed_depth(const SlaveView& v, const SlaveTouch& touch,
   // Still held on the same face, or by a solid face: nothing to measure (most held nodes, every
   // increment), before the held face's normal is computed.
   if (touched != NO_INDEX && (!faces[touched].shell || touched == &held - faces.data())) return 0.0;
-  Vec3 corner[4];
-  face_corners(held, position, {}, corner);
-  const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
-  const Real n_len = std::sqrt(n.dot(n));
-  if (!(n_len > 0.0)) return 0.0;
-  const Vec3 held_normal = n / n_len;
+  Vec3 held_normal;
+  if (!unit_normal(held, position, held_normal)) return 0.0;
   // Pressed on another shell face on this wall's side, or on a face that is not part of the
   // wall: held. An open touch holds nothing (sweep scene 6623: a rigid block's corner, pressed
   // 0.27 mm behind a thin plate's mid-surface, slid past its face's edge; the open touch of the
@@ -82,6 +90,7 @@ Real ContactEngine::passed_depth(const SlaveView& v, const SlaveTouch& touch,
   // Behind the mid-surface of the held face or of the wall's next elements, over its interior.
   Real depth = 0.0;
   const auto behind = [&](Index f) {
+    Vec3 corner[4];
     face_corners(faces[f], position, {}, corner);
     const ClosestPoint cp = closest_point_on_quad(corner, v.point);
     if (cp.region == QuadRegion::Interior && cp.gap < 0.0) depth = std::max(depth, -cp.gap);
@@ -110,11 +119,10 @@ void ContactEngine::keep_held_side(const SlaveView& v, const SlaveTouch& held,
   // element continuing the wall).
   const std::vector<ContactFace>& faces = m_domain.faces();
   if (!faces[best.face].shell) return;
-  Vec3 corner[4];
-  face_corners(*v.held, position, {}, corner);
-  const Vec3 n = (corner[2] - corner[0]).cross(corner[3] - corner[1]);
-  const Real n_len = std::sqrt(n.dot(n));
-  if (n_len > 0.0 && shell_side(faces, *v.held, n / n_len, best.face, position) < 0) best = held;
+  Vec3 held_normal;
+  if (unit_normal(*v.held, position, held_normal) &&
+      shell_side(faces, *v.held, held_normal, best.face, position) < 0)
+    best = held;
 }
 
 Real ContactEngine::behind_depth(const SlaveView& v, const SlaveTouch& touch,
